@@ -1,0 +1,51 @@
+#pragma once
+/* Output files of a run: the directory (-output_dir), CSV time series and summary.json. All are
+   written by rank 0 of the given communicator. */
+#include <turgor/petsc_compat.h>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace turgor {
+
+/* Read -output_dir (default ./out), create it on rank 0, return its path. */
+PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir);
+
+/* A CSV file with a header row; numbers are written with full precision. */
+class CsvWriter {
+public:
+  PetscErrorCode Open(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns);
+  PetscErrorCode Row(const std::vector<PetscReal> &values);
+  PetscErrorCode Close();
+  bool           IsOpen() const { return comm_ != MPI_COMM_NULL; }
+  ~CsvWriter() { (void)Close(); }
+
+private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  FILE    *fp_   = nullptr;
+  size_t   ncol_ = 0;
+};
+
+/* A flat JSON object whose keys keep their insertion order. */
+class JsonObject {
+public:
+  void Set(const std::string &key, const std::string &value);
+  void Set(const std::string &key, const char *value) { Set(key, std::string(value)); }
+  void Set(const std::string &key, PetscReal value);
+  void Set(const std::string &key, PetscInt value);
+  void Set(const std::string &key, bool value);
+  void Set(const std::string &key, const std::vector<std::string> &values);
+  void Set(const std::string &key, const std::vector<PetscReal> &values);
+  /* Insert an already formatted JSON value (object, array). */
+  void        SetRaw(const std::string &key, const std::string &json);
+  std::string Str(int indent = 2) const;
+  PetscErrorCode Write(MPI_Comm comm, const std::string &path) const;
+
+private:
+  std::vector<std::pair<std::string, std::string>> items_;
+};
+
+std::string JsonQuote(const std::string &s);
+
+} // namespace turgor

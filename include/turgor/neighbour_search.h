@@ -1,0 +1,57 @@
+#pragma once
+/* Neighbour search by cell lists with a Verlet skin.
+
+   Lists are built with cutoff + skin and stay valid until some particle has moved more than
+   skin/2 since the last build (then no pair can have crossed the cutoff unseen); the check costs
+   O(n) per evaluation, a rebuild O(n) with a bin grid. Only the lists a force term asked for are
+   ever built: a scene without SPH does no fluid neighbour search. */
+#include <turgor/particles.h>
+#include <vector>
+
+namespace turgor {
+
+struct PairList { /* half list: each unordered pair once */
+  std::vector<PetscInt> i, j;
+  size_t                size() const { return i.size(); }
+};
+
+struct PointSegmentList { /* particle p near spring s (p is not an end point of s) */
+  std::vector<PetscInt> p, s;
+  size_t                size() const { return p.size(); }
+};
+
+class NeighbourSearch {
+public:
+  /* Ask for fluid–fluid pairs of the same cell closer than `cutoff`. */
+  void RequestFluidPairs(PetscReal cutoff);
+  /* Ask for (particle, spring) pairs closer than `cutoff` (point-to-segment distance). */
+  void RequestParticleSpringPairs(PetscReal cutoff);
+  void SetSkin(PetscReal skin) { skin_ = skin; }
+  PetscReal Skin() const { return skin_; }
+  void      Reset();
+
+  /* Rebuild the requested lists if any particle moved more than skin/2 since the last build. */
+  PetscErrorCode Update(const ParticleSet &P, const PetscReal *x);
+
+  const PairList         &FluidPairs() const { return fluid_pairs_; }
+  const PointSegmentList &ParticleSpringPairs() const { return particle_spring_; }
+  PetscInt                Rebuilds() const { return rebuilds_; }
+  bool                    WantsFluidPairs() const { return fluid_cutoff_ > 0; }
+  bool                    WantsParticleSpringPairs() const { return spring_cutoff_ > 0; }
+
+private:
+  PetscErrorCode Build(const ParticleSet &P, const PetscReal *x);
+  void           BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin);
+
+  PetscReal              fluid_cutoff_ = 0, spring_cutoff_ = 0, skin_ = 1.0;
+  PetscInt               rebuilds_ = 0;
+  std::vector<PetscReal> x_ref_;
+  PairList               fluid_pairs_;
+  PointSegmentList       particle_spring_;
+  /* bin grid (counting sort) */
+  PetscReal              x0_ = 0, y0_ = 0, bin_ = 1;
+  PetscInt               nbx_ = 0, nby_ = 0;
+  std::vector<PetscInt>  bin_start_, bin_items_, bin_of_;
+};
+
+} // namespace turgor

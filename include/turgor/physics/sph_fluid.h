@@ -1,0 +1,59 @@
+#pragma once
+/* SPH cell fluid (TW 562 §2.1): cubic-spline kernel (eq 2), summation density (eq 4), equation
+   of state p = c_s^2 rho (eq 11), viscous stress tau = mu (2d - 2/3 tr(d) I) (eqs 7-9) from the
+   Bonet–Lok corrected velocity gradient (eqs 13-15), momentum equation in nested-summation form
+   (eq 12). Fluid particles interact only with fluid particles of the same cell: the wall separates
+   the cell contents (the wall pushes on the fluid through the repulsion term).
+
+   Pair force on i from j, with grad_i W_ij = (x_i - x_j) W'(r)/r and L the correction matrix:
+     f_ij = [ V_i V_j (tau_i L_i + tau_j L_j) - m_i m_j (p_i/rho_i^2 + p_j/rho_j^2) I ] grad_i W_ij
+   The viscous part is the variational (Bonet & Lok 1999) counterpart of the corrected velocity
+   gradient: it is exactly antisymmetric (linear momentum) and, because sum_j V_j grad~W (x) x_ij
+   = I, it exerts no net torque (angular momentum), for any particle arrangement. */
+#include <turgor/physics/force_term.h>
+#include <vector>
+
+namespace turgor {
+
+class SPHFluid : public ForceTerm {
+public:
+  const char    *Name() const override { return "sph"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  /* Pressure energy sum_i m_i c_s^2 ln(rho_i): the pressure forces are exactly its negative gradient. */
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  /* Kernel W(r) and dW/dr of eq 2 in 2D. */
+  PetscReal Kernel(PetscReal r) const;
+  PetscReal KernelDerivative(PetscReal r) const;
+  /* Density (eq 4) and velocity gradient (eq 15, or eq 5 without correction) of every particle,
+     for tests and output: rho[n], gradv[4n] row-major d v_a / d x_b. */
+  PetscErrorCode DensityAndVelocityGradient(const ForceInput &in, std::vector<PetscReal> &rho, std::vector<PetscReal> &gradv);
+
+  PetscReal smoothing_length = 5.5;   /* h [µm] */
+  PetscReal sound_speed      = 100.0; /* c_s [µm/µs] */
+  PetscReal viscosity        = 4e-3;  /* 2D dynamic viscosity mu x thickness [ng/µs] */
+  PetscBool correction       = PETSC_TRUE;
+  PetscReal guard            = 1e-2; /* eigenvalue ratio below which the correction fades out */
+
+private:
+  struct ActivePair {
+    PetscInt  i, j;
+    PetscReal ex, ey, F; /* e = x_i - x_j, F = W'(r)/r */
+  };
+  PetscErrorCode DensityPass(const ForceInput &in);
+  PetscErrorCode GradientPass(const ForceInput &in);
+  template <bool VIRIAL>
+  PetscErrorCode ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial);
+
+  PetscReal               norm_ = 0, W0_ = 0;
+  std::vector<PetscInt>   fluid_; /* indices of fluid particles */
+  std::vector<ActivePair> pairs_; /* pairs within 2h, refreshed each evaluation */
+  std::vector<PetscReal>  rho_, vol_, M_, G_, A_, P_;
+  PetscLogEvent           ev_density_ = 0, ev_gradient_ = 0, ev_force_ = 0;
+};
+
+} // namespace turgor

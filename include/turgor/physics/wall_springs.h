@@ -1,0 +1,28 @@
+#pragma once
+/* Wall springs with dashpots (TW 562 eq 16): linear springs between neighbouring wall particles,
+   damped along the bond with gamma = zeta * 2 sqrt(m k) (zeta = 1: the seed's critical damping). */
+#include <turgor/physics/force_term.h>
+#include <vector>
+
+namespace turgor {
+
+class WallSprings : public ForceTerm {
+public:
+  const char    *Name() const override { return "springs"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  PetscReal stiffness     = 4000.0; /* k_w [µN/µm = N/m] */
+  PetscReal damping_ratio = 1.0;    /* zeta: 1 = critical, 0 = undamped */
+
+private:
+  template <bool VIRIAL>
+  void                   Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) const;
+  std::vector<PetscReal> gamma_; /* per spring */
+};
+
+} // namespace turgor

@@ -1,0 +1,11 @@
+#pragma once
+/* turgor: PETSc-native simulation of plant tissue mechanics.
+   Umbrella header for programs that link libturgor (see makefile.inc). */
+#include <turgor/force_model.h>
+#include <turgor/fine_run.h>
+#include <turgor/io/output.h>
+#include <turgor/neighbour_search.h>
+#include <turgor/particles.h>
+#include <turgor/tissue.h>
+
+#define TURGOR_VERSION_STRING "0.1.0"

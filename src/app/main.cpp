@@ -1,0 +1,57 @@
+static const char help[] = "turgor: mechanics of plant tissue from single cells to organs.\n"
+                           "\n"
+                           "  turgor -mode fine -options_file_yaml config/bending_bar_fine.yaml [options]\n"
+                           "\n"
+                           "A scene is a PETSc YAML options file (config/*.yaml). Units: µm, µs, ng (1e-12 kg);\n"
+                           "forces in µN, 2D stresses in N/m. Every option below is listed with its default;\n"
+                           "PETSc's own TS options (-ts_type, -ts_max_time, -ts_rtol, -ts_atol, -ts_dt, ...)\n"
+                           "choose the time integrator. Outputs go to -output_dir (default ./out).\n"
+                           "\n"
+                           "Modes:\n"
+                           "  fine   full fine-scale run: wall (DEM) + cell fluid (SPH) particles in a DMSwarm\n\n";
+
+#include <turgor/turgor.h>
+
+/* With -help every object is configured (so all options are listed) but nothing is solved. */
+static PetscErrorCode RunFine(MPI_Comm comm, PetscBool help_only)
+{
+  turgor::FineRun run(comm);
+  PetscFunctionBeginUser;
+  PetscCall(run.SetFromOptions());
+  PetscCall(run.SetUp());
+  if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(run.Solve());
+  PetscCall(run.WriteSummary());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  const char *const modes[] = {"fine"};
+  PetscInt          mode    = 0;
+  PetscBool         help_requested;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "turgor", "turgor");
+  PetscCall(PetscOptionsEList("-mode", "What to run", "turgor", modes, (PetscInt)(sizeof modes / sizeof modes[0]), modes[mode], &mode, NULL));
+  PetscOptionsEnd();
+  {
+    /* PetscOptionsEList ignores a value it does not know; an unknown mode must be an error. */
+    char      given[64];
+    PetscBool set, known = PETSC_FALSE;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-mode", given, sizeof given, &set));
+    if (set) {
+      for (const char *m : modes) known = (PetscBool)(known || !strcmp(m, given));
+      PetscCheck(known, PETSC_COMM_WORLD, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option -mode = %s: unknown mode (known: fine)", given);
+    }
+  }
+  PetscCall(PetscOptionsHasHelp(NULL, &help_requested));
+  switch (mode) {
+  case 0:
+    PetscCall(RunFine(PETSC_COMM_WORLD, help_requested));
+    break;
+  }
+  PetscCall(PetscFinalize());
+  return 0;
+}

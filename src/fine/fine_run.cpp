@@ -1,0 +1,433 @@
+#include <turgor/fine_run.h>
+#include <turgor/log.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+/* Default final time of the fine bending bar [µs]; see docs/model.md ("final time"). */
+static const PetscReal kDefaultFinalTime = 100.0;
+
+FineRun::~FineRun()
+{
+  (void)TSDestroy(&ts_);
+  (void)VecDestroy(&U_);
+  (void)VecDestroy(&Uinterp_);
+  (void)ISDestroy(&is_x_);
+  (void)ISDestroy(&is_v_);
+  (void)DMDestroy(&swarm_);
+}
+
+PetscErrorCode FineRun::SetFromOptions()
+{
+  char     *sides[8];
+  PetscInt  nsides = 8;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(spec_.SetFromOptions(comm_));
+  PetscCall(model_.SetFromOptions(comm_));
+  PetscOptionsBegin(comm_, "fine_", "Full fine-scale run (-mode fine)", "turgor");
+  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRun", sides, &nsides, &set));
+  PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "FineRun", tip_samples_, &tip_samples_, NULL));
+  PetscCall(PetscOptionsInt("-snapshots", "Particle snapshots (HDF5 + XDMF) over [0, ts_max_time]; 0 = none", "FineRun", snapshots_, &snapshots_, NULL));
+  PetscCall(PetscOptionsReal("-progress_interval", "Seconds of wall time between progress lines; 0 = none", "FineRun", progress_interval_, &progress_interval_, NULL));
+  PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRun", dt_safety_, &dt_safety_, NULL));
+  PetscOptionsEnd();
+  if (set) {
+    clamp_.clear();
+    for (PetscInt k = 0; k < nsides; k++) {
+      clamp_.push_back(sides[k]);
+      PetscCall(PetscFree(sides[k]));
+    }
+  }
+  PetscCheck(tip_samples_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_tip_samples = %" PetscInt_FMT ": must be >= 1", tip_samples_);
+  PetscCheck(snapshots_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_snapshots = %" PetscInt_FMT ": must be >= 0", snapshots_);
+  PetscCheck(dt_safety_ > 0 && dt_safety_ <= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety_);
+  PetscCall(OutputDirectory(comm_, &output_dir_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::CreateSwarm()
+{
+  const ParticleSet &P = tissue_.particles;
+  PetscReal         *pos, *vel, *mass;
+  PetscInt          *kind, *cell;
+  PetscInt64        *pid;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreate(comm_, &swarm_));
+  PetscCall(PetscObjectSetName((PetscObject)swarm_, "tissue"));
+  PetscCall(DMSetType(swarm_, DMSWARM));
+  PetscCall(DMSetDimension(swarm_, 2));
+  PetscCall(DMSwarmSetType(swarm_, DMSWARM_BASIC));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "position", 2, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "velocity", 2, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "mass", 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "kind", 1, PETSC_INT));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "cell", 1, PETSC_INT));
+  PetscCall(DMSwarmFinalizeFieldRegister(swarm_));
+  PetscCall(DMSwarmSetLocalSizes(swarm_, P.n, 0));
+  PetscCall(DMSwarmGetField(swarm_, "position", NULL, NULL, (void **)&pos));
+  PetscCall(DMSwarmGetField(swarm_, "velocity", NULL, NULL, (void **)&vel));
+  PetscCall(DMSwarmGetField(swarm_, "mass", NULL, NULL, (void **)&mass));
+  PetscCall(DMSwarmGetField(swarm_, "kind", NULL, NULL, (void **)&kind));
+  PetscCall(DMSwarmGetField(swarm_, "cell", NULL, NULL, (void **)&cell));
+  PetscCall(DMSwarmGetField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
+  for (PetscInt i = 0; i < P.n; i++) {
+    pos[2 * i]     = tissue_.X[2 * i];
+    pos[2 * i + 1] = tissue_.X[2 * i + 1];
+    vel[2 * i]     = tissue_.V.empty() ? 0 : tissue_.V[2 * i];
+    vel[2 * i + 1] = tissue_.V.empty() ? 0 : tissue_.V[2 * i + 1];
+    mass[i]                     = P.mass[i];
+    kind[i]                     = P.kind[i];
+    cell[i]                     = P.cell[i];
+    pid[i]                      = P.gid[i];
+  }
+  PetscCall(DMSwarmRestoreField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
+  PetscCall(DMSwarmRestoreField(swarm_, "cell", NULL, NULL, (void **)&cell));
+  PetscCall(DMSwarmRestoreField(swarm_, "kind", NULL, NULL, (void **)&kind));
+  PetscCall(DMSwarmRestoreField(swarm_, "mass", NULL, NULL, (void **)&mass));
+  PetscCall(DMSwarmRestoreField(swarm_, "velocity", NULL, NULL, (void **)&vel));
+  PetscCall(DMSwarmRestoreField(swarm_, "position", NULL, NULL, (void **)&pos));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::SyncSwarm(Vec U)
+{
+  const PetscScalar *u;
+  PetscReal         *pos, *vel;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(DMSwarmGetField(swarm_, "position", NULL, NULL, (void **)&pos));
+  PetscCall(DMSwarmGetField(swarm_, "velocity", NULL, NULL, (void **)&vel));
+  for (PetscInt k = 0; k < 2 * n_local_; k++) {
+    pos[k] = u[k];
+    vel[k] = u[2 * n_local_ + k];
+  }
+  PetscCall(DMSwarmRestoreField(swarm_, "velocity", NULL, NULL, (void **)&vel));
+  PetscCall(DMSwarmRestoreField(swarm_, "position", NULL, NULL, (void **)&pos));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::SetUp()
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCall(RegisterLogStage("Fine setup", &stage_setup_));
+  PetscCall(RegisterLogStage("Fine solve", &stage_solve_));
+  PetscCall(PetscLogEventRegister("TgOutput", PETSC_OBJECT_CLASSID, &ev_output_));
+  PetscCall(PetscLogStagePush(stage_setup_));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+
+  if (!have_tissue_) PetscCall(GenerateSquareGridTissue(comm_, spec_, &tissue_));
+  PetscCall(tissue_.Clamp(comm_, clamp_, "-fine_clamp"));
+  /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
+  tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
+  tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
+  /* One rank holds the whole tissue for now; the other ranks own no particles (the state Vec and
+     the outputs are already parallel, so distributing particles later changes no interface). */
+  if (rank != 0) {
+    tissue_ = Tissue();
+    tip_    = -1;
+  }
+  n_local_ = tissue_.particles.n;
+  PetscCall(CreateSwarm());
+  PetscCall(model_.SetUp(tissue_.particles));
+
+  /* state [x | v] and the position/momentum splits used by basicsymplectic */
+  PetscInt     start;
+  PetscScalar *u;
+  PetscCall(VecCreateMPI(comm_, 4 * n_local_, PETSC_DETERMINE, &U_));
+  PetscCall(PetscObjectSetName((PetscObject)U_, "state"));
+  PetscCall(VecGetOwnershipRange(U_, &start, NULL));
+  PetscCall(ISCreateStride(comm_, 2 * n_local_, start, 1, &is_x_));
+  PetscCall(ISCreateStride(comm_, 2 * n_local_, start + 2 * n_local_, 1, &is_v_));
+  PetscCall(VecGetArray(U_, &u));
+  for (PetscInt k = 0; k < 2 * n_local_; k++) {
+    u[k]                = tissue_.X[k];
+    u[2 * n_local_ + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
+  }
+  PetscCall(VecRestoreArray(U_, &u));
+  PetscCall(VecDuplicate(U_, &Uinterp_));
+  v_stale_.assign(2 * n_local_, 0);
+
+  PetscCall(TSCreate(comm_, &ts_));
+  PetscCall(TSSetApplicationContext(ts_, this));
+  PetscCall(TSSetProblemType(ts_, TS_NONLINEAR));
+  PetscCall(TSSetType(ts_, TSRK));
+  PetscCall(TSRKSetType(ts_, TSRK5DP));
+  PetscCall(TSSetTolerances(ts_, 1e-3, NULL, 1e-3, NULL));
+  PetscCall(TSSetMaxTime(ts_, kDefaultFinalTime));
+  PetscCall(TSSetMaxSteps(ts_, PETSC_MAX_INT));
+  PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetErrorIfStepFails(ts_, PETSC_FALSE));
+  PetscCall(TSSetRHSFunction(ts_, NULL, RHSFunction, this));
+  PetscCall(TSRHSSplitSetIS(ts_, "position", is_x_));
+  PetscCall(TSRHSSplitSetIS(ts_, "momentum", is_v_));
+  PetscCall(TSRHSSplitSetRHSFunction(ts_, "position", NULL, RHSPosition, this));
+  PetscCall(TSRHSSplitSetRHSFunction(ts_, "momentum", NULL, RHSMomentum, this));
+  PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
+  PetscCall(TSMonitorSet(ts_, Monitor, this, NULL));
+  PetscCall(ChooseTimeStep());
+  PetscCall(TSSetTimeStep(ts_, dt_safety_ * dt_stable_));
+  PetscCall(TSSetFromOptions(ts_));
+  {
+    /* PETSc's basicsymplectic defaults to first-order symplectic Euler; velocity Verlet unless asked */
+    TSType    type;
+    const char *prefix;
+    PetscBool   chosen;
+    PetscCall(TSGetType(ts_, &type));
+    PetscCall(TSGetOptionsPrefix(ts_, &prefix));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_basicsymplectic_type", &chosen));
+    if (std::string(type) == TSBASICSYMPLECTIC && !chosen) PetscCall(TSBasicSymplecticSetType(ts_, TSBASICSYMPLECTICVELVERLET));
+  }
+  PetscCall(TSGetMaxTime(ts_, &t_final_));
+  PetscCheck(t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be > 0", (double)t_final_);
+
+  /* report */
+  PetscViewer out = PETSC_VIEWER_STDOUT_(comm_);
+  PetscInt    nw, nf, nl[2] = {tissue_.particles.Count(KIND_WALL), tissue_.particles.Count(KIND_FLUID)};
+  PetscCallMPI(MPI_Allreduce(&nl[0], &nw, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(&nl[1], &nf, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscInt ncells = tissue_.NumCells(), nsprings = (PetscInt)tissue_.particles.springs.size();
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsprings, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCall(PetscPrintf(comm_, "turgor fine: %" PetscInt_FMT " cells, %" PetscInt_FMT " wall + %" PetscInt_FMT " fluid particles, %" PetscInt_FMT " springs, clamp:", ncells, nw, nf, nsprings));
+  for (const std::string &c : clamp_) PetscCall(PetscPrintf(comm_, " %s", c.c_str()));
+  PetscCall(PetscPrintf(comm_, "\n"));
+  PetscCall(model_.View(out));
+  PetscCall(PetscPrintf(comm_, "Explicit stability limits at t = 0 (smallest first):\n"));
+  for (const TimeStepLimit &l : limits_) PetscCall(PetscPrintf(comm_, "  dt <= %-11.4g %s\n", (double)l.dt, l.why.c_str()));
+  {
+    TSType    type;
+    PetscReal dt;
+    PetscCall(TSGetType(ts_, &type));
+    PetscCall(TSGetTimeStep(ts_, &dt));
+    PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, std::string(type) == TSBASICSYMPLECTIC ? "fixed" : "initial", (double)dt));
+  }
+
+  /* outputs */
+  if (rank == 0) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"time", "tip_displacement_y", "kinetic_energy"}));
+  if (snapshots_ > 0) PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, output_dir_, "particles"));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The smallest stability limit at the initial state; printed at start. Adaptive RK uses it only as
+   its first step; basicsymplectic uses dt_safety times it unless -ts_dt is given. */
+PetscErrorCode FineRun::ChooseTimeStep()
+{
+  const PetscScalar *u;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U_, &u));
+  PetscCall(model_.TimeStepLimits(u, u + 2 * n_local_, limits_));
+  PetscCall(VecRestoreArrayRead(U_, &u));
+  std::sort(limits_.begin(), limits_.end(), [](const TimeStepLimit &a, const TimeStepLimit &b) { return a.dt < b.dt; });
+  PetscReal dt = limits_.empty() ? PETSC_MAX_REAL : limits_[0].dt;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPIU_REAL, MPIU_MIN, comm_));
+  if (dt == PETSC_MAX_REAL) dt = 1e-3; /* no forces at all */
+  dt_stable_ = dt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
+{
+  FineRun           *run = (FineRun *)ctx;
+  const PetscInt     n2  = 2 * run->n_local_;
+  const PetscScalar *u;
+  PetscScalar       *f;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(VecGetArray(F, &f));
+  const std::vector<char> &fixed = run->tissue_.particles.fixed;
+  for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
+  PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
+  PetscCall(VecRestoreArray(F, &f));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  run->rhs_evals_++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Velocity Verlet (TSBASICSYMPLECTIC) evaluates dx/dt = v and dv/dt = a(x) separately. The dashpot
+   and viscous forces also need v: they use the velocity of the preceding position update. */
+PetscErrorCode FineRun::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx)
+{
+  FineRun           *run = (FineRun *)ctx;
+  const PetscScalar *v;
+  PetscScalar       *xd;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(V, &v));
+  PetscCall(VecGetArray(Xdot, &xd));
+  const std::vector<char> &fixed = run->tissue_.particles.fixed;
+  for (PetscInt k = 0; k < 2 * run->n_local_; k++) {
+    xd[k]             = fixed[k / 2] ? 0 : v[k];
+    run->v_stale_[k] = v[k];
+  }
+  PetscCall(VecRestoreArray(Xdot, &xd));
+  PetscCall(VecRestoreArrayRead(V, &v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx)
+{
+  FineRun           *run = (FineRun *)ctx;
+  const PetscScalar *x;
+  PetscScalar       *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(X, &x));
+  PetscCall(VecGetArray(Vdot, &a));
+  PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
+  for (PetscInt k = 0; k < 2 * run->n_local_; k++)
+    PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Non-finite acceleration of particle %" PetscInt_FMT " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)", k / 2, (double)t);
+  PetscCall(VecRestoreArray(Vdot, &a));
+  PetscCall(VecRestoreArrayRead(X, &x));
+  run->rhs_evals_++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A stage with non-finite values is rejected, so an adaptive integrator retries with a smaller step. */
+PetscErrorCode FineRun::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
+{
+  PetscReal nrm;
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(U, NORM_INFINITY, &nrm));
+  *accept = std::isfinite(nrm) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::Observe(PetscReal t, Vec U)
+{
+  const PetscScalar *u;
+  PetscReal          vals[2] = {0, 0}, ke = 0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &u));
+  const PetscInt n2 = 2 * n_local_;
+  for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (u[n2 + 2 * i] * u[n2 + 2 * i] + u[n2 + 2 * i + 1] * u[n2 + 2 * i + 1]);
+  if (tip_ >= 0) vals[0] = u[2 * tip_ + 1] - tip_y0_;
+  PetscCall(VecRestoreArrayRead(U, &u));
+  vals[1] = ke;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, vals, 2, MPIU_REAL, MPIU_SUM, comm_));
+  tip_final_ = vals[0];
+  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({t, vals[0], vals[1]}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  FineRun        *run = (FineRun *)ctx;
+  const PetscReal T = run->t_final_, eps = 1e-12 * T;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
+  /* samples and snapshots at fixed times, by TS interpolation between the last two steps */
+  auto at = [&](PetscReal ts_k, Vec *X) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    if (step == 0 || std::fabs(ts_k - t) <= eps) *X = U;
+    else {
+      PetscCall(TSInterpolate(ts, ts_k, run->Uinterp_));
+      *X = run->Uinterp_;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  while (run->next_sample_ <= run->tip_samples_) {
+    const PetscReal tk = T * run->next_sample_ / run->tip_samples_;
+    if (tk > t + eps) break;
+    Vec X = NULL;
+    PetscCall(at(tk, &X));
+    PetscCall(run->Observe(tk, X));
+    run->next_sample_++;
+  }
+  while (run->snapshots_ > 0 && run->next_snapshot_ <= run->snapshots_) {
+    const PetscReal tk = T * run->next_snapshot_ / run->snapshots_;
+    if (tk > t + eps) break;
+    Vec X = NULL;
+    PetscCall(at(tk, &X));
+    PetscCall(run->SyncSwarm(X));
+    PetscCall(run->snapshots_writer_.Write(run->swarm_, tk));
+    run->next_snapshot_++;
+  }
+  PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
+  /* progress line */
+  PetscLogDouble now;
+  PetscCall(PetscTime(&now));
+  if (step == 0) run->wall_start_ = run->wall_last_report_ = now;
+  else if (run->progress_interval_ > 0 && now - run->wall_last_report_ >= run->progress_interval_) {
+    const PetscReal frac = t / T, el = now - run->wall_start_, eta = frac > 0 ? el * (1 - frac) / frac : 0;
+    PetscInt        rej;
+    PetscCall(TSGetStepRejections(ts, &rej));
+    PetscCall(PetscPrintf(run->comm_, "  t = %.6g / %g µs (%5.1f%%)  step %" PetscInt_FMT " (%" PetscInt_FMT " rejected)  %.0f steps/s  %.0f RHS/s  ETA %.0f s\n", (double)t, (double)T, 100.0 * frac, step, rej, step / el, run->rhs_evals_ / el, eta));
+    run->wall_last_report_ = now;
+  }
+  run->t_prev_ = t;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::Solve()
+{
+  TSConvergedReason reason;
+  PetscReal         t;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(stage_solve_));
+  PetscCall(TSSolve(ts_, U_));
+  PetscCall(PetscTime(&wall_end_));
+  PetscCall(TSGetConvergedReason(ts_, &reason));
+  PetscCall(TSGetSolveTime(ts_, &t));
+  PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "Fine run failed at t = %g µs (%s): the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters", (double)t, TSConvergedReasons[reason]);
+  PetscCall(SyncSwarm(U_));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::WriteSummary()
+{
+  JsonObject js;
+  TSType     type;
+  PetscReal  rtol, atol, t, dt0 = dt_safety_ * dt_stable_;
+  PetscInt   steps, rej, nw, nf, nl[2] = {tissue_.particles.Count(KIND_WALL), tissue_.particles.Count(KIND_FLUID)};
+  PetscFunctionBeginUser;
+  PetscCall(TSGetType(ts_, &type));
+  std::string ts_type = type;
+  if (ts_type == TSRK) {
+    TSRKType rk;
+    PetscCall(TSRKGetType(ts_, &rk));
+    ts_type += std::string(" ") + rk;
+  }
+  PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
+  PetscCall(TSGetSolveTime(ts_, &t));
+  PetscCall(TSGetStepNumber(ts_, &steps));
+  PetscCall(TSGetStepRejections(ts_, &rej));
+  PetscCallMPI(MPI_Allreduce(&nl[0], &nw, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(&nl[1], &nf, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscInt evals = rhs_evals_, rebuilds = model_.Neighbours().Rebuilds();
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &rebuilds, 1, MPIU_INT, MPI_MAX, comm_));
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+
+  js.Set("mode", "fine");
+  js.Set("ts_type", ts_type);
+  js.Set("rtol", rtol);
+  js.Set("atol", atol);
+  js.Set("t_final", t);
+  js.Set("steps", steps);
+  js.Set("rejected_steps", rej);
+  js.Set("rhs_evals", evals);
+  js.Set("wall_time_s", (PetscReal)(wall_end_ - wall_start_));
+  js.Set("n_wall_particles", nw);
+  js.Set("n_fluid_particles", nf);
+  js.Set("n_springs", (PetscInt)(nl[0] || nl[1] ? tissue_.particles.springs.size() : 0));
+  js.Set("physics", model_.ActiveTerms());
+  js.Set("clamp", clamp_);
+  js.Set("tip_displacement_final", tip_final_);
+  js.Set("dt_stable", dt_stable_);
+  js.Set("dt_initial", dt0);
+  js.Set("neighbour_rebuilds", rebuilds);
+  js.Set("mpi_ranks", (PetscInt)size);
+  js.Set("snapshots", snapshots_writer_.Count());
+  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+  PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %" PetscInt_FMT " RHS evaluations, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, evals, wall_end_ - wall_start_, (double)tip_final_, output_dir_.c_str(), snapshots_ > 0 ? ", particles.h5 + particles.xmf" : ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

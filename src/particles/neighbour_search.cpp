@@ -1,0 +1,147 @@
+#include <turgor/neighbour_search.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+void NeighbourSearch::RequestFluidPairs(PetscReal cutoff) { fluid_cutoff_ = std::max(fluid_cutoff_, cutoff); }
+void NeighbourSearch::RequestParticleSpringPairs(PetscReal cutoff) { spring_cutoff_ = std::max(spring_cutoff_, cutoff); }
+
+void NeighbourSearch::Reset()
+{
+  x_ref_.clear();
+  fluid_pairs_     = PairList();
+  particle_spring_ = PointSegmentList();
+}
+
+PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x)
+{
+  PetscFunctionBeginUser;
+  if (!WantsFluidPairs() && !WantsParticleSpringPairs()) PetscFunctionReturn(PETSC_SUCCESS);
+  bool rebuild = x_ref_.size() != (size_t)(2 * P.n);
+  if (!rebuild) {
+    const PetscReal lim2 = 0.25 * skin_ * skin_;
+    for (PetscInt k = 0; k < P.n; k++) {
+      const PetscReal dx = x[2 * k] - x_ref_[2 * k], dy = x[2 * k + 1] - x_ref_[2 * k + 1];
+      if (dx * dx + dy * dy > lim2) { rebuild = true; break; }
+    }
+  }
+  if (rebuild) PetscCall(Build(P, x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin)
+{
+  PetscReal xmin = x[0], xmax = x[0], ymin = x[1], ymax = x[1];
+  for (PetscInt k = 1; k < P.n; k++) {
+    xmin = std::min(xmin, x[2 * k]);
+    xmax = std::max(xmax, x[2 * k]);
+    ymin = std::min(ymin, x[2 * k + 1]);
+    ymax = std::max(ymax, x[2 * k + 1]);
+  }
+  /* Bins at least `bin` wide; coarser if particles spread far (keeps the grid O(n)). */
+  bin_ = bin;
+  while (((xmax - xmin) / bin_ + 1) * ((ymax - ymin) / bin_ + 1) > 4.0 * P.n + 64) bin_ *= 2;
+  x0_  = xmin;
+  y0_  = ymin;
+  nbx_ = (PetscInt)((xmax - xmin) / bin_) + 1;
+  nby_ = (PetscInt)((ymax - ymin) / bin_) + 1;
+  bin_start_.assign((size_t)nbx_ * nby_ + 1, 0);
+  bin_of_.resize(P.n);
+  for (PetscInt k = 0; k < P.n; k++) {
+    const PetscInt bx = std::min(nbx_ - 1, (PetscInt)((x[2 * k] - x0_) / bin_));
+    const PetscInt by = std::min(nby_ - 1, (PetscInt)((x[2 * k + 1] - y0_) / bin_));
+    bin_of_[k]        = by * nbx_ + bx;
+    bin_start_[bin_of_[k] + 1]++;
+  }
+  for (size_t b = 0; b + 1 < bin_start_.size(); b++) bin_start_[b + 1] += bin_start_[b];
+  bin_items_.resize(P.n);
+  std::vector<PetscInt> fill(bin_start_.begin(), bin_start_.end() - 1);
+  for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[bin_of_[k]]++] = k;
+}
+
+/* Squared distance from point p to segment [a, b]. */
+static inline PetscReal PointSegmentDistance2(const PetscReal *p, const PetscReal *a, const PetscReal *b)
+{
+  const PetscReal tx = b[0] - a[0], ty = b[1] - a[1], wx = p[0] - a[0], wy = p[1] - a[1];
+  const PetscReal L2 = tx * tx + ty * ty;
+  PetscReal       c  = L2 > 0 ? (wx * tx + wy * ty) / L2 : 0;
+  c                  = std::min((PetscReal)1, std::max((PetscReal)0, c));
+  const PetscReal dx = wx - c * tx, dy = wy - c * ty;
+  return dx * dx + dy * dy;
+}
+
+PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
+{
+  PetscFunctionBeginUser;
+  rebuilds_++;
+  x_ref_.assign(x, x + 2 * P.n);
+  fluid_pairs_.i.clear();
+  fluid_pairs_.j.clear();
+  particle_spring_.p.clear();
+  particle_spring_.s.clear();
+  for (PetscInt k = 0; k < 2 * P.n; k++) PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+
+  const PetscReal rf = fluid_cutoff_ + skin_, rs = spring_cutoff_ + skin_;
+  BinParticles(P, x, std::max(WantsFluidPairs() ? rf : 0, WantsParticleSpringPairs() ? rs : 0));
+
+  if (WantsFluidPairs()) {
+    const PetscReal rf2 = rf * rf;
+    for (PetscInt i = 0; i < P.n; i++) {
+      if (P.kind[i] != KIND_FLUID) continue;
+      const PetscInt bx = bin_of_[i] % nbx_, by = bin_of_[i] / nbx_;
+      for (PetscInt jy = std::max<PetscInt>(0, by - 1); jy <= std::min(nby_ - 1, by + 1); jy++)
+        for (PetscInt jx = std::max<PetscInt>(0, bx - 1); jx <= std::min(nbx_ - 1, bx + 1); jx++) {
+          const PetscInt b = jy * nbx_ + jx;
+          for (PetscInt t = bin_start_[b]; t < bin_start_[b + 1]; t++) {
+            const PetscInt j = bin_items_[t];
+            if (j <= i || P.kind[j] != KIND_FLUID || P.cell[j] != P.cell[i]) continue;
+            const PetscReal dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+            if (dx * dx + dy * dy < rf2) {
+              fluid_pairs_.i.push_back(i);
+              fluid_pairs_.j.push_back(j);
+            }
+          }
+        }
+    }
+    /* pairs were found bin by bin: sort by (i, j) for cache-friendly passes */
+    std::vector<size_t> order(fluid_pairs_.size());
+    for (size_t t = 0; t < order.size(); t++) order[t] = t;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b]; });
+    PairList sorted;
+    sorted.i.resize(order.size());
+    sorted.j.resize(order.size());
+    for (size_t t = 0; t < order.size(); t++) {
+      sorted.i[t] = fluid_pairs_.i[order[t]];
+      sorted.j[t] = fluid_pairs_.j[order[t]];
+    }
+    fluid_pairs_ = std::move(sorted);
+  }
+
+  if (WantsParticleSpringPairs()) {
+    const PetscReal rs2 = rs * rs;
+    for (size_t s = 0; s < P.springs.size(); s++) {
+      const PetscInt   a = P.springs[s].i, b = P.springs[s].j;
+      const PetscReal *xa = &x[2 * a], *xb = &x[2 * b];
+      const PetscInt   bx0 = std::max<PetscInt>(0, (PetscInt)std::floor((std::min(xa[0], xb[0]) - rs - x0_) / bin_));
+      const PetscInt   bx1 = std::min<PetscInt>(nbx_ - 1, (PetscInt)std::floor((std::max(xa[0], xb[0]) + rs - x0_) / bin_));
+      const PetscInt   by0 = std::max<PetscInt>(0, (PetscInt)std::floor((std::min(xa[1], xb[1]) - rs - y0_) / bin_));
+      const PetscInt   by1 = std::min<PetscInt>(nby_ - 1, (PetscInt)std::floor((std::max(xa[1], xb[1]) + rs - y0_) / bin_));
+      for (PetscInt jy = by0; jy <= by1; jy++)
+        for (PetscInt jx = bx0; jx <= bx1; jx++) {
+          const PetscInt bb = jy * nbx_ + jx;
+          for (PetscInt t = bin_start_[bb]; t < bin_start_[bb + 1]; t++) {
+            const PetscInt p = bin_items_[t];
+            if (p == a || p == b) continue;
+            if (PointSegmentDistance2(&x[2 * p], xa, xb) < rs2) {
+              particle_spring_.p.push_back(p);
+              particle_spring_.s.push_back((PetscInt)s);
+            }
+          }
+        }
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

@@ -1,0 +1,157 @@
+#include <turgor/physics/repulsion.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "repulsion_", "Particle-spring repulsion (TW 562 eq 17)", "turgor");
+  PetscCall(PetscOptionsReal("-strength", "Strength lambda [µN µm^6]", "Repulsion", strength, &strength, NULL));
+  PetscCall(PetscOptionsReal("-cutoff", "Cutoff distance x0 [µm]", "Repulsion", cutoff, &cutoff, NULL));
+  PetscCall(PetscOptionsBool("-angle_factor", "Scale by cos(alpha), alpha = angle between x - x^ and the spring normal", "Repulsion", angle_factor, &angle_factor, NULL));
+  PetscCall(PetscOptionsBool("-damping", "Critical damping term 2 sqrt(6 lambda m / r^7)", "Repulsion", damping, &damping, NULL));
+  PetscOptionsEnd();
+  PetscCheck(strength >= 0 && std::isfinite(strength), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_strength = %g: must be finite and >= 0", (double)strength);
+  PetscCheck(cutoff > 0 && std::isfinite(cutoff), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_cutoff = %g: must be finite and > 0", (double)cutoff);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Repulsion::SetUp(const ParticleSet &P, NeighbourSearch &nb)
+{
+  PetscFunctionBeginUser;
+  nb.RequestParticleSpringPairs(cutoff);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Closest point of spring [x1, x2] to particle x: x^ = x1 + t (x2 - x1), t in [0, 1]
+   (the seed's c is 1 - t). Returns d = x - x^, t, and the spring vector. */
+struct SegmentContact {
+  PetscReal dx, dy, t, tx, ty;
+};
+static inline SegmentContact Closest(const PetscReal *x, const PetscReal *x1, const PetscReal *x2)
+{
+  SegmentContact c;
+  c.tx               = x2[0] - x1[0];
+  c.ty               = x2[1] - x1[1];
+  const PetscReal wx = x[0] - x1[0], wy = x[1] - x1[1], L2 = c.tx * c.tx + c.ty * c.ty;
+  c.t                = L2 > 0 ? std::min((PetscReal)1, std::max((PetscReal)0, (wx * c.tx + wy * c.ty) / L2)) : 0;
+  c.dx               = wx - c.t * c.tx;
+  c.dy               = wy - c.t * c.ty;
+  return c;
+}
+
+template <bool VIRIAL>
+PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) const
+{
+  const PetscReal        *x = in.x, *v = in.v;
+  const ParticleSet      &P = *in.P;
+  const PointSegmentList &L = in.nb->ParticleSpringPairs();
+  const PetscReal         x02 = cutoff * cutoff, ix06 = 1.0 / (x02 * x02 * x02);
+  PetscReal               w[4] = {0, 0, 0, 0};
+  PetscInt                active = 0;
+
+  PetscFunctionBeginUser;
+  for (size_t q = 0; q < L.size(); q++) {
+    const PetscInt       p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
+    const SegmentContact c = Closest(&x[2 * p], &x[2 * i1], &x[2 * i2]);
+    const PetscReal      r2 = c.dx * c.dx + c.dy * c.dy;
+    if (r2 >= x02) continue;
+    PetscCheck(r2 > 0, PETSC_COMM_SELF, PETSC_ERR_FP, "Repulsion: particle %" PetscInt_FMT " lies on spring (%" PetscInt_FMT ", %" PetscInt_FMT "); the time step is too large or the walls crossed", p, i1, i2);
+    active++;
+    const PetscReal r = std::sqrt(r2), ir = 1.0 / r, ir6 = 1.0 / (r2 * r2 * r2);
+    const PetscReal ex = c.dx * ir, ey = c.dy * ir;
+    PetscReal       cosa = 1;
+    if (angle_factor) { /* |d x t| / (|d| |t|): 1 when x^ is inside the spring, < 1 beyond its ends */
+      const PetscReal tl = std::sqrt(c.tx * c.tx + c.ty * c.ty);
+      cosa               = tl > 0 ? std::fabs(c.dx * c.ty - c.dy * c.tx) * ir / tl : 1;
+    }
+    PetscReal mag = strength * cosa * (ir6 - ix06);
+    /* velocity of x^ interpolated between the end points */
+    const PetscReal vhx = (1 - c.t) * v[2 * i1] + c.t * v[2 * i2], vhy = (1 - c.t) * v[2 * i1 + 1] + c.t * v[2 * i2 + 1];
+    if (damping) mag -= 2.0 * std::sqrt(6.0 * strength * P.mass[p] * ir6 * ir) * ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
+    const PetscReal fx = mag * ex, fy = mag * ey;
+    f[2 * p] += fx;
+    f[2 * p + 1] += fy;
+    f[2 * i1] -= (1 - c.t) * fx;
+    f[2 * i1 + 1] -= (1 - c.t) * fy;
+    f[2 * i2] -= c.t * fx;
+    f[2 * i2 + 1] -= c.t * fy;
+    if (VIRIAL) { /* -(F x_p - (1-t) F x1 - t F x2) = -F (x) d */
+      w[0] -= fx * c.dx;
+      w[1] -= fx * c.dy;
+      w[2] -= fy * c.dx;
+      w[3] -= fy * c.dy;
+    }
+  }
+  if (VIRIAL)
+    for (int k = 0; k < 4; k++) virial[k] += w[k];
+  PetscCall(PetscLogFlops(20.0 * L.size() + 50.0 * active));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Repulsion::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  PetscFunctionBeginUser;
+  if (virial) PetscCall(Kernel<true>(in, f, virial));
+  else PetscCall(Kernel<false>(in, f, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Repulsion::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
+{
+  const PointSegmentList &L = in.nb->ParticleSpringPairs();
+  const ParticleSet      &P = *in.P;
+  const PetscReal         x05 = std::pow(cutoff, 5), x06 = x05 * cutoff;
+
+  PetscFunctionBeginUser;
+  *E = 0;
+  for (size_t q = 0; q < L.size(); q++) {
+    const PetscInt       p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
+    const SegmentContact c = Closest(&in.x[2 * p], &in.x[2 * i1], &in.x[2 * i2]);
+    const PetscReal      r = std::sqrt(c.dx * c.dx + c.dy * c.dy);
+    if (r >= cutoff) continue;
+    *E += strength * (1.0 / (5.0 * std::pow(r, 5)) + r / x06 - 6.0 / (5.0 * x05));
+  }
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Stiffness of the repulsion at the closest current approach r_min: 6 lambda / r^7, with its
+   critical damping; an explicit step needs dt < 2 / (c/2 + sqrt(c^2/4 + w^2)). */
+PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
+{
+  const PointSegmentList &L = in.nb->ParticleSpringPairs();
+  const ParticleSet      &P = *in.P;
+  PetscReal               best = PETSC_MAX_REAL, rbest = 0;
+
+  PetscFunctionBeginUser;
+  for (size_t q = 0; q < L.size(); q++) {
+    const PetscInt       p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
+    const SegmentContact c = Closest(&in.x[2 * p], &in.x[2 * i1], &in.x[2 * i2]);
+    const PetscReal      r = std::sqrt(c.dx * c.dx + c.dy * c.dy);
+    if (r >= cutoff || r <= 0) continue;
+    /* reduced mass of the particle against an end point */
+    const PetscReal m  = P.mass[p] * P.mass[i1] / (P.mass[p] + P.mass[i1]);
+    const PetscReal k  = 6.0 * strength / std::pow(r, 7);
+    const PetscReal w2 = k / m, cr = damping ? 2.0 * std::sqrt(k * P.mass[p]) / m : 0.0;
+    const PetscReal dt = 2.0 / (0.5 * cr + std::sqrt(0.25 * cr * cr + w2));
+    if (dt < best) { best = dt; rbest = r; }
+  }
+  if (best < PETSC_MAX_REAL) {
+    char why[256];
+    PetscCall(PetscSNPrintf(why, sizeof why, "repulsion: stiffness 6 lambda/r^7 at the closest approach r = %.3g µm", (double)rbest));
+    limits.push_back({best, why});
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Repulsion::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s\n", (double)strength, (double)cutoff, angle_factor ? "on" : "off", damping ? "on" : "off"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

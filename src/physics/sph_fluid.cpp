@@ -1,0 +1,291 @@
+#include <turgor/physics/sph_fluid.h>
+#include <cmath>
+
+namespace turgor {
+
+PetscErrorCode SPHFluid::SetFromOptions(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "sph_", "SPH cell fluid (TW 562 eqs 2-15)", "turgor");
+  PetscCall(PetscOptionsReal("-smoothing_length", "Smoothing length h [µm] (support 2h)", "SPHFluid", smoothing_length, &smoothing_length, NULL));
+  PetscCall(PetscOptionsReal("-sound_speed", "Speed of sound c_s in p = c_s^2 rho [µm/µs = m/s]", "SPHFluid", sound_speed, &sound_speed, NULL));
+  PetscCall(PetscOptionsReal("-viscosity", "2D dynamic viscosity mu x thickness [ng/µs]; 0 skips the viscous passes", "SPHFluid", viscosity, &viscosity, NULL));
+  PetscCall(PetscOptionsBool("-correction", "Bonet-Lok corrected kernel gradient in the velocity gradient (eqs 13-15)", "SPHFluid", correction, &correction, NULL));
+  PetscCall(PetscOptionsReal("-correction_guard", "Correction fades out where lambda_min/lambda_max of its inverse falls below 2 guard (zero below guard)", "SPHFluid", guard, &guard, NULL));
+  PetscOptionsEnd();
+  PetscCheck(smoothing_length > 0 && std::isfinite(smoothing_length), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_smoothing_length = %g: must be finite and > 0", (double)smoothing_length);
+  PetscCheck(sound_speed >= 0 && std::isfinite(sound_speed), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_sound_speed = %g: must be finite and >= 0", (double)sound_speed);
+  PetscCheck(viscosity >= 0 && std::isfinite(viscosity), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_viscosity = %g: must be finite and >= 0", (double)viscosity);
+  PetscCheck(guard > 0 && guard <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_correction_guard = %g: must be in (0, 1]", (double)guard);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHFluid::SetUp(const ParticleSet &P, NeighbourSearch &nb)
+{
+  PetscFunctionBeginUser;
+  const PetscReal h = smoothing_length;
+  norm_             = 10.0 / (7.0 * PETSC_PI * h * h);
+  W0_               = norm_;
+  fluid_.clear();
+  for (PetscInt i = 0; i < P.n; i++)
+    if (P.kind[i] == KIND_FLUID) fluid_.push_back(i);
+  rho_.assign(P.n, 0);
+  vol_.assign(P.n, 0);
+  M_.assign(3 * P.n, 0);
+  G_.assign(4 * P.n, 0);
+  A_.assign(4 * P.n, 0);
+  P_.assign(P.n, 0);
+  nb.RequestFluidPairs(2.0 * h);
+  PetscCall(PetscLogEventRegister("TgSPHDensity", PETSC_OBJECT_CLASSID, &ev_density_));
+  PetscCall(PetscLogEventRegister("TgSPHGradient", PETSC_OBJECT_CLASSID, &ev_gradient_));
+  PetscCall(PetscLogEventRegister("TgSPHForce", PETSC_OBJECT_CLASSID, &ev_force_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscReal SPHFluid::Kernel(PetscReal r) const
+{
+  const PetscReal s = r / smoothing_length;
+  if (s < 1) return norm_ * (1 - 1.5 * s * s + 0.75 * s * s * s);
+  if (s < 2) return norm_ * 0.25 * (2 - s) * (2 - s) * (2 - s);
+  return 0;
+}
+
+PetscReal SPHFluid::KernelDerivative(PetscReal r) const
+{
+  const PetscReal s = r / smoothing_length, c = norm_ / smoothing_length;
+  if (s < 1) return c * (-3 * s + 2.25 * s * s);
+  if (s < 2) return -c * 0.75 * (2 - s) * (2 - s);
+  return 0;
+}
+
+/* Pass 1: rho_i = m_i W(0) + sum_j m_j W_ij, and the pairs within 2h with e = x_i - x_j, F = W'/r
+   cached for the later passes (the neighbour list carries a skin, so some listed pairs are out). */
+PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
+{
+  const PetscReal  *x = in.x, *m = in.P->mass.data();
+  const PairList   &L = in.nb->FluidPairs();
+  const PetscReal   h = smoothing_length, ih = 1.0 / h, r2max = 4 * h * h, c = norm_, cd = norm_ * ih;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_density_, 0, 0, 0, 0));
+  for (PetscInt i : fluid_) rho_[i] = m[i] * W0_;
+  pairs_.resize(L.size());
+  size_t na = 0;
+  for (size_t q = 0; q < L.size(); q++) {
+    const PetscInt  i = L.i[q], j = L.j[q];
+    const PetscReal ex = x[2 * i] - x[2 * j], ey = x[2 * i + 1] - x[2 * j + 1], r2 = ex * ex + ey * ey;
+    if (r2 >= r2max) continue;
+    const PetscReal r = std::sqrt(r2), s = r * ih;
+    PetscReal       W, dW;
+    if (s < 1) {
+      W  = c * (1 - 1.5 * s * s + 0.75 * s * s * s);
+      dW = cd * (-3 * s + 2.25 * s * s);
+    } else {
+      const PetscReal t = 2 - s;
+      W                 = c * 0.25 * t * t * t;
+      dW                = -cd * 0.75 * t * t;
+    }
+    rho_[i] += m[j] * W;
+    rho_[j] += m[i] * W;
+    pairs_[na++] = {i, j, ex, ey, r > 0 ? dW / r : 0};
+  }
+  pairs_.resize(na);
+  for (PetscInt i : fluid_) {
+    vol_[i] = m[i] / rho_[i];
+    P_[i]   = sound_speed * sound_speed / rho_[i]; /* p / rho^2 with p = c_s^2 rho */
+  }
+  PetscCall(PetscLogFlops(30.0 * L.size()));
+  PetscCall(PetscLogEventEnd(ev_density_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Guarded inverse of the symmetric positive semi-definite 2x2 matrix M = [a b; b c] (eq 14).
+   A particle whose neighbours are (nearly) collinear, or that has at most one neighbour, has no
+   well-defined 2D velocity gradient: M is singular. We then fade the correction out with a scalar
+   weight, L = w M^{-1}, w = 1 for lambda_min/lambda_max >= 2 guard, w = 0 below guard, smooth in
+   between. A scalar weight keeps L M = w I, so tau L M stays symmetric and the viscous forces remain
+   exactly torque-free (angular momentum) in every configuration, while L stays bounded; a
+   regularised inverse (raising lambda_min) would break L M = I and with it angular momentum. */
+static inline void GuardedInverse(PetscReal a, PetscReal b, PetscReal c, PetscReal guard, PetscReal L[3])
+{
+  const PetscReal mean = 0.5 * (a + c), dev = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+  const PetscReal lmax = mean + dev, ratio = lmax > 0 ? (mean - dev) / lmax : 0;
+  PetscReal       w = 1;
+  if (ratio <= guard) w = 0;
+  else if (ratio < 2 * guard) {
+    const PetscReal s = (ratio - guard) / guard;
+    w                 = s * s * (3 - 2 * s);
+  }
+  if (w == 0) {
+    L[0] = L[1] = L[2] = 0;
+    return;
+  }
+  const PetscReal wdet = w / (a * c - b * b);
+  L[0]                 = c * wdet;
+  L[1]                 = -b * wdet;
+  L[2]                 = a * wdet;
+}
+
+/* Pass 2: M_i = sum_j V_j (-W'/r) e (x) e (the inverse of L_i, eq 14) and
+   G_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij; then grad v_i = G_i L_i, tau_i, and A_i = tau_i L_i. */
+PetscErrorCode SPHFluid::GradientPass(const ForceInput &in)
+{
+  const PetscReal *v = in.v;
+  PetscReal       *M = M_.data(), *G = G_.data(), *A = A_.data();
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_gradient_, 0, 0, 0, 0));
+  for (PetscInt i : fluid_) {
+    for (int k = 0; k < 3; k++) M[3 * i + k] = 0;
+    for (int k = 0; k < 4; k++) G[4 * i + k] = 0;
+  }
+  for (const ActivePair &q : pairs_) {
+    const PetscInt  i = q.i, j = q.j;
+    const PetscReal Vi = vol_[i], Vj = vol_[j];
+    const PetscReal gx = q.ex * q.F, gy = q.ey * q.F;
+    const PetscReal sxx = -gx * q.ex, sxy = -gx * q.ey, syy = -gy * q.ey;
+    const PetscReal dvx = v[2 * j] - v[2 * i], dvy = v[2 * j + 1] - v[2 * i + 1];
+    const PetscReal t0 = dvx * gx, t1 = dvx * gy, t2 = dvy * gx, t3 = dvy * gy;
+    M[3 * i] += Vj * sxx;
+    M[3 * i + 1] += Vj * sxy;
+    M[3 * i + 2] += Vj * syy;
+    M[3 * j] += Vi * sxx;
+    M[3 * j + 1] += Vi * sxy;
+    M[3 * j + 2] += Vi * syy;
+    G[4 * i] += Vj * t0;
+    G[4 * i + 1] += Vj * t1;
+    G[4 * i + 2] += Vj * t2;
+    G[4 * i + 3] += Vj * t3;
+    G[4 * j] += Vi * t0;
+    G[4 * j + 1] += Vi * t1;
+    G[4 * j + 2] += Vi * t2;
+    G[4 * j + 3] += Vi * t3;
+  }
+  const PetscReal mu = viscosity;
+  for (PetscInt i : fluid_) {
+    PetscReal L[3] = {1, 0, 1};
+    if (correction) GuardedInverse(M[3 * i], M[3 * i + 1], M[3 * i + 2], guard, L);
+    const PetscReal *g  = &G[4 * i];
+    /* grad v = G L (L symmetric) */
+    const PetscReal gv0 = g[0] * L[0] + g[1] * L[1], gv1 = g[0] * L[1] + g[1] * L[2];
+    const PetscReal gv2 = g[2] * L[0] + g[3] * L[1], gv3 = g[2] * L[1] + g[3] * L[2];
+    const PetscReal dxy = 0.5 * (gv1 + gv2), tr = gv0 + gv3;
+    /* tau = mu (2 d - 2/3 tr(d) I): the seed's 3D deviator, i.e. plane strain (d_zz = 0) */
+    const PetscReal txx = mu * (2 * gv0 - (2.0 / 3.0) * tr), tyy = mu * (2 * gv3 - (2.0 / 3.0) * tr), txy = mu * 2 * dxy;
+    A[4 * i]     = txx * L[0] + txy * L[1];
+    A[4 * i + 1] = txx * L[1] + txy * L[2];
+    A[4 * i + 2] = txy * L[0] + tyy * L[1];
+    A[4 * i + 3] = txy * L[1] + tyy * L[2];
+  }
+  PetscCall(PetscLogFlops(40.0 * pairs_.size() + 40.0 * fluid_.size()));
+  PetscCall(PetscLogEventEnd(ev_gradient_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+template <bool VIRIAL>
+PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  const PetscReal *m = in.P->mass.data(), *A = A_.data();
+  const bool       visc = viscosity > 0;
+  PetscReal        w[4] = {0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_force_, 0, 0, 0, 0));
+  for (const ActivePair &q : pairs_) {
+    const PetscInt  i = q.i, j = q.j;
+    const PetscReal gx = q.ex * q.F, gy = q.ey * q.F;
+    const PetscReal pp = -m[i] * m[j] * (P_[i] + P_[j]);
+    PetscReal       fx = pp * gx, fy = pp * gy;
+    if (visc) {
+      const PetscReal vv = vol_[i] * vol_[j];
+      fx += vv * ((A[4 * i] + A[4 * j]) * gx + (A[4 * i + 1] + A[4 * j + 1]) * gy);
+      fy += vv * ((A[4 * i + 2] + A[4 * j + 2]) * gx + (A[4 * i + 3] + A[4 * j + 3]) * gy);
+    }
+    f[2 * i] += fx;
+    f[2 * i + 1] += fy;
+    f[2 * j] -= fx;
+    f[2 * j + 1] -= fy;
+    if (VIRIAL) { /* -(f_ij (x) x_i - f_ij (x) x_j) = -f_ij (x) e */
+      w[0] -= fx * q.ex;
+      w[1] -= fx * q.ey;
+      w[2] -= fy * q.ex;
+      w[3] -= fy * q.ey;
+    }
+  }
+  if (VIRIAL)
+    for (int k = 0; k < 4; k++) virial[k] += w[k];
+  PetscCall(PetscLogFlops((visc ? 30.0 : 12.0) * pairs_.size()));
+  PetscCall(PetscLogEventEnd(ev_force_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  PetscFunctionBeginUser;
+  if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DensityPass(in));
+  if (viscosity > 0) PetscCall(GradientPass(in));
+  if (virial) PetscCall(ForcePass<true>(in, f, virial));
+  else PetscCall(ForcePass<false>(in, f, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHFluid::DensityAndVelocityGradient(const ForceInput &in, std::vector<PetscReal> &rho, std::vector<PetscReal> &gradv)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DensityPass(in));
+  PetscCall(GradientPass(in));
+  rho = rho_;
+  gradv.assign(4 * in.P->n, 0);
+  for (PetscInt i : fluid_) {
+    PetscReal L[3] = {1, 0, 1};
+    if (correction) GuardedInverse(M_[3 * i], M_[3 * i + 1], M_[3 * i + 2], guard, L);
+    const PetscReal *g = &G_[4 * i];
+    gradv[4 * i]       = g[0] * L[0] + g[1] * L[1];
+    gradv[4 * i + 1]   = g[0] * L[1] + g[1] * L[2];
+    gradv[4 * i + 2]   = g[2] * L[0] + g[3] * L[1];
+    gradv[4 * i + 3]   = g[2] * L[1] + g[3] * L[2];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHFluid::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DensityPass(in));
+  *E = 0;
+  for (PetscInt i : fluid_) *E += in.P->mass[i] * sound_speed * sound_speed * std::log(rho_[i]);
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* TW 562 eq 40: dt <= 0.25 h / c_s and dt <= 0.125 h^2 / nu, nu = mu / rho (smallest density). */
+PetscErrorCode SPHFluid::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
+{
+  PetscFunctionBeginUser;
+  if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  const PetscReal h = smoothing_length;
+  char            why[256];
+  if (sound_speed > 0) {
+    PetscCall(PetscSNPrintf(why, sizeof why, "sound speed: 0.25 h / c_s (eq 40), c_s = %g µm/µs", (double)sound_speed));
+    limits.push_back({0.25 * h / sound_speed, why});
+  }
+  if (viscosity > 0) {
+    PetscCall(DensityPass(in));
+    PetscReal rmin = PETSC_MAX_REAL;
+    for (PetscInt i : fluid_) rmin = PetscMin(rmin, rho_[i]);
+    const PetscReal nu = viscosity / rmin;
+    PetscCall(PetscSNPrintf(why, sizeof why, "viscosity: 0.125 h^2 / nu (eq 40), nu = %.3g µm^2/µs", (double)nu));
+    limits.push_back({0.125 * h * h / nu, why});
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SPHFluid::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "sph: h = %g µm, c_s = %g µm/µs, mu = %g ng/µs, Bonet-Lok correction %s (guard %g), %zu fluid particles\n", (double)smoothing_length, (double)sound_speed, (double)viscosity, correction ? "on" : "off", (double)guard, fluid_.size()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

@@ -1,0 +1,166 @@
+static const char help[] = "Each physics term's forces against an independent check:\n"
+                           "central finite differences of its energy (springs, repulsion, SPH pressure, body force),\n"
+                           "the cos(alpha) factor of the repulsion beyond a spring's end, and the viscous power\n"
+                           "identity sum_k f_k . v_k = -sum_i V_i tau_i : grad v_i of the corrected SPH viscosity.\n";
+#include "test_util.h"
+#include <turgor/physics/repulsion.h>
+#include <turgor/physics/sph_fluid.h>
+
+using namespace turgor;
+
+/* A 2 x 2 cell tissue with every particle displaced at random (up to `amp` µm). */
+static PetscErrorCode DisorderedTissue(PetscReal amp, Tissue *T)
+{
+  TissueSpec spec;
+  PetscFunctionBeginUser;
+  spec.cells_x = spec.cells_y = 2;
+  PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, T));
+  turgor_test::Random rnd(7);
+  for (PetscReal &x : T->X) x += amp * rnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* max_k |f_k + dE/dx_k| / max_k |f_k| with central differences of step h [µm]. The SPH energy is
+   large (sum m c^2 ln rho) compared with its variations, so it needs a larger step against round-off. */
+static PetscErrorCode CompareWithEnergy(ForceModel &model, const Tissue &T, const char *name, PetscReal tol, PetscReal h = 1e-6)
+{
+  const PetscInt         n = T.particles.n;
+  std::vector<PetscReal> x = T.X, v(2 * n, 0.0), f(2 * n);
+  PetscReal              fmax = 0, err = 0, Ep, Em;
+  PetscBool              complete;
+  PetscFunctionBeginUser;
+  PetscCall(model.ComputeForces(x.data(), v.data(), f.data(), NULL));
+  for (PetscReal fk : f) fmax = PetscMax(fmax, std::fabs(fk));
+  for (PetscInt k = 0; k < 2 * n; k++) {
+    const PetscReal x0 = x[k];
+    x[k]               = x0 + h;
+    PetscCall(model.PotentialEnergy(x.data(), &Ep, &complete));
+    x[k] = x0 - h;
+    PetscCall(model.PotentialEnergy(x.data(), &Em, &complete));
+    x[k] = x0;
+    TG_CHECK(complete, "%s has no energy", name);
+    err = PetscMax(err, std::fabs(f[k] + (Ep - Em) / (2 * h)));
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-28s max |f + dE/dx| / max |f| = %.3e  (max |f| = %.4g µN)\n", name, (double)(err / fmax), (double)fmax));
+  TG_CHECK(fmax > 0, "%s: no force at all, the test would be vacuous", name);
+  TG_CHECK(err <= tol * fmax, "%s: forces are not the gradient of the energy (%.3e)", name, (double)(err / fmax));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode ModelWith(const char *physics, const Tissue &T, ForceModel *model)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsSetValue(NULL, "-physics", physics));
+  PetscCall(model->SetFromOptions(PETSC_COMM_SELF));
+  PetscCall(model->SetUp(T.particles));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Repulsion of one particle from one spring [(0,0), (10,0)], angle factor on: inside the spring the
+   force is the conservative one; beyond its end it is scaled by cos(alpha) = |d x t| / (|d| |t|). */
+static PetscErrorCode RepulsionAngleFactor()
+{
+  PetscFunctionBeginUser;
+  for (PetscReal px : {4.0, 12.0}) {
+    Tissue T;
+    T.AddParticle(0, 0, 0.5, KIND_WALL);
+    T.AddParticle(10, 0, 0.5, KIND_WALL);
+    T.AddParticle(px, 2.5, 0.4, KIND_FLUID, 0);
+    T.AddSpring(0, 1);
+    T.Finalize();
+    std::vector<PetscReal> f_on(6), f_off(6), v(6, 0.0);
+    for (PetscBool angle : {PETSC_TRUE, PETSC_FALSE}) {
+      ForceModel model;
+      auto       rep   = std::make_unique<Repulsion>();
+      rep->angle_factor = angle;
+      model.AddTerm(std::move(rep));
+      PetscCall(model.SetUp(T.particles));
+      PetscCall(model.ComputeForces(T.X.data(), v.data(), angle ? f_on.data() : f_off.data(), NULL));
+    }
+    const PetscReal dx = px - std::min<PetscReal>(px, 10), dy = 2.5, cosa = dy / std::hypot(dx, dy);
+    for (int k = 0; k < 6; k++) TG_CHECK_CLOSE(f_on[k], cosa * f_off[k], 1e-14, 1e-300, "repulsion angle factor");
+    /* force on the particle points away from the closest point, reactions sum to zero */
+    TG_CHECK(f_off[4] * dx + f_off[5] * dy > 0, "repulsion must push the particle away");
+    TG_CHECK_CLOSE(f_on[0] + f_on[2] + f_on[4], 0.0, 1e-14, std::fabs(f_on[5]), "repulsion x momentum");
+    TG_CHECK_CLOSE(f_on[1] + f_on[3] + f_on[5], 0.0, 1e-14, std::fabs(f_on[5]), "repulsion y momentum");
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion at x = %4.1f: cos(alpha) = %.4f, |F| = %.4g µN\n", (double)px, (double)cosa, (double)std::hypot(f_on[4], f_on[5])));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The corrected viscous forces are the variational counterpart of the velocity gradient:
+   sum_k f_k . v_k = -sum_i V_i tau_i : grad v_i exactly (power of the internal forces). */
+static PetscErrorCode ViscousPower(const Tissue &T, PetscBool correction)
+{
+  const PetscInt         n = T.particles.n;
+  std::vector<PetscReal> v(2 * n), f(2 * n), rho, gradv;
+  turgor_test::Random    rnd(11);
+  PetscFunctionBeginUser;
+  for (PetscReal &vk : v) vk = rnd();
+  ForceModel model;
+  auto       sph_own  = std::make_unique<SPHFluid>();
+  SPHFluid  *sph      = sph_own.get();
+  sph->sound_speed    = 0; /* viscous stress only */
+  sph->viscosity      = 0.5;
+  sph->correction     = correction;
+  model.AddTerm(std::move(sph_own));
+  PetscCall(model.SetUp(T.particles));
+  PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
+  const ForceInput in = {&T.particles, T.X.data(), v.data(), &model.Neighbours()};
+  PetscCall(sph->DensityAndVelocityGradient(in, rho, gradv));
+  PetscReal pf = 0, ps = 0;
+  for (PetscInt k = 0; k < 2 * n; k++) pf += f[k] * v[k];
+  for (PetscInt i = 0; i < n; i++) {
+    if (T.particles.kind[i] != KIND_FLUID) continue;
+    const PetscReal *g = &gradv[4 * i], tr = g[0] + g[3], mu = sph->viscosity;
+    const PetscReal  txx = mu * (2 * g[0] - 2.0 / 3.0 * tr), tyy = mu * (2 * g[3] - 2.0 / 3.0 * tr), txy = mu * (g[1] + g[2]);
+    ps -= T.particles.mass[i] / rho[i] * (txx * g[0] + txy * (g[1] + g[2]) + tyy * g[3]);
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "viscous power (correction %-3s): sum f.v = %.12g, -sum V tau:grad v = %.12g\n", correction ? "on" : "off", (double)pf, (double)ps));
+  TG_CHECK(ps < 0, "viscosity must dissipate");
+  TG_CHECK_CLOSE(pf, ps, 1e-10, 0, "viscous power identity");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  Tissue T;
+  PetscCall(DisorderedTissue(0.8, &T));
+  {
+    ForceModel m;
+    PetscCall(ModelWith("springs", T, &m));
+    PetscCall(CompareWithEnergy(m, T, "springs", 1e-7));
+  }
+  {
+    ForceModel m;
+    PetscCall(PetscOptionsSetValue(NULL, "-repulsion_angle_factor", "0"));
+    PetscCall(ModelWith("repulsion", T, &m));
+    PetscCall(PetscOptionsClearValue(NULL, "-repulsion_angle_factor"));
+    PetscCall(CompareWithEnergy(m, T, "repulsion (no angle factor)", 1e-7));
+  }
+  {
+    ForceModel m;
+    PetscCall(ModelWith("sph", T, &m));
+    PetscCall(CompareWithEnergy(m, T, "sph pressure", 1e-6, 1e-4));
+  }
+  {
+    ForceModel m;
+    PetscCall(ModelWith("body_force", T, &m));
+    PetscCall(CompareWithEnergy(m, T, "body force", 1e-7, 1e-2)); /* linear energy: any step is exact */
+  }
+  {
+    ForceModel m;
+    PetscCall(PetscOptionsSetValue(NULL, "-repulsion_angle_factor", "0"));
+    PetscCall(ModelWith("springs,repulsion,sph,body_force", T, &m));
+    PetscCall(PetscOptionsClearValue(NULL, "-repulsion_angle_factor"));
+    PetscCall(CompareWithEnergy(m, T, "all terms together", 1e-6, 1e-4));
+  }
+  PetscCall(RepulsionAngleFactor());
+  PetscCall(ViscousPower(T, PETSC_TRUE));
+  PetscCall(ViscousPower(T, PETSC_FALSE));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_force_consistency: all checks passed\n"));
+  PetscCall(PetscFinalize());
+  return 0;
+}
