@@ -35,6 +35,7 @@ public:
   /* summary.json and the final report; call after Solve */
   PetscErrorCode WriteSummary();
 
+  const TissueSpec &Spec() const { return spec_; }
   TS           GetTS() const { return ts_; }
   /* The integrator state [x (2n) | v (2n)] of this rank's particles. */
   Vec          GetState() const { return U_; }

@@ -17,7 +17,7 @@ struct TissueSpec {
   PetscInt  fluid_per_cell   = 16;   /* a square number k*k: k x k lattice per cell */
   PetscReal wall_mass        = 0.5;  /* ng, m_DEM */
   PetscReal fluid_density    = 0.01; /* ng/µm², 2D density = 1000 kg/m³ x 10 µm thickness */
-  PetscReal fluid_mass       = 0.0;  /* ng, m_SPH; <= 0 means fluid_density * cell area / fluid_per_cell */
+  PetscReal fluid_mass       = 0.0;  /* ng, m_SPH; 0 means fluid_density * cell area / fluid_per_cell */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
   PetscReal      FluidParticleMass() const;

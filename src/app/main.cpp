@@ -12,6 +12,18 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
 
 #include <turgor/turgor.h>
 
+/* A misspelled option in a scene must not pass unnoticed. */
+static PetscErrorCode WarnUnusedOptions(void)
+{
+  PetscInt n;
+  char   **names, **values;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: option -%s%s%s was not used (misspelled, or not for -mode?)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* With -help every object is configured (so all options are listed) but nothing is solved. */
 static PetscErrorCode RunFine(MPI_Comm comm, PetscBool help_only)
 {
@@ -36,22 +48,13 @@ int main(int argc, char **argv)
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "turgor", "turgor");
   PetscCall(PetscOptionsEList("-mode", "What to run", "turgor", modes, (PetscInt)(sizeof modes / sizeof modes[0]), modes[mode], &mode, NULL));
   PetscOptionsEnd();
-  {
-    /* PetscOptionsEList ignores a value it does not know; an unknown mode must be an error. */
-    char      given[64];
-    PetscBool set, known = PETSC_FALSE;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-mode", given, sizeof given, &set));
-    if (set) {
-      for (const char *m : modes) known = (PetscBool)(known || !strcmp(m, given));
-      PetscCheck(known, PETSC_COMM_WORLD, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option -mode = %s: unknown mode (known: fine)", given);
-    }
-  }
   PetscCall(PetscOptionsHasHelp(NULL, &help_requested));
   switch (mode) {
   case 0:
     PetscCall(RunFine(PETSC_COMM_WORLD, help_requested));
     break;
   }
+  PetscCall(WarnUnusedOptions());
   PetscCall(PetscFinalize());
   return 0;
 }

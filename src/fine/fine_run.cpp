@@ -6,7 +6,7 @@
 namespace turgor {
 
 /* Default final time of the fine bending bar [µs]; see docs/model.md ("final time"). */
-static const PetscReal kDefaultFinalTime = 100.0;
+static const PetscReal kDefaultFinalTime = 300.0;
 
 FineRun::~FineRun()
 {
@@ -205,7 +205,9 @@ PetscErrorCode FineRun::SetUp()
     PetscReal dt;
     PetscCall(TSGetType(ts_, &type));
     PetscCall(TSGetTimeStep(ts_, &dt));
-    PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, std::string(type) == TSBASICSYMPLECTIC ? "fixed" : "initial", (double)dt));
+    const bool fixed = std::string(type) == TSBASICSYMPLECTIC;
+    PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, fixed ? "fixed" : "initial", (double)dt));
+    if (fixed && dt > dt_stable_) PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt, (double)dt_stable_));
   }
 
   /* outputs */

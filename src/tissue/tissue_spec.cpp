@@ -14,7 +14,7 @@ PetscErrorCode TissueSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(PetscOptionsInt("-fluid_per_cell", "SPH particles per cell (a square number k^2)", "TissueSpec", fluid_per_cell, &fluid_per_cell, NULL));
   PetscCall(PetscOptionsReal("-wall_particle_mass", "Wall (DEM) particle mass m_DEM [ng]", "TissueSpec", wall_mass, &wall_mass, NULL));
   PetscCall(PetscOptionsReal("-fluid_density", "2D fluid density = 3D density x thickness [ng/µm^2]", "TissueSpec", fluid_density, &fluid_density, NULL));
-  PetscCall(PetscOptionsReal("-fluid_particle_mass", "SPH particle mass m_SPH [ng]; <= 0: fluid_density x cell area / fluid_per_cell", "TissueSpec", fluid_mass, &fluid_mass, NULL));
+  PetscCall(PetscOptionsReal("-fluid_particle_mass", "SPH particle mass m_SPH [ng]; 0: fluid_density x cell area / fluid_per_cell", "TissueSpec", fluid_mass, &fluid_mass, NULL));
   PetscOptionsEnd();
 
   PetscCheck(cells_x >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cells_x = %" PetscInt_FMT ": must be >= 1", cells_x);
@@ -25,7 +25,7 @@ PetscErrorCode TissueSpec::SetFromOptions(MPI_Comm comm)
   PetscCheck(fluid_per_cell >= 0 && k * k == fluid_per_cell, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_per_cell = %" PetscInt_FMT ": must be a square number (k x k lattice per cell)", fluid_per_cell);
   PetscCheck(wall_mass > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_wall_particle_mass = %g: a particle mass must be > 0", (double)wall_mass);
   PetscCheck(fluid_density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_density = %g: must be > 0", (double)fluid_density);
-  PetscCheck(std::isfinite(fluid_mass), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass = %g: must be finite", (double)fluid_mass);
+  PetscCheck(std::isfinite(fluid_mass) && fluid_mass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass = %g: a particle mass must be > 0 (or 0 to derive it from -tissue_fluid_density)", (double)fluid_mass);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""Compare two turgor runs' outputs (stdlib only, so CI needs no extra packages).
+
+  compare_runs.py tip A_DIR B_DIR TOL        tip.csv histories agree within TOL (absolute, µm)
+  compare_runs.py final A_DIR B_DIR RELTOL   final tip displacements agree within RELTOL (relative)
+  compare_runs.py keys DIR KEY...            summary.json has the keys, with finite values
+"""
+import csv, json, math, sys
+
+
+def tip(d):
+    with open(f"{d}/tip.csv") as f:
+        return [(float(r["time"]), float(r["tip_displacement_y"])) for r in csv.DictReader(f)]
+
+
+def main(argv):
+    mode = argv[1]
+    if mode == "tip":
+        a, b, tol = tip(argv[2]), tip(argv[3]), float(argv[4])
+        if len(a) != len(b):
+            sys.exit(f"FAIL: {len(a)} vs {len(b)} samples")
+        err = max(abs(x[1] - y[1]) for x, y in zip(a, b))
+        terr = max(abs(x[0] - y[0]) for x, y in zip(a, b))
+        print(f"{len(a)} samples, max |tip_a - tip_b| = {err:.3e} µm, max time difference {terr:.3e}")
+        if err > tol or terr > 1e-12:
+            sys.exit(f"FAIL: difference above {tol}")
+    elif mode == "final":
+        a = json.load(open(f"{argv[2]}/summary.json"))["tip_displacement_final"]
+        b = json.load(open(f"{argv[3]}/summary.json"))["tip_displacement_final"]
+        rel = abs(a - b) / max(abs(b), 1e-300)
+        print(f"final tip displacement {a:.10g} vs {b:.10g} µm, relative difference {rel:.3e}")
+        if not rel <= float(argv[4]):
+            sys.exit(f"FAIL: relative difference above {argv[4]}")
+    elif mode == "keys":
+        s = json.load(open(f"{argv[2]}/summary.json"))
+        for k in argv[3:]:
+            if k not in s:
+                sys.exit(f"FAIL: summary.json lacks '{k}'")
+            v = s[k]
+            if isinstance(v, float) and not math.isfinite(v):
+                sys.exit(f"FAIL: summary.json '{k}' = {v}")
+        print(f"summary.json has {len(argv) - 3} required keys: {json.dumps({k: s[k] for k in argv[3:]})}")
+    else:
+        sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
