@@ -1,10 +1,12 @@
 static const char help[] = "Each physics term's forces against an independent check:\n"
                            "central finite differences of its energy (springs, repulsion, SPH pressure, body force),\n"
-                           "the cos(alpha) factor of the repulsion beyond a spring's end, and the viscous power\n"
+                           "the cos(alpha) factor of the repulsion beyond a spring's end, the dashpot and repulsion\n"
+                           "damping against their formulas, and the viscous power\n"
                            "identity sum_k f_k . v_k = -sum_i V_i tau_i : grad v_i of the corrected SPH viscosity.\n";
 #include "test_util.h"
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
+#include <turgor/physics/wall_springs.h>
 
 using namespace turgor;
 
@@ -88,6 +90,57 @@ static PetscErrorCode RepulsionAngleFactor()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The velocity-dependent (dissipative) parts have no energy: check them against their formulas,
+   evaluated here independently: the spring dashpot gamma (e . v_ij) e with gamma = 2 sqrt(m k)
+   (eq 16), and the repulsion's critical damping -2 sqrt(6 lambda m / r^7) ((v - v^) . e) e (eq 17). */
+static PetscErrorCode DampingTerms()
+{
+  PetscFunctionBeginUser;
+  {
+    Tissue T;
+    T.AddParticle(0, 0, 0.5, KIND_WALL);
+    T.AddParticle(12.0, 5.0, 0.5, KIND_WALL);
+    T.AddSpring(0, 1);
+    T.Finalize();
+    T.X[2] += 0.3; /* stretched */
+    const std::vector<PetscReal> v = {0.2, -0.4, -0.7, 0.9}, v0(4, 0.0);
+    std::vector<PetscReal>       f(4), f0(4);
+    ForceModel                   model;
+    model.AddTerm(std::make_unique<WallSprings>());
+    PetscCall(model.SetUp(T.particles));
+    PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
+    PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
+    const PetscReal dx = T.X[2] - T.X[0], dy = T.X[3] - T.X[1], r = std::hypot(dx, dy), ex = dx / r, ey = dy / r;
+    const PetscReal gamma = 2 * std::sqrt(0.5 * 4000.0), vn = (v[2] - v[0]) * ex + (v[3] - v[1]) * ey;
+    TG_CHECK_CLOSE(f[0] - f0[0], gamma * vn * ex, 1e-12, std::fabs(gamma * vn), "dashpot force x");
+    TG_CHECK_CLOSE(f[1] - f0[1], gamma * vn * ey, 1e-12, std::fabs(gamma * vn), "dashpot force y");
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "spring dashpot: %.6g µN along the spring, as gamma (e . v_ij) with gamma = %.6g ng/µs\n", (double)((f[0] - f0[0]) * ex + (f[1] - f0[1]) * ey), (double)gamma));
+  }
+  {
+    Tissue T;
+    T.AddParticle(0, 0, 0.5, KIND_WALL);
+    T.AddParticle(10, 0, 0.5, KIND_WALL);
+    T.AddParticle(4, 2.5, 0.4, KIND_FLUID, 0);
+    T.AddSpring(0, 1);
+    T.Finalize();
+    const std::vector<PetscReal> v = {0.1, 0.2, -0.2, 0.5, 0.3, -1.2}, v0(6, 0.0);
+    std::vector<PetscReal>       f(6), f0(6);
+    ForceModel                   model;
+    model.AddTerm(std::make_unique<Repulsion>());
+    PetscCall(model.SetUp(T.particles));
+    PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
+    PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
+    const PetscReal t = 0.4, r = 2.5, vh = (1 - t) * v[1] + t * v[3]; /* closest point (4, 0), normal e = (0, 1) */
+    const PetscReal damp = -2 * std::sqrt(6 * 5e5 * 0.4 / std::pow(r, 7)) * (v[5] - vh);
+    TG_CHECK_CLOSE(f[5] - f0[5], damp, 1e-12, std::fabs(damp), "repulsion damping on the particle");
+    TG_CHECK_CLOSE(f[1] - f0[1], -(1 - t) * damp, 1e-12, std::fabs(damp), "repulsion damping reaction on x1");
+    TG_CHECK_CLOSE(f[3] - f0[3], -t * damp, 1e-12, std::fabs(damp), "repulsion damping reaction on x2");
+    TG_CHECK(std::fabs(f[4] - f0[4]) < 1e-12 * std::fabs(damp), "repulsion damping must act along the normal");
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion damping: %.6g µN, as -2 sqrt(6 lambda m / r^7) (v - v^).e\n", (double)(f[5] - f0[5])));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The corrected viscous forces are the variational counterpart of the velocity gradient:
    sum_k f_k . v_k = -sum_i V_i tau_i : grad v_i exactly (power of the internal forces). */
 static PetscErrorCode ViscousPower(const Tissue &T, PetscBool correction)
@@ -158,6 +211,7 @@ int main(int argc, char **argv)
     PetscCall(CompareWithEnergy(m, T, "all terms together", 1e-6, 1e-4));
   }
   PetscCall(RepulsionAngleFactor());
+  PetscCall(DampingTerms());
   PetscCall(ViscousPower(T, PETSC_TRUE));
   PetscCall(ViscousPower(T, PETSC_FALSE));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_force_consistency: all checks passed\n"));

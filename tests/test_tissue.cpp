@@ -25,7 +25,7 @@ int main(int argc, char **argv)
     }
     for (const Spring &s : P.springs) TG_CHECK_CLOSE(s.rest_length, 12.5, 1e-12, 1.0, "rest length");
     /* fluid mass from 2D density: 0.01 ng/µm² x 625 µm² / 16 */
-    TG_CHECK_CLOSE(P.mass[P.n - 1], 0.390625, 1e-14, 1.0, "fluid particle mass");
+    for (PetscInt i = 0; i < P.n; i++) TG_CHECK_CLOSE(P.mass[i], P.kind[i] == KIND_FLUID ? 0.390625 : 0.5, 1e-14, 1.0, "particle mass");
     /* each fluid particle lies inside its own cell */
     for (PetscInt i = 0; i < P.n; i++) {
       if (P.kind[i] != KIND_FLUID) continue;

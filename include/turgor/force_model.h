@@ -25,7 +25,7 @@ public:
 
   /* f[2n] = sum of all terms' forces; virial[4] (may be NULL) = -sum f_k (x) x_k of internal forces. */
   PetscErrorCode ComputeForces(const PetscReal *x, const PetscReal *v, PetscReal *f, PetscReal *virial);
-  /* a[2n] = f / m, zero for fixed particles. */
+  /* a[2n] = f / m, zero for fixed particles (whose flags are read at SetUp). */
   PetscErrorCode ComputeAcceleration(const PetscReal *x, const PetscReal *v, PetscReal *a);
   /* Sum of the conservative terms' energies; *complete = PETSC_FALSE if some active term has none. */
   PetscErrorCode PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete);
@@ -43,7 +43,7 @@ private:
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<PetscLogEvent>              events_;
   NeighbourSearch                         nb_;
-  std::vector<PetscReal>                  f_;
+  std::vector<PetscReal>                  inv_mass_; /* 0 for fixed particles */
   PetscInt                                evaluations_ = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;
 };

@@ -78,7 +78,8 @@ PetscErrorCode ForceModel::SetUp(const ParticleSet &P)
   }
   PetscCall(PetscLogEventRegister("TgForces", PETSC_OBJECT_CLASSID, &ev_forces_));
   PetscCall(PetscLogEventRegister("TgNeighbours", PETSC_OBJECT_CLASSID, &ev_neighbours_));
-  f_.assign(2 * P.n, 0);
+  inv_mass_.resize(P.n);
+  for (PetscInt i = 0; i < P.n; i++) inv_mass_[i] = P.fixed[i] ? 0.0 : 1.0 / P.mass[i];
   evaluations_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -109,11 +110,9 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
 {
   PetscFunctionBeginUser;
   PetscCall(ComputeForces(x, v, a, NULL));
-  const ParticleSet &P = *P_;
-  for (PetscInt i = 0; i < P.n; i++) {
-    const PetscReal im = P.fixed[i] ? 0.0 : 1.0 / P.mass[i];
-    a[2 * i] *= im;
-    a[2 * i + 1] *= im;
+  for (PetscInt i = 0; i < P_->n; i++) {
+    a[2 * i] *= inv_mass_[i];
+    a[2 * i + 1] *= inv_mass_[i];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

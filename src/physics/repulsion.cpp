@@ -22,6 +22,9 @@ PetscErrorCode Repulsion::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
   nb.RequestParticleSpringPairs(cutoff);
+  seg_.resize(P.springs.size());
+  damping_coefficient_.resize(P.n);
+  for (PetscInt i = 0; i < P.n; i++) damping_coefficient_[i] = 2.0 * std::sqrt(6.0 * strength * P.mass[i]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -43,7 +46,7 @@ static inline SegmentContact Closest(const PetscReal *x, const PetscReal *x1, co
 }
 
 template <bool VIRIAL>
-PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) const
+PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const PetscReal        *x = in.x, *v = in.v;
   const ParticleSet      &P = *in.P;
@@ -53,41 +56,47 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
   PetscInt                active = 0;
 
   PetscFunctionBeginUser;
+  /* spring vectors once per evaluation: a spring is near ~7 particles in a tissue */
+  for (size_t s = 0; s < P.springs.size(); s++) {
+    const PetscInt  i1 = P.springs[s].i, i2 = P.springs[s].j;
+    const PetscReal tx = x[2 * i2] - x[2 * i1], ty = x[2 * i2 + 1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
+    seg_[s]            = {tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0};
+  }
   for (size_t q = 0; q < L.size(); q++) {
-    const PetscInt       p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
-    const SegmentContact c = Closest(&x[2 * p], &x[2 * i1], &x[2 * i2]);
-    const PetscReal      r2 = c.dx * c.dx + c.dy * c.dy;
+    const PetscInt   p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
+    const Segment   &sg = seg_[L.s[q]];
+    const PetscReal  wx = x[2 * p] - x[2 * i1], wy = x[2 * p + 1] - x[2 * i1 + 1];
+    const PetscReal  t = std::min((PetscReal)1, std::max((PetscReal)0, (wx * sg.tx + wy * sg.ty) * sg.inv_L2)); /* x^ = x1 + t (x2 - x1) */
+    const PetscReal  dx = wx - t * sg.tx, dy = wy - t * sg.ty, r2 = dx * dx + dy * dy;
     if (r2 >= x02) continue;
     PetscCheck(r2 > 0, PETSC_COMM_SELF, PETSC_ERR_FP, "Repulsion: particle %" PetscInt_FMT " lies on spring (%" PetscInt_FMT ", %" PetscInt_FMT "); the time step is too large or the walls crossed", p, i1, i2);
     active++;
-    const PetscReal r = std::sqrt(r2), ir = 1.0 / r, ir6 = 1.0 / (r2 * r2 * r2);
-    const PetscReal ex = c.dx * ir, ey = c.dy * ir;
-    PetscReal       cosa = 1;
-    if (angle_factor) { /* |d x t| / (|d| |t|): 1 when x^ is inside the spring, < 1 beyond its ends */
-      const PetscReal tl = std::sqrt(c.tx * c.tx + c.ty * c.ty);
-      cosa               = tl > 0 ? std::fabs(c.dx * c.ty - c.dy * c.tx) * ir / tl : 1;
+    const PetscReal ir = 1.0 / std::sqrt(r2), ir2 = ir * ir, ir6 = ir2 * ir2 * ir2;
+    const PetscReal ex = dx * ir, ey = dy * ir;
+    /* cos(alpha) = |d x t| / (|d| |t|): 1 when x^ is inside the spring, < 1 beyond its ends */
+    const PetscReal cosa = angle_factor ? std::fabs(dx * sg.ty - dy * sg.tx) * ir * sg.inv_L : 1.0;
+    PetscReal       mag  = strength * cosa * (ir6 - ix06);
+    if (damping) { /* - 2 sqrt(6 lambda m / r^7) (x - x^).(v - v^)/r, v^ interpolated like x^ */
+      const PetscReal vhx = (1 - t) * v[2 * i1] + t * v[2 * i2], vhy = (1 - t) * v[2 * i1 + 1] + t * v[2 * i2 + 1];
+      mag -= damping_coefficient_[p] * ir2 * ir * std::sqrt(ir) * /* r^-3.5 */ ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
     }
-    PetscReal mag = strength * cosa * (ir6 - ix06);
-    /* velocity of x^ interpolated between the end points */
-    const PetscReal vhx = (1 - c.t) * v[2 * i1] + c.t * v[2 * i2], vhy = (1 - c.t) * v[2 * i1 + 1] + c.t * v[2 * i2 + 1];
-    if (damping) mag -= 2.0 * std::sqrt(6.0 * strength * P.mass[p] * ir6 * ir) * ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
     const PetscReal fx = mag * ex, fy = mag * ey;
     f[2 * p] += fx;
     f[2 * p + 1] += fy;
-    f[2 * i1] -= (1 - c.t) * fx;
-    f[2 * i1 + 1] -= (1 - c.t) * fy;
-    f[2 * i2] -= c.t * fx;
-    f[2 * i2 + 1] -= c.t * fy;
+    f[2 * i1] -= (1 - t) * fx;
+    f[2 * i1 + 1] -= (1 - t) * fy;
+    f[2 * i2] -= t * fx;
+    f[2 * i2 + 1] -= t * fy;
     if (VIRIAL) { /* -(F x_p - (1-t) F x1 - t F x2) = -F (x) d */
-      w[0] -= fx * c.dx;
-      w[1] -= fx * c.dy;
-      w[2] -= fy * c.dx;
-      w[3] -= fy * c.dy;
+      w[0] -= fx * dx;
+      w[1] -= fx * dy;
+      w[2] -= fy * dx;
+      w[3] -= fy * dy;
     }
   }
   if (VIRIAL)
     for (int k = 0; k < 4; k++) virial[k] += w[k];
-  PetscCall(PetscLogFlops(20.0 * L.size() + 50.0 * active));
+  PetscCall(PetscLogFlops(8.0 * P.springs.size() + 14.0 * L.size() + 50.0 * active));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -19,54 +19,49 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, T
 
   PetscFunctionBeginUser;
   PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)", (double)mf);
-  *tissue      = Tissue();
-  ParticleSet &P = tissue->particles;
+  *tissue = Tissue();
+  Tissue               &T = *tissue;
   std::vector<PetscInt> id((size_t)ax * ay, -1);
-  auto on_wall = [&](PetscInt a, PetscInt b) { return a % s == 0 || b % s == 0; };
+  auto wall = [&](PetscInt a, PetscInt b) { id[b * ax + a] = T.AddParticle(a * dl, b * dl, spec.wall_mass, KIND_WALL); };
+  auto spring = [&](PetscInt a, PetscInt b, PetscInt a2, PetscInt b2) { T.particles.springs.push_back({id[b * ax + a], id[b2 * ax + a2], dl}); };
 
-  /* wall particles, row by row */
-  for (PetscInt b = 0; b < ay; b++)
-    for (PetscInt a = 0; a < ax; a++) {
-      if (!on_wall(a, b)) continue;
-      id[b * ax + a] = P.n++;
-      tissue->X.push_back(a * dl);
-      tissue->X.push_back(b * dl);
-      P.mass.push_back(spec.wall_mass);
-      P.kind.push_back(KIND_WALL);
-      P.cell.push_back(-1);
-    }
-  /* springs: along horizontal lines (b on a cell boundary) and vertical lines */
-  for (PetscInt b = 0; b < ay; b += s)
-    for (PetscInt a = 0; a + 1 < ax; a++) P.springs.push_back({id[b * ax + a], id[b * ax + a + 1], dl});
-  for (PetscInt a = 0; a < ax; a += s)
-    for (PetscInt b = 0; b + 1 < ay; b++) P.springs.push_back({id[b * ax + a], id[(b + 1) * ax + a], dl});
-
-  /* cells: wall ring counter-clockwise from the lower-left corner, then the fluid lattice */
+  /* Particles and springs are numbered cell by cell (each cell owns the wall points of its bottom and
+     left edges, then its fluid), so that neighbours in space are close in memory; the top row and
+     right column of wall points come last. */
   for (PetscInt cy = 0; cy < ny; cy++)
     for (PetscInt cx = 0; cx < nx; cx++) {
-      const PetscInt        a0 = cx * s, b0 = cy * s, c = cy * nx + cx;
+      const PetscInt a0 = cx * s, b0 = cy * s, c = cy * nx + cx;
+      for (PetscInt t = 0; t < s; t++) wall(a0 + t, b0);
+      for (PetscInt t = 1; t < s; t++) wall(a0, b0 + t);
+      for (PetscInt j = 0; j < k; j++)
+        for (PetscInt i = 0; i < k; i++) T.AddParticle((cx + (i + 0.5) / k) * spec.cell_size, (cy + (j + 0.5) / k) * spec.cell_size, mf, KIND_FLUID, c);
+    }
+  for (PetscInt a = 0; a < ax; a++) wall(a, ay - 1);
+  for (PetscInt b = 0; b + 1 < ay; b++)
+    if (id[b * ax + ax - 1] < 0) wall(ax - 1, b);
+
+  /* springs: each cell's bottom and left edges, then the top and right boundaries */
+  for (PetscInt cy = 0; cy < ny; cy++)
+    for (PetscInt cx = 0; cx < nx; cx++) {
+      const PetscInt a0 = cx * s, b0 = cy * s;
+      for (PetscInt t = 0; t < s; t++) spring(a0 + t, b0, a0 + t + 1, b0);
+      for (PetscInt t = 0; t < s; t++) spring(a0, b0 + t, a0, b0 + t + 1);
+    }
+  for (PetscInt a = 0; a + 1 < ax; a++) spring(a, ay - 1, a + 1, ay - 1);
+  for (PetscInt b = 0; b + 1 < ay; b++) spring(ax - 1, b, ax - 1, b + 1);
+
+  /* cells: wall ring counter-clockwise from the lower-left corner */
+  for (PetscInt cy = 0; cy < ny; cy++)
+    for (PetscInt cx = 0; cx < nx; cx++) {
+      const PetscInt        a0 = cx * s, b0 = cy * s;
       std::vector<PetscInt> ring;
       for (PetscInt t = 0; t < s; t++) ring.push_back(id[b0 * ax + a0 + t]);
       for (PetscInt t = 0; t < s; t++) ring.push_back(id[(b0 + t) * ax + a0 + s]);
       for (PetscInt t = 0; t < s; t++) ring.push_back(id[(b0 + s) * ax + a0 + s - t]);
       for (PetscInt t = 0; t < s; t++) ring.push_back(id[(b0 + s - t) * ax + a0]);
-      tissue->cell_walls.push_back(ring);
-      for (PetscInt j = 0; j < k; j++)
-        for (PetscInt i = 0; i < k; i++) {
-          P.n++;
-          tissue->X.push_back((cx + (i + 0.5) / k) * spec.cell_size);
-          tissue->X.push_back((cy + (j + 0.5) / k) * spec.cell_size);
-          P.mass.push_back(mf);
-          P.kind.push_back(KIND_FLUID);
-          P.cell.push_back(c);
-        }
+      T.cell_walls.push_back(ring);
     }
-  P.n_owned = P.n;
-  P.gid.resize(P.n);
-  for (PetscInt i = 0; i < P.n; i++) P.gid[i] = i;
-  P.fixed.assign(P.n, 0);
-  tissue->hi[0] = nx * spec.cell_size;
-  tissue->hi[1] = ny * spec.cell_size;
+  T.Finalize();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

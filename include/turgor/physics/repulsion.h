@@ -4,6 +4,7 @@
    except the springs it is an end point of; the reaction -F is split c, 1-c over the spring's end
    points, so linear and angular momentum are preserved exactly (F is parallel to x - x^). */
 #include <turgor/physics/force_term.h>
+#include <vector>
 
 namespace turgor {
 
@@ -25,8 +26,13 @@ public:
   PetscBool damping      = PETSC_TRUE;
 
 private:
+  struct Segment {
+    PetscReal tx, ty, inv_L2, inv_L; /* x2 - x1 and its inverse squared length and length */
+  };
   template <bool VIRIAL>
-  PetscErrorCode Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) const;
+  PetscErrorCode         Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  std::vector<Segment>   seg_;                 /* per spring, refreshed each evaluation */
+  std::vector<PetscReal> damping_coefficient_; /* 2 sqrt(6 lambda m_p) per particle */
 };
 
 } // namespace turgor
