@@ -185,6 +185,20 @@ PetscErrorCode FineRun::SetUp()
   }
   PetscCall(TSGetMaxTime(ts_, &t_final_));
   PetscCheck(t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be > 0", (double)t_final_);
+  {
+    /* a fixed step is not clipped at the final time: shorten it so that whole steps end there */
+    TSType    type;
+    PetscReal dt;
+    PetscCall(TSGetType(ts_, &type));
+    PetscCall(TSGetTimeStep(ts_, &dt));
+    PetscInt  max_steps;
+    PetscCall(TSGetMaxSteps(ts_, &max_steps));
+    if (std::string(type) == TSBASICSYMPLECTIC && t_final_ < 1e12 * dt) {
+      const PetscReal n = std::ceil(t_final_ / dt * (1 - 1e-12));
+      PetscCall(TSSetTimeStep(ts_, t_final_ / n));
+      if (max_steps == PETSC_MAX_INT) PetscCall(TSSetMaxSteps(ts_, (PetscInt)n)); /* round-off must not add a step */
+    }
+  }
 
   /* report */
   PetscViewer out = PETSC_VIEWER_STDOUT_(comm_);

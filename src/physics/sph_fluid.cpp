@@ -71,23 +71,30 @@ PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
   for (PetscInt i : fluid_) rho_[i] = m[i] * W0_;
   pairs_.resize(L.size());
   size_t na = 0;
-  for (size_t q = 0; q < L.size(); q++) {
-    const PetscInt  i = L.i[q], j = L.j[q];
-    const PetscReal ex = x[2 * i] - x[2 * j], ey = x[2 * i + 1] - x[2 * j + 1], r2 = ex * ex + ey * ey;
-    if (r2 >= r2max) continue;
-    const PetscReal r = std::sqrt(r2), s = r * ih;
-    PetscReal       W, dW;
-    if (s < 1) {
-      W  = c * (1 - 1.5 * s * s + 0.75 * s * s * s);
-      dW = cd * (-3 * s + 2.25 * s * s);
-    } else {
-      const PetscReal t = 2 - s;
-      W                 = c * 0.25 * t * t * t;
-      dW                = -cd * 0.75 * t * t;
+  /* the list is sorted by i: row i accumulates in a register */
+  for (size_t q = 0; q < L.size();) {
+    const PetscInt  i  = L.i[q];
+    const PetscReal xi = x[2 * i], yi = x[2 * i + 1], mi = m[i];
+    PetscReal       rho_i = 0;
+    for (; q < L.size() && L.i[q] == i; q++) {
+      const PetscInt  j  = L.j[q];
+      const PetscReal ex = xi - x[2 * j], ey = yi - x[2 * j + 1], r2 = ex * ex + ey * ey;
+      if (r2 >= r2max) continue;
+      const PetscReal r = std::sqrt(r2), s = r * ih;
+      PetscReal       W, dW;
+      if (s < 1) {
+        W  = c * (1 - 1.5 * s * s + 0.75 * s * s * s);
+        dW = cd * (-3 * s + 2.25 * s * s);
+      } else {
+        const PetscReal t = 2 - s;
+        W                 = c * 0.25 * t * t * t;
+        dW                = -cd * 0.75 * t * t;
+      }
+      rho_i += m[j] * W;
+      rho_[j] += mi * W;
+      pairs_[na++] = {i, j, ex, ey, r > 0 ? dW / r : 0};
     }
-    rho_[i] += m[j] * W;
-    rho_[j] += m[i] * W;
-    pairs_[na++] = {i, j, ex, ey, r > 0 ? dW / r : 0};
+    rho_[i] += rho_i;
   }
   pairs_.resize(na);
   for (PetscInt i : fluid_) {
@@ -139,27 +146,37 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in)
     for (int k = 0; k < 3; k++) M[3 * i + k] = 0;
     for (int k = 0; k < 4; k++) G[4 * i + k] = 0;
   }
-  for (const ActivePair &q : pairs_) {
-    const PetscInt  i = q.i, j = q.j;
-    const PetscReal Vi = vol_[i], Vj = vol_[j];
-    const PetscReal gx = q.ex * q.F, gy = q.ey * q.F;
-    const PetscReal sxx = -gx * q.ex, sxy = -gx * q.ey, syy = -gy * q.ey;
-    const PetscReal dvx = v[2 * j] - v[2 * i], dvy = v[2 * j + 1] - v[2 * i + 1];
-    const PetscReal t0 = dvx * gx, t1 = dvx * gy, t2 = dvy * gx, t3 = dvy * gy;
-    M[3 * i] += Vj * sxx;
-    M[3 * i + 1] += Vj * sxy;
-    M[3 * i + 2] += Vj * syy;
-    M[3 * j] += Vi * sxx;
-    M[3 * j + 1] += Vi * sxy;
-    M[3 * j + 2] += Vi * syy;
-    G[4 * i] += Vj * t0;
-    G[4 * i + 1] += Vj * t1;
-    G[4 * i + 2] += Vj * t2;
-    G[4 * i + 3] += Vj * t3;
-    G[4 * j] += Vi * t0;
-    G[4 * j + 1] += Vi * t1;
-    G[4 * j + 2] += Vi * t2;
-    G[4 * j + 3] += Vi * t3;
+  /* pairs are sorted by i: accumulate row i in registers, scatter only to j */
+  const size_t np = pairs_.size();
+  for (size_t q = 0; q < np;) {
+    const PetscInt  i  = pairs_[q].i;
+    const PetscReal Vi = vol_[i], vxi = v[2 * i], vyi = v[2 * i + 1];
+    PetscReal       Mi[3] = {0, 0, 0}, Gi[4] = {0, 0, 0, 0};
+    for (; q < np && pairs_[q].i == i; q++) {
+      const ActivePair &pq = pairs_[q];
+      const PetscInt    j  = pq.j;
+      const PetscReal   Vj = vol_[j];
+      const PetscReal   gx = pq.ex * pq.F, gy = pq.ey * pq.F;
+      const PetscReal   sxx = -gx * pq.ex, sxy = -gx * pq.ey, syy = -gy * pq.ey;
+      const PetscReal   dvx = v[2 * j] - vxi, dvy = v[2 * j + 1] - vyi;
+      const PetscReal   t0 = dvx * gx, t1 = dvx * gy, t2 = dvy * gx, t3 = dvy * gy;
+      Mi[0] += Vj * sxx;
+      Mi[1] += Vj * sxy;
+      Mi[2] += Vj * syy;
+      Gi[0] += Vj * t0;
+      Gi[1] += Vj * t1;
+      Gi[2] += Vj * t2;
+      Gi[3] += Vj * t3;
+      M[3 * j] += Vi * sxx;
+      M[3 * j + 1] += Vi * sxy;
+      M[3 * j + 2] += Vi * syy;
+      G[4 * j] += Vi * t0;
+      G[4 * j + 1] += Vi * t1;
+      G[4 * j + 2] += Vi * t2;
+      G[4 * j + 3] += Vi * t3;
+    }
+    for (int k = 0; k < 3; k++) M[3 * i + k] += Mi[k];
+    for (int k = 0; k < 4; k++) G[4 * i + k] += Gi[k];
   }
   const PetscReal mu = viscosity;
   for (PetscInt i : fluid_) {
@@ -191,26 +208,36 @@ PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_force_, 0, 0, 0, 0));
-  for (const ActivePair &q : pairs_) {
-    const PetscInt  i = q.i, j = q.j;
-    const PetscReal gx = q.ex * q.F, gy = q.ey * q.F;
-    const PetscReal pp = -m[i] * m[j] * (P_[i] + P_[j]);
-    PetscReal       fx = pp * gx, fy = pp * gy;
-    if (visc) {
-      const PetscReal vv = vol_[i] * vol_[j];
-      fx += vv * ((A[4 * i] + A[4 * j]) * gx + (A[4 * i + 1] + A[4 * j + 1]) * gy);
-      fy += vv * ((A[4 * i + 2] + A[4 * j + 2]) * gx + (A[4 * i + 3] + A[4 * j + 3]) * gy);
+  const size_t np = pairs_.size();
+  for (size_t q = 0; q < np;) {
+    const PetscInt  i  = pairs_[q].i;
+    const PetscReal mi = m[i], Pi = P_[i], Vi = vol_[i];
+    const PetscReal A0 = A[4 * i], A1 = A[4 * i + 1], A2 = A[4 * i + 2], A3 = A[4 * i + 3];
+    PetscReal       fxi = 0, fyi = 0;
+    for (; q < np && pairs_[q].i == i; q++) {
+      const ActivePair &pq = pairs_[q];
+      const PetscInt    j  = pq.j;
+      const PetscReal   gx = pq.ex * pq.F, gy = pq.ey * pq.F;
+      const PetscReal   pp = -mi * m[j] * (Pi + P_[j]);
+      PetscReal         fx = pp * gx, fy = pp * gy;
+      if (visc) {
+        const PetscReal vv = Vi * vol_[j];
+        fx += vv * ((A0 + A[4 * j]) * gx + (A1 + A[4 * j + 1]) * gy);
+        fy += vv * ((A2 + A[4 * j + 2]) * gx + (A3 + A[4 * j + 3]) * gy);
+      }
+      fxi += fx;
+      fyi += fy;
+      f[2 * j] -= fx;
+      f[2 * j + 1] -= fy;
+      if (VIRIAL) { /* -(f_ij (x) x_i - f_ij (x) x_j) = -f_ij (x) e */
+        w[0] -= fx * pq.ex;
+        w[1] -= fx * pq.ey;
+        w[2] -= fy * pq.ex;
+        w[3] -= fy * pq.ey;
+      }
     }
-    f[2 * i] += fx;
-    f[2 * i + 1] += fy;
-    f[2 * j] -= fx;
-    f[2 * j + 1] -= fy;
-    if (VIRIAL) { /* -(f_ij (x) x_i - f_ij (x) x_j) = -f_ij (x) e */
-      w[0] -= fx * q.ex;
-      w[1] -= fx * q.ey;
-      w[2] -= fy * q.ex;
-      w[3] -= fy * q.ey;
-    }
+    f[2 * i] += fxi;
+    f[2 * i + 1] += fyi;
   }
   if (VIRIAL)
     for (int k = 0; k < 4; k++) virial[k] += w[k];
