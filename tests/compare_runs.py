@@ -4,6 +4,8 @@
   compare_runs.py tip A_DIR B_DIR TOL        tip.csv histories agree within TOL (absolute, µm)
   compare_runs.py final A_DIR B_DIR RELTOL   final tip displacements agree within RELTOL (relative)
   compare_runs.py keys DIR KEY...            summary.json has the keys, with finite values
+  compare_runs.py numbers A B RELTOL         two files of whitespace-separated numbers agree
+                                             (|a - b| <= RELTOL * max |b|, per line)
 """
 import csv, json, math, sys
 
@@ -40,6 +42,18 @@ def main(argv):
             if isinstance(v, float) and not math.isfinite(v):
                 sys.exit(f"FAIL: summary.json '{k}' = {v}")
         print(f"summary.json has {len(argv) - 3} required keys: {json.dumps({k: s[k] for k in argv[3:]})}")
+    elif mode == "numbers":
+        la = [list(map(float, l.split())) for l in open(argv[2]) if l.strip()]
+        lb = [list(map(float, l.split())) for l in open(argv[3]) if l.strip()]
+        if [len(x) for x in la] != [len(x) for x in lb]:
+            sys.exit("FAIL: the files have different shapes")
+        worst = 0.0
+        for x, y in zip(la, lb):
+            scale = max(abs(v) for v in y) or 1.0
+            worst = max(worst, max(abs(p - q) for p, q in zip(x, y)) / scale)
+        print(f"{len(la)} lines, largest difference {worst:.3e} of the line's largest entry")
+        if not worst <= float(argv[4]):
+            sys.exit(f"FAIL: above {argv[4]}")
     else:
         sys.exit(__doc__)
 

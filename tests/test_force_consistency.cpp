@@ -159,7 +159,7 @@ static PetscErrorCode ViscousPower(const Tissue &T, PetscBool correction)
   model.AddTerm(std::move(sph_own));
   PetscCall(model.SetUp(T.particles));
   PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
-  const ForceInput in = {&T.particles, T.X.data(), v.data(), &model.Neighbours()};
+  const ForceInput in = {&T.particles, T.X.data(), v.data(), &model.Neighbours(), &model.Images()};
   PetscCall(sph->DensityAndVelocityGradient(in, rho, gradv));
   PetscReal pf = 0, ps = 0;
   for (PetscInt k = 0; k < 2 * n; k++) pf += f[k] * v[k];

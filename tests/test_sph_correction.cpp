@@ -39,7 +39,7 @@ static PetscErrorCode LinearField(PetscBool correction, PetscReal *err_grad, Pet
     v[2 * i + 1] = A[2] * T.X[2 * i] + A[3] * T.X[2 * i + 1];
   }
   PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL)); /* builds the neighbour lists */
-  const ForceInput in = {&T.particles, T.X.data(), v.data(), &model.Neighbours()};
+  const ForceInput in = {&T.particles, T.X.data(), v.data(), &model.Neighbours(), &model.Images()};
   PetscCall(sph->DensityAndVelocityGradient(in, rho, gradv));
   *err_grad = 0;
   for (PetscInt i = 0; i < n; i++)

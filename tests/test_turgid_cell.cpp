@@ -47,7 +47,7 @@ static PetscErrorCode LaplaceRatio(PetscReal h, PetscReal *ratio)
   /* interior pressure */
   auto *sph = dynamic_cast<SPHFluid *>(run.Model().Term("sph"));
   PetscCall(run.Model().ComputeForces(x.data(), v.data(), f.data(), NULL)); /* neighbour lists at x */
-  const ForceInput in = {&P, x.data(), v.data(), &run.Model().Neighbours()};
+  const ForceInput in = {&P, x.data(), v.data(), &run.Model().Neighbours(), &run.Model().Images()};
   PetscCall(sph->DensityAndVelocityGradient(in, rho, gradv));
   PetscReal lo[2] = {1e30, 1e30}, hi[2] = {-1e30, -1e30}, rsum = 0;
   PetscInt  count = 0;

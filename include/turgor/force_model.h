@@ -17,8 +17,9 @@ PetscErrorCode CreateForceTerm(MPI_Comm comm, const std::string &name, const cha
 
 class ForceModel {
 public:
-  /* Reads -physics (comma-separated term names; default: all) and each term's own options. */
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  /* Reads -physics (comma-separated term names; default: all) and each term's own options. Terms
+     named in `skip` are not constructed even if listed (an RVE skips the body force, a load). */
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const std::vector<std::string> &skip = {});
   /* Add a term programmatically (tests); call before SetUp. */
   void           AddTerm(std::unique_ptr<ForceTerm> term) { terms_.push_back(std::move(term)); }
   PetscErrorCode SetUp(const ParticleSet &P);
@@ -35,6 +36,9 @@ public:
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;
   NeighbourSearch         &Neighbours() { return nb_; }
+  /* Periodic lattice for RVEs (positions and rates of the image shifts); default: not periodic. */
+  void                     SetPeriodicImages(const PeriodicImages &images) { images_ = images; }
+  const PeriodicImages    &Images() const { return images_; }
   PetscInt                 Evaluations() const { return evaluations_; }
   PetscErrorCode           View(PetscViewer viewer) const;
 
@@ -43,6 +47,7 @@ private:
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<PetscLogEvent>              events_;
   NeighbourSearch                         nb_;
+  PeriodicImages                          images_;
   std::vector<PetscReal>                  inv_mass_; /* 0 for fixed particles */
   PetscInt                                evaluations_ = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;

@@ -15,8 +15,9 @@ struct PairList { /* half list: each unordered pair once */
   size_t                size() const { return i.size(); }
 };
 
-struct PointSegmentList { /* particle p near spring s (p is not an end point of s) */
+struct PointSegmentList { /* particle p near image `img` of spring s (p is not an end point of s) */
   std::vector<PetscInt> p, s;
+  std::vector<int>      img;
   size_t                size() const { return p.size(); }
 };
 
@@ -30,8 +31,11 @@ public:
   PetscReal Skin() const { return skin_; }
   void      Reset();
 
-  /* Rebuild the requested lists if any particle moved more than skin/2 since the last build. */
-  PetscErrorCode Update(const ParticleSet &P, const PetscReal *x);
+  /* Rebuild the requested lists if any particle moved more than skin/2 since the last build (for a
+     periodic system: if twice the largest move plus the change of the lattice exceeds the skin).
+     Periodic systems (small RVEs) are searched directly over all pairs and the 3 x 3 images; fluid
+     pairs never use images (each cell's fluid lies inside its own cell). */
+  PetscErrorCode Update(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images);
 
   const PairList         &FluidPairs() const { return fluid_pairs_; }
   const PointSegmentList &ParticleSpringPairs() const { return particle_spring_; }
@@ -41,11 +45,14 @@ public:
 
 private:
   PetscErrorCode Build(const ParticleSet &P, const PetscReal *x);
+  PetscErrorCode BuildPeriodic(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images);
+  void           SortFluidPairs();
   void           BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin);
 
   PetscReal              fluid_cutoff_ = 0, spring_cutoff_ = 0, skin_ = 1.0;
   PetscInt               rebuilds_ = 0;
   std::vector<PetscReal> x_ref_;
+  PetscReal              a_ref_[2][2] = {};
   PairList               fluid_pairs_;
   PointSegmentList       particle_spring_;
   /* bin grid (counting sort) */

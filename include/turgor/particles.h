@@ -12,10 +12,39 @@ namespace turgor {
 
 enum ParticleKind : PetscInt { KIND_WALL = 0, KIND_FLUID = 1 };
 
-/* A wall spring (bonded pair) with its rest length. */
+/* Periodic images (RVEs): image k = 3 (n1 + 1) + (n2 + 1) of a particle sits at x + n1 a1 + n2 a2
+   and moves with v + n1 a1' + n2 a2', where a1, a2 are the lattice vectors of the periodic cell and
+   a' their rates (F A and Fdot A for an RVE). Image kSelf is the particle itself; a system that is
+   not periodic has all shifts zero and uses kSelf everywhere. */
+struct PeriodicImages {
+  static constexpr int kSelf = 4;
+  PetscReal            x[9][2] = {}, v[9][2] = {};
+  bool                 periodic = false;
+  PetscReal            a[2][2] = {}; /* lattice vectors a1, a2 (rows) */
+
+  static int Index(int n1, int n2) { return 3 * (n1 + 1) + (n2 + 1); }
+  void       Set(const PetscReal a1[2], const PetscReal a2[2], const PetscReal va1[2], const PetscReal va2[2])
+  {
+    periodic = true;
+    for (int d = 0; d < 2; d++) {
+      a[0][d] = a1[d];
+      a[1][d] = a2[d];
+    }
+    for (int n1 = -1; n1 <= 1; n1++)
+      for (int n2 = -1; n2 <= 1; n2++)
+        for (int d = 0; d < 2; d++) {
+          x[Index(n1, n2)][d] = n1 * a1[d] + n2 * a2[d];
+          v[Index(n1, n2)][d] = n1 * va1[d] + n2 * va2[d];
+        }
+  }
+};
+
+/* A wall spring (bonded pair) with its rest length; end point j is taken at the given image of
+   particle j (periodic RVEs bond across the cell boundary). */
 struct Spring {
   PetscInt  i, j;
   PetscReal rest_length;
+  int       image = PeriodicImages::kSelf;
 };
 
 /* Constant per-particle data. Layout is ready for distribution: the first n_owned particles are

@@ -30,6 +30,7 @@ struct Tissue {
   std::vector<PetscReal>             V;          /* [2n] initial velocities; empty means at rest */
   std::vector<std::vector<PetscInt>> cell_walls; /* wall particles of each cell, counter-clockwise */
   PetscReal                          lo[2] = {0, 0}, hi[2] = {0, 0}; /* bounding box of X */
+  PetscReal                          period[2] = {0, 0};             /* periodic cell [0,Lx) x [0,Ly); 0: not periodic */
 
   PetscInt NumCells() const { return (PetscInt)cell_walls.size(); }
   /* Build a tissue by hand (tests, custom geometries): add particles and springs, then Finalize(),
@@ -45,6 +46,10 @@ struct Tissue {
 };
 
 PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue);
+/* The same grid as one period of an infinite tissue (an RVE): the top row and right column of wall
+   points are the periodic images of the bottom row and left column, so springs that cross the
+   boundary bond to an image (Spring::image); the corner particle at the origin is fixed. */
+PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue);
 
 /* Signed area of the polygon through the given particles (counter-clockwise positive). */
 PetscReal PolygonArea(const std::vector<PetscInt> &ring, const PetscReal *x);

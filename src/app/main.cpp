@@ -1,6 +1,7 @@
 static const char help[] = "turgor: mechanics of plant tissue from single cells to organs.\n"
                            "\n"
                            "  turgor -mode fine -options_file_yaml config/bending_bar_fine.yaml [options]\n"
+                           "  turgor -mode rve -options_file_yaml config/rve_uniaxial.yaml [options]\n"
                            "\n"
                            "A scene is a PETSc YAML options file (config/*.yaml). Units: µm, µs, ng (1e-12 kg);\n"
                            "forces in µN, 2D stresses in N/m. Every option below is listed with its default;\n"
@@ -8,9 +9,11 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
                            "choose the time integrator. Outputs go to -output_dir (default ./out).\n"
                            "\n"
                            "Modes:\n"
-                           "  fine   full fine-scale run: wall (DEM) + cell fluid (SPH) particles in a DMSwarm\n\n";
+                           "  fine   full fine-scale run: wall (DEM) + cell fluid (SPH) particles in a DMSwarm\n"
+                           "  rve    one material point (RVE or closed form) along a strain path: stress, density, tangents\n\n";
 
 #include <turgor/turgor.h>
+#include <turgor/rve_run.h>
 
 /* A misspelled option in a scene must not pass unnoticed. */
 static PetscErrorCode WarnUnusedOptions(void)
@@ -37,9 +40,21 @@ static PetscErrorCode RunFine(MPI_Comm comm, PetscBool help_only)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode RunRVE(MPI_Comm comm, PetscBool help_only)
+{
+  turgor::RVERun run(comm);
+  PetscFunctionBeginUser;
+  PetscCall(run.SetFromOptions());
+  PetscCall(run.SetUp());
+  if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(run.Solve());
+  PetscCall(run.WriteSummary());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
-  const char *const modes[] = {"fine"};
+  const char *const modes[] = {"fine", "rve"};
   PetscInt          mode    = 0;
   PetscBool         help_requested;
 
@@ -52,6 +67,9 @@ int main(int argc, char **argv)
   switch (mode) {
   case 0:
     PetscCall(RunFine(PETSC_COMM_WORLD, help_requested));
+    break;
+  case 1:
+    PetscCall(RunRVE(PETSC_COMM_WORLD, help_requested));
     break;
   }
   PetscCall(WarnUnusedOptions());

@@ -14,20 +14,44 @@ void NeighbourSearch::Reset()
   particle_spring_ = PointSegmentList();
 }
 
-PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x)
+PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images)
 {
   PetscFunctionBeginUser;
   if (!WantsFluidPairs() && !WantsParticleSpringPairs()) PetscFunctionReturn(PETSC_SUCCESS);
   bool rebuild = x_ref_.size() != (size_t)(2 * P.n);
   if (!rebuild) {
-    const PetscReal lim2 = 0.25 * skin_ * skin_;
-    for (PetscInt k = 0; k < P.n; k++) {
+    /* a lattice change moves every image shift by at most |da1| + |da2| */
+    PetscReal da = 0;
+    if (images.periodic) da = std::hypot(images.a[0][0] - a_ref_[0][0], images.a[0][1] - a_ref_[0][1]) + std::hypot(images.a[1][0] - a_ref_[1][0], images.a[1][1] - a_ref_[1][1]);
+    const PetscReal lim = 0.5 * (skin_ - da), lim2 = lim * lim;
+    rebuild = lim <= 0;
+    for (PetscInt k = 0; k < P.n && !rebuild; k++) {
       const PetscReal dx = x[2 * k] - x_ref_[2 * k], dy = x[2 * k + 1] - x_ref_[2 * k + 1];
-      if (dx * dx + dy * dy > lim2) { rebuild = true; break; }
+      rebuild = dx * dx + dy * dy > lim2;
     }
   }
-  if (rebuild) PetscCall(Build(P, x));
+  if (rebuild) {
+    if (images.periodic) PetscCall(BuildPeriodic(P, x, images));
+    else PetscCall(Build(P, x));
+    for (int r = 0; r < 2; r++)
+      for (int d = 0; d < 2; d++) a_ref_[r][d] = images.a[r][d];
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void NeighbourSearch::SortFluidPairs()
+{
+  std::vector<size_t> order(fluid_pairs_.size());
+  for (size_t t = 0; t < order.size(); t++) order[t] = t;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b]; });
+  PairList sorted;
+  sorted.i.resize(order.size());
+  sorted.j.resize(order.size());
+  for (size_t t = 0; t < order.size(); t++) {
+    sorted.i[t] = fluid_pairs_.i[order[t]];
+    sorted.j[t] = fluid_pairs_.j[order[t]];
+  }
+  fluid_pairs_ = std::move(sorted);
 }
 
 void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin)
@@ -76,10 +100,8 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
   PetscFunctionBeginUser;
   rebuilds_++;
   x_ref_.assign(x, x + 2 * P.n);
-  fluid_pairs_.i.clear();
-  fluid_pairs_.j.clear();
-  particle_spring_.p.clear();
-  particle_spring_.s.clear();
+  fluid_pairs_     = PairList();
+  particle_spring_ = PointSegmentList();
   for (PetscInt k = 0; k < 2 * P.n; k++) PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
 
   const PetscReal rf = fluid_cutoff_ + skin_, rs = spring_cutoff_ + skin_;
@@ -104,18 +126,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
           }
         }
     }
-    /* pairs were found bin by bin: sort by (i, j) for cache-friendly passes */
-    std::vector<size_t> order(fluid_pairs_.size());
-    for (size_t t = 0; t < order.size(); t++) order[t] = t;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b]; });
-    PairList sorted;
-    sorted.i.resize(order.size());
-    sorted.j.resize(order.size());
-    for (size_t t = 0; t < order.size(); t++) {
-      sorted.i[t] = fluid_pairs_.i[order[t]];
-      sorted.j[t] = fluid_pairs_.j[order[t]];
-    }
-    fluid_pairs_ = std::move(sorted);
+    SortFluidPairs(); /* pairs were found bin by bin: sort by (i, j) for the SPH passes */
   }
 
   if (WantsParticleSpringPairs()) {
@@ -136,9 +147,58 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
             if (PointSegmentDistance2(&x[2 * p], xa, xb) < rs2) {
               particle_spring_.p.push_back(p);
               particle_spring_.s.push_back((PetscInt)s);
+              particle_spring_.img.push_back(PeriodicImages::kSelf);
             }
           }
         }
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Direct search for small periodic cells (RVEs of a few cells): all same-cell fluid pairs without
+   images, and every (particle, spring image) within the cutoff. O(n^2) and O(9 n n_springs), which
+   is what a one-cell RVE (19 particles) or a 4 x 4-cell RVE (304 particles) needs. */
+PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images)
+{
+  PetscFunctionBeginUser;
+  rebuilds_++;
+  x_ref_.assign(x, x + 2 * P.n);
+  fluid_pairs_     = PairList();
+  particle_spring_ = PointSegmentList();
+  for (PetscInt k = 0; k < 2 * P.n; k++) PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+  if (WantsFluidPairs()) {
+    const PetscReal rf = fluid_cutoff_ + skin_, rf2 = rf * rf;
+    for (PetscInt i = 0; i < P.n; i++) {
+      if (P.kind[i] != KIND_FLUID) continue;
+      for (PetscInt j = i + 1; j < P.n; j++) {
+        if (P.kind[j] != KIND_FLUID || P.cell[j] != P.cell[i]) continue;
+        const PetscReal dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+        if (dx * dx + dy * dy < rf2) {
+          fluid_pairs_.i.push_back(i);
+          fluid_pairs_.j.push_back(j);
+        }
+      }
+    }
+  }
+  if (WantsParticleSpringPairs()) {
+    const PetscReal rs = spring_cutoff_ + skin_, rs2 = rs * rs;
+    for (size_t s = 0; s < P.springs.size(); s++) {
+      const Spring   &sp = P.springs[s];
+      const PetscReal *se = images.x[sp.image];
+      for (int k = 0; k < 9; k++) {
+        const PetscReal *sk = images.x[k];
+        const PetscReal  xa[2] = {x[2 * sp.i] + sk[0], x[2 * sp.i + 1] + sk[1]};
+        const PetscReal  xb[2] = {x[2 * sp.j] + se[0] + sk[0], x[2 * sp.j + 1] + se[1] + sk[1]};
+        for (PetscInt p = 0; p < P.n; p++) {
+          if (p == sp.i || p == sp.j) continue;
+          if (PointSegmentDistance2(&x[2 * p], xa, xb) < rs2) {
+            particle_spring_.p.push_back(p);
+            particle_spring_.s.push_back((PetscInt)s);
+            particle_spring_.img.push_back(k);
+          }
+        }
+      }
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);

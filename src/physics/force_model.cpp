@@ -3,6 +3,7 @@
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -29,7 +30,7 @@ PetscErrorCode CreateForceTerm(MPI_Comm comm, const std::string &name, const cha
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::SetFromOptions(MPI_Comm comm)
+PetscErrorCode ForceModel::SetFromOptions(MPI_Comm comm, const std::vector<std::string> &skip)
 {
   char      *names[16];
   PetscInt   n = 16;
@@ -56,6 +57,7 @@ PetscErrorCode ForceModel::SetFromOptions(MPI_Comm comm)
     for (const auto &t : terms_) PetscCheck(name != t->Name(), comm, PETSC_ERR_ARG_WRONG, "Option -physics: term '%s' is listed twice", name.c_str());
     std::unique_ptr<ForceTerm> t;
     PetscCall(CreateForceTerm(comm, name, "-physics", &t));
+    if (std::find(skip.begin(), skip.end(), name) != skip.end()) continue;
     PetscCall(t->SetFromOptions(comm));
     terms_.push_back(std::move(t));
   }
@@ -91,12 +93,12 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   PetscCall(PetscLogEventBegin(ev_forces_, 0, 0, 0, 0));
   evaluations_++;
   PetscCall(PetscLogEventBegin(ev_neighbours_, 0, 0, 0, 0));
-  PetscCall(nb_.Update(*P_, x));
+  PetscCall(nb_.Update(*P_, x, images_));
   PetscCall(PetscLogEventEnd(ev_neighbours_, 0, 0, 0, 0));
   for (PetscInt k = 0; k < 2 * P_->n; k++) f[k] = 0;
   if (virial)
     for (int k = 0; k < 4; k++) virial[k] = 0;
-  const ForceInput in = {P_, x, v, &nb_};
+  const ForceInput in = {P_, x, v, &nb_, &images_};
   for (size_t t = 0; t < terms_.size(); t++) {
     PetscCall(PetscLogEventBegin(events_[t], 0, 0, 0, 0));
     PetscCall(terms_[t]->AddForces(in, f, virial));
@@ -120,9 +122,9 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
 PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete)
 {
   PetscFunctionBeginUser;
-  PetscCall(nb_.Update(*P_, x));
+  PetscCall(nb_.Update(*P_, x, images_));
   std::vector<PetscReal> v(2 * P_->n, 0.0);
-  const ForceInput       in = {P_, x, v.data(), &nb_};
+  const ForceInput       in = {P_, x, v.data(), &nb_, &images_};
   *E                        = 0;
   *complete                 = PETSC_TRUE;
   for (auto &t : terms_) {
@@ -138,8 +140,8 @@ PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, Pet
 PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits)
 {
   PetscFunctionBeginUser;
-  PetscCall(nb_.Update(*P_, x));
-  const ForceInput in = {P_, x, v, &nb_};
+  PetscCall(nb_.Update(*P_, x, images_));
+  const ForceInput in = {P_, x, v, &nb_, &images_};
   limits.clear();
   for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));
   /* eq 40's force criterion 0.25 sqrt(h / |a|), with h the SPH smoothing length */

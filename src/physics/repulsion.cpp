@@ -45,6 +45,16 @@ static inline SegmentContact Closest(const PetscReal *x, const PetscReal *x1, co
   return c;
 }
 
+/* Closest point for pair q of the list, with the images of the spring and of its second end point. */
+static inline SegmentContact ClosestImage(const ForceInput &in, const PointSegmentList &L, size_t q)
+{
+  const Spring    &sp = in.P->springs[L.s[q]];
+  const PetscReal *sk = in.images->x[L.img[q]], *se = in.images->x[sp.image];
+  const PetscReal  x1[2] = {in.x[2 * sp.i] + sk[0], in.x[2 * sp.i + 1] + sk[1]};
+  const PetscReal  x2[2] = {in.x[2 * sp.j] + se[0] + sk[0], in.x[2 * sp.j + 1] + se[1] + sk[1]};
+  return Closest(&in.x[2 * L.p[q]], x1, x2);
+}
+
 template <bool VIRIAL>
 PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
@@ -58,26 +68,30 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
   PetscFunctionBeginUser;
   /* spring vectors once per evaluation: a spring is near ~7 particles in a tissue */
   for (size_t s = 0; s < P.springs.size(); s++) {
-    const PetscInt  i1 = P.springs[s].i, i2 = P.springs[s].j;
-    const PetscReal tx = x[2 * i2] - x[2 * i1], ty = x[2 * i2 + 1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
-    seg_[s]            = {tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0};
+    const PetscInt   i1 = P.springs[s].i, i2 = P.springs[s].j;
+    const PetscReal *sx = in.images->x[P.springs[s].image], *sv = in.images->v[P.springs[s].image];
+    const PetscReal  tx = x[2 * i2] + sx[0] - x[2 * i1], ty = x[2 * i2 + 1] + sx[1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
+    seg_[s]             = {tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, sv[0], sv[1]};
   }
   for (size_t q = 0; q < L.size(); q++) {
     const PetscInt   p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
     const Segment   &sg = seg_[L.s[q]];
-    const PetscReal  wx = x[2 * p] - x[2 * i1], wy = x[2 * p + 1] - x[2 * i1 + 1];
+    const PetscReal *px = in.images->x[L.img[q]]; /* the spring's image near p */
+    const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
     const PetscReal  t = std::min((PetscReal)1, std::max((PetscReal)0, (wx * sg.tx + wy * sg.ty) * sg.inv_L2)); /* x^ = x1 + t (x2 - x1) */
     const PetscReal  dx = wx - t * sg.tx, dy = wy - t * sg.ty, r2 = dx * dx + dy * dy;
     if (r2 >= x02) continue;
-    PetscCheck(r2 > 0, PETSC_COMM_SELF, PETSC_ERR_FP, "Repulsion: particle %" PetscInt_FMT " lies on spring (%" PetscInt_FMT ", %" PetscInt_FMT "); the time step is too large or the walls crossed", p, i1, i2);
     active++;
+    /* a particle exactly on a spring (r = 0) gets a NaN force: the caller rejects the state
+       (a too large step or a crossed wall) instead of aborting */
     const PetscReal ir = 1.0 / std::sqrt(r2), ir2 = ir * ir, ir6 = ir2 * ir2 * ir2;
     const PetscReal ex = dx * ir, ey = dy * ir;
     /* cos(alpha) = |d x t| / (|d| |t|): 1 when x^ is inside the spring, < 1 beyond its ends */
     const PetscReal cosa = angle_factor ? std::fabs(dx * sg.ty - dy * sg.tx) * ir * sg.inv_L : 1.0;
     PetscReal       mag  = strength * cosa * (ir6 - ix06);
     if (damping) { /* - 2 sqrt(6 lambda m / r^7) (x - x^).(v - v^)/r, v^ interpolated like x^ */
-      const PetscReal vhx = (1 - t) * v[2 * i1] + t * v[2 * i2], vhy = (1 - t) * v[2 * i1 + 1] + t * v[2 * i2 + 1];
+      const PetscReal *pv  = in.images->v[L.img[q]];
+      const PetscReal  vhx = (1 - t) * v[2 * i1] + t * (v[2 * i2] + sg.vx) + pv[0], vhy = (1 - t) * v[2 * i1 + 1] + t * (v[2 * i2 + 1] + sg.vy) + pv[1];
       mag -= damping_coefficient_[p] * ir2 * ir * std::sqrt(ir) * /* r^-3.5 */ ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
     }
     const PetscReal fx = mag * ex, fy = mag * ey;
@@ -110,15 +124,13 @@ PetscErrorCode Repulsion::AddForces(const ForceInput &in, PetscReal *f, PetscRea
 
 PetscErrorCode Repulsion::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
-  const PointSegmentList &L = in.nb->ParticleSpringPairs();
-  const ParticleSet      &P = *in.P;
+  const PointSegmentList &L   = in.nb->ParticleSpringPairs();
   const PetscReal         x05 = std::pow(cutoff, 5), x06 = x05 * cutoff;
 
   PetscFunctionBeginUser;
   *E = 0;
   for (size_t q = 0; q < L.size(); q++) {
-    const PetscInt       p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
-    const SegmentContact c = Closest(&in.x[2 * p], &in.x[2 * i1], &in.x[2 * i2]);
+    const SegmentContact c = ClosestImage(in, L, q);
     const PetscReal      r = std::sqrt(c.dx * c.dx + c.dy * c.dy);
     if (r >= cutoff) continue;
     *E += strength * (1.0 / (5.0 * std::pow(r, 5)) + r / x06 - 6.0 / (5.0 * x05));
@@ -137,12 +149,12 @@ PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<Ti
 
   PetscFunctionBeginUser;
   for (size_t q = 0; q < L.size(); q++) {
-    const PetscInt       p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
-    const SegmentContact c = Closest(&in.x[2 * p], &in.x[2 * i1], &in.x[2 * i2]);
+    const SegmentContact c = ClosestImage(in, L, q);
     const PetscReal      r = std::sqrt(c.dx * c.dx + c.dy * c.dy);
     if (r >= cutoff || r <= 0) continue;
     /* reduced mass of the particle against an end point */
-    const PetscReal m  = P.mass[p] * P.mass[i1] / (P.mass[p] + P.mass[i1]);
+    const PetscInt  p = L.p[q], i1 = P.springs[L.s[q]].i;
+    const PetscReal m = P.mass[p] * P.mass[i1] / (P.mass[p] + P.mass[i1]);
     const PetscReal k  = 6.0 * strength / std::pow(r, 7);
     const PetscReal w2 = k / m, cr = damping ? 2.0 * std::sqrt(k * P.mass[p]) / m : 0.0;
     const PetscReal dt = 2.0 / (0.5 * cr + std::sqrt(0.25 * cr * cr + w2));

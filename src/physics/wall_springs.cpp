@@ -40,11 +40,12 @@ void WallSprings::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) 
   const PetscReal  k = stiffness;
   PetscReal        w[4] = {0, 0, 0, 0};
   for (size_t s = 0; s < S.size(); s++) {
-    const PetscInt  i = S[s].i, j = S[s].j;
-    const PetscReal dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
-    const PetscReal r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
-    const PetscReal ex = dx * ir, ey = dy * ir;
-    const PetscReal vr = (v[2 * j] - v[2 * i]) * ex + (v[2 * j + 1] - v[2 * i + 1]) * ey;
+    const PetscInt   i = S[s].i, j = S[s].j;
+    const PetscReal *sx = in.images->x[S[s].image], *sv = in.images->v[S[s].image];
+    const PetscReal  dx = x[2 * j] + sx[0] - x[2 * i], dy = x[2 * j + 1] + sx[1] - x[2 * i + 1];
+    const PetscReal  r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
+    const PetscReal  ex = dx * ir, ey = dy * ir;
+    const PetscReal  vr = (v[2 * j] + sv[0] - v[2 * i]) * ex + (v[2 * j + 1] + sv[1] - v[2 * i + 1]) * ey;
     const PetscReal mag = k * (r - S[s].rest_length) + gamma_[s] * vr;
     const PetscReal fx = mag * ex, fy = mag * ey;
     f[2 * i] += fx;
@@ -76,7 +77,8 @@ PetscErrorCode WallSprings::Energy(const ForceInput &in, PetscReal *E, PetscBool
   PetscFunctionBeginUser;
   *E = 0;
   for (const Spring &s : in.P->springs) {
-    const PetscReal dx = in.x[2 * s.j] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] - in.x[2 * s.i + 1];
+    const PetscReal *sx = in.images->x[s.image];
+    const PetscReal  dx = in.x[2 * s.j] + sx[0] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] + sx[1] - in.x[2 * s.i + 1];
     const PetscReal e = std::sqrt(dx * dx + dy * dy) - s.rest_length;
     *E += 0.5 * stiffness * e * e;
   }

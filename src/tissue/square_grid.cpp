@@ -65,6 +65,57 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, T
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue)
+{
+  const PetscInt  nx = spec.cells_x, ny = spec.cells_y, s = spec.springs_per_side;
+  const PetscInt  ax = nx * s, ay = ny * s; /* unique lattice points per direction */
+  const PetscReal dl = spec.cell_size / (PetscReal)s;
+  const PetscInt  k  = (PetscInt)std::lround(std::sqrt((double)spec.fluid_per_cell));
+  const PetscReal mf = spec.FluidParticleMass();
+
+  PetscFunctionBeginUser;
+  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)", (double)mf);
+  *tissue = Tissue();
+  Tissue               &T = *tissue;
+  std::vector<PetscInt> id((size_t)ax * ay, -1);
+  for (PetscInt cy = 0; cy < ny; cy++)
+    for (PetscInt cx = 0; cx < nx; cx++) {
+      const PetscInt a0 = cx * s, b0 = cy * s, c = cy * nx + cx;
+      for (PetscInt t = 0; t < s; t++) id[b0 * ax + a0 + t] = T.AddParticle((a0 + t) * dl, b0 * dl, spec.wall_mass, KIND_WALL);
+      for (PetscInt t = 1; t < s; t++) id[(b0 + t) * ax + a0] = T.AddParticle(a0 * dl, (b0 + t) * dl, spec.wall_mass, KIND_WALL);
+      for (PetscInt j = 0; j < k; j++)
+        for (PetscInt i = 0; i < k; i++) T.AddParticle((cx + (i + 0.5) / k) * spec.cell_size, (cy + (j + 0.5) / k) * spec.cell_size, mf, KIND_FLUID, c);
+    }
+  /* springs to the next lattice point, wrapping to the image across the boundary */
+  for (PetscInt cy = 0; cy < ny; cy++)
+    for (PetscInt cx = 0; cx < nx; cx++) {
+      const PetscInt a0 = cx * s, b0 = cy * s;
+      for (PetscInt t = 0; t < s; t++) {
+        const PetscInt a = a0 + t, a1 = (a + 1) % ax;
+        T.particles.springs.push_back({id[b0 * ax + a], id[b0 * ax + a1], dl, PeriodicImages::Index(a + 1 == ax ? 1 : 0, 0)});
+      }
+      for (PetscInt t = 0; t < s; t++) {
+        const PetscInt b = b0 + t, b1 = (b + 1) % ay;
+        T.particles.springs.push_back({id[b * ax + a0], id[b1 * ax + a0], dl, PeriodicImages::Index(0, b + 1 == ay ? 1 : 0)});
+      }
+    }
+  for (PetscInt cy = 0; cy < ny; cy++)
+    for (PetscInt cx = 0; cx < nx; cx++) {
+      const PetscInt        a0 = cx * s, b0 = cy * s;
+      std::vector<PetscInt> ring; /* may name images: use with the periodic shifts */
+      for (PetscInt t = 0; t < s; t++) ring.push_back(id[b0 * ax + (a0 + t) % ax]);
+      for (PetscInt t = 0; t < s; t++) ring.push_back(id[((b0 + t) % ay) * ax + (a0 + s) % ax]);
+      for (PetscInt t = 0; t < s; t++) ring.push_back(id[((b0 + s) % ay) * ax + (a0 + s - t) % ax]);
+      for (PetscInt t = 0; t < s; t++) ring.push_back(id[((b0 + s - t) % ay) * ax + a0]);
+      T.cell_walls.push_back(ring);
+    }
+  T.Finalize();
+  T.period[0]           = nx * spec.cell_size;
+  T.period[1]           = ny * spec.cell_size;
+  T.particles.fixed[0] = 1; /* the corner at the origin: the four RVE corners are one particle */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscInt Tissue::AddParticle(PetscReal x, PetscReal y, PetscReal mass, ParticleKind kind, PetscInt cell)
 {
   X.push_back(x);

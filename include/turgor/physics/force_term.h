@@ -13,6 +13,7 @@ struct ForceInput {
   const ParticleSet     *P;
   const PetscReal       *x, *v;
   const NeighbourSearch *nb;
+  const PeriodicImages  *images; /* never NULL; all zero shifts unless periodic */
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */

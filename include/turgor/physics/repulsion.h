@@ -28,6 +28,7 @@ public:
 private:
   struct Segment {
     PetscReal tx, ty, inv_L2, inv_L; /* x2 - x1 and its inverse squared length and length */
+    PetscReal vx, vy;                /* velocity shift of the image of x2 */
   };
   template <bool VIRIAL>
   PetscErrorCode         Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);

@@ -1,0 +1,58 @@
+#pragma once
+/* The material-point interface of the coarse model: given a deformation gradient F and its rate
+   Fdot, return the Cauchy stress sigma and density rho (TW 562 eq 30, 41), and -- through
+   ComputeTangents() -- the elasticity and viscosity matrices D^e, D^v (eqs 37, 39) by the finite
+   differences of eqs 46-53. Implementations: the RVE (rve.h) and a closed-form compressible
+   neo-Hookean solid with linear viscosity (neo_hookean.h), which verifies this machinery.
+
+   An evaluation never aborts: a material point that cannot answer (no convergence, NaN, inverted
+   element) returns ok = false with its reason, so that the caller can reject a step and retry. */
+#include <turgor/tensor2.h>
+#include <string>
+
+namespace turgor {
+
+struct MaterialResponse {
+  Tensor2     sigma;          /* Cauchy stress, 2D [N/m] */
+  PetscReal   rho = 0;        /* current 2D density [ng/µm^2] */
+  bool        ok  = true;
+  std::string reason;         /* why not ok */
+  PetscInt    iterations = 0; /* Psi-tc iterations (RVE) */
+  PetscInt    snes_its = 0, ksp_its = 0;
+  PetscReal   residual = 0;   /* final scaled residual norm (RVE) */
+};
+
+/* Trial: the evaluation becomes the material point's current state (later evaluations start from
+   it). Perturbed: a tangent perturbation; starts from the current state and leaves it unchanged. */
+enum class EvaluationKind { Trial, Perturbed };
+
+class MaterialPoint {
+public:
+  virtual ~MaterialPoint() = default;
+  virtual const char    *Name() const = 0;
+  virtual PetscErrorCode Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out) = 0;
+  /* Accept the current state (after a coarse step is accepted) / return to the last accepted one. */
+  virtual PetscErrorCode Commit() { return PETSC_SUCCESS; }
+  virtual PetscErrorCode Revert() { return PETSC_SUCCESS; }
+  /* The uncertainty U of a stress evaluation: eq 52 takes eps = sqrt(U). */
+  virtual PetscReal StressUncertainty() const = 0;
+};
+
+/* D^e, D^v as 3 x 3 matrices in the order (11, 22, 12) of eqs 37 and 39. */
+struct Tangents {
+  PetscReal De[3][3] = {}, Dv[3][3] = {};
+};
+
+struct TangentOptions {
+  bool      central   = false; /* central differences (two evaluations per column) */
+  PetscReal Fdot_typ  = 1.0;   /* eq 53's typical velocity gradient [1/µs] */
+  PetscReal U         = 0;     /* eq 52's U; 0 = the material's StressUncertainty() */
+  bool      viscosity = true;  /* also D^v (3 more evaluations) */
+};
+
+/* Eqs 46-53: perturb F by eps (e_k (x) e_l) F for (kl) = (11), (22), (12) and Fdot likewise, and
+   difference the stress with the Truesdell-rate correction of eq 48. `base` is the response at
+   (F, Fdot), already computed. On failure of a perturbed evaluation, *status says why. */
+PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D, MaterialResponse *status);
+
+} // namespace turgor

@@ -1,0 +1,34 @@
+#pragma once
+/* -mode rve: one material point driven along a strain path (uniaxial, biaxial, simple shear,
+   rigid rotation, or hold), writing sigma, rho, D^e, D^v and iteration counts per step to rve.csv
+   and a summary.json. The material is chosen by -material (the RVE by default). */
+#include <turgor/material_pool.h>
+#include <turgor/io/output.h>
+
+namespace turgor {
+
+class RVERun {
+public:
+  explicit RVERun(MPI_Comm comm) : comm_(comm), pool_(comm) { }
+  PetscErrorCode SetFromOptions();
+  PetscErrorCode SetUp();
+  PetscErrorCode Solve();
+  PetscErrorCode WriteSummary();
+
+  /* The imposed deformation at time t. */
+  void Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const;
+
+private:
+  MPI_Comm          comm_;
+  MaterialPointPool pool_;
+  std::string       output_dir_;
+  PetscInt          path_ = 0, steps_ = 20;
+  PetscReal         rate_ = 1e-3, t_final_ = 50.0; /* [1/µs], [µs] */
+  PetscBool         tangents_ = PETSC_TRUE;
+  /* results */
+  PetscInt         failures_ = 0;
+  MaterialResponse last_;
+  PetscReal        max_asymmetry_ = 0, wall_ = 0;
+};
+
+} // namespace turgor

@@ -1,0 +1,52 @@
+#include <turgor/neo_hookean.h>
+#include <cmath>
+
+namespace turgor {
+
+PetscErrorCode NeoHookean::SetFromOptions(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "nh_", "Closed-form neo-Hookean material point (verification)", "turgor");
+  PetscCall(PetscOptionsReal("-mu", "Shear modulus mu [N/m]", "NeoHookean", mu, &mu, NULL));
+  PetscCall(PetscOptionsReal("-lambda", "Lame constant lambda [N/m]", "NeoHookean", lambda, &lambda, NULL));
+  PetscCall(PetscOptionsReal("-viscosity", "Viscosity eta in eta (l + l^T) [ng/µs]", "NeoHookean", viscosity, &viscosity, NULL));
+  PetscCall(PetscOptionsReal("-density", "Reference density rho0 [ng/µm^2]", "NeoHookean", density, &density, NULL));
+  PetscOptionsEnd();
+  PetscCheck(mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_mu = %g: must be > 0", (double)mu);
+  PetscCheck(lambda > -mu, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_lambda = %g: must be > -mu", (double)lambda);
+  PetscCheck(viscosity >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_viscosity = %g: must be >= 0", (double)viscosity);
+  PetscCheck(density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_density = %g: a density must be > 0", (double)density);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out)
+{
+  PetscFunctionBeginUser;
+  *out            = MaterialResponse();
+  const PetscReal J = F.Det();
+  if (!(J > 0)) {
+    out->ok     = false;
+    out->reason = "inverted element (det F = " + std::to_string(J) + ")";
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  const Tensor2 b = F * F.T(), l = Fdot * F.Inverse();
+  out->sigma      = (mu / J) * (b - Tensor2::Identity()) + (lambda * std::log(J) / J) * Tensor2::Identity() + viscosity * (l + l.T());
+  out->rho        = density / J;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* c_ijkl = (lambda/J) d_ij d_kl + ((mu - lambda ln J)/J)(d_ik d_jl + d_il d_jk): D^e(11,11) = lambda/J
+   + 2(mu - lambda ln J)/J, D^e(11,22) = lambda/J, D^e(12,12) = (mu - lambda ln J)/J; viscosity
+   eta (l + l^T) gives D^v = diag(2 eta, 2 eta, eta). */
+void NeoHookean::AnalyticTangents(const Tensor2 &F, Tangents *D) const
+{
+  const PetscReal J = F.Det(), m = (mu - lambda * std::log(J)) / J;
+  *D             = Tangents();
+  D->De[0][0]    = D->De[1][1] = lambda / J + 2 * m;
+  D->De[0][1]    = D->De[1][0] = lambda / J;
+  D->De[2][2]    = m;
+  D->Dv[0][0]    = D->Dv[1][1] = 2 * viscosity;
+  D->Dv[2][2]    = viscosity;
+}
+
+} // namespace turgor

@@ -1,0 +1,136 @@
+#include <turgor/rve_run.h>
+#include <cmath>
+
+namespace turgor {
+
+static const char *const kPaths[] = {"uniaxial", "biaxial", "shear", "rotation", "hold"};
+
+PetscErrorCode RVERun::SetFromOptions()
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm_, "rve_", "Material-point driver (-mode rve)", "turgor");
+  PetscCall(PetscOptionsEList("-path", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)", "RVERun", kPaths, 5, kPaths[path_], &path_, NULL));
+  PetscCall(PetscOptionsReal("-rate", "Strain rate r [1/µs] (angular velocity for rotation [rad/µs])", "RVERun", rate_, &rate_, NULL));
+  PetscCall(PetscOptionsReal("-t_final", "Duration of the path [µs]", "RVERun", t_final_, &t_final_, NULL));
+  PetscCall(PetscOptionsInt("-steps", "Material-point evaluations along the path (plus the initial one)", "RVERun", steps_, &steps_, NULL));
+  PetscCall(PetscOptionsBool("-tangents", "Also compute D^e and D^v at every step", "RVERun", tangents_, &tangents_, NULL));
+  PetscOptionsEnd();
+  PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_steps = %" PetscInt_FMT ": must be >= 1", steps_);
+  PetscCheck(t_final_ > 0 && std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_t_final = %g must be > 0 and -rve_rate = %g finite", (double)t_final_, (double)rate_);
+  PetscCall(pool_.SetFromOptions());
+  PetscCall(OutputDirectory(comm_, &output_dir_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void RVERun::Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const
+{
+  const PetscReal r = rate_;
+  *F                = Tensor2::Identity();
+  *Fdot             = Tensor2::Zero();
+  switch (path_) {
+  case 0: /* uniaxial */
+    (*F)(0, 0) += r * t;
+    (*Fdot)(0, 0) = r;
+    break;
+  case 1: /* biaxial */
+    (*F)(0, 0) += r * t;
+    (*F)(1, 1) += r * t;
+    (*Fdot)(0, 0) = (*Fdot)(1, 1) = r;
+    break;
+  case 2: /* simple shear */
+    (*F)(0, 1)    = r * t;
+    (*Fdot)(0, 1) = r;
+    break;
+  case 3: { /* rigid rotation */
+    const PetscReal c = std::cos(r * t), s = std::sin(r * t);
+    *F    = {{{c, -s}, {s, c}}};
+    *Fdot = {{{-r * s, -r * c}, {r * c, -r * s}}};
+  } break;
+  default: /* hold */
+    break;
+  }
+}
+
+PetscErrorCode RVERun::SetUp()
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCall(pool_.SetUp(rank == 0 ? 1 : 0)); /* one material point, owned by rank 0 */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVERun::Solve()
+{
+  PetscMPIInt    rank;
+  CsvWriter      csv;
+  PetscLogDouble t0, t1;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  std::vector<std::string> cols = {"time", "F11", "F12", "F21", "F22", "Fdot11", "Fdot12", "Fdot21", "Fdot22", "s11", "s12", "s21", "s22", "rho"};
+  for (const char *m : {"De", "Dv"})
+    for (const char *ij : {"11_11", "11_22", "11_12", "22_11", "22_22", "22_12", "12_11", "12_22", "12_12"}) cols.push_back(std::string(m) + ij);
+  for (const char *c : {"iterations", "residual", "ok"}) cols.push_back(c);
+  if (rank == 0) PetscCall(csv.Open(PETSC_COMM_SELF, output_dir_ + "/rve.csv", cols));
+  PetscCall(PetscTime(&t0));
+  for (PetscInt k = 0; k <= steps_; k++) {
+    const PetscReal  t = t_final_ * k / steps_;
+    Tensor2          F, Fd;
+    MaterialResponse r;
+    Tangents         D;
+    Path(t, &F, &Fd);
+    PetscCall(pool_.Evaluate(&F, &Fd, &r, tangents_ ? &D : NULL));
+    if (rank != 0) continue;
+    if (r.ok) PetscCall(pool_.Commit());
+    else {
+      failures_++;
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: evaluation failed: %s\n", (double)t, r.reason.c_str()));
+    }
+    last_                 = r;
+    const Tensor2 &s      = r.sigma;
+    const PetscReal asym  = std::fabs(s(0, 1) - s(1, 0)) / PetscMax(s.Norm(), PETSC_SMALL);
+    max_asymmetry_        = PetscMax(max_asymmetry_, asym);
+    std::vector<PetscReal> row = {t, F(0, 0), F(0, 1), F(1, 0), F(1, 1), Fd(0, 0), Fd(0, 1), Fd(1, 0), Fd(1, 1), s(0, 0), s(0, 1), s(1, 0), s(1, 1), r.rho};
+    for (int i = 0; i < 9; i++) row.push_back(D.De[i / 3][i % 3]);
+    for (int i = 0; i < 9; i++) row.push_back(D.Dv[i / 3][i % 3]);
+    row.insert(row.end(), {(PetscReal)r.iterations, r.residual, r.ok ? 1.0 : 0.0});
+    PetscCall(csv.Row(row));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n", (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
+  }
+  PetscCall(PetscTime(&t1));
+  wall_ = t1 - t0;
+  if (rank == 0) PetscCall(csv.Close());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVERun::WriteSummary()
+{
+  JsonObject  js;
+  RVECounters c;
+  PetscFunctionBeginUser;
+  PetscCall(pool_.GlobalCounters(&c));
+  PetscCallMPI(MPI_Bcast(&failures_, 1, MPIU_INT, 0, comm_));
+  js.Set("mode", "rve");
+  js.Set("material", pool_.MaterialName());
+  js.Set("path", kPaths[path_]);
+  js.Set("rate", rate_);
+  js.Set("t_final", t_final_);
+  js.Set("steps", steps_);
+  js.Set("tangents", (bool)tangents_);
+  js.Set("rve_solves", c.solves);
+  js.Set("psi_tc_iterations", c.iterations);
+  js.Set("snes_its", c.snes_its);
+  js.Set("ksp_its", c.ksp_its);
+  js.Set("jacobian_evals", c.jacobians);
+  js.Set("force_evals", c.force_evals);
+  js.Set("failures", failures_);
+  js.Set("wall_time_s", wall_);
+  js.Set("max_stress_asymmetry", max_asymmetry_);
+  js.Set("sigma_final", std::vector<PetscReal>{last_.sigma(0, 0), last_.sigma(0, 1), last_.sigma(1, 0), last_.sigma(1, 1)});
+  js.Set("rho_final", last_.rho);
+  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+  PetscCall(PetscPrintf(comm_, "Done: %" PetscInt_FMT " evaluations, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, %" PetscInt_FMT " failures, %.3f s; outputs in %s: rve.csv, summary.json\n", steps_ + 1, c.solves, c.iterations, failures_, wall_, output_dir_.c_str()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
