@@ -68,7 +68,7 @@ private:
   PetscErrorCode Residual(const PetscScalar *w, PetscScalar *r, PetscReal *virial);
   PetscErrorCode BuildJacobianPattern();
   PetscErrorCode PatternStale(PetscBool *stale);
-  PetscErrorCode Relax(PetscReal dt0, MaterialResponse *out);
+  PetscErrorCode Relax(bool warm, MaterialResponse *out);
 
   MPI_Comm               comm_;
   PetscMPIInt            rank_ = 0;
@@ -82,9 +82,14 @@ private:
 
   TS            ts_ = nullptr;
   Vec           W_ = nullptr, Wprev_ = nullptr;
-  Mat           J_ = nullptr;
+  Mat           J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
   MatFDColoring coloring_ = nullptr;
   PetscInt      pattern_rebuilds_ = -1;
+  /* Modified Newton in warm solves: K and the factors of K + shift I are reused (also across
+     solves: F moved little) until an iteration reduces ||G|| by less than 10x; cold solves
+     refresh K at every pseudo step, as in eq 28. */
+  bool          have_K_ = false, warm_solve_ = false, refresh_K_ = true;
+  PetscReal     res_before_ = 0;
   std::vector<PetscScalar> current_, committed_; /* u1 / L of the current and last accepted state */
   bool                     have_current_ = false, have_committed_ = false;
 

@@ -12,6 +12,7 @@ RVE::~RVE()
 {
   (void)MatFDColoringDestroy(&coloring_);
   (void)MatDestroy(&J_);
+  (void)MatDestroy(&K_);
   (void)VecDestroy(&W_);
   (void)VecDestroy(&Wprev_);
   (void)TSDestroy(&ts_);
@@ -203,13 +204,23 @@ PetscErrorCode RVE::IJacobian(TS ts, PetscReal t, Vec W, Vec Wdot, PetscReal shi
   RVE *rve = (RVE *)ctx;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(rve->ev_jacobian_, 0, 0, 0, 0));
-  PetscCall(MatFDColoringApply(B, rve->coloring_, W, NULL));
-  PetscCall(MatShift(B, shift));
+  const bool fresh = !rve->have_K_ || !rve->warm_solve_ || rve->refresh_K_;
+  if (fresh) {
+    PetscCall(MatFDColoringApply(rve->K_, rve->coloring_, W, NULL));
+    rve->have_K_    = true;
+    rve->refresh_K_ = false;
+    rve->counters_.jacobians++;
+  }
+  /* A warm solve that reuses K also keeps B = K + shift I as it is, so that its LU factors are
+     reused; the shift of a warm start (1/warm_dt0) is negligible against K. */
+  if (fresh || !rve->warm_solve_) {
+    PetscCall(MatCopy(rve->K_, B, SAME_NONZERO_PATTERN));
+    PetscCall(MatShift(B, shift));
+  }
   if (A != B) {
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
-  rve->counters_.jacobians++;
   PetscCall(PetscLogEventEnd(rve->ev_jacobian_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -249,6 +260,8 @@ PetscErrorCode RVE::BuildJacobianPattern()
 
   PetscCall(MatFDColoringDestroy(&coloring_));
   PetscCall(MatDestroy(&J_));
+  PetscCall(MatDestroy(&K_));
+  have_K_ = false;
   const PetscInt        n = rank_ == 0 ? NumUnknowns() : 0;
   std::vector<PetscInt> nnz(n);
   for (PetscInt r = 0; r < n; r++) nnz[r] = 2 * (PetscInt)cols[r / 2].size();
@@ -266,21 +279,22 @@ PetscErrorCode RVE::BuildJacobianPattern()
   PetscCall(MatAssemblyBegin(J_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatSetOption(J_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatDuplicate(J_, MAT_COPY_VALUES, &K_));
 
   MatColoring mc;
   ISColoring  iscoloring;
-  PetscCall(MatColoringCreate(J_, &mc));
+  PetscCall(MatColoringCreate(K_, &mc));
   PetscCall(MatColoringSetType(mc, MATCOLORINGGREEDY));
   PetscCall(MatColoringSetDistance(mc, 2));
   PetscCall(MatColoringApply(mc, &iscoloring));
   PetscCall(MatColoringDestroy(&mc));
-  PetscCall(MatFDColoringCreate(J_, iscoloring, &coloring_));
+  PetscCall(MatFDColoringCreate(K_, iscoloring, &coloring_));
   PetscCall(MatFDColoringSetFunction(coloring_, (PetscErrorCode(*)(void))(void (*)(void))ColoringResidual, this));
   /* differencing step err * max(|w|, umin) with umin = 1e-2 cell sizes: a typical displacement */
   PetscCall(MatFDColoringSetParameters(coloring_, PETSC_DEFAULT, 1e-2));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)coloring_, "rve_"));
   PetscCall(MatFDColoringSetFromOptions(coloring_));
-  PetscCall(MatFDColoringSetUp(J_, iscoloring, coloring_));
+  PetscCall(MatFDColoringSetUp(K_, iscoloring, coloring_));
   PetscCall(ISColoringDestroy(&iscoloring));
   PetscCall(TSSetIJacobian(ts_, J_, J_, IJacobian, this));
   pattern_rebuilds_ = nb.Rebuilds();
@@ -308,6 +322,13 @@ PetscErrorCode RVE::PreStep(TS ts)
   PetscCall(TSGetApplicationContext(ts, &rve));
   PetscCall(TSGetSolution(ts, &W));
   PetscCall(VecCopy(W, rve->Wprev_));
+  if (rve->warm_solve_) { /* for the modified-Newton refresh test in PostStep */
+    Vec R;
+    PetscCall(VecDuplicate(W, &R));
+    PetscCall(ColoringResidual(NULL, W, R, rve));
+    PetscCall(VecNorm(R, NORM_2, &rve->res_before_));
+    PetscCall(VecDestroy(&R));
+  }
   /* new neighbours since the pattern was built: rebuild it (rare: particles moved > skin/2) */
   PetscBool stale;
   PetscCall(rve->PatternStale(&stale));
@@ -340,14 +361,16 @@ PetscErrorCode RVE::PostStep(TS ts)
   PetscCall(VecAXPY(rve->Wprev_, -1.0, W));
   PetscCall(VecNorm(rve->Wprev_, NORM_2, &step));
   PetscCall(VecDestroy(&R));
+  if (rve->warm_solve_ && res > 0.1 * rve->res_before_) rve->refresh_K_ = true;
   if (!std::isfinite(res) || !std::isfinite(step)) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
   else if (step < rve->steptol_ || res < rve->atol_) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Psi-tc from the current content of W_; *out gets ok / reason / iteration counts. */
-PetscErrorCode RVE::Relax(PetscReal dt0, MaterialResponse *out)
+PetscErrorCode RVE::Relax(bool warm, MaterialResponse *out)
 {
+  const PetscReal dt0 = warm ? warm_dt0_ : dt0_;
   TSConvergedReason reason;
   PetscInt          steps, snes0, ksp0, snes1, ksp1;
   PetscReal         res;
@@ -364,6 +387,8 @@ PetscErrorCode RVE::Relax(PetscReal dt0, MaterialResponse *out)
   PetscBool stale;
   PetscCall(PatternStale(&stale));
   if (stale) PetscCall(BuildJacobianPattern());
+  warm_solve_ = warm;
+  refresh_K_  = !warm;
   PetscCall(TSSetTime(ts_, 0));
   PetscCall(TSSetStepNumber(ts_, 0));
   PetscCall(TSSetTimeStep(ts_, dt0));
@@ -418,7 +443,7 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
     for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = warm ? start[k] : 0.0;
   PetscCall(VecRestoreArray(W_, &w));
   if (relax) {
-    PetscCall(Relax(warm ? warm_dt0_ : dt0_, out));
+    PetscCall(Relax(warm, out));
     if (!out->ok && warm) { /* a bold warm start failed: the seed's cautious schedule from there */
       MaterialResponse retry;
       PetscCall(VecGetArray(W_, &w));
@@ -428,7 +453,7 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
       retry.iterations = out->iterations;
       retry.snes_its   = out->snes_its;
       retry.ksp_its    = out->ksp_its;
-      PetscCall(Relax(dt0_, &retry));
+      PetscCall(Relax(false, &retry));
       *out = retry;
     }
   }
@@ -437,12 +462,10 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   PetscReal          virial[4] = {0, 0, 0, 0}, buf[6];
   const PetscScalar *wr;
   PetscCall(VecGetArrayRead(W_, &wr));
-  if (rank_ == 0) {
-    PetscCall(Residual(wr, NULL, virial));
-    if (out->ok && kind == EvaluationKind::Trial && relax) {
-      current_.assign(wr, wr + NumUnknowns());
-      have_current_ = true;
-    }
+  if (rank_ == 0) PetscCall(Residual(wr, NULL, virial));
+  if (out->ok && kind == EvaluationKind::Trial && relax) { /* flags on every rank: they steer collectives */
+    current_.assign(wr, wr + (rank_ == 0 ? NumUnknowns() : 0));
+    have_current_ = true;
   }
   PetscCall(VecRestoreArrayRead(W_, &wr));
   PetscReal mass = 0;
