@@ -4,6 +4,8 @@
   compare_runs.py tip A_DIR B_DIR TOL        tip.csv histories agree within TOL (absolute, µm)
   compare_runs.py final A_DIR B_DIR RELTOL   final tip displacements agree within RELTOL (relative)
   compare_runs.py keys DIR KEY...            summary.json has the keys, with finite values
+  compare_runs.py invariants DIR RELTOL      rve.csv: trace and determinant of sigma stay constant
+                                             (a rigid rotation must only rotate the stress)
   compare_runs.py numbers A B RELTOL         two files of whitespace-separated numbers agree
                                              (|a - b| <= RELTOL * max |b|, per line)
 """
@@ -42,6 +44,16 @@ def main(argv):
             if isinstance(v, float) and not math.isfinite(v):
                 sys.exit(f"FAIL: summary.json '{k}' = {v}")
         print(f"summary.json has {len(argv) - 3} required keys: {json.dumps({k: s[k] for k in argv[3:]})}")
+    elif mode == "invariants":
+        rows = list(csv.DictReader(open(f"{argv[2]}/rve.csv")))
+        tr = [float(r["s11"]) + float(r["s22"]) for r in rows]
+        de = [float(r["s11"]) * float(r["s22"]) - float(r["s12"]) * float(r["s21"]) for r in rows]
+        dt = max(abs(t - tr[0]) for t in tr) / abs(tr[0])
+        dd = max(abs(d - de[0]) for d in de) / abs(de[0])
+        angle = math.degrees(math.atan2(float(rows[-1]["F21"]), float(rows[-1]["F11"])))
+        print(f"{len(rows)} states up to {angle:.1f} degrees: trace varies by {dt:.2e}, determinant by {dd:.2e} (relative)")
+        if not (dt <= float(argv[3]) and dd <= float(argv[3])):
+            sys.exit(f"FAIL: stress invariants change under a rigid rotation (tolerance {argv[3]})")
     elif mode == "numbers":
         la = [list(map(float, l.split())) for l in open(argv[2]) if l.strip()]
         lb = [list(map(float, l.split())) for l in open(argv[3]) if l.strip()]
