@@ -1,0 +1,114 @@
+#pragma once
+/* The coarse (tissue) model of FE^2 (TW 562 §3.3): a DMPlex of bilinear quadrilaterals, Q1
+   displacement u and velocity v at the vertices (state per vertex [ux, uy, vx, vy]), material
+   points from a MaterialPointPool at the 2 x 2 Gauss points (deviatoric stress) and the element
+   centre (pressure tr(sigma)/2) -- the seed's selective reduced integration, 5 per element.
+
+   Semi-discrete system (eqs 31-33) as a linearly implicit first-order system
+       F(U, Udot) = Mt Udot - G(U) = 0,   Mt = diag(I, M),   G = [v; f_ext - f_int(u, v)],
+   with M the consistent (or lumped) mass matrix, f_int the internal force from the Cauchy stress,
+   f_ext the body force. Its Jacobian dF/dU + shift dF/dUdot = shift Mt + [[0, -I], [K, C]] uses
+   the stiffness K = initial-stress part + constitutive part with D^e (eqs 35-37) and the damping C
+   with D^v (eqs 38-39), consistent with the selectively integrated residual. Vertices on the
+   Dirichlet label values are constrained (all four dofs; displacement from SetBoundaryDisplacement,
+   zero by default, velocity zero). */
+#include <turgor/material_pool.h>
+#include <petscdmplex.h>
+#include <functional>
+#include <string>
+
+namespace turgor {
+
+struct CoarseCounters {
+  PetscInt residuals = 0, jacobians = 0, material_evals = 0, tangent_evals = 0, failures = 0;
+};
+
+class CoarseModel {
+public:
+  explicit CoarseModel(MPI_Comm comm) : comm_(comm), pool_(comm) { }
+  ~CoarseModel();
+  CoarseModel(const CoarseModel &)            = delete;
+  CoarseModel &operator=(const CoarseModel &) = delete;
+
+  /* -coarse_* options (mesh, Dirichlet label and values, mass), -body_force, and the pool's. */
+  PetscErrorCode SetFromOptions();
+  /* Override the mesh before SetUp (tests distort it); the model takes a reference. */
+  PetscErrorCode SetMesh(DM dm);
+  PetscErrorCode SetUp();
+  /* Boundary displacement g(X) on constrained vertices (default 0); call before SetUp or between
+     evaluations. */
+  void SetBoundaryDisplacement(std::function<void(const PetscReal X[2], PetscReal u[2])> g) { boundary_ = std::move(g); }
+
+  /* F = Mt Udot - G(U). *ok = false (F filled with NaN) when a material point failed. */
+  PetscErrorCode IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok);
+  /* J = shift Mt + [[0, -I], [K, C]] at U. */
+  PetscErrorCode IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok);
+  /* Udot = Mt^{-1} G(U) (explicit integrators). */
+  PetscErrorCode RHSFunction(Vec U, Vec G, PetscBool *ok);
+  /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
+  PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
+  PetscErrorCode CommitMaterials() { return pool_.Commit(); }
+
+  DM                 GetDM() const { return dm_; }
+  Mat                MassMatrix() const { return Mt_; }
+  MaterialPointPool &Pool() { return pool_; }
+  const CoarseCounters &Counters() const { return counters_; }
+  PetscInt           NumElements() const; /* global */
+  PetscInt           NumMaterialPoints() const { return pool_.NumGlobal(); }
+  PetscReal          ReferenceDensity() const { return rho0_; }
+  /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
+  PetscErrorCode     TipDisplacement(Vec U, PetscReal *uy);
+  /* Per local cell: the mean Cauchy stress of its Gauss points with the centre pressure
+     [s11, s22, s12] of the last material evaluation. */
+  const std::vector<PetscReal> &CellStress() const { return cell_stress_; }
+  PetscErrorCode     CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
+  /* Global vector with the boundary values inserted into the local constrained dofs. */
+  PetscErrorCode     GlobalToLocal(Vec U, Vec Uloc);
+
+private:
+  PetscErrorCode CreateMesh();
+  PetscErrorCode CreateSection();
+  PetscErrorCode PrecomputeElements();
+  PetscErrorCode AssembleMass();
+  PetscErrorCode InternalForce(Vec Floc); /* local [0; f_int - f_ext] from the cached materials */
+  PetscErrorCode FillNaN(Vec F);
+
+  MPI_Comm          comm_;
+  DM                dm_ = nullptr;
+  MaterialPointPool pool_;
+  Mat               Mt_ = nullptr; /* diag(I, M) */
+  KSP               mass_ksp_ = nullptr;
+  Vec               Uloc_ = nullptr, Floc_ = nullptr;
+
+  /* options */
+  char      mesh_file_[PETSC_MAX_PATH_LEN] = "";
+  PetscInt  faces_[2] = {4, 4};
+  PetscReal lower_[2] = {0, 0}, upper_[2] = {400, 400};
+  char      label_[64] = "Face Sets";
+  PetscInt  bc_values_[8] = {4}, n_bc_values_ = 1;
+  PetscBool lumped_ = PETSC_FALSE;
+  PetscReal g_[2] = {0.0, -0.2};
+  std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
+
+  /* per local cell: reference vertex coordinates, gradients and weights at the 5 points */
+  PetscInt               c_start_ = 0, c_end_ = 0;
+  std::vector<PetscReal> Xref_;    /* [cell][4][2] */
+  std::vector<PetscReal> dN_;      /* [cell][point][4][2] */
+  std::vector<PetscReal> wdet_;    /* [cell][point]: weight x det(dX/dxi) */
+  std::vector<PetscReal> f_ext_;   /* [cell][4][2] */
+  std::vector<char>      constrained_; /* per local vertex (point - vStart) */
+  PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
+  PetscReal              rho0_ = 0;
+
+  /* material cache */
+  std::vector<PetscScalar>      cached_U_;
+  bool                          cached_valid_ = false, cached_tangents_ = false, cached_ok_ = false;
+  std::vector<Tensor2>          F_, Fdot_;
+  std::vector<MaterialResponse> response_;
+  std::vector<Tangents>         tangent_;
+  std::vector<PetscReal>        cell_stress_;
+  CoarseCounters                counters_;
+  PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0;
+};
+
+} // namespace turgor

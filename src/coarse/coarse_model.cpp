@@ -1,0 +1,623 @@
+#include "q1_element.h"
+#include <turgor/coarse_model.h>
+#include <turgor/log.h>
+#include <petscsf.h>
+#include <cmath>
+#include <cstring>
+
+namespace turgor {
+
+CoarseModel::~CoarseModel()
+{
+  (void)KSPDestroy(&mass_ksp_);
+  (void)MatDestroy(&Mt_);
+  (void)VecDestroy(&Uloc_);
+  (void)VecDestroy(&Floc_);
+  (void)DMDestroy(&dm_);
+}
+
+PetscErrorCode CoarseModel::SetFromOptions()
+{
+  PetscInt  n2 = 2, nl = 2, nu = 2;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  n_bc_values_ = 8;
+  PetscOptionsBegin(comm_, "coarse_", "Coarse FE^2 model (TW 562 §3.3)", "turgor");
+  PetscCall(PetscOptionsString("-mesh_file", "Mesh file DMPlex reads (Gmsh .msh, ...); empty: a box of -coarse_faces", "CoarseModel", mesh_file_, mesh_file_, sizeof mesh_file_, NULL));
+  PetscCall(PetscOptionsIntArray("-faces", "Box mesh: elements in x,y (default 4,4)", "CoarseModel", faces_, &n2, NULL));
+  PetscCall(PetscOptionsRealArray("-lower", "Box mesh: lower corner [µm] (default 0,0)", "CoarseModel", lower_, &nl, NULL));
+  PetscCall(PetscOptionsRealArray("-upper", "Box mesh: upper corner [µm] (default 400,400)", "CoarseModel", upper_, &nu, NULL));
+  PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseModel", label_, label_, sizeof label_, NULL));
+  PetscCall(PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseModel", bc_values_, &n_bc_values_, &set));
+  PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseModel", lumped_, &lumped_, NULL));
+  PetscOptionsEnd();
+  if (!set) n_bc_values_ = 1;
+  {
+    PetscInt  n = 2;
+    PetscBool gset;
+    PetscOptionsBegin(comm_, "body_", "Body force", "turgor");
+    PetscCall(PetscOptionsRealArray("-force", "Acceleration gx,gy on the tissue [µm/µs^2] (default 0,-0.2)", "CoarseModel", g_, &n, &gset));
+    PetscOptionsEnd();
+    PetscCheck(!gset || n == 2, comm_, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy");
+  }
+  PetscCheck(faces_[0] >= 1 && faces_[1] >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -coarse_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": must be >= 1", faces_[0], faces_[1]);
+  PetscCheck(upper_[0] > lower_[0] && upper_[1] > lower_[1], comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -coarse_lower / -coarse_upper: the box is empty");
+  PetscCall(pool_.SetFromOptions());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::SetMesh(DM dm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)dm));
+  PetscCall(DMDestroy(&dm_));
+  dm_ = dm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::CreateMesh()
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  if (!dm_) {
+    if (mesh_file_[0]) PetscCall(DMPlexCreateFromFile(comm_, mesh_file_, "coarse", PETSC_TRUE, &dm_));
+    else PetscCall(DMPlexCreateBoxMesh(comm_, 2, PETSC_FALSE, faces_, lower_, upper_, NULL, PETSC_TRUE, &dm_));
+  }
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  if (size > 1) {
+    PetscSF sf;
+    DM      dist = NULL;
+    PetscCall(DMPlexDistribute(dm_, 0, &sf, &dist));
+    PetscCall(PetscSFDestroy(&sf));
+    if (dist) {
+      PetscCall(DMDestroy(&dm_));
+      dm_ = dist;
+    }
+  }
+  PetscCall(PetscObjectSetName((PetscObject)dm_, "coarse"));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)dm_, "coarse_"));
+  PetscCall(DMViewFromOptions(dm_, NULL, "-dm_view"));
+  PetscInt dim;
+  PetscCall(DMGetDimension(dm_, &dim));
+  PetscCheck(dim == 2, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_mesh_file: the coarse mesh must be 2D (got %" PetscInt_FMT "D)", dim);
+  PetscCall(DMPlexGetHeightStratum(dm_, 0, &c_start_, &c_end_));
+  for (PetscInt c = c_start_; c < c_end_; c++) {
+    DMPolytopeType ct;
+    PetscCall(DMPlexGetCellType(dm_, c, &ct));
+    PetscCheck(ct == DM_POLYTOPE_QUADRILATERAL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Option -coarse_mesh_file: cell %" PetscInt_FMT " is a %s; the coarse model needs quadrilaterals", c, DMPolytopeTypes[ct]);
+  }
+  PetscCall(DMPlexGetDepthStratum(dm_, 0, &v_start_, &v_end_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Four dofs per vertex [ux, uy, vx, vy]; all four constrained on the Dirichlet boundary, so they
+   drop out of the global vectors and matrices. */
+PetscErrorCode CoarseModel::CreateSection()
+{
+  DMLabel      label;
+  PetscSection s;
+  PetscInt     pStart, pEnd;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLabel(dm_, label_, &label));
+  PetscCheck(label, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_label = %s: the mesh has no such label", label_);
+  constrained_.assign(v_end_ - v_start_, 0);
+  for (PetscInt k = 0; k < n_bc_values_; k++) {
+    IS              pts;
+    const PetscInt *p;
+    PetscInt        np;
+    PetscCall(DMLabelGetStratumIS(label, bc_values_[k], &pts));
+    if (!pts) continue;
+    PetscCall(ISGetLocalSize(pts, &np));
+    PetscCall(ISGetIndices(pts, &p));
+    for (PetscInt q = 0; q < np; q++) {
+      PetscInt *cl = NULL, ncl;
+      PetscCall(DMPlexGetTransitiveClosure(dm_, p[q], PETSC_TRUE, &ncl, &cl));
+      for (PetscInt r = 0; r < ncl; r++)
+        if (cl[2 * r] >= v_start_ && cl[2 * r] < v_end_) constrained_[cl[2 * r] - v_start_] = 1;
+      PetscCall(DMPlexRestoreTransitiveClosure(dm_, p[q], PETSC_TRUE, &ncl, &cl));
+    }
+    PetscCall(ISRestoreIndices(pts, &p));
+    PetscCall(ISDestroy(&pts));
+  }
+  PetscInt nc = 0, ncg;
+  for (char c : constrained_) nc += c;
+  PetscCallMPI(MPI_Allreduce(&nc, &ncg, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCheck(ncg > 0, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dirichlet_label %s / -coarse_dirichlet_values: no vertex is clamped; the problem would be singular", label_);
+
+  PetscCall(DMPlexGetChart(dm_, &pStart, &pEnd));
+  PetscCall(PetscSectionCreate(comm_, &s));
+  PetscCall(PetscSectionSetNumFields(s, 1));
+  PetscCall(PetscSectionSetFieldName(s, 0, "state"));
+  PetscCall(PetscSectionSetFieldComponents(s, 0, 4));
+  PetscCall(PetscSectionSetChart(s, pStart, pEnd));
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    PetscCall(PetscSectionSetDof(s, v, 4));
+    PetscCall(PetscSectionSetFieldDof(s, v, 0, 4));
+    if (constrained_[v - v_start_]) {
+      PetscCall(PetscSectionSetConstraintDof(s, v, 4));
+      PetscCall(PetscSectionSetFieldConstraintDof(s, v, 0, 4));
+    }
+  }
+  PetscCall(PetscSectionSetUp(s));
+  const PetscInt all[4] = {0, 1, 2, 3};
+  for (PetscInt v = v_start_; v < v_end_; v++)
+    if (constrained_[v - v_start_]) {
+      PetscCall(PetscSectionSetConstraintIndices(s, v, all));
+      PetscCall(PetscSectionSetFieldConstraintIndices(s, v, 0, all));
+    }
+  PetscCall(DMSetLocalSection(dm_, s));
+  PetscCall(PetscSectionDestroy(&s));
+  PetscCall(DMCreateLocalVector(dm_, &Uloc_));
+  PetscCall(VecDuplicate(Uloc_, &Floc_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::PrecomputeElements()
+{
+  DM           cdm;
+  Vec          coords;
+  PetscSection cs;
+  PetscFunctionBeginUser;
+  const PetscInt nc = c_end_ - c_start_;
+  PetscCall(DMGetCoordinateDM(dm_, &cdm));
+  PetscCall(DMGetCoordinatesLocal(dm_, &coords));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  Xref_.resize(8 * nc);
+  dN_.resize(nc * q1::kPoints * 8);
+  wdet_.resize(nc * q1::kPoints);
+  for (PetscInt c = c_start_; c < c_end_; c++) {
+    PetscScalar *x = NULL;
+    PetscInt     n = 0;
+    const PetscInt k = c - c_start_;
+    PetscCall(DMPlexVecGetClosure(dm_, cs, coords, c, &n, &x));
+    PetscCheck(n == 8, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %" PetscInt_FMT ": expected 4 vertices", c);
+    for (int i = 0; i < 8; i++) Xref_[8 * k + i] = PetscRealPart(x[i]);
+    PetscCall(DMPlexVecRestoreClosure(dm_, cs, coords, c, &n, &x));
+    const PetscReal(*X)[2] = (const PetscReal(*)[2]) & Xref_[8 * k];
+    for (int q = 0; q < q1::kPoints; q++) {
+      PetscReal dN[4][2];
+      const PetscReal det = q1::Gradients(X, q1::kPointXi[q][0], q1::kPointXi[q][1], dN);
+      PetscCheck(det > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Coarse mesh: cell %" PetscInt_FMT " is inverted or degenerate (det J = %g at a quadrature point)", c, (double)det);
+      for (int a = 0; a < 4; a++)
+        for (int i = 0; i < 2; i++) dN_[(k * q1::kPoints + q) * 8 + 2 * a + i] = dN[a][i];
+      wdet_[k * q1::kPoints + q] = q1::kPointW[q] * det;
+    }
+  }
+  /* the tip: the vertex nearest to the middle of the right side of the mesh's bounding box */
+  PetscReal lo[2], hi[2], best[2] = {PETSC_MAX_REAL, 0};
+  PetscCall(DMGetBoundingBox(dm_, lo, hi));
+  const PetscScalar *xc;
+  PetscSection       vs;
+  PetscCall(DMGetLocalSection(cdm, &vs));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(vs, v, &off));
+    const PetscReal d = std::hypot(xc[off] - hi[0], xc[off + 1] - 0.5 * (lo[1] + hi[1]));
+    if (d < best[0]) {
+      best[0]     = d;
+      tip_vertex_ = v;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  struct {
+    PetscReal d;
+    int       r;
+  } mine = {best[0], rank}, win;
+  PetscCallMPI(MPI_Allreduce(&mine, &win, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm_)); /* PetscReal is double */
+  if (win.r != rank) tip_vertex_ = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Mt = diag(I, M): the consistent mass M_ab = int rho0 N_a N_b dV (3 x 3 Gauss, exact on any quad;
+   rho dv = rho0 dV keeps it constant) or its row sums; the identity on the displacement dofs. */
+PetscErrorCode CoarseModel::AssembleMass()
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateMatrix(dm_, &Mt_));
+  PetscCall(MatSetOption(Mt_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  const PetscInt nc = c_end_ - c_start_;
+  f_ext_.assign(8 * nc, 0);
+  for (PetscInt c = c_start_; c < c_end_; c++) {
+    const PetscInt k = c - c_start_;
+    const PetscReal(*X)[2] = (const PetscReal(*)[2]) & Xref_[8 * k];
+    PetscScalar me[16 * 16] = {0};
+    PetscReal   m[4][4]     = {{0}};
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        PetscReal N[4], dN[4][2];
+        const PetscReal det = q1::Gradients(X, q1::kG3[i], q1::kG3[j], dN);
+        q1::Shape(q1::kG3[i], q1::kG3[j], N);
+        const PetscReal w = q1::kW3[i] * q1::kW3[j] * det * rho0_;
+        for (int a = 0; a < 4; a++) {
+          for (int b = 0; b < 4; b++) m[a][b] += w * N[a] * N[b];
+          for (int d = 0; d < 2; d++) f_ext_[8 * k + 2 * a + d] += w * N[a] * g_[d];
+        }
+      }
+    for (int a = 0; a < 4; a++)
+      for (int b = 0; b < 4; b++) {
+        const PetscReal mab = lumped_ ? (a == b ? m[a][0] + m[a][1] + m[a][2] + m[a][3] : 0.0) : m[a][b];
+        for (int d = 0; d < 2; d++) me[(4 * a + 2 + d) * 16 + 4 * b + 2 + d] = mab;
+      }
+    PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, Mt_, c, me, ADD_VALUES));
+  }
+  PetscSection gs;
+  PetscCall(DMGetGlobalSection(dm_, &gs));
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    PetscInt off, dof, cdof;
+    PetscCall(PetscSectionGetOffset(gs, v, &off));
+    PetscCall(PetscSectionGetDof(gs, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+    if (off < 0 || dof - cdof != 4) continue; /* not owned, or clamped */
+    for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(Mt_, off + d, off + d, 1.0, ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(Mt_, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Mt_, MAT_FINAL_ASSEMBLY));
+  PetscCall(KSPCreate(comm_, &mass_ksp_));
+  PetscCall(KSPSetOptionsPrefix(mass_ksp_, "coarse_mass_"));
+  PetscCall(KSPSetOperators(mass_ksp_, Mt_, Mt_));
+  PetscCall(KSPSetType(mass_ksp_, KSPCG));
+  {
+    PC pc;
+    PetscCall(KSPGetPC(mass_ksp_, &pc));
+    PetscCall(PCSetType(pc, PCJACOBI));
+  }
+  PetscCall(KSPSetTolerances(mass_ksp_, 1e-12, 1e-30, PETSC_DEFAULT, 200));
+  PetscCall(KSPSetFromOptions(mass_ksp_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::SetUp()
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventRegister("TgCoarseResidual", PETSC_OBJECT_CLASSID, &ev_residual_));
+  PetscCall(PetscLogEventRegister("TgCoarseJacobian", PETSC_OBJECT_CLASSID, &ev_jacobian_));
+  PetscCall(CreateMesh());
+  PetscCall(CreateSection());
+  PetscCall(PrecomputeElements());
+  const PetscInt np = (c_end_ - c_start_) * q1::kPoints;
+  PetscCall(pool_.SetUp(np));
+  F_.assign(np, Tensor2::Identity());
+  Fdot_.assign(np, Tensor2::Zero());
+  response_.resize(np);
+  tangent_.resize(np);
+  cell_stress_.assign(3 * (c_end_ - c_start_), 0);
+  /* the reference density from the material at rest (an RVE: its mass over its area) */
+  PetscBool ok;
+  std::string why;
+  {
+    Vec U0;
+    PetscCall(DMCreateGlobalVector(dm_, &U0));
+    PetscCall(VecZeroEntries(U0));
+    PetscCall(EvaluateMaterials(U0, false, &ok, &why));
+    PetscCall(VecDestroy(&U0));
+  }
+  PetscCheck(ok, comm_, PETSC_ERR_NOT_CONVERGED, "The material fails at rest (F = I): %s", why.c_str());
+  PetscReal r = 0;
+  for (PetscInt k = 0; k < np; k++) r = PetscMax(r, response_[k].rho);
+  PetscCallMPI(MPI_Allreduce(&r, &rho0_, 1, MPIU_REAL, MPIU_MAX, comm_));
+  PetscCall(pool_.Commit());
+  PetscCall(AssembleMass());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt CoarseModel::NumElements() const
+{
+  PetscInt n = c_end_ - c_start_, N = 0;
+  (void)MPI_Allreduce(&n, &N, 1, MPIU_INT, MPI_SUM, comm_);
+  return N;
+}
+
+PetscErrorCode CoarseModel::GlobalToLocal(Vec U, Vec Uloc)
+{
+  PetscSection ls;
+  PetscScalar *u;
+  DM           cdm;
+  Vec          coords;
+  PetscSection cs;
+  const PetscScalar *xc;
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocal(dm_, U, INSERT_VALUES, Uloc));
+  PetscCall(DMGetLocalSection(dm_, &ls));
+  PetscCall(DMGetCoordinateDM(dm_, &cdm));
+  PetscCall(DMGetCoordinatesLocal(dm_, &coords));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  PetscCall(VecGetArray(Uloc, &u));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    if (!constrained_[v - v_start_]) continue;
+    PetscInt off, coff;
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    PetscCall(PetscSectionGetOffset(cs, v, &coff));
+    PetscReal X[2] = {PetscRealPart(xc[coff]), PetscRealPart(xc[coff + 1])}, g[2] = {0, 0};
+    if (boundary_) boundary_(X, g);
+    u[off]     = g[0];
+    u[off + 1] = g[1];
+    u[off + 2] = u[off + 3] = 0;
+  }
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  PetscCall(VecRestoreArray(Uloc, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* F = I + sum_a u_a (x) grad_X N_a and Fdot = sum_a v_a (x) grad_X N_a at every material point;
+   the pool answers (from the cache when U is unchanged). */
+PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why)
+{
+  const PetscScalar *u;
+  PetscInt           n;
+  PetscFunctionBeginUser;
+  PetscCall(GlobalToLocal(U, Uloc_));
+  PetscCall(VecGetLocalSize(Uloc_, &n));
+  PetscCall(VecGetArrayRead(Uloc_, &u));
+  int same = cached_valid_ && (PetscInt)cached_U_.size() == n && !std::memcmp(cached_U_.data(), u, n * sizeof(PetscScalar)) && (cached_tangents_ || !tangents), all_same;
+  PetscCallMPI(MPI_Allreduce(&same, &all_same, 1, MPI_INT, MPI_MIN, comm_));
+  if (!all_same) cached_U_.assign(u, u + n);
+  PetscCall(VecRestoreArrayRead(Uloc_, &u));
+  if (all_same) {
+    *ok = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
+    if (why) *why = cached_ok_ ? "" : "cached failure";
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  for (PetscInt c = c_start_; c < c_end_; c++) {
+    PetscScalar   *x = NULL;
+    PetscInt       nx = 0;
+    const PetscInt k  = c - c_start_;
+    PetscCall(DMPlexVecGetClosure(dm_, NULL, Uloc_, c, &nx, &x));
+    for (int q = 0; q < q1::kPoints; q++) {
+      const PetscReal *dN = &dN_[(k * q1::kPoints + q) * 8];
+      Tensor2          F  = Tensor2::Identity(), Fd;
+      for (int a = 0; a < 4; a++)
+        for (int i = 0; i < 2; i++)
+          for (int j = 0; j < 2; j++) {
+            F(i, j) += PetscRealPart(x[4 * a + i]) * dN[2 * a + j];
+            Fd(i, j) += PetscRealPart(x[4 * a + 2 + i]) * dN[2 * a + j];
+          }
+      F_[k * q1::kPoints + q]    = F;
+      Fdot_[k * q1::kPoints + q] = Fd;
+    }
+    PetscCall(DMPlexVecRestoreClosure(dm_, NULL, Uloc_, c, &nx, &x));
+  }
+  PetscCall(pool_.Evaluate(F_.data(), Fdot_.data(), response_.data(), tangents ? tangent_.data() : NULL));
+  counters_.material_evals++;
+  if (tangents) counters_.tangent_evals++;
+  int local_ok = 1, global_ok;
+  for (size_t k = 0; k < response_.size(); k++)
+    if (!response_[k].ok) {
+      if (local_ok && why) *why = "material point " + std::to_string(k) + " of element " + std::to_string(k / q1::kPoints) + " (local numbering): " + response_[k].reason;
+      local_ok = 0;
+    }
+  PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
+  if (global_ok && !local_ok && why) *why = "on another rank";
+  if (!global_ok) counters_.failures++;
+  *ok             = global_ok ? PETSC_TRUE : PETSC_FALSE;
+  cached_valid_   = true;
+  cached_ok_      = global_ok;
+  cached_tangents_ = tangents;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Local [0; f_int - f_ext], f_int,a = sum_g w J dev(sigma_g) F^-T grad_X N_a + W_c J_c p_c F_c^-T
+   grad_X N_a(centre): the deviatoric stress at the 2 x 2 Gauss points, the pressure tr(sigma)/2
+   at the centre (selective reduced integration). */
+PetscErrorCode CoarseModel::InternalForce(Vec Floc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(Floc));
+  for (PetscInt c = c_start_; c < c_end_; c++) {
+    const PetscInt k  = c - c_start_;
+    PetscScalar    fe[16] = {0};
+    const Tensor2 &sc = response_[k * q1::kPoints + q1::kCentre].sigma;
+    const PetscReal p = 0.5 * sc.Trace();
+    PetscReal       mean[3] = {0, 0, 0};
+    for (int q = 0; q < q1::kPoints; q++) {
+      const PetscInt   m  = k * q1::kPoints + q;
+      const Tensor2   &F  = F_[m];
+      const Tensor2    Fi = F.Inverse();
+      const PetscReal  W  = wdet_[m] * F.Det();
+      const PetscReal *dN = &dN_[m * 8];
+      Tensor2          s;
+      if (q == q1::kCentre) s = p * Tensor2::Identity();
+      else {
+        const Tensor2 sg = response_[m].sigma.Sym();
+        s                = sg - (0.5 * sg.Trace()) * Tensor2::Identity();
+        mean[0] += 0.25 * (s(0, 0) + p);
+        mean[1] += 0.25 * (s(1, 1) + p);
+        mean[2] += 0.25 * s(0, 1);
+      }
+      for (int a = 0; a < 4; a++) {
+        const PetscReal gx = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1]; /* grad_x N = F^-T grad_X N */
+        const PetscReal gy = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
+        fe[4 * a + 2] += W * (s(0, 0) * gx + s(0, 1) * gy);
+        fe[4 * a + 3] += W * (s(1, 0) * gx + s(1, 1) * gy);
+      }
+    }
+    for (int a = 0; a < 4; a++)
+      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= f_ext_[8 * k + 2 * a + d];
+    for (int i = 0; i < 3; i++) cell_stress_[3 * k + i] = mean[i];
+    PetscCall(DMPlexVecSetClosure(dm_, NULL, Floc, c, fe, ADD_VALUES));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::FillNaN(Vec F)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecSet(F, NAN));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
+{
+  PetscSection       gs;
+  PetscInt           rstart;
+  PetscScalar       *f;
+  const PetscScalar *u;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_residual_, 0, 0, 0, 0));
+  counters_.residuals++;
+  PetscCall(EvaluateMaterials(U, false, ok, NULL));
+  if (!*ok) {
+    PetscCall(FillNaN(F));
+    PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(InternalForce(Floc_));
+  PetscCall(VecZeroEntries(F));
+  PetscCall(DMLocalToGlobal(dm_, Floc_, ADD_VALUES, F));
+  PetscCall(MatMultAdd(Mt_, Udot, F, F)); /* + [udot; M vdot] */
+  /* - v on the displacement rows */
+  PetscCall(DMGetGlobalSection(dm_, &gs));
+  PetscCall(VecGetOwnershipRange(F, &rstart, NULL));
+  PetscCall(VecGetArray(F, &f));
+  PetscCall(VecGetArrayRead(U, &u));
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    PetscInt off, dof, cdof;
+    PetscCall(PetscSectionGetOffset(gs, v, &off));
+    PetscCall(PetscSectionGetDof(gs, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+    if (off < 0 || dof - cdof != 4) continue; /* not owned, or clamped */
+    off -= rstart;
+    f[off] -= u[off + 2];
+    f[off + 1] -= u[off + 3];
+  }
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscCall(VecRestoreArray(F, &f));
+  PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::RHSFunction(Vec U, Vec G, PetscBool *ok)
+{
+  Vec R, Z;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(U, &R));
+  PetscCall(VecDuplicate(U, &Z));
+  PetscCall(VecZeroEntries(Z));
+  PetscCall(IFunction(U, Z, R, ok)); /* R = -[v; f_ext - f_int] */
+  if (*ok) {
+    PetscCall(VecScale(R, -1.0));
+    PetscCall(KSPSolve(mass_ksp_, R, G));
+    KSPConvergedReason reason;
+    PetscCall(KSPGetConvergedReason(mass_ksp_, &reason));
+    PetscCheck(reason > 0, comm_, PETSC_ERR_NOT_CONVERGED, "Mass matrix solve failed (%s)", KSPConvergedReasons[reason]);
+  } else PetscCall(FillNaN(G));
+  PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&Z));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Split of a material point's tangents between the deviatoric (Gauss points) and the pressure
+   (centre) parts, so that K is the exact derivative of the selectively integrated f_int. In Voigt
+   form on (11, 22, 12) acting on [dd11, dd22, 2 dd12], with e = [1, 1, 0] and sv = [s11, s22, s12]:
+     dev:       D - e e^T D / 2 - e sv^T + tr(sigma) diag(1, 1, 1/2)
+     pressure:  e e^T D / 2 + e sv^T - tr(sigma) diag(1, 1, 1/2)
+   (the Truesdell rates of dev(sigma) and of tr(sigma)/2 I); the viscous D^v splits without the
+   geometric terms. */
+static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, bool pressure, bool viscous, PetscReal out[3][3])
+{
+  const PetscReal e[3] = {1, 1, 0}, sv[3] = {s(0, 0), s(1, 1), 0.5 * (s(0, 1) + s(1, 0))}, tr = s.Trace();
+  const PetscReal diag[3] = {1, 1, 0.5};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      const PetscReal vol = 0.5 * e[i] * (D[0][j] + D[1][j]);
+      PetscReal       geo = viscous ? 0.0 : e[i] * sv[j] - (i == j ? tr * diag[i] : 0.0);
+      out[i][j]           = pressure ? vol + geo : D[i][j] - vol - geo;
+    }
+}
+
+PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok)
+{
+  PetscSection gs;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
+  counters_.jacobians++;
+  PetscCall(EvaluateMaterials(U, true, ok, NULL));
+  PetscCall(MatZeroEntries(J));
+  if (!*ok) { /* the caller rejects the state; leave a harmless matrix */
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+    PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  for (PetscInt c = c_start_; c < c_end_; c++) {
+    const PetscInt k = c - c_start_;
+    PetscScalar    ke[16 * 16] = {0};
+    const Tensor2  sc = response_[k * q1::kPoints + q1::kCentre].sigma.Sym();
+    for (int q = 0; q < q1::kPoints; q++) {
+      const PetscInt   m  = k * q1::kPoints + q;
+      const Tensor2   &F  = F_[m];
+      const Tensor2    Fi = F.Inverse();
+      const PetscReal  W  = wdet_[m] * F.Det();
+      const PetscReal *dN = &dN_[m * 8];
+      const bool       centre = q == q1::kCentre;
+      const Tensor2    sigma  = centre ? sc : response_[m].sigma.Sym();
+      const Tensor2    s      = centre ? (0.5 * sc.Trace()) * Tensor2::Identity() : sigma - (0.5 * sigma.Trace()) * Tensor2::Identity();
+      PetscReal        De[3][3], Dv[3][3], g[4][2];
+      SplitTangent(tangent_[m].De, sigma, centre, false, De);
+      SplitTangent(tangent_[m].Dv, sigma, centre, true, Dv);
+      for (int a = 0; a < 4; a++) {
+        g[a][0] = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1];
+        g[a][1] = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
+      }
+      for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++) {
+          /* B_a^T D B_b with B = [[Nx, 0], [0, Ny], [Ny, Nx]] */
+          const PetscReal Ba[3][2] = {{g[a][0], 0}, {0, g[a][1]}, {g[a][1], g[a][0]}};
+          const PetscReal Bb[3][2] = {{g[b][0], 0}, {0, g[b][1]}, {g[b][1], g[b][0]}};
+          const PetscReal geo      = g[a][0] * (s(0, 0) * g[b][0] + s(0, 1) * g[b][1]) + g[a][1] * (s(1, 0) * g[b][0] + s(1, 1) * g[b][1]);
+          for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) {
+              PetscReal kij = i == j ? geo : 0.0, cij = 0;
+              for (int r = 0; r < 3; r++)
+                for (int t = 0; t < 3; t++) {
+                  kij += Ba[r][i] * De[r][t] * Bb[t][j];
+                  cij += Ba[r][i] * Dv[r][t] * Bb[t][j];
+                }
+              ke[(4 * a + 2 + i) * 16 + 4 * b + j] += W * kij;     /* d f_int / d u */
+              ke[(4 * a + 2 + i) * 16 + 4 * b + 2 + j] += W * cij; /* d f_int / d v */
+            }
+        }
+    }
+    PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, J, c, ke, ADD_VALUES));
+  }
+  /* -I: d(udot - v)/dv, per owned free vertex */
+  PetscCall(DMGetGlobalSection(dm_, &gs));
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    PetscInt off, dof, cdof;
+    PetscCall(PetscSectionGetOffset(gs, v, &off));
+    PetscCall(PetscSectionGetDof(gs, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+    if (off < 0 || dof - cdof != 4) continue; /* not owned, or clamped */
+    for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(J, off + d, off + 2 + d, -1.0, ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+  PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy)
+{
+  PetscReal val = 0;
+  PetscFunctionBeginUser;
+  PetscCall(GlobalToLocal(U, Uloc_));
+  if (tip_vertex_ >= 0) {
+    PetscSection       ls;
+    PetscInt           off;
+    const PetscScalar *u;
+    PetscCall(DMGetLocalSection(dm_, &ls));
+    PetscCall(PetscSectionGetOffset(ls, tip_vertex_, &off));
+    PetscCall(VecGetArrayRead(Uloc_, &u));
+    val = PetscRealPart(u[off + 1]);
+    PetscCall(VecRestoreArrayRead(Uloc_, &u));
+  }
+  PetscCallMPI(MPI_Allreduce(&val, uy, 1, MPIU_REAL, MPIU_SUM, comm_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

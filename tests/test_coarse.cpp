@@ -1,0 +1,270 @@
+static const char help[] = "Coarse FE^2 model (Q1, selective reduced integration) with the closed-form material:\n"
+                           " 1. patch test: a homogeneous deformation imposed on the boundary of a distorted mesh is\n"
+                           "    reproduced exactly (static solve);\n"
+                           " 2. the assembled Jacobian (K with D^e, C with D^v, mass) against central differences of the\n"
+                           "    residual, for the closed-form material and for the RVE;\n"
+                           " 3. a static cantilever under a small body load against Timoshenko beam theory, on 32 x 8\n"
+                           "    elements, and the observed order of convergence under refinement.\n";
+#include "test_util.h"
+#include <turgor/coarse_model.h>
+#include <petscsnes.h>
+
+using namespace turgor;
+
+struct StaticContext {
+  CoarseModel *model;
+  Vec          zero;
+};
+
+static PetscErrorCode StaticResidual(SNES snes, Vec U, Vec F, void *ctx)
+{
+  StaticContext *s = (StaticContext *)ctx;
+  PetscBool      ok;
+  PetscFunctionBeginUser;
+  PetscCall(s->model->IFunction(U, s->zero, F, &ok));
+  if (!ok) PetscCall(SNESSetFunctionDomainError(snes));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode StaticJacobian(SNES snes, Vec U, Mat A, Mat B, void *ctx)
+{
+  StaticContext *s = (StaticContext *)ctx;
+  PetscBool      ok;
+  PetscFunctionBeginUser;
+  PetscCall(s->model->IJacobian(U, 0.0, B, &ok));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Static equilibrium: F(U, Udot = 0) = 0, i.e. v = 0 and f_int = f_ext, by Newton with MUMPS LU
+   (the displacement rows have no diagonal without a time-step shift). */
+static PetscErrorCode StaticSolve(CoarseModel &model, Vec U, PetscInt *its)
+{
+  SNES          snes;
+  Mat           J;
+  KSP           ksp;
+  PC            pc;
+  StaticContext ctx = {&model, NULL};
+  SNESConvergedReason reason;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(U, &ctx.zero));
+  PetscCall(VecZeroEntries(ctx.zero));
+  PetscCall(MatDuplicate(model.MassMatrix(), MAT_DO_NOT_COPY_VALUES, &J));
+  PetscCall(SNESCreate(PETSC_COMM_WORLD, &snes));
+  PetscCall(SNESSetFunction(snes, NULL, StaticResidual, &ctx));
+  PetscCall(SNESSetJacobian(snes, J, J, StaticJacobian, &ctx));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESSetTolerances(snes, 1e-9, 1e-9, 1e-14, 50, PETSC_DEFAULT)); /* round-off floor ~1e-10 µN */
+  {
+    SNESLineSearch ls; /* full Newton steps: the problems here are (nearly) linear */
+    PetscCall(SNESGetLineSearch(snes, &ls));
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  }
+  PetscCall(SNESSetOptionsPrefix(snes, "static_"));
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(SNESSolve(snes, NULL, U));
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetIterationNumber(snes, its));
+  TG_CHECK(reason > 0, "static solve did not converge: %s", SNESConvergedReasons[reason]);
+  PetscCall(SNESDestroy(&snes));
+  PetscCall(MatDestroy(&J));
+  PetscCall(VecDestroy(&ctx.zero));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 1. Patch test on a distorted 4 x 4 mesh. */
+static PetscErrorCode PatchTest()
+{
+  const PetscReal F0[2][2] = {{1.02, 0.03}, {-0.01, 0.97}};
+  DM              dm;
+  PetscInt        faces[2] = {4, 4}, its;
+  PetscReal       lo[2] = {0, 0}, hi[2] = {400, 400};
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexCreateBoxMesh(PETSC_COMM_WORLD, 2, PETSC_FALSE, faces, lo, hi, NULL, PETSC_TRUE, &dm));
+  {
+    /* move every interior vertex at random by up to 30 µm (elements stay convex) */
+    Vec          c;
+    PetscScalar *x;
+    PetscInt     n;
+    turgor_test::Random rnd(21);
+    PetscCall(DMGetCoordinatesLocal(dm, &c));
+    PetscCall(VecGetLocalSize(c, &n));
+    PetscCall(VecGetArray(c, &x));
+    for (PetscInt i = 0; i < n; i += 2)
+      if (x[i] > 1 && x[i] < 399 && x[i + 1] > 1 && x[i + 1] < 399) {
+        x[i] += 30 * rnd();
+        x[i + 1] += 30 * rnd();
+      }
+    PetscCall(VecRestoreArray(c, &x));
+    PetscCall(DMSetCoordinatesLocal(dm, c));
+  }
+  CoarseModel model(PETSC_COMM_WORLD);
+  PetscCall(PetscOptionsInsertString(NULL, "-coarse_dirichlet_values 1,2,3,4 -body_force 0,0"));
+  PetscCall(model.SetFromOptions());
+  PetscCall(PetscOptionsClearValue(NULL, "-coarse_dirichlet_values"));
+  PetscCall(PetscOptionsClearValue(NULL, "-body_force"));
+  PetscCall(model.SetMesh(dm));
+  PetscCall(DMDestroy(&dm));
+  model.SetBoundaryDisplacement([&](const PetscReal X[2], PetscReal u[2]) {
+    for (int i = 0; i < 2; i++) u[i] = (F0[i][0] - (i == 0)) * X[0] + (F0[i][1] - (i == 1)) * X[1];
+  });
+  PetscCall(model.SetUp());
+  Vec U;
+  PetscCall(model.CreateGlobalVector(&U));
+  PetscCall(VecZeroEntries(U));
+  PetscCall(StaticSolve(model, U, &its));
+  /* compare every vertex with (F0 - I) X */
+  Vec          Ul, coords;
+  PetscSection ls, cs;
+  DM           cdm;
+  PetscCall(DMCreateLocalVector(model.GetDM(), &Ul));
+  PetscCall(model.GlobalToLocal(U, Ul));
+  PetscCall(DMGetLocalSection(model.GetDM(), &ls));
+  PetscCall(DMGetCoordinateDM(model.GetDM(), &cdm));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  PetscCall(DMGetCoordinatesLocal(model.GetDM(), &coords));
+  const PetscScalar *u, *x;
+  PetscInt           vs, ve;
+  PetscReal          err = 0, umax = 0;
+  PetscCall(DMPlexGetDepthStratum(model.GetDM(), 0, &vs, &ve));
+  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt v = vs; v < ve; v++) {
+    PetscInt o, co;
+    PetscCall(PetscSectionGetOffset(ls, v, &o));
+    PetscCall(PetscSectionGetOffset(cs, v, &co));
+    for (int i = 0; i < 2; i++) {
+      const PetscReal exact = (F0[i][0] - (i == 0)) * x[co] + (F0[i][1] - (i == 1)) * x[co + 1];
+      err                   = PetscMax(err, std::fabs(u[o + i] - exact));
+      umax                  = PetscMax(umax, std::fabs(exact));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  PetscCall(VecRestoreArrayRead(Ul, &u));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &umax, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "1. patch test, distorted 4 x 4 mesh, F0 = [1.02 0.03; -0.01 0.97]: max |u - (F0 - I) X| = %.2e µm (|u| up to %.3g µm), %" PetscInt_FMT " Newton iterations\n", (double)err, (double)umax, its));
+  TG_CHECK(err < 1e-10 * umax, "the patch test fails: %.3e", (double)err);
+  PetscCall(VecDestroy(&Ul));
+  PetscCall(VecDestroy(&U));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 2. J w against (F(U + h w) - F(U - h w)) / 2h at a random state; dF/dUdot = Mt separately. */
+static PetscErrorCode JacobianCheck(const char *material, PetscReal tol)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsSetValue(NULL, "-material", material));
+  PetscCall(PetscOptionsSetValue(NULL, "-coarse_faces", "2,2"));
+  CoarseModel model(PETSC_COMM_WORLD);
+  PetscCall(model.SetFromOptions());
+  PetscCall(model.SetUp());
+  PetscCall(PetscOptionsClearValue(NULL, "-material"));
+  PetscCall(PetscOptionsClearValue(NULL, "-coarse_faces"));
+  Vec       U, Ud, w, Jw, Fp, Fm, Up;
+  Mat       J;
+  PetscBool ok;
+  PetscCall(model.CreateGlobalVector(&U));
+  PetscCall(VecDuplicate(U, &Ud));
+  PetscCall(VecDuplicate(U, &w));
+  PetscCall(VecDuplicate(U, &Jw));
+  PetscCall(VecDuplicate(U, &Fp));
+  PetscCall(VecDuplicate(U, &Fm));
+  PetscCall(VecDuplicate(U, &Up));
+  {
+    /* displacements of a few µm (strains ~1e-2), velocities of 1e-2 µm/µs, and a direction */
+    PetscScalar *u, *ud, *ww;
+    PetscInt     n, rstart;
+    PetscCall(VecGetLocalSize(U, &n));
+    PetscCall(VecGetOwnershipRange(U, &rstart, NULL));
+    PetscCall(VecGetArray(U, &u));
+    PetscCall(VecGetArray(Ud, &ud));
+    PetscCall(VecGetArray(w, &ww));
+    turgor_test::Random rnd(5 + rstart);
+    for (PetscInt i = 0; i < n; i++) {
+      const bool disp = (rstart + i) % 4 < 2;
+      u[i]            = disp ? 2.0 * rnd() : 0.01 * rnd();
+      ud[i]           = 0.01 * rnd();
+      ww[i]           = disp ? rnd() : 0.01 * rnd();
+    }
+    PetscCall(VecRestoreArray(w, &ww));
+    PetscCall(VecRestoreArray(Ud, &ud));
+    PetscCall(VecRestoreArray(U, &u));
+  }
+  PetscCall(MatDuplicate(model.MassMatrix(), MAT_DO_NOT_COPY_VALUES, &J));
+  PetscCall(model.IJacobian(U, 0.0, J, &ok));
+  TG_CHECK(ok, "material failed");
+  PetscCall(MatMult(J, w, Jw));
+  const PetscReal h = 1e-4;
+  PetscCall(VecWAXPY(Up, h, w, U));
+  PetscCall(model.IFunction(Up, Ud, Fp, &ok));
+  PetscCall(VecWAXPY(Up, -h, w, U));
+  PetscCall(model.IFunction(Up, Ud, Fm, &ok));
+  PetscCall(VecAXPY(Fp, -1.0, Fm));
+  PetscCall(VecScale(Fp, 1.0 / (2 * h)));
+  PetscReal nfd, ndiff;
+  PetscCall(VecNorm(Fp, NORM_2, &nfd));
+  PetscCall(VecAXPY(Fp, -1.0, Jw));
+  PetscCall(VecNorm(Fp, NORM_2, &ndiff));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "2. Jacobian (%s, 2 x 2 elements) against central differences of the residual: |J w - FD| / |FD| = %.2e\n", material, (double)(ndiff / nfd)));
+  TG_CHECK(ndiff <= tol * nfd, "the assembled Jacobian is not the derivative of the residual (%.3e)", (double)(ndiff / nfd));
+  PetscCall(MatDestroy(&J));
+  for (Vec *v : {&U, &Ud, &w, &Jw, &Fp, &Fm, &Up}) PetscCall(VecDestroy(v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 3. Cantilever L x H clamped at x = 0 under a body force g: Timoshenko's tip deflection
+   q L^4 / (8 E' I) + q L^2 / (2 kappa G A) with the plane-strain E' = 4 mu (lambda + mu) / (lambda + 2 mu). */
+static PetscErrorCode Cantilever(PetscInt nx, PetscInt ny, PetscReal *deflection, PetscReal *theory)
+{
+  char opt[64];
+  PetscInt its;
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%" PetscInt_FMT ",%" PetscInt_FMT, nx, ny));
+  PetscCall(PetscOptionsSetValue(NULL, "-coarse_faces", opt));
+  PetscCall(PetscOptionsInsertString(NULL, "-material neo_hookean -coarse_upper 400,100 -body_force 0,-1e-2"));
+  CoarseModel model(PETSC_COMM_WORLD);
+  PetscCall(model.SetFromOptions());
+  PetscCall(model.SetUp());
+  for (const char *o : {"-coarse_faces", "-material", "-coarse_upper", "-body_force"}) PetscCall(PetscOptionsClearValue(NULL, o));
+  Vec U;
+  PetscCall(model.CreateGlobalVector(&U));
+  PetscCall(VecZeroEntries(U));
+  PetscCall(StaticSolve(model, U, &its));
+  PetscCall(model.TipDisplacement(U, deflection));
+  *deflection = -*deflection;
+  const PetscReal mu = 500, lambda = 1000, L = 400, H = 100, rho = 0.0126, g = 1e-2;
+  const PetscReal E = 4 * mu * (lambda + mu) / (lambda + 2 * mu), nu = lambda / (lambda + 2 * mu) / (1 + lambda / (lambda + 2 * mu)) * 1.0;
+  const PetscReal q = rho * g * H, I = H * H * H / 12, kappa = 10 * (1 + nu) / (12 + 11 * nu);
+  *theory = q * L * L * L * L / (8 * E * I) + q * L * L / (2 * kappa * mu * H);
+  PetscCall(VecDestroy(&U));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(PetscOptionsInsertString(NULL, "-material neo_hookean"));
+  PetscCall(PatchTest());
+  PetscCall(PetscOptionsClearValue(NULL, "-material"));
+  PetscCall(JacobianCheck("neo_hookean", 1e-6));
+  PetscCall(JacobianCheck("rve", 1e-4));
+  /* uniform refinement through the 32 x 8 mesh; the observed order from the three finest meshes,
+     the model error (clamped edge vs beam theory) from their extrapolated limit */
+  PetscReal      d[5], t = 0;
+  const PetscInt n[5][2] = {{4, 1}, {8, 2}, {16, 4}, {32, 8}, {64, 16}};
+  for (int k = 0; k < 5; k++) PetscCall(Cantilever(n[k][0], n[k][1], &d[k], &t));
+  const PetscReal order = std::log2((d[2] - d[3]) / (d[3] - d[4]));
+  const PetscReal limit = d[4] + (d[4] - d[3]) / (std::pow(2.0, order) - 1);
+  for (int k = 0; k < 5; k++) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "3. cantilever 400 x 100 µm, %2" PetscInt_FMT " x %2" PetscInt_FMT " elements: tip deflection %.6f µm, %+.2f%% from Timoshenko (%.6f µm), %.1e from the extrapolated limit\n", n[k][0], n[k][1], (double)d[k], 100 * (double)((d[k] - t) / t), (double)t, (double)(std::fabs(d[k] - limit) / limit)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "   observed order %.2f (expected 2 for Q1); extrapolated limit %.6f µm, %+.2f%% from Timoshenko (the clamped edge)\n", (double)order, (double)limit, 100 * (double)((limit - t) / t)));
+  TG_CHECK(std::fabs(d[3] - t) < 0.02 * t, "32 x 8 mesh: tip deflection %.5f is not within 2%% of Timoshenko's %.5f", (double)d[3], (double)t);
+  TG_CHECK(order > 1.8, "the discretisation error does not fall at second order (observed %.2f)", (double)order);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_coarse: all checks passed\n"));
+  PetscCall(PetscFinalize());
+  return 0;
+}
