@@ -10,6 +10,7 @@
 #include <turgor/io/output.h>
 #include <turgor/io/particle_snapshots.h>
 #include <turgor/tissue.h>
+#include <turgor/ts_sampler.h>
 #include <petscts.h>
 #include <petscdmswarm.h>
 
@@ -63,7 +64,7 @@ private:
   ForceModel model_;
   DM         swarm_ = nullptr;
   TS         ts_    = nullptr;
-  Vec        U_ = nullptr, Uinterp_ = nullptr;
+  Vec        U_ = nullptr;
   IS         is_x_ = nullptr, is_v_ = nullptr;
   PetscInt   n_local_ = 0;
   std::vector<PetscReal> v_stale_; /* velocities seen by the last position update (Verlet) */
@@ -81,9 +82,8 @@ private:
   PetscReal              tip_y0_ = 0, tip_final_ = 0;
   CsvWriter              tip_csv_;
   ParticleSnapshotWriter snapshots_writer_;
-  PetscInt               next_sample_ = 0, next_snapshot_ = 0;
-  PetscReal              t_prev_ = 0;
-  PetscLogDouble         wall_start_ = 0, wall_last_report_ = 0, wall_end_ = 0;
+  TimeSampler            sampler_;
+  PetscLogDouble         wall_ = 0;
   PetscInt               rhs_evals_ = 0;
   PetscLogEvent          ev_output_ = 0;
   PetscLogStage          stage_setup_ = 0, stage_solve_ = 0;

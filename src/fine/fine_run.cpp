@@ -12,7 +12,6 @@ FineRun::~FineRun()
 {
   (void)TSDestroy(&ts_);
   (void)VecDestroy(&U_);
-  (void)VecDestroy(&Uinterp_);
   (void)ISDestroy(&is_x_);
   (void)ISDestroy(&is_v_);
   (void)DMDestroy(&swarm_);
@@ -150,7 +149,6 @@ PetscErrorCode FineRun::SetUp()
     u[2 * n_local_ + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
   }
   PetscCall(VecRestoreArray(U_, &u));
-  PetscCall(VecDuplicate(U_, &Uinterp_));
   v_stale_.assign(2 * n_local_, 0);
 
   PetscCall(TSCreate(comm_, &ts_));
@@ -185,6 +183,7 @@ PetscErrorCode FineRun::SetUp()
   }
   PetscCall(TSGetMaxTime(ts_, &t_final_));
   PetscCheck(t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be > 0", (double)t_final_);
+  sampler_.Configure(t_final_, tip_samples_, snapshots_, progress_interval_);
   {
     /* a fixed step is not clipped at the final time: shorten it so that whole steps end there */
     TSType    type;
@@ -332,51 +331,19 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U)
 
 PetscErrorCode FineRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
-  FineRun        *run = (FineRun *)ctx;
-  /* a fixed step sums n dt: the last step ends at T up to n rounding errors */
-  const PetscReal T = run->t_final_, eps = 1e-9 * T;
+  FineRun *run = (FineRun *)ctx;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
-  /* samples and snapshots at fixed times, by TS interpolation between the last two steps */
-  auto at = [&](PetscReal ts_k, Vec *X) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    if (step == 0 || std::fabs(ts_k - t) <= eps) *X = U;
-    else {
-      PetscCall(TSInterpolate(ts, ts_k, run->Uinterp_));
-      *X = run->Uinterp_;
-    }
-    PetscFunctionReturn(PETSC_SUCCESS);
-  };
-  while (run->next_sample_ <= run->tip_samples_) {
-    const PetscReal tk = T * run->next_sample_ / run->tip_samples_;
-    if (tk > t + eps) break;
-    Vec X = NULL;
-    PetscCall(at(tk, &X));
-    PetscCall(run->Observe(tk, X));
-    run->next_sample_++;
-  }
-  while (run->snapshots_ > 0 && run->next_snapshot_ <= run->snapshots_) {
-    const PetscReal tk = T * run->next_snapshot_ / run->snapshots_;
-    if (tk > t + eps) break;
-    Vec X = NULL;
-    PetscCall(at(tk, &X));
-    PetscCall(run->SyncSwarm(X));
-    PetscCall(run->snapshots_writer_.Write(run->swarm_, tk));
-    run->next_snapshot_++;
-  }
+  PetscCall(run->sampler_.Monitor(
+    ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Observe(tk, X); },
+    [run](PetscReal tk, Vec X) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(run->SyncSwarm(X));
+      PetscCall(run->snapshots_writer_.Write(run->swarm_, tk));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    },
+    run->rhs_evals_));
   PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
-  /* progress line */
-  PetscLogDouble now;
-  PetscCall(PetscTime(&now));
-  if (step == 0) run->wall_start_ = run->wall_last_report_ = now;
-  else if (run->progress_interval_ > 0 && now - run->wall_last_report_ >= run->progress_interval_) {
-    const PetscReal frac = t / T, el = now - run->wall_start_, eta = frac > 0 ? el * (1 - frac) / frac : 0;
-    PetscInt        rej;
-    PetscCall(TSGetStepRejections(ts, &rej));
-    PetscCall(PetscPrintf(run->comm_, "  t = %.6g / %g µs (%5.1f%%)  step %" PetscInt_FMT " (%" PetscInt_FMT " rejected)  %.0f steps/s  %.0f RHS/s  ETA %.0f s\n", (double)t, (double)T, 100.0 * frac, step, rej, step / el, run->rhs_evals_ / el, eta));
-    run->wall_last_report_ = now;
-  }
-  run->t_prev_ = t;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -387,7 +354,7 @@ PetscErrorCode FineRun::Solve()
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(stage_solve_));
   PetscCall(TSSolve(ts_, U_));
-  PetscCall(PetscTime(&wall_end_));
+  wall_ = sampler_.Elapsed();
   PetscCall(TSGetConvergedReason(ts_, &reason));
   PetscCall(TSGetSolveTime(ts_, &t));
   PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "Fine run failed at t = %g µs (%s): the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters", (double)t, TSConvergedReasons[reason]);
@@ -430,7 +397,7 @@ PetscErrorCode FineRun::WriteSummary()
   js.Set("steps", steps);
   js.Set("rejected_steps", rej);
   js.Set("rhs_evals", evals);
-  js.Set("wall_time_s", (PetscReal)(wall_end_ - wall_start_));
+  js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("n_wall_particles", nw);
   js.Set("n_fluid_particles", nf);
   PetscInt nsprings = (PetscInt)tissue_.particles.springs.size();
@@ -445,7 +412,7 @@ PetscErrorCode FineRun::WriteSummary()
   js.Set("mpi_ranks", (PetscInt)size);
   js.Set("snapshots", snapshots_writer_.Count());
   PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
-  PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %" PetscInt_FMT " RHS evaluations, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, evals, wall_end_ - wall_start_, (double)tip_final_, output_dir_.c_str(), snapshots_ > 0 ? ", particles.h5 + particles.xmf" : ""));
+  PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %" PetscInt_FMT " RHS evaluations, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, evals, wall_, (double)tip_final_, output_dir_.c_str(), snapshots_ > 0 ? ", particles.h5 + particles.xmf" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

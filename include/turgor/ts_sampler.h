@@ -1,0 +1,35 @@
+#pragma once
+/* Output at fixed times for any TS run: from a TSMonitor, calls `sample` at n_samples + 1 equally
+   spaced times over [0, T] and `snapshot` at n_snapshots + 1, with the state interpolated by TS
+   between the last two steps (not whichever steps the integrator took), and prints a progress line
+   (time reached, steps/s, evaluations/s, ETA) every `interval` seconds of wall time. */
+#include <turgor/petsc_compat.h>
+#include <petscts.h>
+#include <functional>
+
+namespace turgor {
+
+class TimeSampler {
+public:
+  using Callback = std::function<PetscErrorCode(PetscReal t, Vec U)>;
+
+  void Configure(PetscReal t_final, PetscInt n_samples, PetscInt n_snapshots, PetscReal progress_interval)
+  {
+    t_final_ = t_final, n_samples_ = n_samples, n_snapshots_ = n_snapshots, interval_ = progress_interval;
+    next_sample_ = next_snapshot_ = 0;
+  }
+  /* Call from the TS monitor; `evals` is the caller's count of function evaluations so far. */
+  PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, const Callback &sample, const Callback &snapshot, PetscInt evals);
+  PetscLogDouble Elapsed() const;
+  ~TimeSampler();
+
+private:
+  PetscErrorCode At(TS ts, PetscInt step, PetscReal t, Vec U, PetscReal tk, Vec *X);
+
+  PetscReal      t_final_ = 1, interval_ = 10;
+  PetscInt       n_samples_ = 0, n_snapshots_ = 0, next_sample_ = 0, next_snapshot_ = 0;
+  PetscLogDouble start_ = 0, last_report_ = 0;
+  Vec            work_ = nullptr;
+};
+
+} // namespace turgor

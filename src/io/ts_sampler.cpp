@@ -1,0 +1,63 @@
+#include <turgor/ts_sampler.h>
+#include <cmath>
+
+namespace turgor {
+
+TimeSampler::~TimeSampler() { (void)VecDestroy(&work_); }
+
+PetscLogDouble TimeSampler::Elapsed() const
+{
+  PetscLogDouble now = 0;
+  (void)PetscTime(&now);
+  return now - start_;
+}
+
+PetscErrorCode TimeSampler::At(TS ts, PetscInt step, PetscReal t, Vec U, PetscReal tk, Vec *X)
+{
+  /* a fixed step sums n dt: the last step ends at T only up to n rounding errors */
+  const PetscReal eps = 1e-9 * t_final_;
+  PetscFunctionBeginUser;
+  if (step == 0 || std::fabs(tk - t) <= eps) *X = U;
+  else {
+    if (!work_) PetscCall(VecDuplicate(U, &work_));
+    PetscCall(TSInterpolate(ts, tk, work_));
+    *X = work_;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TimeSampler::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, const Callback &sample, const Callback &snapshot, PetscInt evals)
+{
+  const PetscReal T = t_final_, eps = 1e-9 * T;
+  Vec             X;
+  PetscFunctionBeginUser;
+  while (sample && next_sample_ <= n_samples_) {
+    const PetscReal tk = T * next_sample_ / n_samples_;
+    if (tk > t + eps) break;
+    PetscCall(At(ts, step, t, U, tk, &X));
+    PetscCall(sample(tk, X));
+    next_sample_++;
+  }
+  while (snapshot && n_snapshots_ > 0 && next_snapshot_ <= n_snapshots_) {
+    const PetscReal tk = T * next_snapshot_ / n_snapshots_;
+    if (tk > t + eps) break;
+    PetscCall(At(ts, step, t, U, tk, &X));
+    PetscCall(snapshot(tk, X));
+    next_snapshot_++;
+  }
+  PetscLogDouble now;
+  PetscCall(PetscTime(&now));
+  if (step == 0) start_ = last_report_ = now;
+  else if (interval_ > 0 && now - last_report_ >= interval_) {
+    const PetscReal frac = t / T, el = now - start_, eta = frac > 0 ? el * (1 - frac) / frac : 0;
+    PetscInt        rej;
+    MPI_Comm        comm;
+    PetscCall(TSGetStepRejections(ts, &rej));
+    PetscCall(PetscObjectGetComm((PetscObject)ts, &comm));
+    PetscCall(PetscPrintf(comm, "  t = %.6g / %g µs (%5.1f%%)  step %" PetscInt_FMT " (%" PetscInt_FMT " rejected)  %.3g steps/s  %.3g evaluations/s  ETA %.0f s\n", (double)t, (double)T, 100.0 * frac, step, rej, step / el, evals / el, eta));
+    last_report_ = now;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
