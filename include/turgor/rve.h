@@ -19,11 +19,7 @@ namespace turgor {
 
 struct RVECounters {
   PetscInt solves = 0, failures = 0, iterations = 0, snes_its = 0, ksp_its = 0, jacobians = 0, force_evals = 0;
-  RVECounters &operator+=(const RVECounters &o)
-  {
-    solves += o.solves, failures += o.failures, iterations += o.iterations, snes_its += o.snes_its, ksp_its += o.ksp_its, jacobians += o.jacobians, force_evals += o.force_evals;
-    return *this;
-  }
+  PetscInt tangent_solves = 0; /* perturbed solves (eqs 46-53), included in solves */
 };
 
 class RVE : public MaterialPoint {

@@ -1,5 +1,6 @@
 static const char help[] = "turgor: mechanics of plant tissue from single cells to organs.\n"
                            "\n"
+                           "  turgor                      (the seed's bending bar, FE^2: config/bending_bar_fe2.yaml)\n"
                            "  turgor -mode fine -options_file_yaml config/bending_bar_fine.yaml [options]\n"
                            "  turgor -mode rve -options_file_yaml config/rve_uniaxial.yaml [options]\n"
                            "\n"
@@ -10,9 +11,11 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
                            "\n"
                            "Modes:\n"
                            "  fine   full fine-scale run: wall (DEM) + cell fluid (SPH) particles in a DMSwarm\n"
-                           "  rve    one material point (RVE or closed form) along a strain path: stress, density, tangents\n\n";
+                           "  rve    one material point (RVE or closed form) along a strain path: stress, density, tangents\n"
+                           "  fe2    (default) coarse Q1 model on DMPlex whose stress comes from RVEs at the quadrature points\n\n";
 
 #include <turgor/turgor.h>
+#include <turgor/fe2_run.h>
 #include <turgor/rve_run.h>
 
 /* A misspelled option in a scene must not pass unnoticed. */
@@ -40,6 +43,18 @@ static PetscErrorCode RunFine(MPI_Comm comm, PetscBool help_only)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode RunFE2(MPI_Comm comm, PetscBool help_only)
+{
+  turgor::FE2Run run(comm);
+  PetscFunctionBeginUser;
+  PetscCall(run.SetFromOptions());
+  PetscCall(run.SetUp());
+  if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(run.Solve());
+  PetscCall(run.WriteSummary());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode RunRVE(MPI_Comm comm, PetscBool help_only)
 {
   turgor::RVERun run(comm);
@@ -54,8 +69,8 @@ static PetscErrorCode RunRVE(MPI_Comm comm, PetscBool help_only)
 
 int main(int argc, char **argv)
 {
-  const char *const modes[] = {"fine", "rve"};
-  PetscInt          mode    = 0;
+  const char *const modes[] = {"fine", "rve", "fe2"};
+  PetscInt          mode    = 2; /* the default scene: the seed's bending bar with FE^2 */
   PetscBool         help_requested;
 
   PetscFunctionBeginUser;
@@ -70,6 +85,9 @@ int main(int argc, char **argv)
     break;
   case 1:
     PetscCall(RunRVE(PETSC_COMM_WORLD, help_requested));
+    break;
+  case 2:
+    PetscCall(RunFE2(PETSC_COMM_WORLD, help_requested));
     break;
   }
   PetscCall(WarnUnusedOptions());

@@ -173,18 +173,18 @@ PetscErrorCode MaterialPointPool::Revert()
 PetscErrorCode MaterialPointPool::GlobalCounters(RVECounters *c) const
 {
   PetscMPIInt grank;
-  PetscInt    v[7] = {0, 0, 0, 0, 0, 0, 0};
+  PetscInt    v[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(PetscSubcommChild(subcomm_), &grank));
   if (grank == 0)
     for (const auto &p : points_)
       if (auto *rve = dynamic_cast<const RVE *>(p.get())) {
         const RVECounters &k = rve->Counters();
-        const PetscInt     w[7] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals};
-        for (int i = 0; i < 7; i++) v[i] += w[i];
+        const PetscInt     w[8] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves};
+        for (int i = 0; i < 8; i++) v[i] += w[i];
       }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 7, MPIU_INT, MPI_SUM, comm_));
-  *c = RVECounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6]};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 8, MPIU_INT, MPI_SUM, comm_));
+  *c = RVECounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -423,6 +423,7 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   PetscCall(PetscLogEventBegin(ev_solve_, 0, 0, 0, 0));
   *out = MaterialResponse();
   counters_.solves++;
+  if (kind == EvaluationKind::Perturbed) counters_.tangent_solves++;
   const PetscReal J = F.Det();
   if (!(J > 0) || !std::isfinite(J) || !std::isfinite(Fdot.Norm())) {
     out->ok     = false;

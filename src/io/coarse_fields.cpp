@@ -1,0 +1,195 @@
+#include <turgor/io/coarse_fields.h>
+#include <petscviewerhdf5.h>
+#include <hdf5.h>
+
+namespace turgor {
+
+/* Gather variable-length blocks of doubles to rank 0 (MPI_Gatherv). */
+static PetscErrorCode GatherToZero(MPI_Comm comm, const std::vector<PetscReal> &mine, std::vector<PetscReal> &all)
+{
+  PetscMPIInt size, rank, n = (PetscMPIInt)mine.size();
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::vector<PetscMPIInt> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  if (rank == 0)
+    for (int r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
+  all.resize(rank == 0 ? displs[size - 1] + counts[size - 1] : 0);
+  PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, 0, comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseFieldsWriter::WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs)
+{
+  Vec v;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, bs, (PetscInt)a.size(), a.data(), &v));
+  PetscCall(PetscObjectSetName((PetscObject)v, name));
+  PetscCall(VecView(v, viewer_));
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &dir, const std::string &base)
+{
+  DM                 dm = model.GetDM(), cdm;
+  IS                 gnum;
+  const PetscInt    *g;
+  PetscInt           vs, ve, cs, ce, gmax = -1;
+  Vec                coords;
+  PetscSection       csec;
+  const PetscScalar *x;
+  PetscFunctionBeginUser;
+  PetscCall(Close());
+  PetscCall(PetscObjectGetComm((PetscObject)dm, &comm_));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
+  h5name_  = base + ".h5";
+  xmfpath_ = dir + "/" + base + ".xmf";
+  times_.clear();
+  PetscCall(DMCreateLocalVector(dm, &Uloc_));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
+  PetscCall(DMPlexGetVertexNumbering(dm, &gnum));
+  PetscCall(ISGetIndices(gnum, &g));
+  vertex_gid_.assign(g, g + (ve - vs));
+  PetscCall(ISRestoreIndices(gnum, &g));
+  for (PetscInt k : vertex_gid_) gmax = PetscMax(gmax, k >= 0 ? k : -(k + 1));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_INT, MPI_MAX, comm_));
+  n_vertices_ = gmax + 1;
+
+  /* owned vertices: (gid, x, y); cells: the global numbers of their four vertices, counter-clockwise */
+  std::vector<PetscReal> mine, all, conn, allconn;
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &csec));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt v = vs; v < ve; v++) {
+    if (vertex_gid_[v - vs] < 0) continue;
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(csec, v, &off));
+    mine.insert(mine.end(), {(PetscReal)vertex_gid_[v - vs], PetscRealPart(x[off]), PetscRealPart(x[off + 1])});
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  for (PetscInt c = cs; c < ce; c++) {
+    PetscInt *cl = NULL, n;
+    PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &n, &cl));
+    for (PetscInt r = 0; r < n; r++)
+      if (cl[2 * r] >= vs && cl[2 * r] < ve) {
+        const PetscInt k = vertex_gid_[cl[2 * r] - vs];
+        conn.push_back((PetscReal)(k >= 0 ? k : -(k + 1)));
+      }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &n, &cl));
+  }
+  PetscCall(GatherToZero(comm_, mine, all));
+  PetscCall(GatherToZero(comm_, conn, allconn));
+  n_cells_ = (PetscInt)allconn.size() / 4;
+  PetscCallMPI(MPI_Bcast(&n_cells_, 1, MPIU_INT, 0, comm_));
+  if (rank_ == 0) {
+    std::vector<PetscReal> xy(2 * n_vertices_);
+    for (size_t k = 0; k + 3 <= all.size(); k += 3) {
+      const PetscInt id = (PetscInt)all[k];
+      xy[2 * id]        = all[k + 1];
+      xy[2 * id + 1]    = all[k + 2];
+    }
+    PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, (dir + "/" + h5name_).c_str(), FILE_MODE_WRITE, &viewer_));
+    PetscCall(PetscViewerHDF5PushGroup(viewer_, "/mesh"));
+    PetscCall(WriteArray("vertices", xy, 2));
+    std::vector<PetscInt> cells(allconn.begin(), allconn.end());
+    IS                    is;
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)cells.size(), cells.data(), PETSC_COPY_VALUES, &is));
+    PetscCall(ISSetBlockSize(is, 4));
+    PetscCall(PetscObjectSetName((PetscObject)is, "cells"));
+    PetscCall(ISView(is, viewer_));
+    PetscCall(ISDestroy(&is));
+    PetscCall(PetscViewerHDF5PopGroup(viewer_));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal time)
+{
+  DM                 dm = model.GetDM();
+  PetscSection       ls;
+  PetscInt           vs, ve;
+  const PetscScalar *u;
+  std::vector<PetscReal> mine, all, stress;
+  PetscFunctionBeginUser;
+  PetscCall(model.GlobalToLocal(U, Uloc_));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
+  PetscCall(VecGetArrayRead(Uloc_, &u));
+  for (PetscInt v = vs; v < ve; v++) {
+    if (vertex_gid_[v - vs] < 0) continue;
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    mine.push_back((PetscReal)vertex_gid_[v - vs]);
+    for (int d = 0; d < 4; d++) mine.push_back(PetscRealPart(u[off + d]));
+  }
+  PetscCall(VecRestoreArrayRead(Uloc_, &u));
+  PetscCall(GatherToZero(comm_, mine, all));
+  PetscCall(GatherToZero(comm_, model.CellStress(), stress));
+  if (rank_ == 0) {
+    std::vector<PetscReal> disp(2 * n_vertices_), vel(2 * n_vertices_), sxx(n_cells_), syy(n_cells_), sxy(n_cells_);
+    for (size_t k = 0; k + 4 < all.size(); k += 5) {
+      const PetscInt id = (PetscInt)all[k];
+      for (int d = 0; d < 2; d++) {
+        disp[2 * id + d] = all[k + 1 + d];
+        vel[2 * id + d]  = all[k + 3 + d];
+      }
+    }
+    for (PetscInt c = 0; c < n_cells_; c++) {
+      sxx[c] = stress[3 * c];
+      syy[c] = stress[3 * c + 1];
+      sxy[c] = stress[3 * c + 2];
+    }
+    char group[64];
+    PetscCall(PetscSNPrintf(group, sizeof group, "/snapshot_%04d", (int)times_.size()));
+    PetscCall(PetscViewerHDF5PushGroup(viewer_, group));
+    PetscCall(WriteArray("displacement", disp, 2));
+    PetscCall(WriteArray("velocity", vel, 2));
+    PetscCall(WriteArray("stress_xx", sxx, 1));
+    PetscCall(WriteArray("stress_yy", syy, 1));
+    PetscCall(WriteArray("stress_xy", sxy, 1));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
+    PetscCall(PetscViewerHDF5PopGroup(viewer_));
+    hid_t fid;
+    PetscCall(PetscViewerHDF5GetFileId(viewer_, &fid));
+    PetscCheck(H5Fflush(fid, H5F_SCOPE_GLOBAL) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot flush %s", h5name_.c_str());
+  }
+  times_.push_back(time);
+  PetscCall(WriteXdmf());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseFieldsWriter::WriteXdmf()
+{
+  FILE *fp;
+  PetscFunctionBeginUser;
+  const long long NV = n_vertices_, NC = n_cells_;
+  const char     *h5 = h5name_.c_str();
+  PetscCall(PetscFOpen(comm_, xmfpath_.c_str(), "w", &fp));
+  PetscCall(PetscFPrintf(comm_, fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"coarse\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
+  for (size_t k = 0; k < times_.size(); k++) {
+    PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"coarse_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", k, (double)times_[k]));
+    PetscCall(PetscFPrintf(comm_, fp, "    <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 4\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/mesh/cells</DataItem>\n    </Topology>\n", NC, NC, (int)sizeof(PetscInt), h5));
+    PetscCall(PetscFPrintf(comm_, fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n", NV, h5));
+    for (const char *f : {"displacement", "velocity"}) PetscCall(PetscFPrintf(comm_, fp, "    <Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n", f, NV, h5, k, f));
+    for (const char *f : {"stress_xx", "stress_yy", "stress_xy"}) PetscCall(PetscFPrintf(comm_, fp, "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n", f, NC, h5, k, f));
+    PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+  }
+  PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n </Domain>\n</Xdmf>\n"));
+  PetscCall(PetscFClose(comm_, fp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseFieldsWriter::Close()
+{
+  PetscFunctionBeginUser;
+  if (viewer_) PetscCall(PetscViewerDestroy(&viewer_));
+  viewer_ = nullptr;
+  PetscCall(VecDestroy(&Uloc_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
