@@ -3,7 +3,8 @@ static const char help[] = "The radau5 TS type (Radau IIA, order 5): (a) its con
                            "and the order of the error estimate; (c) adaptive runs on a stiff nonlinear problem\n"
                            "(IFunction and RHS forms) against the exact solution; (d) TSInterpolate inside steps;\n"
                            "(e) domain errors (NaN, TSSetFunctionDomainError, SNESSetFunctionDomainError) force\n"
-                           "rejections and the solve completes.\n";
+                           "rejections and the solve completes; (f) a distributed heat equation with a finite-element mass\n"
+                           "matrix (also run on 2 ranks, where only (f) runs) against its semi-discrete exact solution.\n";
 #include "test_util.h"
 #include <turgor/ts_radau5.h>
 #include <complex>
@@ -250,11 +251,15 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscCall(TSSetTolerances(ts, spec.tol, NULL, spec.tol, NULL));
   PetscCall(TSSetPostStep(ts, SampleInterior));
   {
-    TSAdapt adapt;
+    /* command-line options may change the adaptive runs, but fixed steps stay fixed */
+    TSAdapt   adapt;
+    PetscBool fixed;
     PetscCall(TSGetAdapt(ts, &adapt));
     PetscCall(TSAdaptSetType(adapt, spec.adapt));
+    PetscCall(TSSetFromOptions(ts));
+    PetscCall(PetscStrcmp(spec.adapt, TSADAPTNONE, &fixed));
+    if (fixed) PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
   }
-  PetscCall(TSSetFromOptions(ts));
   PetscCall(TSSolve(ts, U));
   PetscCall(TSGetConvergedReason(ts, &reason));
   TG_CHECK(reason > 0, "TSSolve did not converge: %s", TSConvergedReasons[reason]);
@@ -384,15 +389,186 @@ PetscErrorCode CheckTableau()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* TSRollBack (as TSEvent uses it): the state returns exactly, and the step is retried without a new Jacobian */
+PetscErrorCode CheckRollBack()
+{
+  Problem           p;
+  TS                ts;
+  Vec               U, U2, U3;
+  Mat               J;
+  PetscReal         t, u0[2], d2, d3;
+  PetscInt          jac_before, jac_after;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &U));
+  p.Initial(u0);
+  PetscCall(VecSetValue(U, 0, u0[0], INSERT_VALUES));
+  PetscCall(VecSetValue(U, 1, u0[1], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(U));
+  PetscCall(VecAssemblyEnd(U));
+  PetscCall(VecDuplicate(U, &U2));
+  PetscCall(VecDuplicate(U, &U3));
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(TSSetType(ts, TSRADAU5));
+  PetscCall(TSSetIFunction(ts, NULL, IFunction, &p));
+  PetscCall(TSSetIJacobian(ts, J, J, IJacobian, &p));
+  PetscCall(TSSetTimeStep(ts, 0.1));
+  PetscCall(TSSetMaxTime(ts, 10));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetTolerances(ts, 1e-10, NULL, 1e-10, NULL));
+  {
+    TSAdapt adapt;
+    PetscCall(TSGetAdapt(ts, &adapt));
+    PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
+  }
+  PetscCall(TSSetSolution(ts, U));
+  PetscCall(TSSetUp(ts));
+  PetscCall(TSStep(ts));
+  PetscCall(TSStep(ts));
+  PetscCall(VecCopy(U, U2));
+  PetscCall(TSStep(ts));
+  PetscCall(VecCopy(U, U3));
+  PetscCall(TSRadau5GetCounters(ts, &jac_before, NULL, NULL));
+  PetscCall(TSRollBack(ts));
+  PetscCall(TSGetTime(ts, &t));
+  PetscCall(VecAXPY(U2, -1.0, U));
+  PetscCall(VecNorm(U2, NORM_INFINITY, &d2));
+  TG_CHECK(std::fabs(t - 0.2) < 1e-14 && d2 == 0, "TSRollBack: t = %g, |U - U(0.2)| = %g", (double)t, (double)d2);
+  PetscCall(TSStep(ts));
+  PetscCall(TSGetTime(ts, &t));
+  PetscCall(TSRadau5GetCounters(ts, &jac_after, NULL, NULL));
+  PetscCall(VecAXPY(U3, -1.0, U));
+  PetscCall(VecNorm(U3, NORM_INFINITY, &d3));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    TSRollBack: back to t = 0.2 exactly; the retried step differs by %.2e; Jacobian evaluations %" PetscInt_FMT " -> %" PetscInt_FMT "\n", (double)d3, jac_before, jac_after));
+  TG_CHECK(std::fabs(t - 0.3) < 1e-14 && d3 < 1e-13, "the retried step: t = %g, difference %g", (double)t, (double)d3);
+  TG_CHECK(jac_after == jac_before, "a rolled-back step must not need a new Jacobian");
+  PetscCall(TSInterpolate(ts, 0.25, U2));
+  PetscCall(TSDestroy(&ts));
+  PetscCall(MatDestroy(&J));
+  PetscCall(VecDestroy(&U));
+  PetscCall(VecDestroy(&U2));
+  PetscCall(VecDestroy(&U3));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* (f) u_t = u_xx on (0, 1), u = 0 at both ends, linear elements on n interior nodes: M u' = -K u with
+   M = (h/6) tridiag(1, 4, 1), K = (1/h) tridiag(-1, 2, -1). sin(k pi x_j) are generalised eigenvectors
+   with eigenvalues 6 (1 - cos(k pi h)) / (h^2 (2 + cos(k pi h))), so the semi-discrete solution from
+   sin(pi x) + 0.5 sin(20 pi x) is known exactly. */
+struct Heat {
+  Mat      M, K;
+  PetscInt nf = 0, nj = 0;
+};
+
+PetscErrorCode HeatIFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx)
+{
+  Heat *p = (Heat *)ctx;
+  PetscFunctionBeginUser;
+  p->nf++;
+  PetscCall(MatMult(p->K, U, F));
+  PetscCall(MatMultAdd(p->M, Udot, F, F));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode HeatIJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shift, Mat A, Mat B, void *ctx)
+{
+  Heat *p = (Heat *)ctx;
+  PetscFunctionBeginUser;
+  p->nj++;
+  PetscCall(MatCopy(p->K, B, SAME_NONZERO_PATTERN));
+  PetscCall(MatAXPY(B, shift, p->M, SAME_NONZERO_PATTERN));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode HeatRun()
+{
+  const PetscInt  n = 200, modes[2] = {1, 20};
+  const PetscReal h = 1.0 / (n + 1), amp[2] = {1, 0.5}, tf = 0.05, tol = 1e-6;
+  Heat            p;
+  TS              ts;
+  Vec             U, E;
+  Mat             J;
+  PetscInt        rs, re, steps, rejects, jac, newton, solves;
+  PetscReal       err, nrm;
+  PetscMPIInt     size;
+  TSConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 2, NULL, &p.M));
+  PetscCall(MatGetOwnershipRange(p.M, &rs, &re));
+  for (PetscInt i = rs; i < re; i++)
+    for (PetscInt j = PetscMax(0, i - 1); j <= PetscMin(n - 1, i + 1); j++) PetscCall(MatSetValue(p.M, i, j, i == j ? 4 * h / 6 : h / 6, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(p.M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(p.M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatDuplicate(p.M, MAT_DO_NOT_COPY_VALUES, &p.K));
+  for (PetscInt i = rs; i < re; i++)
+    for (PetscInt j = PetscMax(0, i - 1); j <= PetscMin(n - 1, i + 1); j++) PetscCall(MatSetValue(p.K, i, j, i == j ? 2 / h : -1 / h, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(p.K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(p.K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatDuplicate(p.M, MAT_COPY_VALUES, &J));
+  PetscCall(MatCreateVecs(p.M, &U, &E));
+  for (PetscInt i = rs; i < re; i++) {
+    PetscReal u0 = 0, ue = 0;
+    for (int m = 0; m < 2; m++) {
+      const PetscReal kph = modes[m] * PETSC_PI * h, lam = 6 * (1 - std::cos(kph)) / (h * h * (2 + std::cos(kph))), phi = std::sin(modes[m] * PETSC_PI * (i + 1) * h);
+      u0 += amp[m] * phi;
+      ue += amp[m] * std::exp(-lam * tf) * phi;
+    }
+    PetscCall(VecSetValue(U, i, u0, INSERT_VALUES));
+    PetscCall(VecSetValue(E, i, ue, INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(U));
+  PetscCall(VecAssemblyEnd(U));
+  PetscCall(VecAssemblyBegin(E));
+  PetscCall(VecAssemblyEnd(E));
+  PetscCall(TSCreate(PETSC_COMM_WORLD, &ts));
+  PetscCall(TSSetType(ts, TSRADAU5));
+  PetscCall(TSSetIFunction(ts, NULL, HeatIFunction, &p));
+  PetscCall(TSSetIJacobian(ts, J, J, HeatIJacobian, &p));
+  PetscCall(TSSetMaxTime(ts, tf));
+  PetscCall(TSSetTimeStep(ts, 1e-5));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetTolerances(ts, tol, NULL, tol, NULL));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSSolve(ts, U));
+  PetscCall(TSGetConvergedReason(ts, &reason));
+  TG_CHECK(reason > 0, "heat: TSSolve did not converge: %s", TSConvergedReasons[reason]);
+  PetscCall(TSGetStepNumber(ts, &steps));
+  PetscCall(TSGetStepRejections(ts, &rejects));
+  PetscCall(TSRadau5GetCounters(ts, &jac, &newton, &solves));
+  PetscCall(VecNorm(E, NORM_INFINITY, &nrm));
+  PetscCall(VecAXPY(E, -1.0, U));
+  PetscCall(VecNorm(E, NORM_INFINITY, &err));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "(f) heat equation, %" PetscInt_FMT " nodes on %d rank(s), t = %g, rtol = atol = %g: steps %" PetscInt_FMT ", rejected %" PetscInt_FMT ", Jacobian evals %" PetscInt_FMT ", Newton its %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", max error %.3e (%.3g x tol)\n", n, size, (double)tf, (double)tol, steps, rejects, jac, newton, solves, (double)err, (double)(err / (tol + tol * nrm))));
+  TG_CHECK(err <= 10 * (tol + tol * nrm), "heat: error %g", (double)err);
+  TG_CHECK(jac == 2, "heat: a linear problem needs 2 Jacobian evaluations, got %" PetscInt_FMT, jac);
+  PetscCall(TSDestroy(&ts));
+  PetscCall(MatDestroy(&J));
+  PetscCall(MatDestroy(&p.M));
+  PetscCall(MatDestroy(&p.K));
+  PetscCall(VecDestroy(&U));
+  PetscCall(VecDestroy(&E));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
 {
+  PetscMPIInt size;
+
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
   PetscCall(TurgorRegisterAll()); /* idempotent */
-
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(HeatRun());
+  if (size > 1) { /* (a)-(e) are serial */
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_radau5: all checks passed\n"));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(CheckTableau());
 
   /* (b) fixed steps on the oscillator with mass matrix M */
@@ -442,6 +618,7 @@ int main(int argc, char **argv)
     }
     const PetscReal eorder = std::log2(w[2] / w[3]);
     TG_CHECK(eorder > 3.5 && eorder < 4.5, "the error estimate scales as h^%g, expected h^4", (double)eorder);
+    PetscCall(CheckRollBack());
   }
 
   /* (c) adaptive, stiff nonlinear problem, rtol = atol = 1e-6 */

@@ -140,7 +140,7 @@ struct Radau5 {
   PetscBool        pattern_dirty = PETSC_TRUE;
 
   /* vectors */
-  Vec U0 = NULL, U1 = NULL, Udot = NULL, Udot0 = NULL, scal = NULL, work = NULL, rhs = NULL, err = NULL, Xc = NULL, Yc = NULL;
+  Vec U0 = NULL, U1 = NULL, Udot = NULL, Udot0 = NULL, Udot1 = NULL, scal = NULL, work = NULL, rhs = NULL, err = NULL, Xc = NULL, Yc = NULL;
   Vec Z[3] = {NULL, NULL, NULL}, Y[3] = {NULL, NULL, NULL}, R[3] = {NULL, NULL, NULL}, dW[3] = {NULL, NULL, NULL}, D[3] = {NULL, NULL, NULL};
 
   /* state of the integration */
@@ -566,9 +566,10 @@ PetscErrorCode TSStep_Radau5(TS ts)
     r->faccon    = 1;
     r->h_fact    = 0;
     PetscCall(VecZeroEntries(r->Udot0));
+    PetscCall(VecZeroEntries(r->Udot1));
     if (ts->steps == 0) r->n_jac = r->n_newton = r->n_solve = r->n_decomp = r->n_ifunc = r->n_newton_fail = r->n_domain = 0;
     r->started = PETSC_TRUE;
-  }
+  } else if (!ts->steprollback) PetscCall(VecCopy(r->Udot1, r->Udot0)); /* U' at the new step's start */
   r->t0 = ts->ptime;
   PetscCall(VecCopy(ts->vec_sol, r->U0));
   PetscCall(Radau5Weights(ts, r));
@@ -620,7 +621,9 @@ PetscErrorCode TSStep_Radau5(TS ts)
     PetscCall(TSAdaptCandidateAdd(ts->adapt, "radau5", 5, 3, 1.0, 1.0, PETSC_TRUE));
     PetscCall(TSAdaptChoose(ts->adapt, ts, r->h, NULL, &next_h, &accept));
     if (!accept) {
-      ts->time_step = next_h;
+      /* a first step that fails the error test is usually far too large (e.g. across an initial
+         layer, where the error grows as h shrinks towards the fast time scale): RADAU5 cuts it by 10 */
+      ts->time_step = r->first ? PetscMin(next_h, 0.1 * r->h) : next_h;
       if (!r->jac_fresh) r->need_jac = PETSC_TRUE;
       goto reject_step;
     }
@@ -635,8 +638,8 @@ PetscErrorCode TSStep_Radau5(TS ts)
     {
       PetscScalar a[3];
       for (int j = 0; j < 3; j++) a[j] = r->tab.Ainv[2][j] / r->h;
-      PetscCall(VecZeroEntries(r->Udot0));
-      PetscCall(VecMAXPY(r->Udot0, 3, a, r->Z));
+      PetscCall(VecZeroEntries(r->Udot1));
+      PetscCall(VecMAXPY(r->Udot1, 3, a, r->Z));
     }
     /* RADAU5's reuse: a fast Newton keeps J, and a step-size change too small to pay for new
        factors keeps h; neither is done close to the final time, where TSAdapt fits the last step */
@@ -734,13 +737,11 @@ PetscErrorCode TSRollBack_Radau5(TS ts)
 
   PetscFunctionBeginUser;
   PetscCall(VecCopy(r->U0, ts->vec_sol));
-  /* the polynomial of the step before is gone; J is still valid if it was taken at U0 */
+  /* J is only evaluated at the start of a step, so the one in memory is the one the undone step
+     used: keep it. The polynomial of the step before that is gone: Newton starts from zero. */
   r->have_cont = PETSC_FALSE;
   r->jac_fresh = r->jac_fresh_prev;
-  r->need_jac  = (PetscBool)!r->jac_fresh;
-  r->h_fact    = 0;
-  r->faccon    = 1;
-  PetscCall(VecZeroEntries(r->Udot0));
+  r->need_jac  = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -749,7 +750,7 @@ PetscErrorCode TSReset_Radau5(TS ts)
   Radau5 *r = (Radau5 *)ts->data;
 
   PetscFunctionBeginUser;
-  for (Vec *v : {&r->U0, &r->U1, &r->Udot, &r->Udot0, &r->scal, &r->work, &r->rhs, &r->err, &r->Xc, &r->Yc}) PetscCall(VecDestroy(v));
+  for (Vec *v : {&r->U0, &r->U1, &r->Udot, &r->Udot0, &r->Udot1, &r->scal, &r->work, &r->rhs, &r->err, &r->Xc, &r->Yc}) PetscCall(VecDestroy(v));
   for (int i = 0; i < 3; i++)
     for (Vec *v : {&r->Z[i], &r->Y[i], &r->R[i], &r->dW[i], &r->D[i]}) PetscCall(VecDestroy(v));
   for (Mat *m : {&r->P, &r->M, &r->Ar, &r->Ac}) PetscCall(MatDestroy(m));
@@ -796,7 +797,7 @@ PetscErrorCode TSSetUp_Radau5(TS ts)
   /* sub-solver options are read here, as PETSc's block preconditioners do for their blocks */
   PetscCall(KSPSetFromOptions(r->kspr));
   PetscCall(KSPSetFromOptions(r->kspc));
-  for (Vec *v : {&r->U0, &r->U1, &r->Udot, &r->Udot0, &r->scal, &r->work, &r->rhs, &r->err}) PetscCall(VecDuplicate(ts->vec_sol, v));
+  for (Vec *v : {&r->U0, &r->U1, &r->Udot, &r->Udot0, &r->Udot1, &r->scal, &r->work, &r->rhs, &r->err}) PetscCall(VecDuplicate(ts->vec_sol, v));
   for (int i = 0; i < 3; i++)
     for (Vec *v : {&r->Z[i], &r->Y[i], &r->R[i], &r->dW[i], &r->D[i]}) PetscCall(VecDuplicate(ts->vec_sol, v));
   PetscCall(VecGetLocalSize(ts->vec_sol, &n));
