@@ -590,8 +590,7 @@ int main(int argc, char **argv)
       ie[k] = p.interp_err;
       TG_CHECK(r.steps == N[k] && std::fabs(r.t - 2) < 1e-12, "fixed-step run: %" PetscInt_FMT " steps to t = %g", r.steps, (double)r.t);
       TG_CHECK(r.jac == 2 && r.nj == 2, "a linear problem needs exactly the 2 IJacobian calls that recover M, got %" PetscInt_FMT, r.jac);
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "    N = %3" PetscInt_FMT ", h = %.4f: error %.3e%s, interpolation error %.3e%s; Jacobian evals %" PetscInt_FMT ", Newton its %" PetscInt_FMT "\n", N[k], (double)s.dt, (double)e[k],
-                            k ? "" : "         ", (double)ie[k], k ? "" : "", r.jac, r.newton));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "    N = %3" PetscInt_FMT ", h = %.4f: error %.3e, interpolation error %.3e; Jacobian evals %" PetscInt_FMT ", Newton its %" PetscInt_FMT "\n", N[k], (double)s.dt, (double)e[k], (double)ie[k], r.jac, r.newton));
       if (k) PetscCall(PetscPrintf(PETSC_COMM_SELF, "        observed order %.3f, dense output order %.3f\n", (double)std::log2(e[k - 1] / e[k]), (double)std::log2(ie[k - 1] / ie[k])));
     }
     const PetscReal order = std::log2(e[3] / e[4]), order2 = std::log2(e[2] / e[3]), dense = std::log2(ie[3] / ie[4]);
@@ -613,7 +612,7 @@ int main(int argc, char **argv)
       p.sample   = PETSC_FALSE;
       PetscCall(Run(p, s, &r));
       w[k] = r.wlte;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "    one step h = %.4f: weighted error estimate %.4e%s\n", (double)s.dt, (double)w[k], k ? "" : ""));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "    one step h = %.4f: weighted error estimate %.4e\n", (double)s.dt, (double)w[k]));
       if (k) PetscCall(PetscPrintf(PETSC_COMM_SELF, "        estimate order %.3f\n", (double)std::log2(w[k - 1] / w[k])));
     }
     const PetscReal eorder = std::log2(w[2] / w[3]);

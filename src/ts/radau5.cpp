@@ -480,7 +480,6 @@ PetscErrorCode Radau5Newton(TS ts, Radau5 *r, NewtonOutcome *outcome, PetscReal 
     }
     if (bad) {
       *outcome = NewtonOutcome::domain;
-      r->n_domain++;
       break;
     }
     /* right-hand sides -Tinv R: the real one in rhs, the complex pair interleaved in Xc */
@@ -598,18 +597,19 @@ PetscErrorCode TSStep_Radau5(TS ts)
     PetscCall(Radau5Newton(ts, r, &outcome, &hfac));
     if (outcome != NewtonOutcome::converged) {
       PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g h=%g: Newton %s, retrying with h=%g\n", ts->steps, (double)r->t0, (double)r->h, NewtonOutcomeNames[(int)outcome], (double)(r->h * hfac)));
-      r->n_newton_fail++;
-      ts->num_snes_failures++;
+      if (outcome == NewtonOutcome::domain) r->n_domain++;
+      else {
+        r->n_newton_fail++;
+        ts->num_snes_failures++; /* reported by TSGetSNESFailures(); no limit: h is reduced instead */
+      }
       ts->time_step = r->h * hfac;
       /* a stale J may be why Newton failed to converge; a domain error or a singular matrix is not
          cured by a new J (the new h gives new factors anyway) */
       if (!r->jac_fresh && (outcome == NewtonOutcome::diverged || outcome == NewtonOutcome::slow || outcome == NewtonOutcome::too_many)) r->need_jac = PETSC_TRUE;
       goto reject_step;
     }
-    for (int i = 0; i < 3; i++) {
-      PetscCall(VecWAXPY(r->Y[i], 1.0, r->U0, r->Z[i]));
-      PetscCall(TSPostStage(ts, r->t0 + r->tab.c[i] * r->h, i, r->Y));
-    }
+    for (int i = 0; i < 3; i++) PetscCall(VecWAXPY(r->Y[i], 1.0, r->U0, r->Z[i]));
+    for (int i = 0; i < 3; i++) PetscCall(TSPostStage(ts, r->t0 + r->tab.c[i] * r->h, i, r->Y));
     for (int i = 0; i < 3 && stage_ok; i++) PetscCall(TSAdaptCheckStage(ts->adapt, ts, r->t0 + r->tab.c[i] * r->h, r->Y[i], &stage_ok));
     if (!stage_ok) { /* TSAdaptCheckStage has reduced ts->time_step */
       r->n_domain++;
@@ -843,7 +843,7 @@ PetscErrorCode TSView_Radau5(TS ts, PetscViewer viewer)
                                    (double)r->keep_step[0], (double)r->keep_step[1], r->extrapolate ? "extrapolated" : "zero"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Jacobian evaluations %" PetscInt_FMT ", factorisations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT "\n", r->n_jac, r->n_decomp, r->n_newton,
                                    r->n_solve, r->n_ifunc));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  Newton failures %" PetscInt_FMT " (of which domain errors %" PetscInt_FMT ")\n", r->n_newton_fail, r->n_domain));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  rejected attempts: Newton not converging %" PetscInt_FMT ", domain errors %" PetscInt_FMT ", error test %" PetscInt_FMT "\n", r->n_newton_fail, r->n_domain, ts->reject - r->n_newton_fail - r->n_domain));
   if (r->kspr) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  real system (gamma/h M - J):\n"));
     PetscCall(PetscViewerASCIIPushTab(viewer));
