@@ -41,8 +41,12 @@ public:
 
   /* F = Mt Udot - G(U). *ok = false (F filled with NaN) when a material point failed. */
   PetscErrorCode IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok);
-  /* J = shift Mt + [[0, -I], [K, C]] at U. */
-  PetscErrorCode IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok);
+  /* J = shift Mt + [[0, -I], [K, C]] at U. With refresh = false the K and C of the last fresh
+     Jacobian are reused (a modified Newton iteration: no material tangents); only the shift part
+     changes. */
+  PetscErrorCode IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh = true);
+  /* Jacobians assembled from the same K, C since they were last computed. */
+  PetscInt       TangentAge() const { return tangent_age_; }
   /* Udot = Mt^{-1} G(U) (explicit integrators). */
   PetscErrorCode RHSFunction(Vec U, Vec G, PetscBool *ok);
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
@@ -77,6 +81,8 @@ private:
   DM                dm_ = nullptr;
   MaterialPointPool pool_;
   Mat               Mt_ = nullptr; /* diag(I, M) */
+  Mat               KC_ = nullptr; /* [[0, -I], [K, C]] of the last fresh Jacobian */
+  PetscInt          tangent_age_ = 0;
   KSP               mass_ksp_ = nullptr;
   Vec               Uloc_ = nullptr, Floc_ = nullptr;
 

@@ -62,6 +62,7 @@ private:
 
   PetscErrorCode SetDeformation(const Tensor2 &F, const Tensor2 &Fdot);
   PetscErrorCode Residual(const PetscScalar *w, PetscScalar *r, PetscReal *virial);
+  PetscErrorCode ResidualNorm(Vec W, PetscReal *norm);
   PetscErrorCode BuildJacobianPattern();
   PetscErrorCode PatternStale(PetscBool *stale);
   PetscErrorCode Relax(bool warm, MaterialResponse *out);
@@ -77,7 +78,10 @@ private:
   PetscReal              length_scale_ = 25, force_scale_ = 1e5;
 
   TS            ts_ = nullptr;
-  Vec           W_ = nullptr, Wprev_ = nullptr;
+  Vec           W_ = nullptr, Wprev_ = nullptr, R_ = nullptr;
+  std::vector<PetscScalar> cache_w_, cache_r_; /* the last residual evaluation */
+  PetscReal                cache_virial_[4] = {0, 0, 0, 0};
+  bool                     cache_valid_     = false;
   Mat           J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
   MatFDColoring coloring_ = nullptr;
   PetscInt      pattern_rebuilds_ = -1;

@@ -7,5 +7,6 @@
 #include <turgor/neighbour_search.h>
 #include <turgor/particles.h>
 #include <turgor/tissue.h>
+#include <turgor/ts_radau5.h>
 
 #define TURGOR_VERSION_STRING "0.1.0"

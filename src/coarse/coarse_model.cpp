@@ -11,6 +11,7 @@ CoarseModel::~CoarseModel()
 {
   (void)KSPDestroy(&mass_ksp_);
   (void)MatDestroy(&Mt_);
+  (void)MatDestroy(&KC_);
   (void)VecDestroy(&Uloc_);
   (void)VecDestroy(&Floc_);
   (void)DMDestroy(&dm_);
@@ -391,7 +392,10 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
     }
   PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
   if (global_ok && !local_ok && why) *why = "on another rank";
-  if (!global_ok) counters_.failures++;
+  if (!global_ok) {
+    counters_.failures++;
+    if (!local_ok) PetscCall(PetscInfo(dm_, "material evaluation failed: %s\n", why ? why->c_str() : ""));
+  }
   *ok             = global_ok ? PETSC_TRUE : PETSC_FALSE;
   cached_valid_   = true;
   cached_ok_      = global_ok;
@@ -458,7 +462,8 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_residual_, 0, 0, 0, 0));
   counters_.residuals++;
-  PetscCall(EvaluateMaterials(U, false, ok, NULL));
+  std::string why;
+  PetscCall(EvaluateMaterials(U, false, ok, &why));
   if (!*ok) {
     PetscCall(FillNaN(F));
     PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
@@ -528,12 +533,20 @@ static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, bool pressur
     }
 }
 
-PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok)
+PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh)
 {
   PetscSection gs;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
   counters_.jacobians++;
+  if (!refresh && KC_) { /* modified Newton: the last K, C with the new shift */
+    *ok = PETSC_TRUE;
+    tangent_age_++;
+    PetscCall(MatCopy(KC_, J, SAME_NONZERO_PATTERN));
+    PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+    PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(EvaluateMaterials(U, true, ok, NULL));
   PetscCall(MatZeroEntries(J));
   if (!*ok) { /* the caller rejects the state; leave a harmless matrix */
@@ -596,6 +609,9 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
   }
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  if (!KC_) PetscCall(MatDuplicate(J, MAT_COPY_VALUES, &KC_));
+  else PetscCall(MatCopy(J, KC_, SAME_NONZERO_PATTERN));
+  tangent_age_ = 0;
   PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
   PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,6 +4,7 @@
 #include <turgor/rve.h>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 namespace turgor {
@@ -15,6 +16,7 @@ RVE::~RVE()
   (void)MatDestroy(&K_);
   (void)VecDestroy(&W_);
   (void)VecDestroy(&Wprev_);
+  (void)VecDestroy(&R_);
   (void)TSDestroy(&ts_);
 }
 
@@ -72,6 +74,7 @@ PetscErrorCode RVE::SetUp()
 
   PetscCall(VecCreateMPI(comm_, rank_ == 0 ? NumUnknowns() : 0, PETSC_DETERMINE, &W_));
   PetscCall(VecDuplicate(W_, &Wprev_));
+  PetscCall(VecDuplicate(W_, &R_));
   current_.assign(NumUnknowns(), 0);
   committed_ = current_;
 
@@ -133,27 +136,47 @@ PetscErrorCode RVE::SetDeformation(const Tensor2 &F, const Tensor2 &Fdot)
   PeriodicImages images;
   images.Set(a1, a2, va1, va2);
   model_.SetPeriodicImages(images);
+  cache_valid_ = false;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* r = -f_free / force_scale at x = F X + L w; virial (may be NULL) of all internal forces. */
+/* r = -f_free / force_scale at x = F X + L w, and the virial of all internal forces (may be NULL).
+   TSPSEUDO, the stopping tests and the stress ask for the same W several times: the last result is
+   kept (invalidated when the deformation changes). */
 PetscErrorCode RVE::Residual(const PetscScalar *w, PetscScalar *r, PetscReal *virial)
 {
+  const PetscInt n = NumUnknowns();
   PetscFunctionBeginUser;
-  for (size_t k = 0; k < free_.size(); k++) {
-    const PetscInt i = free_[k];
-    PetscReal      X[2];
-    F_.Apply(&tissue_.X[2 * i], X);
-    x_[2 * i]     = X[0] + length_scale_ * w[2 * k];
-    x_[2 * i + 1] = X[1] + length_scale_ * w[2 * k + 1];
-  }
-  PetscCall(model_.ComputeForces(x_.data(), v_.data(), f_.data(), virial));
-  counters_.force_evals++;
-  if (r)
+  if (!(cache_valid_ && !std::memcmp(cache_w_.data(), w, n * sizeof(PetscScalar)))) {
     for (size_t k = 0; k < free_.size(); k++) {
-      r[2 * k]     = -f_[2 * free_[k]] / force_scale_;
-      r[2 * k + 1] = -f_[2 * free_[k] + 1] / force_scale_;
+      const PetscInt i = free_[k];
+      PetscReal      X[2];
+      F_.Apply(&tissue_.X[2 * i], X);
+      x_[2 * i]     = X[0] + length_scale_ * w[2 * k];
+      x_[2 * i + 1] = X[1] + length_scale_ * w[2 * k + 1];
     }
+    PetscCall(model_.ComputeForces(x_.data(), v_.data(), f_.data(), cache_virial_));
+    counters_.force_evals++;
+    cache_w_.assign(w, w + n);
+    cache_r_.resize(n);
+    for (size_t k = 0; k < free_.size(); k++) {
+      cache_r_[2 * k]     = -f_[2 * free_[k]] / force_scale_;
+      cache_r_[2 * k + 1] = -f_[2 * free_[k] + 1] / force_scale_;
+    }
+    cache_valid_ = true;
+  }
+  if (r) std::memcpy(r, cache_r_.data(), n * sizeof(PetscScalar));
+  if (virial)
+    for (int c = 0; c < 4; c++) virial[c] = cache_virial_[c];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ||G(W)||_2 (collective), with G(W) left in R_. */
+PetscErrorCode RVE::ResidualNorm(Vec W, PetscReal *norm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ColoringResidual(NULL, W, R_, this));
+  PetscCall(VecNorm(R_, NORM_2, norm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -322,13 +345,7 @@ PetscErrorCode RVE::PreStep(TS ts)
   PetscCall(TSGetApplicationContext(ts, &rve));
   PetscCall(TSGetSolution(ts, &W));
   PetscCall(VecCopy(W, rve->Wprev_));
-  if (rve->warm_solve_) { /* for the modified-Newton refresh test in PostStep */
-    Vec R;
-    PetscCall(VecDuplicate(W, &R));
-    PetscCall(ColoringResidual(NULL, W, R, rve));
-    PetscCall(VecNorm(R, NORM_2, &rve->res_before_));
-    PetscCall(VecDestroy(&R));
-  }
+  if (rve->warm_solve_) PetscCall(rve->ResidualNorm(W, &rve->res_before_)); /* for the refresh test in PostStep */
   /* new neighbours since the pattern was built: rebuild it (rare: particles moved > skin/2) */
   PetscBool stale;
   PetscCall(rve->PatternStale(&stale));
@@ -350,17 +367,14 @@ PetscErrorCode RVE::PatternStale(PetscBool *stale)
 PetscErrorCode RVE::PostStep(TS ts)
 {
   RVE      *rve;
-  Vec       W, R;
+  Vec       W;
   PetscReal step, res;
   PetscFunctionBeginUser;
   PetscCall(TSGetApplicationContext(ts, &rve));
   PetscCall(TSGetSolution(ts, &W));
-  PetscCall(VecDuplicate(W, &R));
-  PetscCall(ColoringResidual(NULL, W, R, rve));
-  PetscCall(VecNorm(R, NORM_2, &res));
+  PetscCall(rve->ResidualNorm(W, &res));
   PetscCall(VecAXPY(rve->Wprev_, -1.0, W));
   PetscCall(VecNorm(rve->Wprev_, NORM_2, &step));
-  PetscCall(VecDestroy(&R));
   if (rve->warm_solve_ && res > 0.1 * rve->res_before_) rve->refresh_K_ = true;
   if (!std::isfinite(res) || !std::isfinite(step)) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
   else if (step < rve->steptol_ || res < rve->atol_) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
@@ -374,12 +388,8 @@ PetscErrorCode RVE::Relax(bool warm, MaterialResponse *out)
   TSConvergedReason reason;
   PetscInt          steps, snes0, ksp0, snes1, ksp1;
   PetscReal         res;
-  Vec               R;
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(W_, &R));
-  PetscCall(ColoringResidual(NULL, W_, R, this));
-  PetscCall(VecNorm(R, NORM_2, &res));
-  PetscCall(VecDestroy(&R));
+  PetscCall(ResidualNorm(W_, &res));
   if (res < atol_) { /* already relaxed (e.g. a warm start at an unchanged F) */
     out->residual = res;
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -403,10 +413,7 @@ PetscErrorCode RVE::Relax(bool warm, MaterialResponse *out)
   out->iterations += steps;
   out->snes_its += snes1 - snes0 >= 0 ? snes1 - snes0 : snes1;
   out->ksp_its += ksp1 - ksp0 >= 0 ? ksp1 - ksp0 : ksp1;
-  PetscCall(VecDuplicate(W_, &R));
-  PetscCall(ColoringResidual(NULL, W_, R, this));
-  PetscCall(VecNorm(R, NORM_2, &res));
-  PetscCall(VecDestroy(&R));
+  PetscCall(ResidualNorm(W_, &res));
   out->residual = res;
   if (reason == TS_CONVERGED_USER && std::isfinite(res)) PetscFunctionReturn(PETSC_SUCCESS);
   out->ok = false;
@@ -445,12 +452,9 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   PetscCall(VecRestoreArray(W_, &w));
   if (relax) {
     PetscCall(Relax(warm, out));
-    if (!out->ok && warm) { /* a bold warm start failed: the seed's cautious schedule from there */
+    if (!out->ok && warm) { /* the warm start failed: a true cold start, u1 = 0 and the seed's schedule */
       MaterialResponse retry;
-      PetscCall(VecGetArray(W_, &w));
-      if (rank_ == 0)
-        for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = start[k];
-      PetscCall(VecRestoreArray(W_, &w));
+      PetscCall(VecZeroEntries(W_));
       retry.iterations = out->iterations;
       retry.snes_its   = out->snes_its;
       retry.ksp_its    = out->ksp_its;
@@ -482,6 +486,7 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
     out->ok     = false;
     out->reason = "non-finite stress";
   }
+  if (!out->ok) PetscCall(PetscInfo(ts_, "RVE evaluation failed at F = [%g %g; %g %g], Fdot = [%g %g; %g %g]: %s\n", (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)Fdot(0, 0), (double)Fdot(0, 1), (double)Fdot(1, 0), (double)Fdot(1, 1), out->reason.c_str()));
   counters_.iterations += out->iterations;
   counters_.snes_its += out->snes_its;
   counters_.ksp_its += out->ksp_its;
