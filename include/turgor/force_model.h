@@ -36,6 +36,7 @@ public:
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;
   NeighbourSearch         &Neighbours() { return nb_; }
+  const NeighbourSearch   &Neighbours() const { return nb_; }
   /* Periodic lattice for RVEs (positions and rates of the image shifts); default: not periodic. */
   void                     SetPeriodicImages(const PeriodicImages &images) { images_ = images; }
   const PeriodicImages    &Images() const { return images_; }

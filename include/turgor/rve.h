@@ -65,7 +65,9 @@ private:
   PetscErrorCode ResidualNorm(Vec W, PetscReal *norm);
   PetscErrorCode BuildJacobianPattern();
   PetscErrorCode PatternStale(PetscBool *stale);
-  PetscErrorCode Relax(bool warm, MaterialResponse *out);
+  PetscErrorCode PatternColumns(std::vector<std::vector<PetscInt>> &cols) const;
+  PetscErrorCode Relax(MaterialResponse *out);
+  PetscErrorCode WarmRelax(MaterialResponse *out, bool *converged);
 
   MPI_Comm               comm_;
   PetscMPIInt            rank_ = 0;
@@ -85,11 +87,9 @@ private:
   Mat           J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
   MatFDColoring coloring_ = nullptr;
   PetscInt      pattern_rebuilds_ = -1;
-  /* Modified Newton in warm solves: K and the factors of K + shift I are reused (also across
-     solves: F moved little) until an iteration reduces ||G|| by less than 10x; cold solves
-     refresh K at every pseudo step, as in eq 28. */
-  bool          have_K_ = false, warm_solve_ = false, refresh_K_ = true;
-  PetscReal     res_before_ = 0;
+  std::vector<std::vector<PetscInt>> pattern_cols_; /* columns of each unknown pair in J_ */
+  bool          have_K_ = false; /* K_ holds G' of a recent state (warm solves reuse it) */
+  Vec           D_ = nullptr;
   std::vector<PetscScalar> current_, committed_; /* u1 / L of the current and last accepted state */
   bool                     have_current_ = false, have_committed_ = false;
 

@@ -157,12 +157,14 @@ PetscErrorCode FE2Run::RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx)
 
 /* Called by TS on every stage before it is used: evaluating the materials here (cached for the
    function evaluation that follows) lets an explicit integrator reject a step whose stage makes a
-   material point fail. */
+   material point fail. Implicit integrators learn it from the nonlinear solve (domain error). */
 PetscErrorCode FE2Run::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
 {
   FE2Run *run;
   PetscFunctionBeginUser;
   PetscCall(TSGetApplicationContext(ts, &run));
+  *accept = PETSC_TRUE;
+  if (!run->explicit_) PetscFunctionReturn(PETSC_SUCCESS); /* implicit: the nonlinear solve rejects */
   PetscCall(run->model_.EvaluateMaterials(U, false, accept, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

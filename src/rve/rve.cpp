@@ -17,6 +17,7 @@ RVE::~RVE()
   (void)VecDestroy(&W_);
   (void)VecDestroy(&Wprev_);
   (void)VecDestroy(&R_);
+  (void)VecDestroy(&D_);
   (void)TSDestroy(&ts_);
 }
 
@@ -75,6 +76,7 @@ PetscErrorCode RVE::SetUp()
   PetscCall(VecCreateMPI(comm_, rank_ == 0 ? NumUnknowns() : 0, PETSC_DETERMINE, &W_));
   PetscCall(VecDuplicate(W_, &Wprev_));
   PetscCall(VecDuplicate(W_, &R_));
+  PetscCall(VecDuplicate(W_, &D_));
   current_.assign(NumUnknowns(), 0);
   committed_ = current_;
 
@@ -227,19 +229,11 @@ PetscErrorCode RVE::IJacobian(TS ts, PetscReal t, Vec W, Vec Wdot, PetscReal shi
   RVE *rve = (RVE *)ctx;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(rve->ev_jacobian_, 0, 0, 0, 0));
-  const bool fresh = !rve->have_K_ || !rve->warm_solve_ || rve->refresh_K_;
-  if (fresh) {
-    PetscCall(MatFDColoringApply(rve->K_, rve->coloring_, W, NULL));
-    rve->have_K_    = true;
-    rve->refresh_K_ = false;
-    rve->counters_.jacobians++;
-  }
-  /* A warm solve that reuses K also keeps B = K + shift I as it is, so that its LU factors are
-     reused; the shift of a warm start (1/warm_dt0) is negligible against K. */
-  if (fresh || !rve->warm_solve_) {
-    PetscCall(MatCopy(rve->K_, B, SAME_NONZERO_PATTERN));
-    PetscCall(MatShift(B, shift));
-  }
+  PetscCall(MatFDColoringApply(rve->K_, rve->coloring_, W, NULL));
+  rve->have_K_ = true;
+  rve->counters_.jacobians++;
+  PetscCall(MatCopy(rve->K_, B, SAME_NONZERO_PATTERN));
+  PetscCall(MatShift(B, shift));
   if (A != B) {
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
@@ -251,10 +245,10 @@ PetscErrorCode RVE::IJacobian(TS ts, PetscReal t, Vec W, Vec Wdot, PetscReal shi
 /* The sparsity of G': particles interacting directly (springs, particle-spring pairs with both
    spring ends, fluid pairs), closed over two hops because the SPH force on i depends on its
    neighbours' densities and correction matrices. Rebuilt when the neighbour lists are. */
-PetscErrorCode RVE::BuildJacobianPattern()
+PetscErrorCode RVE::PatternColumns(std::vector<std::vector<PetscInt>> &cols) const
 {
-  const ParticleSet          &P = tissue_.particles;
-  const NeighbourSearch      &nb = model_.Neighbours();
+  const ParticleSet                &P  = tissue_.particles;
+  const NeighbourSearch            &nb = model_.Neighbours();
   std::vector<std::set<PetscInt>> adj(P.n);
   PetscFunctionBeginUser;
   auto link = [&](PetscInt i, PetscInt j) {
@@ -272,7 +266,7 @@ PetscErrorCode RVE::BuildJacobianPattern()
   for (size_t q = 0; q < fp.size(); q++) link(fp.i[q], fp.j[q]);
   std::vector<PetscInt> dof(P.n, -1);
   for (size_t k = 0; k < free_.size(); k++) dof[free_[k]] = (PetscInt)k;
-  std::vector<std::vector<PetscInt>> cols(free_.size());
+  cols.assign(free_.size(), {});
   for (size_t k = 0; k < free_.size(); k++) {
     std::set<PetscInt> two;
     for (PetscInt j : adj[free_[k]])
@@ -280,7 +274,14 @@ PetscErrorCode RVE::BuildJacobianPattern()
         if (dof[l] >= 0) two.insert(dof[l]);
     cols[k].assign(two.begin(), two.end());
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
+PetscErrorCode RVE::BuildJacobianPattern()
+{
+  std::vector<std::vector<PetscInt>> cols;
+  PetscFunctionBeginUser;
+  PetscCall(PatternColumns(cols));
   PetscCall(MatFDColoringDestroy(&coloring_));
   PetscCall(MatDestroy(&J_));
   PetscCall(MatDestroy(&K_));
@@ -320,7 +321,8 @@ PetscErrorCode RVE::BuildJacobianPattern()
   PetscCall(MatFDColoringSetUp(K_, iscoloring, coloring_));
   PetscCall(ISColoringDestroy(&iscoloring));
   PetscCall(TSSetIJacobian(ts_, J_, J_, IJacobian, this));
-  pattern_rebuilds_ = nb.Rebuilds();
+  pattern_cols_     = cols;
+  pattern_rebuilds_ = model_.Neighbours().Rebuilds();
   PetscCallMPI(MPI_Bcast(&pattern_rebuilds_, 1, MPIU_INT, 0, comm_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -345,7 +347,6 @@ PetscErrorCode RVE::PreStep(TS ts)
   PetscCall(TSGetApplicationContext(ts, &rve));
   PetscCall(TSGetSolution(ts, &W));
   PetscCall(VecCopy(W, rve->Wprev_));
-  if (rve->warm_solve_) PetscCall(rve->ResidualNorm(W, &rve->res_before_)); /* for the refresh test in PostStep */
   /* new neighbours since the pattern was built: rebuild it (rare: particles moved > skin/2) */
   PetscBool stale;
   PetscCall(rve->PatternStale(&stale));
@@ -353,13 +354,23 @@ PetscErrorCode RVE::PreStep(TS ts)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Only rank 0 of the group computes forces (and rebuilds neighbour lists): it decides. */
+/* New neighbour lists need a new pattern only if they couple unknowns the current one does not
+   (a one-cell RVE is coupled all-to-all, so it never changes). Only rank 0 of the group computes
+   forces and rebuilds lists: it decides. */
 PetscErrorCode RVE::PatternStale(PetscBool *stale)
 {
-  PetscInt rebuilds = model_.Neighbours().Rebuilds();
+  PetscInt verdict = 0; /* 0: current, 1: lists rebuilt but covered, 2: stale */
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Bcast(&rebuilds, 1, MPIU_INT, 0, comm_));
-  *stale = rebuilds != pattern_rebuilds_ ? PETSC_TRUE : PETSC_FALSE;
+  if (rank_ == 0 && model_.Neighbours().Rebuilds() != pattern_rebuilds_) {
+    std::vector<std::vector<PetscInt>> cols;
+    PetscCall(PatternColumns(cols));
+    verdict = 1;
+    for (size_t k = 0; k < cols.size() && verdict == 1; k++)
+      if (!std::includes(pattern_cols_[k].begin(), pattern_cols_[k].end(), cols[k].begin(), cols[k].end())) verdict = 2;
+  }
+  PetscCallMPI(MPI_Bcast(&verdict, 1, MPIU_INT, 0, comm_));
+  if (verdict == 1) pattern_rebuilds_ = model_.Neighbours().Rebuilds();
+  *stale = verdict == 2 ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -375,16 +386,16 @@ PetscErrorCode RVE::PostStep(TS ts)
   PetscCall(rve->ResidualNorm(W, &res));
   PetscCall(VecAXPY(rve->Wprev_, -1.0, W));
   PetscCall(VecNorm(rve->Wprev_, NORM_2, &step));
-  if (rve->warm_solve_ && res > 0.1 * rve->res_before_) rve->refresh_K_ = true;
   if (!std::isfinite(res) || !std::isfinite(step)) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
   else if (step < rve->steptol_ || res < rve->atol_) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Psi-tc from the current content of W_; *out gets ok / reason / iteration counts. */
-PetscErrorCode RVE::Relax(bool warm, MaterialResponse *out)
+/* The seed's Psi-tc with TSPSEUDO from the current content of W_ (a cold start). */
+PetscErrorCode RVE::Relax(MaterialResponse *out)
 {
-  const PetscReal dt0 = warm ? warm_dt0_ : dt0_;
+  const PetscReal dt0 = dt0_;
   TSConvergedReason reason;
   PetscInt          steps, snes0, ksp0, snes1, ksp1;
   PetscReal         res;
@@ -397,8 +408,6 @@ PetscErrorCode RVE::Relax(bool warm, MaterialResponse *out)
   PetscBool stale;
   PetscCall(PatternStale(&stale));
   if (stale) PetscCall(BuildJacobianPattern());
-  warm_solve_ = warm;
-  refresh_K_  = !warm;
   PetscCall(TSSetTime(ts_, 0));
   PetscCall(TSSetStepNumber(ts_, 0));
   PetscCall(TSSetTimeStep(ts_, dt0));
@@ -421,6 +430,71 @@ PetscErrorCode RVE::Relax(bool warm, MaterialResponse *out)
   if (reason == TS_CONVERGED_ITS) PetscCall(PetscSNPrintf(msg, sizeof msg, "Psi-tc did not converge in %" PetscInt_FMT " iterations (-rve_max_it): ||G|| = %.3e", steps, (double)res));
   else PetscCall(PetscSNPrintf(msg, sizeof msg, "Psi-tc failed after %" PetscInt_FMT " iterations (%s), ||G|| = %.3e", steps, TSConvergedReasons[reason], (double)res));
   out->reason = msg;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Warm starts (W_ holds the last converged u1): the limit delta -> infinity of eq 28, i.e. Newton,
+   with G' and its LU factors kept from the last solve (modified Newton). Written as a plain loop
+   rather than through TSPSEUDO: a warm solve is a handful of residuals, and the TS/SNES bookkeeping
+   per pseudo step would cost more than the physics. G' is recomputed when an iteration reduces
+   ||G|| by less than 2x (recomputing costs ~37 residuals for the one-cell RVE, an iteration one).
+   *converged = false sends the caller to a cold TSPSEUDO solve. */
+PetscErrorCode RVE::WarmRelax(MaterialResponse *out, bool *converged)
+{
+  PetscReal res, res_new, step;
+  bool      refresh = !have_K_;
+  PetscFunctionBeginUser;
+  *converged = false;
+  PetscCall(ResidualNorm(W_, &res));
+  out->residual = res;
+  if (res < atol_) {
+    *converged = true;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscBool stale;
+  PetscCall(PatternStale(&stale));
+  if (stale) {
+    PetscCall(BuildJacobianPattern());
+    refresh = true;
+  }
+  for (PetscInt it = 0; it < max_it_; it++) {
+    if (refresh) {
+      PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
+      PetscCall(MatFDColoringApply(K_, coloring_, W_, NULL));
+      PetscCall(MatCopy(K_, J_, SAME_NONZERO_PATTERN));
+      PetscCall(MatShift(J_, 1.0 / warm_dt0_));
+      PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+      have_K_ = true;
+      counters_.jacobians++;
+      PetscCall(ResidualNorm(W_, &res)); /* the colouring evaluated elsewhere: G(W) back into R_ */
+    }
+    /* the TSPSEUDO solver's own KSP: its LU factors of J_ are the ones to reuse */
+    SNES               snes;
+    KSP                ksp;
+    KSPConvergedReason kr;
+    PetscCall(TSGetSNES(ts_, &snes));
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPSetOperators(ksp, J_, J_));
+    PetscCall(KSPSolve(ksp, R_, D_));
+    PetscCall(KSPGetConvergedReason(ksp, &kr));
+    if (kr < 0) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(VecAXPY(W_, -1.0, D_));
+    PetscCall(VecNorm(D_, NORM_2, &step));
+    PetscCall(ResidualNorm(W_, &res_new));
+    out->iterations++;
+    out->ksp_its++;
+    out->residual = res_new;
+    if (!std::isfinite(res_new)) PetscFunctionReturn(PETSC_SUCCESS);
+    if (step < steptol_ || res_new < atol_) {
+      *converged = true;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    if (!(res_new < 0.5 * res)) {
+      if (refresh && !(res_new < res)) PetscFunctionReturn(PETSC_SUCCESS); /* fresh G' and still no progress */
+      refresh = true;
+    } else refresh = false;
+    res = res_new;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -451,15 +525,12 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
     for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = warm ? start[k] : 0.0;
   PetscCall(VecRestoreArray(W_, &w));
   if (relax) {
-    PetscCall(Relax(warm, out));
-    if (!out->ok && warm) { /* the warm start failed: a true cold start, u1 = 0 and the seed's schedule */
-      MaterialResponse retry;
-      PetscCall(VecZeroEntries(W_));
-      retry.iterations = out->iterations;
-      retry.snes_its   = out->snes_its;
-      retry.ksp_its    = out->ksp_its;
-      PetscCall(Relax(false, &retry));
-      *out = retry;
+    bool converged = false;
+    if (warm) PetscCall(WarmRelax(out, &converged));
+    if (!converged) { /* cold: u1 = 0 and the seed's schedule (also when a warm start failed) */
+      if (warm) PetscCall(VecZeroEntries(W_));
+      out->ok = true;
+      PetscCall(Relax(out));
     }
   }
 
