@@ -2,6 +2,8 @@
 """Compare two turgor runs' outputs (stdlib only, so CI needs no extra packages).
 
   compare_runs.py tip A_DIR B_DIR TOL        tip.csv histories agree within TOL (absolute, µm)
+  compare_runs.py tiprel A_DIR REF_DIR TOL   max |tip_a - tip_ref| <= TOL * max |tip_ref|
+  compare_runs.py positive DIR KEY           summary.json[KEY] > 0
   compare_runs.py final A_DIR B_DIR RELTOL   final tip displacements agree within RELTOL (relative)
   compare_runs.py keys DIR KEY...            summary.json has the keys, with finite values
   compare_runs.py invariants DIR RELTOL      rve.csv: trace and determinant of sigma stay constant
@@ -28,6 +30,20 @@ def main(argv):
         print(f"{len(a)} samples, max |tip_a - tip_b| = {err:.3e} µm, max time difference {terr:.3e}")
         if err > tol or terr > 1e-12:
             sys.exit(f"FAIL: difference above {tol}")
+    elif mode == "tiprel":
+        a, b, tol = tip(argv[2]), tip(argv[3]), float(argv[4])
+        if len(a) != len(b):
+            sys.exit(f"FAIL: {len(a)} vs {len(b)} samples")
+        scale = max(abs(y[1]) for y in b)
+        err = max(abs(x[1] - y[1]) for x, y in zip(a, b)) / scale
+        print(f"{len(a)} samples: max |tip - reference| = {err:.3e} of max |reference| = {scale:.4g} µm")
+        if not err <= tol:
+            sys.exit(f"FAIL: above {tol}")
+    elif mode == "positive":
+        s = json.load(open(f"{argv[2]}/summary.json"))
+        print(f"{argv[3]} = {s[argv[3]]}")
+        if not s[argv[3]] > 0:
+            sys.exit(f"FAIL: {argv[3]} is not positive")
     elif mode == "final":
         a = json.load(open(f"{argv[2]}/summary.json"))["tip_displacement_final"]
         b = json.load(open(f"{argv[3]}/summary.json"))["tip_displacement_final"]

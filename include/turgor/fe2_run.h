@@ -48,7 +48,7 @@ private:
   PetscInt           tip_samples_ = 1000, snapshots_ = 20;
   /* material tangents are recomputed when the Jacobian is older than this many accepted steps, or
      after a step rejection; 0: at every Jacobian request (each Newton iteration) */
-  PetscInt           jacobian_max_age_ = 0, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
+  PetscInt           jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
   PetscReal          progress_interval_ = 10.0, t_final_ = 0, tip_final_ = 0;
   bool               explicit_ = false;
   CsvWriter          tip_csv_;

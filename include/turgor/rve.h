@@ -68,6 +68,7 @@ private:
   PetscErrorCode PatternColumns(std::vector<std::vector<PetscInt>> &cols) const;
   PetscErrorCode Relax(MaterialResponse *out);
   PetscErrorCode WarmRelax(MaterialResponse *out, bool *converged);
+  PetscErrorCode FluidInsideCells(bool *inside);
 
   MPI_Comm               comm_;
   PetscMPIInt            rank_ = 0;

@@ -498,6 +498,36 @@ PetscErrorCode RVE::WarmRelax(MaterialResponse *out, bool *converged)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A relaxation can converge to an equilibrium in which fluid particles have been pushed through a
+   wall (after a violent trial deformation): a state the tissue cannot reach. Every fluid particle
+   must lie inside its own (deformed) cell polygon; otherwise the evaluation is not accepted. */
+PetscErrorCode RVE::FluidInsideCells(bool *inside)
+{
+  const ParticleSet    &P      = tissue_.particles;
+  const PeriodicImages &images = model_.Images();
+  PetscInt              ok     = 1;
+  PetscFunctionBeginUser;
+  if (rank_ == 0) {
+    for (PetscInt p = 0; p < P.n && ok; p++) {
+      if (P.kind[p] != KIND_FLUID) continue;
+      const auto &ring = tissue_.cell_walls[P.cell[p]];
+      const auto &img  = tissue_.cell_wall_images[P.cell[p]];
+      const PetscReal px = x_[2 * p], py = x_[2 * p + 1];
+      bool            in = false; /* crossing-number test */
+      for (size_t e = 0, n = ring.size(); e < n; e++) {
+        const size_t    f  = (e + 1) % n;
+        const PetscReal ax = x_[2 * ring[e]] + images.x[img[e]][0], ay = x_[2 * ring[e] + 1] + images.x[img[e]][1];
+        const PetscReal bx = x_[2 * ring[f]] + images.x[img[f]][0], by = x_[2 * ring[f] + 1] + images.x[img[f]][1];
+        if ((ay > py) != (by > py) && px < ax + (py - ay) * (bx - ax) / (by - ay)) in = !in;
+      }
+      if (!in) ok = 0;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, comm_));
+  *inside = ok != 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out)
 {
   PetscFunctionBeginUser;
@@ -525,12 +555,22 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
     for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = warm ? start[k] : 0.0;
   PetscCall(VecRestoreArray(W_, &w));
   if (relax) {
-    bool converged = false;
-    if (warm) PetscCall(WarmRelax(out, &converged));
-    if (!converged) { /* cold: u1 = 0 and the seed's schedule (also when a warm start failed) */
-      if (warm) PetscCall(VecZeroEntries(W_));
+    bool converged = false, inside = false;
+    if (warm) {
+      PetscCall(WarmRelax(out, &converged));
+      if (converged) PetscCall(FluidInsideCells(&inside));
+    }
+    if (!converged || !inside) { /* cold: u1 = 0 and the seed's schedule (also when a warm start failed) */
+      PetscCall(VecZeroEntries(W_));
       out->ok = true;
       PetscCall(Relax(out));
+      if (out->ok) {
+        PetscCall(FluidInsideCells(&inside));
+        if (!inside) {
+          out->ok     = false;
+          out->reason = "the relaxed RVE has fluid particles outside their cell (a wall was crossed)";
+        }
+      }
     }
   }
 

@@ -102,11 +102,18 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const TissueSpec 
   for (PetscInt cy = 0; cy < ny; cy++)
     for (PetscInt cx = 0; cx < nx; cx++) {
       const PetscInt        a0 = cx * s, b0 = cy * s;
-      std::vector<PetscInt> ring; /* may name images: use with the periodic shifts */
-      for (PetscInt t = 0; t < s; t++) ring.push_back(id[b0 * ax + (a0 + t) % ax]);
-      for (PetscInt t = 0; t < s; t++) ring.push_back(id[((b0 + t) % ay) * ax + (a0 + s) % ax]);
-      for (PetscInt t = 0; t < s; t++) ring.push_back(id[((b0 + s) % ay) * ax + (a0 + s - t) % ax]);
-      for (PetscInt t = 0; t < s; t++) ring.push_back(id[((b0 + s - t) % ay) * ax + a0]);
+      /* lattice points of the ring, counter-clockwise; points past the period are images */
+      std::vector<PetscInt> ring;
+      std::vector<int>      img;
+      auto                  add = [&](PetscInt a, PetscInt b) {
+        ring.push_back(id[(b % ay) * ax + a % ax]);
+        img.push_back(PeriodicImages::Index(a >= ax ? 1 : 0, b >= ay ? 1 : 0));
+      };
+      for (PetscInt t = 0; t < s; t++) add(a0 + t, b0);
+      for (PetscInt t = 0; t < s; t++) add(a0 + s, b0 + t);
+      for (PetscInt t = 0; t < s; t++) add(a0 + s - t, b0 + s);
+      for (PetscInt t = 0; t < s; t++) add(a0, b0 + s - t);
+      T.cell_wall_images.push_back(img);
       T.cell_walls.push_back(ring);
     }
   T.Finalize();
