@@ -131,12 +131,36 @@ static PetscErrorCode DampingTerms()
     PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
     PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
     const PetscReal t = 0.4, r = 2.5, vh = (1 - t) * v[1] + t * v[3]; /* closest point (4, 0), normal e = (0, 1) */
-    const PetscReal damp = -2 * std::sqrt(6 * 5e5 * 0.4 / std::pow(r, 7)) * (v[5] - vh);
+    const PetscReal damp = -2 * std::sqrt(6 * 5e5 * 0.4 / std::pow(r, 7)) * (1 - std::pow(r / 5.0, 6)) * (v[5] - vh); /* tapered */
     TG_CHECK_CLOSE(f[5] - f0[5], damp, 1e-12, std::fabs(damp), "repulsion damping on the particle");
     TG_CHECK_CLOSE(f[1] - f0[1], -(1 - t) * damp, 1e-12, std::fabs(damp), "repulsion damping reaction on x1");
     TG_CHECK_CLOSE(f[3] - f0[3], -t * damp, 1e-12, std::fabs(damp), "repulsion damping reaction on x2");
     TG_CHECK(std::fabs(f[4] - f0[4]) < 1e-12 * std::fabs(damp), "repulsion damping must act along the normal");
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion damping: %.6g µN, as -2 sqrt(6 lambda m / r^7) (v - v^).e\n", (double)(f[5] - f0[5])));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion damping: %.6g µN, as -2 sqrt(6 lambda m / r^7) (1 - (r/x0)^6) (v - v^).e\n", (double)(f[5] - f0[5])));
+  }
+  { /* continuity at the cutoff: just inside x0 the damping is ~0 (the literal term is not) */
+    for (PetscBool taper : {PETSC_TRUE, PETSC_FALSE}) {
+      Tissue T;
+      T.AddParticle(0, 0, 0.5, KIND_WALL);
+      T.AddParticle(10, 0, 0.5, KIND_WALL);
+      T.AddParticle(4, 5.0 * (1 - 1e-6), 0.4, KIND_FLUID, 0);
+      T.AddSpring(0, 1);
+      T.Finalize();
+      const std::vector<PetscReal> v = {0, 0, 0, 0, 0, -1.0}, v0(6, 0.0);
+      std::vector<PetscReal>       f(6), f0(6);
+      ForceModel                   model;
+      auto                         rep = std::make_unique<Repulsion>();
+      rep->damping_taper             = taper;
+      model.AddTerm(std::move(rep));
+      PetscCall(model.SetUp(T.particles));
+      PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
+      PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
+      const PetscReal literal = 2 * std::sqrt(6 * 5e5 * 0.4 / std::pow(5.0, 7)); /* |v| = 1 */
+      const PetscReal ratio   = std::fabs(f[5] - f0[5]) / literal;
+      if (taper) TG_CHECK(ratio < 1e-5, "tapered repulsion damping must vanish at the cutoff");
+      else TG_CHECK(std::fabs(ratio - 1) < 1e-5, "the literal damping keeps its full value at the cutoff");
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion damping at r = x0 (1 - 1e-6), taper %s: %.3g of the literal value\n", taper ? "on" : "off", (double)ratio));
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -12,6 +12,7 @@ PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm)
   PetscCall(PetscOptionsReal("-cutoff", "Cutoff distance x0 [µm]", "Repulsion", cutoff, &cutoff, NULL));
   PetscCall(PetscOptionsBool("-angle_factor", "Scale by cos(alpha), alpha = angle between x - x^ and the spring normal", "Repulsion", angle_factor, &angle_factor, NULL));
   PetscCall(PetscOptionsBool("-damping", "Critical damping term 2 sqrt(6 lambda m / r^7)", "Repulsion", damping, &damping, NULL));
+  PetscCall(PetscOptionsBool("-damping_taper", "Scale the damping by 1 - (r/x0)^6 so that it vanishes at the cutoff like the force (off: the seed's literal term, which jumps at r = x0)", "Repulsion", damping_taper, &damping_taper, NULL));
   PetscOptionsEnd();
   PetscCheck(strength >= 0 && std::isfinite(strength), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_strength = %g: must be finite and >= 0", (double)strength);
   PetscCheck(cutoff > 0 && std::isfinite(cutoff), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_cutoff = %g: must be finite and > 0", (double)cutoff);
@@ -92,7 +93,10 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
     if (damping) { /* - 2 sqrt(6 lambda m / r^7) (x - x^).(v - v^)/r, v^ interpolated like x^ */
       const PetscReal *pv  = in.images->v[L.img[q]];
       const PetscReal  vhx = (1 - t) * v[2 * i1] + t * (v[2 * i2] + sg.vx) + pv[0], vhy = (1 - t) * v[2 * i1 + 1] + t * (v[2 * i2 + 1] + sg.vy) + pv[1];
-      mag -= damping_coefficient_[p] * ir2 * ir * std::sqrt(ir) * /* r^-3.5 */ ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
+      /* the taper makes the force continuous at r = x0 for moving particles: the literal term jumps
+         there, which stalls Newton in an RVE whose particles move with Fdot X (docs/model.md) */
+      const PetscReal taper = damping_taper ? 1.0 - r2 * r2 * r2 * ix06 : 1.0;
+      mag -= taper * damping_coefficient_[p] * ir2 * ir * std::sqrt(ir) * /* r^-3.5 */ ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
     }
     const PetscReal fx = mag * ex, fy = mag * ey;
     f[2 * p] += fx;
@@ -171,7 +175,7 @@ PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<Ti
 PetscErrorCode Repulsion::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s\n", (double)strength, (double)cutoff, angle_factor ? "on" : "off", damping ? "on" : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s\n", (double)strength, (double)cutoff, angle_factor ? "on" : "off", damping ? (damping_taper ? "on, tapered to 0 at x0" : "on, literal") : "off"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -468,19 +468,43 @@ PetscErrorCode RVE::WarmRelax(MaterialResponse *out, bool *converged)
       counters_.jacobians++;
       PetscCall(ResidualNorm(W_, &res)); /* the colouring evaluated elsewhere: G(W) back into R_ */
     }
-    /* the TSPSEUDO solver's own KSP: its LU factors of J_ are the ones to reuse */
-    SNES               snes;
-    KSP                ksp;
-    KSPConvergedReason kr;
+    /* the TSPSEUDO solver's own KSP: its LU factors of J_ are the ones to reuse. With a direct
+       PC (the default) the triangular solves are called on the factor itself: KSPSolve's
+       bookkeeping cost as much as the solve on these 36-unknown systems (-log_view). */
+    SNES      snes;
+    KSP       ksp;
+    PC        pc;
+    PetscBool direct;
     PetscCall(TSGetSNES(ts_, &snes));
     PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(KSPSetOperators(ksp, J_, J_));
-    PetscCall(KSPSolve(ksp, R_, D_));
-    PetscCall(KSPGetConvergedReason(ksp, &kr));
-    if (kr < 0) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &direct, PCLU, PCCHOLESKY, ""));
+    if (direct) {
+      PCFailedReason pr;
+      Mat            factor;
+      PetscCall(KSPSetUp(ksp)); /* refactors only if J_ changed */
+      PetscCall(PCGetFailedReason(pc, &pr));
+      if (pr != PC_NOERROR) PetscFunctionReturn(PETSC_SUCCESS);
+      PetscCall(PCFactorGetMatrix(pc, &factor));
+      PetscCall(MatSolve(factor, R_, D_));
+    } else {
+      KSPConvergedReason kr;
+      PetscCall(KSPSolve(ksp, R_, D_));
+      PetscCall(KSPGetConvergedReason(ksp, &kr));
+      if (kr < 0) PetscFunctionReturn(PETSC_SUCCESS);
+    }
     PetscCall(VecAXPY(W_, -1.0, D_));
     PetscCall(VecNorm(D_, NORM_2, &step));
     PetscCall(ResidualNorm(W_, &res_new));
+    /* with a fresh G' a step that does not reduce ||G|| is too long (a kink of the forces, e.g. a
+       pair at its cutoff): backtrack by halving before giving up */
+    for (int half = 0; refresh && !(res_new < res) && half < 10; half++) {
+      PetscCall(VecScale(D_, 0.5));
+      PetscCall(VecAXPY(W_, 1.0, D_));
+      step *= 0.5;
+      PetscCall(ResidualNorm(W_, &res_new));
+    }
     out->iterations++;
     out->ksp_its++;
     out->residual = res_new;

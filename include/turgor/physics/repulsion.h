@@ -24,6 +24,7 @@ public:
   PetscReal cutoff       = 5.0; /* x0 [µm] */
   PetscBool angle_factor = PETSC_TRUE;
   PetscBool damping      = PETSC_TRUE;
+  PetscBool damping_taper = PETSC_TRUE; /* damping x (1 - (r/x0)^6): zero at the cutoff */
 
 private:
   struct Segment {
