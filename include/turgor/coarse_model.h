@@ -60,6 +60,7 @@ public:
   PetscInt           NumElements() const; /* global */
   PetscInt           NumMaterialPoints() const { return pool_.NumGlobal(); }
   PetscReal          ReferenceDensity() const { return rho0_; }
+  bool               LumpedMass() const { return lumped_; }
   /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
   PetscErrorCode     TipDisplacement(Vec U, PetscReal *uy);
   /* Per local cell: the mean Cauchy stress of its Gauss points with the centre pressure

@@ -30,6 +30,10 @@ public:
 
   /* Totals over all points and ranks (collective). */
   PetscErrorCode GlobalCounters(RVECounters *c) const;
+  /* Seconds spent in trial evaluations and in tangents, the largest over ranks (collective):
+     always measured (two clock reads per point), unlike -log_view's events, whose per-call
+     overhead on millions of small RVE solves would distort the timings being broken down. */
+  PetscErrorCode GlobalTimes(PetscReal *trial_s, PetscReal *tangent_s) const;
   PetscInt       NumGlobal() const { return n_global_; }
   PetscInt       NumGroups() const { return n_groups_; }
   const char    *MaterialName() const { return material_; }
@@ -46,7 +50,8 @@ private:
   PetscInt                                    comm_size_ = 1, n_local_ = 0, n_global_ = 0, offset_ = 0, n_groups_ = 1, begin_ = 0, end_ = 0;
   std::vector<std::unique_ptr<MaterialPoint>> points_; /* [begin_, end_) of this group */
   TangentOptions                              tangent_;
-  PetscLogEvent                               ev_evaluate_ = 0;
+  PetscLogEvent                               ev_evaluate_ = 0, ev_tangents_ = 0;
+  PetscLogDouble                              time_trial_ = 0, time_tangents_ = 0;
 };
 
 } // namespace turgor

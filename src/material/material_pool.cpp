@@ -35,6 +35,7 @@ PetscErrorCode MaterialPointPool::SetUp(PetscInt n_local)
   PetscMPIInt size, color;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("TgMaterialPoints", PETSC_OBJECT_CLASSID, &ev_evaluate_));
+  PetscCall(PetscLogEventRegister("TgTangents", PETSC_OBJECT_CLASSID, &ev_tangents_));
   n_local_ = n_local;
   offset_  = 0;
   PetscCallMPI(MPI_Exscan(&n_local_, &offset_, 1, MPIU_INT, MPI_SUM, comm_));
@@ -98,9 +99,17 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
     MaterialPoint   &mp = *points_[g - begin_];
     MaterialResponse r, status;
     Tangents         T;
+    PetscLogDouble t0, t1, t2;
+    PetscCall(PetscTime(&t0));
     PetscCall(mp.Evaluate(Fg, Fdg, EvaluationKind::Trial, &r));
+    PetscCall(PetscTime(&t1));
+    time_trial_ += t1 - t0;
     if (r.ok && D) {
+      PetscCall(PetscLogEventBegin(ev_tangents_, 0, 0, 0, 0));
       PetscCall(ComputeTangents(mp, Fg, Fdg, r, tangent_, &T, &status));
+      PetscCall(PetscLogEventEnd(ev_tangents_, 0, 0, 0, 0));
+      PetscCall(PetscTime(&t2));
+      time_tangents_ += t2 - t1;
       if (!status.ok) {
         r.ok     = false;
         r.reason = "tangent: " + status.reason;
@@ -153,6 +162,16 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
       }
   }
   PetscCall(PetscLogEventEnd(ev_evaluate_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::GlobalTimes(PetscReal *trial_s, PetscReal *tangent_s) const
+{
+  PetscReal t[2] = {(PetscReal)time_trial_, (PetscReal)time_tangents_};
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, t, 2, MPIU_REAL, MPIU_MAX, comm_));
+  *trial_s   = t[0];
+  *tangent_s = t[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
