@@ -6,10 +6,9 @@
 #include <turgor/petsc_compat.h>
 #include <petscts.h>
 
-#define TSRADAU5 "radau5"
+#include <turgor/ts_register.h> /* TurgorRegisterAll() */
 
-/* Registers turgor's TS types (radau5) with TSRegister(); calling it again is harmless. */
-PetscErrorCode TurgorRegisterAll(void);
+#define TSRADAU5 "radau5"
 
 /* Work done by a radau5 TS since the first step of its current TSSolve(): IJacobian (or
    RHSJacobian) calls, simplified Newton iterations, KSPSolve() calls. NULL pointers are skipped;

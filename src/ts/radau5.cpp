@@ -13,6 +13,7 @@
    Error estimate, Jacobian reuse and Newton control follow Hairer & Wanner's RADAU5; the step
    size is chosen by TSAdapt through ops->evaluatewlte. */
 #include <turgor/ts_radau5.h>
+#include "ts_types_internal.h"
 #include <petsc/private/tsimpl.h>
 #include <petsc/private/snesimpl.h> /* to clear a domain error raised with SNESSetFunctionDomainError() */
 #include <algorithm>
@@ -857,6 +858,9 @@ PetscErrorCode TSView_Radau5(TS ts, PetscViewer viewer)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+} // namespace
+
+/* registered by TurgorRegisterAll() (register.cpp) */
 PetscErrorCode TSCreate_Radau5(TS ts)
 {
   Radau5 *r = new Radau5();
@@ -876,27 +880,6 @@ PetscErrorCode TSCreate_Radau5(TS ts)
   ts->usessnes             = PETSC_FALSE; /* Newton is done here, on the transformed stage system */
   ts->default_adapt_type   = TSADAPTBASIC;
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadau5GetCounters_C", TSRadau5GetCounters_Radau5));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscBool registered = PETSC_FALSE; /* PETSc-style registration flag, cleared at PetscFinalize() */
-
-PetscErrorCode Radau5Unregister(void)
-{
-  PetscFunctionBeginUser;
-  registered = PETSC_FALSE;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-} // namespace
-
-PetscErrorCode TurgorRegisterAll(void)
-{
-  PetscFunctionBeginUser;
-  if (registered) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(TSRegister(TSRADAU5, TSCreate_Radau5));
-  PetscCall(PetscRegisterFinalize(Radau5Unregister));
-  registered = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,0 +1,6 @@
+# The Adams-Moulton integrator with functional iteration registered as TS type am
+# (src/ts/adams_moulton.cpp, docs/adams_moulton.md): observed orders 1..5, adaptive runs against
+# exact solutions, dense output, exact final time, stiff behaviour, fixed-point failures, domain
+# errors and rollback; the adaptive checks again under PETSc's PI step controller.
+turgor_test(test_adams_moulton)
+add_test(NAME test_adams_moulton_dsp COMMAND test_adams_moulton -ts_adapt_type dsp)
