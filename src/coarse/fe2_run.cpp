@@ -1,5 +1,6 @@
 #include <turgor/fe2_run.h>
 #include <turgor/log.h>
+#include <turgor/ts_am.h>
 #include <turgor/ts_radau5.h>
 #include <cmath>
 #include <cstring>
@@ -108,7 +109,7 @@ PetscErrorCode FE2Run::SetUp()
     PetscCall(PetscStrcmp(type, TSSSP, &is_ssp));
     PetscCall(PetscStrcmp(type, TSARKIMEX, &is_arkimex));
     PetscBool is_am;
-    PetscCall(PetscStrcmp(type, "am", &is_am)); /* Adams-Moulton with functional iteration: needs f only */
+    PetscCall(PetscStrcmp(type, TSAM, &is_am)); /* Adams-Moulton with functional iteration: needs f only */
     explicit_ = is_rk || is_euler || is_ssp || is_am;
     if (jacobian_max_age_ < 0) {
       PetscBool is_radau5;
