@@ -20,6 +20,7 @@ INTEGRATORS = {
     "bdf": ["-ts_type", "bdf"],
     "bdf3": ["-ts_type", "bdf", "-ts_bdf_order", "3"],
     "arkimex": ["-ts_type", "arkimex"],
+    "am": ["-ts_type", "am"],
 }
 
 
