@@ -499,17 +499,20 @@ PetscErrorCode RVE::WarmRelax(MaterialResponse *out, bool *converged)
     PetscCall(ResidualNorm(W_, &res_new));
     /* with a fresh G' a step that does not reduce ||G|| is too long (a kink of the forces, e.g. a
        pair at its cutoff): backtrack by halving before giving up */
+    bool full_step = true;
     for (int half = 0; refresh && !(res_new < res) && half < 10; half++) {
       PetscCall(VecScale(D_, 0.5));
       PetscCall(VecAXPY(W_, 1.0, D_));
       step *= 0.5;
+      full_step = false;
       PetscCall(ResidualNorm(W_, &res_new));
     }
     out->iterations++;
     out->ksp_its++;
     out->residual = res_new;
     if (!std::isfinite(res_new)) PetscFunctionReturn(PETSC_SUCCESS);
-    if (step < steptol_ || res_new < atol_) {
+    /* a shortened step says nothing about convergence: only a full Newton step may pass steptol */
+    if ((full_step && step < steptol_) || res_new < atol_) {
       *converged = true;
       PetscFunctionReturn(PETSC_SUCCESS);
     }
