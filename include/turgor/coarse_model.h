@@ -86,6 +86,7 @@ private:
   PetscInt          tangent_age_ = 0;
   KSP               mass_ksp_ = nullptr;
   Vec               Uloc_ = nullptr, Floc_ = nullptr;
+  Vec               rhs_r_ = nullptr, rhs_z_ = nullptr; /* RHSFunction work vectors */
 
   /* options */
   char      mesh_file_[PETSC_MAX_PATH_LEN] = "";
@@ -104,6 +105,7 @@ private:
   std::vector<PetscReal> wdet_;    /* [cell][point]: weight x det(dX/dxi) */
   std::vector<PetscReal> f_ext_;   /* [cell][4][2] */
   std::vector<char>      constrained_; /* per local vertex (point - vStart) */
+  std::vector<PetscInt>  free_rows_;   /* global row of ux of each owned, unclamped vertex */
   PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
   PetscReal              rho0_ = 0;
 

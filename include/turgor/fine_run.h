@@ -16,6 +16,10 @@
 
 namespace turgor {
 
+/* Default final time of the bending bar [µs], fine and FE^2 alike (both answer the same question;
+   docs/model.md, "final time"). */
+inline constexpr PetscReal kBendingBarFinalTime = 300.0;
+
 class FineRun {
 public:
   explicit FineRun(MPI_Comm comm) : comm_(comm) { }

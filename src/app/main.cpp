@@ -30,34 +30,12 @@ static PetscErrorCode WarnUnusedOptions(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* With -help every object is configured (so all options are listed) but nothing is solved. */
-static PetscErrorCode RunFine(MPI_Comm comm, PetscBool help_only)
+/* One mode: configure, set up, and (unless -help: every object is then configured, so all options
+   are listed, but nothing is solved) solve and summarise. Run is FineRun, RVERun or FE2Run. */
+template <class Run>
+static PetscErrorCode RunMode(MPI_Comm comm, PetscBool help_only)
 {
-  turgor::FineRun run(comm);
-  PetscFunctionBeginUser;
-  PetscCall(run.SetFromOptions());
-  PetscCall(run.SetUp());
-  if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(run.Solve());
-  PetscCall(run.WriteSummary());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode RunFE2(MPI_Comm comm, PetscBool help_only)
-{
-  turgor::FE2Run run(comm);
-  PetscFunctionBeginUser;
-  PetscCall(run.SetFromOptions());
-  PetscCall(run.SetUp());
-  if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(run.Solve());
-  PetscCall(run.WriteSummary());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode RunRVE(MPI_Comm comm, PetscBool help_only)
-{
-  turgor::RVERun run(comm);
+  Run run(comm);
   PetscFunctionBeginUser;
   PetscCall(run.SetFromOptions());
   PetscCall(run.SetUp());
@@ -82,13 +60,13 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsHasHelp(NULL, &help_requested));
   switch (mode) {
   case 0:
-    PetscCall(RunFine(PETSC_COMM_WORLD, help_requested));
+    PetscCall(RunMode<turgor::FineRun>(PETSC_COMM_WORLD, help_requested));
     break;
   case 1:
-    PetscCall(RunRVE(PETSC_COMM_WORLD, help_requested));
+    PetscCall(RunMode<turgor::RVERun>(PETSC_COMM_WORLD, help_requested));
     break;
   case 2:
-    PetscCall(RunFE2(PETSC_COMM_WORLD, help_requested));
+    PetscCall(RunMode<turgor::FE2Run>(PETSC_COMM_WORLD, help_requested));
     break;
   }
   PetscCall(WarnUnusedOptions());

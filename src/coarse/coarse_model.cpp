@@ -14,6 +14,8 @@ CoarseModel::~CoarseModel()
   (void)MatDestroy(&KC_);
   (void)VecDestroy(&Uloc_);
   (void)VecDestroy(&Floc_);
+  (void)VecDestroy(&rhs_r_);
+  (void)VecDestroy(&rhs_z_);
   (void)DMDestroy(&dm_);
 }
 
@@ -150,6 +152,17 @@ PetscErrorCode CoarseModel::CreateSection()
   PetscCall(PetscSectionDestroy(&s));
   PetscCall(DMCreateLocalVector(dm_, &Uloc_));
   PetscCall(VecDuplicate(Uloc_, &Floc_));
+  /* the rows the residual and Jacobian touch vertex by vertex (udot - v), found once */
+  PetscSection gs;
+  PetscCall(DMGetGlobalSection(dm_, &gs));
+  free_rows_.clear();
+  for (PetscInt v = v_start_; v < v_end_; v++) {
+    PetscInt off, dof, cdof;
+    PetscCall(PetscSectionGetOffset(gs, v, &off));
+    PetscCall(PetscSectionGetDof(gs, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+    if (off >= 0 && dof - cdof == 4) free_rows_.push_back(off); /* owned and not clamped */
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -244,16 +257,8 @@ PetscErrorCode CoarseModel::AssembleMass()
       }
     PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, Mt_, c, me, ADD_VALUES));
   }
-  PetscSection gs;
-  PetscCall(DMGetGlobalSection(dm_, &gs));
-  for (PetscInt v = v_start_; v < v_end_; v++) {
-    PetscInt off, dof, cdof;
-    PetscCall(PetscSectionGetOffset(gs, v, &off));
-    PetscCall(PetscSectionGetDof(gs, v, &dof));
-    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
-    if (off < 0 || dof - cdof != 4) continue; /* not owned, or clamped */
+  for (PetscInt off : free_rows_)
     for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(Mt_, off + d, off + d, 1.0, ADD_VALUES));
-  }
   PetscCall(MatAssemblyBegin(Mt_, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Mt_, MAT_FINAL_ASSEMBLY));
   PetscCall(KSPCreate(comm_, &mass_ksp_));
@@ -455,7 +460,6 @@ PetscErrorCode CoarseModel::FillNaN(Vec F)
 
 PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
 {
-  PetscSection       gs;
   PetscInt           rstart;
   PetscScalar       *f;
   const PetscScalar *u;
@@ -474,17 +478,11 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
   PetscCall(DMLocalToGlobal(dm_, Floc_, ADD_VALUES, F));
   PetscCall(MatMultAdd(Mt_, Udot, F, F)); /* + [udot; M vdot] */
   /* - v on the displacement rows */
-  PetscCall(DMGetGlobalSection(dm_, &gs));
   PetscCall(VecGetOwnershipRange(F, &rstart, NULL));
   PetscCall(VecGetArray(F, &f));
   PetscCall(VecGetArrayRead(U, &u));
-  for (PetscInt v = v_start_; v < v_end_; v++) {
-    PetscInt off, dof, cdof;
-    PetscCall(PetscSectionGetOffset(gs, v, &off));
-    PetscCall(PetscSectionGetDof(gs, v, &dof));
-    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
-    if (off < 0 || dof - cdof != 4) continue; /* not owned, or clamped */
-    off -= rstart;
+  for (PetscInt row : free_rows_) {
+    const PetscInt off = row - rstart;
     f[off] -= u[off + 2];
     f[off + 1] -= u[off + 3];
   }
@@ -496,21 +494,20 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
 
 PetscErrorCode CoarseModel::RHSFunction(Vec U, Vec G, PetscBool *ok)
 {
-  Vec R, Z;
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(U, &R));
-  PetscCall(VecDuplicate(U, &Z));
-  PetscCall(VecZeroEntries(Z));
-  PetscCall(IFunction(U, Z, R, ok)); /* R = -[v; f_ext - f_int] */
+  if (!rhs_r_) { /* work vectors kept: this is called at every stage */
+    PetscCall(VecDuplicate(U, &rhs_r_));
+    PetscCall(VecDuplicate(U, &rhs_z_));
+    PetscCall(VecZeroEntries(rhs_z_));
+  }
+  PetscCall(IFunction(U, rhs_z_, rhs_r_, ok)); /* R = -[v; f_ext - f_int] */
   if (*ok) {
-    PetscCall(VecScale(R, -1.0));
-    PetscCall(KSPSolve(mass_ksp_, R, G));
+    PetscCall(VecScale(rhs_r_, -1.0));
+    PetscCall(KSPSolve(mass_ksp_, rhs_r_, G));
     KSPConvergedReason reason;
     PetscCall(KSPGetConvergedReason(mass_ksp_, &reason));
     PetscCheck(reason > 0, comm_, PETSC_ERR_NOT_CONVERGED, "Mass matrix solve failed (%s)", KSPConvergedReasons[reason]);
   } else PetscCall(FillNaN(G));
-  PetscCall(VecDestroy(&R));
-  PetscCall(VecDestroy(&Z));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -535,7 +532,6 @@ static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, bool pressur
 
 PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh)
 {
-  PetscSection gs;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
   counters_.jacobians++;
@@ -598,15 +594,8 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
     PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, J, c, ke, ADD_VALUES));
   }
   /* -I: d(udot - v)/dv, per owned free vertex */
-  PetscCall(DMGetGlobalSection(dm_, &gs));
-  for (PetscInt v = v_start_; v < v_end_; v++) {
-    PetscInt off, dof, cdof;
-    PetscCall(PetscSectionGetOffset(gs, v, &off));
-    PetscCall(PetscSectionGetDof(gs, v, &dof));
-    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
-    if (off < 0 || dof - cdof != 4) continue; /* not owned, or clamped */
+  for (PetscInt off : free_rows_)
     for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(J, off + d, off + 2 + d, -1.0, ADD_VALUES));
-  }
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   if (!KC_) PetscCall(MatDuplicate(J, MAT_COPY_VALUES, &KC_));

@@ -1,4 +1,5 @@
 #include <turgor/fe2_run.h>
+#include <turgor/fine_run.h>
 #include <turgor/log.h>
 #include <turgor/ts_am.h>
 #include <turgor/ts_radau5.h>
@@ -6,9 +7,6 @@
 #include <cstring>
 
 namespace turgor {
-
-/* The fine run's final time: both models answer the same question (docs/model.md). */
-static const PetscReal kDefaultFinalTime = 300.0;
 
 FE2Run::~FE2Run()
 {
@@ -74,7 +72,7 @@ PetscErrorCode FE2Run::SetUp()
     if (!user_reuse) PetscCall(PetscOptionsSetValue(NULL, "-ts_radau5_jacobian_reuse", "0.1"));
   }
   PetscCall(TSSetTolerances(ts_, 1e-3, NULL, 1e-3, NULL));
-  PetscCall(TSSetMaxTime(ts_, kDefaultFinalTime));
+  PetscCall(TSSetMaxTime(ts_, kBendingBarFinalTime));
   PetscCall(TSSetMaxSteps(ts_, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetTimeStep(ts_, 0.1));

@@ -5,9 +5,6 @@
 
 namespace turgor {
 
-/* Default final time of the fine bending bar [µs]; see docs/model.md ("final time"). */
-static const PetscReal kDefaultFinalTime = 300.0;
-
 FineRun::~FineRun()
 {
   (void)TSDestroy(&ts_);
@@ -157,7 +154,7 @@ PetscErrorCode FineRun::SetUp()
   PetscCall(TSSetType(ts_, TSRK));
   PetscCall(TSRKSetType(ts_, TSRK5DP));
   PetscCall(TSSetTolerances(ts_, 1e-3, NULL, 1e-3, NULL));
-  PetscCall(TSSetMaxTime(ts_, kDefaultFinalTime));
+  PetscCall(TSSetMaxTime(ts_, kBendingBarFinalTime));
   PetscCall(TSSetMaxSteps(ts_, PETSC_MAX_INT));
   PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetErrorIfStepFails(ts_, PETSC_FALSE));
