@@ -3,7 +3,7 @@ static const char help[] = "RVE benchmark: wall time of a cold RVE solve, a warm
                            "-cells 1,4 cells per side (the seed's parameters; other options as for turgor).\n\n"
                            "  bench_rve [-cells 1,4] [-repeats 5]\n";
 
-#include <turgor/rve.h>
+#include <turgor/rve/rve.h>
 
 using namespace turgor;
 

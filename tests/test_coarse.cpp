@@ -6,7 +6,7 @@ static const char help[] = "Coarse FE^2 model (Q1, selective reduced integration
                            " 3. a static cantilever under a small body load against Timoshenko beam theory, on 32 x 8\n"
                            "    elements, and the observed order of convergence under refinement.\n";
 #include "test_util.h"
-#include <turgor/coarse_model.h>
+#include <turgor/coarse/coarse_model.h>
 #include <petscsnes.h>
 
 using namespace turgor;

@@ -2,7 +2,7 @@ static const char help[] = "Tangent machinery (TW 562 eqs 46-53) on the closed-f
                            "forward- and central-difference D^e and D^v against the analytic tangents (1e-6),\n"
                            "for several deformations including shear and rotation; inverted F is a failed evaluation.\n";
 #include "test_util.h"
-#include <turgor/neo_hookean.h>
+#include <turgor/material/neo_hookean.h>
 
 using namespace turgor;
 

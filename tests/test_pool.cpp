@@ -2,7 +2,7 @@ static const char help[] = "Material-point pool on sub-communicators: evaluates 
                            "over the ranks and writes them in global order to -o FILE; run with 1 and 2 ranks (and\n"
                            "-rve_comm_size 2) and compare the files: the results must not depend on the distribution.\n";
 #include "test_util.h"
-#include <turgor/material_pool.h>
+#include <turgor/material/material_pool.h>
 
 using namespace turgor;
 

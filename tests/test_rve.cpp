@@ -8,7 +8,7 @@ static const char help[] = "RVE material point (TW 562 §3.2, eq 30, eqs 46-53):
                            " 7. failures (inverted F, no convergence) are reported, not aborted;\n"
                            " 8. a large shear path with a rate (a corner element of the 8 x 8 FE^2 bar) converges at every point.\n";
 #include "test_util.h"
-#include <turgor/rve.h>
+#include <turgor/rve/rve.h>
 
 using namespace turgor;
 

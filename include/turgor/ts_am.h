@@ -4,7 +4,7 @@
    functional iteration (Nordsieck array, orders 1..12, Milne error estimate), with the step size
    chosen by TSAdapt. Needs no Jacobian. Problems are given as U' = f(t, U) with
    TSSetRHSFunction(); an IFunction is not supported. See docs/adams_moulton.md. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 #include <petscts.h>
 #include <turgor/ts_register.h> /* TurgorRegisterAll() registers it */
 

@@ -3,7 +3,7 @@
    Wanner's RADAU5 (Solving ODEs II, §IV.8) with step control through TSAdapt. Problems are given
    with TSSetIFunction/TSSetIJacobian (or TSSetRHSFunction/TSSetRHSJacobian) and must be linearly
    implicit, F(t, U, U') = M U' - f(t, U) with a constant nonsingular M. See docs/radau5.md. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 #include <petscts.h>
 
 #include <turgor/ts_register.h> /* TurgorRegisterAll() */

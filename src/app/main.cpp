@@ -15,8 +15,8 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
                            "  fe2    (default) coarse Q1 model on DMPlex whose stress comes from RVEs at the quadrature points\n\n";
 
 #include <turgor/turgor.h>
-#include <turgor/fe2_run.h>
-#include <turgor/rve_run.h>
+#include <turgor/coarse/fe2_run.h>
+#include <turgor/rve/rve_run.h>
 
 /* A misspelled option in a scene must not pass unnoticed. */
 static PetscErrorCode WarnUnusedOptions(void)

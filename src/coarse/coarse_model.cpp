@@ -1,6 +1,6 @@
 #include "q1_element.h"
-#include <turgor/coarse_model.h>
-#include <turgor/log.h>
+#include <turgor/coarse/coarse_model.h>
+#include <turgor/core/log.h>
 #include <petscsf.h>
 #include <cmath>
 #include <cstring>

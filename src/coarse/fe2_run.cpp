@@ -1,6 +1,6 @@
-#include <turgor/fe2_run.h>
-#include <turgor/fine_run.h>
-#include <turgor/log.h>
+#include <turgor/coarse/fe2_run.h>
+#include <turgor/fine/fine_run.h>
+#include <turgor/core/log.h>
 #include <turgor/ts_am.h>
 #include <turgor/ts_radau5.h>
 #include <cmath>

@@ -2,7 +2,7 @@
 /* Bilinear quadrilateral (Q1) element on the reference square [-1, 1]^2: shape functions, their
    reference-configuration gradients at a point, and the quadrature rules of the coarse model.
    Vertices come counter-clockwise from DMPlex's closure: (-1,-1), (1,-1), (1,1), (-1,1). */
-#include <turgor/tensor2.h>
+#include <turgor/core/tensor2.h>
 #include <cmath>
 
 namespace turgor {

@@ -1,4 +1,4 @@
-#include <turgor/log.h>
+#include <turgor/core/log.h>
 
 namespace turgor {
 

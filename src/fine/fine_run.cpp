@@ -1,5 +1,5 @@
-#include <turgor/fine_run.h>
-#include <turgor/log.h>
+#include <turgor/fine/fine_run.h>
+#include <turgor/core/log.h>
 #include <algorithm>
 #include <cmath>
 

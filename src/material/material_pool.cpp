@@ -1,5 +1,5 @@
-#include <turgor/material_pool.h>
-#include <turgor/neo_hookean.h>
+#include <turgor/material/material_pool.h>
+#include <turgor/material/neo_hookean.h>
 #include <cstring>
 
 namespace turgor {

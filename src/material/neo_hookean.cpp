@@ -1,4 +1,4 @@
-#include <turgor/neo_hookean.h>
+#include <turgor/material/neo_hookean.h>
 #include <cmath>
 
 namespace turgor {

@@ -1,4 +1,4 @@
-#include <turgor/material_point.h>
+#include <turgor/material/material_point.h>
 #include <cmath>
 
 namespace turgor {

@@ -1,4 +1,4 @@
-#include <turgor/neighbour_search.h>
+#include <turgor/particles/neighbour_search.h>
 #include <algorithm>
 #include <cmath>
 

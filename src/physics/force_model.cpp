@@ -1,4 +1,4 @@
-#include <turgor/force_model.h>
+#include <turgor/physics/force_model.h>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>

@@ -1,7 +1,7 @@
-#include <turgor/log.h>
+#include <turgor/core/log.h>
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
-#include <turgor/rve.h>
+#include <turgor/rve/rve.h>
 #include <algorithm>
 #include <cmath>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include <turgor/rve_run.h>
+#include <turgor/rve/rve_run.h>
 #include <cmath>
 
 namespace turgor {

@@ -2,7 +2,7 @@
    lattice of spacing cell_size/s (s = springs per side): every lattice point with at least one
    coordinate on a cell boundary. For 16 x 16 cells and s = 2 this gives 17^2 corners + 544 edge
    midpoints = 833 wall particles, as in the seed (TW 562, Fig. 2). */
-#include <turgor/tissue.h>
+#include <turgor/tissue/tissue.h>
 #include <algorithm>
 #include <cmath>
 #include <limits>

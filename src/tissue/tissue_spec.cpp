@@ -1,4 +1,4 @@
-#include <turgor/tissue.h>
+#include <turgor/tissue/tissue.h>
 #include <cmath>
 
 namespace turgor {

@@ -1,7 +1,7 @@
 #pragma once
 /* Output files of a run: the directory (-output_dir), CSV time series and summary.json. All are
    written by rank 0 of the given communicator. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 #include <cstdio>
 #include <string>
 #include <utility>

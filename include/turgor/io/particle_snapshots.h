@@ -3,7 +3,7 @@
    an XDMF file describing a temporal collection of two grids, the particles (Polyvertex, with
    velocity, kind, cell, fixed) and the wall springs (Polyline through the same positions).
    The XDMF file is rewritten after every snapshot, so a run that stops early stays readable. */
-#include <turgor/particles.h>
+#include <turgor/particles/particles.h>
 #include <petscdm.h>
 #include <petscviewer.h>
 #include <string>

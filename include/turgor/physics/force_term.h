@@ -1,8 +1,8 @@
 #pragma once
 /* One physics term of the fine-scale model. A scene lists the terms it wants (-physics); a term
    not in the list is never constructed, so it costs nothing: no neighbour lists, no passes. */
-#include <turgor/neighbour_search.h>
-#include <turgor/particles.h>
+#include <turgor/particles/neighbour_search.h>
+#include <turgor/particles/particles.h>
 #include <petscviewer.h>
 #include <string>
 

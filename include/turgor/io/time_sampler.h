@@ -3,7 +3,7 @@
    spaced times over [0, T] and `snapshot` at n_snapshots + 1, with the state interpolated by TS
    between the last two steps (not whichever steps the integrator took), and prints a progress line
    (time reached, steps/s, evaluations/s, ETA) every `interval` seconds of wall time. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 #include <petscts.h>
 #include <functional>
 

@@ -3,7 +3,7 @@
    group per snapshot (displacement and velocity at the vertices, Cauchy stress per element), and an
    XDMF file describing the temporal collection. The mesh is small: rank 0 gathers and writes
    (PetscViewerHDF5 on PETSC_COMM_SELF); the XDMF is rewritten after every snapshot. */
-#include <turgor/coarse_model.h>
+#include <turgor/coarse/coarse_model.h>
 #include <petscviewer.h>
 #include <string>
 #include <vector>

@@ -5,10 +5,10 @@
    get the IFunction F = Mt Udot - G(U) and the IJacobian shift Mt + [[0, -I], [K, C]] assembled
    from the material tangents. A failed material evaluation (no RVE convergence, inverted element)
    rejects the step and TS retries with a smaller one. */
-#include <turgor/coarse_model.h>
-#include <turgor/io/coarse_fields.h>
+#include <turgor/coarse/coarse_model.h>
+#include <turgor/coarse/coarse_fields.h>
 #include <turgor/io/output.h>
-#include <turgor/ts_sampler.h>
+#include <turgor/io/time_sampler.h>
 #include <petscts.h>
 
 namespace turgor {

@@ -10,9 +10,9 @@
    by MatFDColoring on the interaction graph; the seed's schedule delta_0 = 1e-2, delta <- 10 delta,
    stop at ||step|| < 1e-12 or ||G|| < 1e-12, in units scaled by the cell size and k_w x cell size.
    Stress by the virial (eq 30) over all pairs, including periodic images; rho = mass / area. */
-#include <turgor/force_model.h>
-#include <turgor/material_point.h>
-#include <turgor/tissue.h>
+#include <turgor/physics/force_model.h>
+#include <turgor/material/material_point.h>
+#include <turgor/tissue/tissue.h>
 #include <petscts.h>
 
 namespace turgor {

@@ -2,7 +2,7 @@
 /* -mode rve: one material point driven along a strain path (uniaxial, biaxial, simple shear,
    rigid rotation, or hold), writing sigma, rho, D^e, D^v and iteration counts per step to rve.csv
    and a summary.json. The material is chosen by -material (the RVE by default). */
-#include <turgor/material_pool.h>
+#include <turgor/material/material_pool.h>
 #include <turgor/io/output.h>
 
 namespace turgor {

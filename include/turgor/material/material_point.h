@@ -7,7 +7,7 @@
 
    An evaluation never aborts: a material point that cannot answer (no convergence, NaN, inverted
    element) returns ok = false with its reason, so that the caller can reject a step and retry. */
-#include <turgor/tensor2.h>
+#include <turgor/core/tensor2.h>
 #include <string>
 
 namespace turgor {

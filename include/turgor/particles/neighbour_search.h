@@ -5,7 +5,7 @@
    skin/2 since the last build (then no pair can have crossed the cutoff unseen); the check costs
    O(n) per evaluation, a rebuild O(n) with a bin grid. Only the lists a force term asked for are
    ever built: a scene without SPH does no fluid neighbour search. */
-#include <turgor/particles.h>
+#include <turgor/particles/particles.h>
 #include <vector>
 
 namespace turgor {

@@ -12,7 +12,7 @@
    with D^v (eqs 38-39), consistent with the selectively integrated residual. Vertices on the
    Dirichlet label values are constrained (all four dofs; displacement from SetBoundaryDisplacement,
    zero by default, velocity zero). */
-#include <turgor/material_pool.h>
+#include <turgor/material/material_pool.h>
 #include <petscdmplex.h>
 #include <functional>
 #include <string>

@@ -5,8 +5,8 @@
    balanced contiguous blocks, so a point always lives on the same group (its RVE keeps its warm
    start); inputs are gathered, each group evaluates its block, and the results come back to the
    ranks that own the points. */
-#include <turgor/material_point.h>
-#include <turgor/rve.h>
+#include <turgor/material/material_point.h>
+#include <turgor/rve/rve.h>
 #include <memory>
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include <turgor/ts_sampler.h>
+#include <turgor/io/time_sampler.h>
 #include <cmath>
 
 namespace turgor {

@@ -1,6 +1,6 @@
 #pragma once
 /* Small 2 x 2 tensors for material points: deformation gradients, their rates, Cauchy stresses. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 #include <cmath>
 
 namespace turgor {

@@ -5,7 +5,7 @@
 
    Positions and velocities are NOT stored here: they are the integrator's state and are passed
    to the kernels as interleaved arrays x[2*i+d], v[2*i+d]. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 #include <vector>
 
 namespace turgor {

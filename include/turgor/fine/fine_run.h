@@ -6,11 +6,11 @@
 
    Integrators (options only): -ts_type rk -ts_rk_type 5dp (default, adaptive, rtol = atol = 1e-3)
    or -ts_type basicsymplectic (PETSc's velocity Verlet, fixed step from the stability limits). */
-#include <turgor/force_model.h>
+#include <turgor/physics/force_model.h>
 #include <turgor/io/output.h>
 #include <turgor/io/particle_snapshots.h>
-#include <turgor/tissue.h>
-#include <turgor/ts_sampler.h>
+#include <turgor/tissue/tissue.h>
+#include <turgor/io/time_sampler.h>
 #include <petscts.h>
 #include <petscdmswarm.h>
 

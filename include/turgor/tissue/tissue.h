@@ -1,7 +1,7 @@
 #pragma once
 /* Tissue geometry: the regular grid of square cells of the seed paper (TW 562 §5), with shared
    walls discretised by springs and each cell filled with a square lattice of SPH particles. */
-#include <turgor/particles.h>
+#include <turgor/particles/particles.h>
 #include <string>
 #include <vector>
 

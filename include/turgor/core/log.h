@@ -1,7 +1,7 @@
 #pragma once
 /* Profiling helpers: PETSc refuses to register a log stage twice, but a program may run several
    simulations (tests, studies); stages are looked up by name first. */
-#include <turgor/petsc_compat.h>
+#include <turgor/core/petsc_compat.h>
 
 namespace turgor {
 

@@ -2,7 +2,7 @@
 /* Closed-form material point: compressible neo-Hookean solid (plane strain) plus linear viscosity,
      sigma = (mu/J)(F F^T - I) + (lambda/J) ln J I + eta (l + l^T),   l = Fdot F^{-1},  rho = rho0/J,
    with its analytic tangents, to verify the finite-difference tangents and the coarse solver. */
-#include <turgor/material_point.h>
+#include <turgor/material/material_point.h>
 
 namespace turgor {
 

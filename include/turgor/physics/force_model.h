@@ -2,7 +2,7 @@
 /* The fine-scale force model: the physics terms a scene enables (-physics), one neighbour search
    shared by them, and the evaluation of forces / accelerations on plain arrays. Used by the full
    fine-scale run and (later) by the RVE, which calls it on its own periodic patch. */
-#include <turgor/neighbour_search.h>
+#include <turgor/particles/neighbour_search.h>
 #include <turgor/physics/force_term.h>
 #include <memory>
 #include <string>

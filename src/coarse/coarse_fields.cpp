@@ -1,4 +1,4 @@
-#include <turgor/io/coarse_fields.h>
+#include <turgor/coarse/coarse_fields.h>
 #include <petscviewerhdf5.h>
 #include <hdf5.h>
 
