@@ -64,6 +64,7 @@ int main(int argc, char **argv)
   PetscReal min_time = 1.0;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscOptionsBegin(PETSC_COMM_SELF, "", "Benchmark options", "bench");
   PetscBool set;
   PetscCall(PetscOptionsIntArray("-sizes", "Cells per side of the square tissues (default 16,64,256)", "", sizes, &nsizes, &set));

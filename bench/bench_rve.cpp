@@ -13,6 +13,7 @@ int main(int argc, char **argv)
   PetscBool set;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscOptionsBegin(PETSC_COMM_SELF, "", "RVE benchmark options", "bench");
   PetscCall(PetscOptionsIntArray("-cells", "RVE sizes (cells per side)", "", cells, &ncells, &set));
   if (!set) ncells = 2;

@@ -32,12 +32,13 @@ int main(int argc, char **argv)
   PetscInt empty[64], nempty = 64;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-empty_cells", empty, &nempty, NULL));
   {
     turgor::Tissue  tissue;
     turgor::FineRun run(PETSC_COMM_WORLD);
     PetscCall(run.SetFromOptions());
-    PetscCall(turgor::GenerateSquareGridTissue(PETSC_COMM_WORLD, run.Spec(), &tissue));
+    PetscCall(run.Tissues().Generate(PETSC_COMM_WORLD, &tissue));
     for (PetscInt k = 0; k < nempty; k++) PetscCheck(empty[k] >= 0 && empty[k] < tissue.NumCells(), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "Option -empty_cells: cell %" PetscInt_FMT " is not in 0..%" PetscInt_FMT, empty[k], tissue.NumCells() - 1);
     run.SetTissue(WithoutFluid(tissue, std::vector<PetscInt>(empty, empty + nempty)));
     PetscCall(run.SetUp());

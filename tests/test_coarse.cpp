@@ -248,6 +248,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscCall(PetscOptionsInsertString(NULL, "-material neo_hookean"));
   PetscCall(PatchTest());
   PetscCall(PetscOptionsClearValue(NULL, "-material"));

@@ -54,6 +54,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   /* 3 x 3 cells, perturbed positions and random velocities: every term is active */
   TissueSpec spec;
   Tissue     T;

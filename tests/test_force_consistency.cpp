@@ -203,6 +203,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   Tissue T;
   PetscCall(DisorderedTissue(0.8, &T));
   {

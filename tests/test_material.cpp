@@ -21,6 +21,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   NeoHookean nh;
   PetscCall(nh.SetFromOptions(PETSC_COMM_SELF));
   const Tensor2 Fs[] = {Tensor2::Identity(), {{{1.1, 0.0}, {0.0, 0.95}}}, {{{1.0, 0.2}, {0.0, 1.0}}}, Tensor2::Rotation(0.7) * Tensor2{{{1.05, 0.1}, {-0.05, 0.9}}}};

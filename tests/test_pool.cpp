@@ -12,6 +12,7 @@ int main(int argc, char **argv)
   PetscMPIInt rank, size;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscCall(PetscOptionsGetString(NULL, NULL, "-o", path, sizeof path, NULL));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));

@@ -262,6 +262,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscCall(Symmetry());
   PetscCall(Objectivity());
   PetscCall(StaticState());

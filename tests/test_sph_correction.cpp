@@ -100,6 +100,7 @@ int main(int argc, char **argv)
   PetscReal err_on, err_off, f_on, f_off, drift_on, drift_off;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   PetscCall(LinearField(PETSC_TRUE, &err_on, &f_on));
   PetscCall(LinearField(PETSC_FALSE, &err_off, &f_off));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "grad(A x) error on a disordered patch: corrected %.2e, uncorrected %.2e (|A| ~ 0.7)\n", (double)err_on, (double)err_off));

@@ -72,6 +72,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   for (const char *opt : {"-physics springs", "-wall_damping_ratio 0", "-fine_clamp left,right", "-fine_snapshots 0", "-fine_progress_interval 0", "-fine_tip_samples 1", "-output_dir test_spring_chain_out", "-ts_max_time 1e6", "-ts_adapt_type none"}) PetscCall(PetscOptionsInsertString(NULL, opt));
   const PetscReal omega1 = 2 * std::sqrt(k / m) * std::sin(PETSC_PI / (2 * (N + 1))), T1 = 2 * PETSC_PI / omega1;
   const PetscReal omega_max = 2 * std::sqrt(k / m);

@@ -7,6 +7,7 @@ int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   {
     /* the seed's 16 x 16 tissue: 833 wall and 4096 SPH particles (TW 562 Fig. 2) */
     TissueSpec spec;

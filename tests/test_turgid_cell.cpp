@@ -76,6 +76,7 @@ int main(int argc, char **argv)
   PetscReal seed, consistent;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
   for (const char *opt : {"-tissue_cells_x 1", "-tissue_cells_y 1", "-tissue_cell_size 400", "-tissue_springs_per_side 1", "-tissue_fluid_per_cell 4096", "-tissue_wall_particle_mass 16", "-physics springs,repulsion,sph", "-sph_viscosity 5", "-fine_clamp none", "-fine_snapshots 0", "-fine_progress_interval 0", "-fine_tip_samples 1", "-output_dir test_turgid_cell_out", "-ts_max_time 50"}) PetscCall(PetscOptionsInsertString(NULL, opt));
   /* h = 1.1 dx: the SPH pressure gradient is consistent to 0.3% on a square lattice, so the balance
      tests the model (walls, repulsion, fluid) rather than the kernel's discretisation error */

@@ -6,4 +6,4 @@
 
 /* Registers turgor's TS types (radau5, am) with TSRegister(); call once after PetscInitialize().
    Calling it again is harmless. */
-PetscErrorCode TurgorRegisterAll(void);
+PetscErrorCode TurgorTSRegisterAll(void);

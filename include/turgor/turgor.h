@@ -1,12 +1,13 @@
 #pragma once
 /* turgor: PETSc-native simulation of plant tissue mechanics.
    Umbrella header for programs that link libturgor (see makefile.inc). */
+#include <turgor/core/register_all.h>
 #include <turgor/physics/force_model.h>
 #include <turgor/fine/fine_run.h>
 #include <turgor/io/output.h>
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
-#include <turgor/tissue/tissue.h>
+#include <turgor/tissue/square_grid.h>
 #include <turgor/ts_am.h>
 #include <turgor/ts_radau5.h>
 #include <turgor/ts_register.h>

@@ -35,14 +35,6 @@ PetscErrorCode CoarseModel::SetFromOptions()
   PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseModel", lumped_, &lumped_, NULL));
   PetscOptionsEnd();
   if (!set) n_bc_values_ = 1;
-  {
-    PetscInt  n = 2;
-    PetscBool gset;
-    PetscOptionsBegin(comm_, "body_", "Body force", "turgor");
-    PetscCall(PetscOptionsRealArray("-force", "Acceleration gx,gy on the tissue [µm/µs^2] (default 0,-0.2)", "CoarseModel", g_, &n, &gset));
-    PetscOptionsEnd();
-    PetscCheck(!gset || n == 2, comm_, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy");
-  }
   PetscCheck(faces_[0] >= 1 && faces_[1] >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -coarse_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": must be >= 1", faces_[0], faces_[1]);
   PetscCheck(upper_[0] > lower_[0] && upper_[1] > lower_[1], comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -coarse_lower / -coarse_upper: the box is empty");
   PetscCall(pool_.SetFromOptions());

@@ -26,6 +26,8 @@ PetscErrorCode FE2Run::SetFromOptions()
     PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
     if (!set) PetscCall(PetscOptionsSetValue(NULL, name, "1e-9"));
   }
+  PetscCall(load_.SetFromOptions(comm_));
+  model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions());
   PetscOptionsBegin(comm_, "fe2_", "Coarse FE^2 run (-mode fe2)", "turgor");
   PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "FE2Run", tip_samples_, &tip_samples_, NULL));
@@ -286,8 +288,9 @@ PetscErrorCode FE2Run::WriteSummary()
     }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, per, 2, MPIU_INT, MPI_MAX, comm_));
   if (!strcmp(model_.Pool().MaterialName(), "rve")) {
-    ForceModel fm; /* the RVEs' terms, as configured */
-    PetscCall(fm.SetFromOptions(comm_, {"body_force"}));
+    PhysicsSpec fm; /* the RVEs' terms, as configured */
+    fm.with_loads = false;
+    PetscCall(fm.SetFromOptions(comm_, TermContext{}));
     physics = fm.ActiveTerms();
   } else physics = {"neo_hookean"};
   const PetscInt npts = model_.NumMaterialPoints();

@@ -22,7 +22,8 @@ PetscErrorCode FineRun::SetFromOptions()
 
   PetscFunctionBeginUser;
   PetscCall(spec_.SetFromOptions(comm_));
-  PetscCall(model_.SetFromOptions(comm_));
+  PetscCall(load_.SetFromOptions(comm_));
+  PetscCall(physics_.SetFromOptions(comm_, TermContext{&load_}));
   PetscOptionsBegin(comm_, "fine_", "Full fine-scale run (-mode fine)", "turgor");
   PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRun", sides, &nsides, &set));
   PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "FineRun", tip_samples_, &tip_samples_, NULL));
@@ -117,7 +118,7 @@ PetscErrorCode FineRun::SetUp()
   PetscCall(PetscLogStagePush(stage_setup_));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
 
-  if (!have_tissue_) PetscCall(GenerateSquareGridTissue(comm_, spec_, &tissue_));
+  if (!have_tissue_) PetscCall(spec_.Generate(comm_, &tissue_));
   PetscCall(tissue_.Clamp(comm_, clamp_, "-fine_clamp"));
   /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
@@ -130,7 +131,7 @@ PetscErrorCode FineRun::SetUp()
   }
   n_local_ = tissue_.particles.n;
   PetscCall(CreateSwarm());
-  PetscCall(model_.SetUp(tissue_.particles));
+  PetscCall(model_.SetUp(physics_, tissue_.particles));
 
   /* state [x | v] and the position/momentum splits used by basicsymplectic */
   PetscInt     start;

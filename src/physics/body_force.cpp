@@ -1,18 +1,12 @@
 #include <turgor/physics/body_force.h>
-#include <cmath>
 
 namespace turgor {
 
-PetscErrorCode BodyForce::SetFromOptions(MPI_Comm comm)
+PetscErrorCode BodyForce::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
-  PetscInt  n = 2;
-  PetscBool set;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "body_", "Body force", "turgor");
-  PetscCall(PetscOptionsRealArray("-force", "Acceleration gx,gy on every particle [µm/µs^2] (default 0,-0.2)", "BodyForce", g, &n, &set));
-  PetscOptionsEnd();
-  PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %" PetscInt_FMT ")", n);
-  PetscCheck(std::isfinite(g[0]) && std::isfinite(g[1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -body_force = %g,%g: must be finite", (double)g[0], (double)g[1]);
+  PetscCheck(ctx.load, comm, PETSC_ERR_ARG_WRONGSTATE, "Physics term body_force: this scene has no loads (-body_force)");
+  for (int d = 0; d < 2; d++) g[d] = ctx.load->body_acceleration[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,79 +1,96 @@
 #include <turgor/physics/force_model.h>
-#include <turgor/physics/body_force.h>
-#include <turgor/physics/repulsion.h>
-#include <turgor/physics/sph_fluid.h>
-#include <turgor/physics/wall_springs.h>
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace turgor {
 
-const std::vector<std::string> &KnownPhysicsTerms()
+PetscErrorCode ForceTermRegister(const char name[], ForceTermCreator create) { return Registry<ForceTerm>::Instance().Add(name, create); }
+
+PetscErrorCode ForceTermCreate(MPI_Comm comm, const std::string &name, const char *option, std::unique_ptr<ForceTerm> *term)
 {
-  static const std::vector<std::string> known = {"springs", "repulsion", "sph", "body_force"};
-  return known;
+  return Registry<ForceTerm>::Instance().Create(comm, name, option, "physics term", term);
 }
 
-PetscErrorCode CreateForceTerm(MPI_Comm comm, const std::string &name, const char *option, std::unique_ptr<ForceTerm> *term)
+std::string ForceTermNames() { return Registry<ForceTerm>::Instance().Names(); }
+
+PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm)
 {
+  PetscInt  n = 2;
+  PetscBool set;
   PetscFunctionBeginUser;
-  if (name == "springs") term->reset(new WallSprings());
-  else if (name == "repulsion") term->reset(new Repulsion());
-  else if (name == "sph") term->reset(new SPHFluid());
-  else if (name == "body_force") term->reset(new BodyForce());
-  else {
-    std::string list;
-    for (const std::string &k : KnownPhysicsTerms()) list += (list.empty() ? "" : ", ") + k;
-    SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option %s: unknown physics term '%s' (known: %s)", option, name.c_str(), list.c_str());
-  }
+  PetscOptionsBegin(comm, "body_", "External loads", "turgor");
+  PetscCall(PetscOptionsRealArray("-force", "Body force: acceleration gx,gy of the tissue [µm/µs^2] (default 0,-0.2)", "LoadSpec", body_acceleration, &n, &set));
+  PetscOptionsEnd();
+  PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %" PetscInt_FMT ")", n);
+  PetscCheck(std::isfinite(body_acceleration[0]) && std::isfinite(body_acceleration[1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -body_force = %g,%g: must be finite", (double)body_acceleration[0], (double)body_acceleration[1]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::SetFromOptions(MPI_Comm comm, const std::vector<std::string> &skip)
+PetscErrorCode PhysicsSpec::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
-  char      *names[16];
+  char      *list[16];
   PetscInt   n = 16;
   PetscBool  set;
-  PetscReal  skin = nb_.Skin();
-
+  std::string defaults;
   PetscFunctionBeginUser;
+  for (const std::string &s : names) defaults += (defaults.empty() ? "" : ",") + s;
+  const std::string help = "Physics terms to simulate, comma-separated, in evaluation order, from " + ForceTermNames() + " (default " + defaults + "; none: no forces)";
   PetscOptionsBegin(comm, NULL, "Fine-scale physics", "turgor");
-  PetscCall(PetscOptionsStringArray("-physics", "Physics terms to simulate, comma-separated, from springs,repulsion,sph,body_force (default: all four; none: no forces)", "ForceModel", names, &n, &set));
-  PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet skin of the neighbour lists [µm]", "ForceModel", skin, &skin, NULL));
+  PetscCall(PetscOptionsStringArray("-physics", help.c_str(), "PhysicsSpec", list, &n, &set));
+  PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet skin of the neighbour lists [µm]", "PhysicsSpec", neighbour_skin, &neighbour_skin, NULL));
   PetscOptionsEnd();
-  PetscCheck(skin >= 0 && std::isfinite(skin), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -neighbour_skin = %g: must be finite and >= 0", (double)skin);
-  nb_.SetSkin(skin);
-  std::vector<std::string> list;
+  PetscCheck(neighbour_skin >= 0 && std::isfinite(neighbour_skin), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -neighbour_skin = %g: must be finite and >= 0", (double)neighbour_skin);
   if (set) {
+    names.clear();
     for (PetscInt k = 0; k < n; k++) {
-      list.push_back(names[k]);
-      PetscCall(PetscFree(names[k]));
+      names.push_back(list[k]);
+      PetscCall(PetscFree(list[k]));
     }
-  } else list = KnownPhysicsTerms();
+  }
   terms_.clear();
-  for (const std::string &name : list) {
+  std::vector<std::string> seen;
+  for (const std::string &name : names) {
     if (name == "none") continue;
-    for (const auto &t : terms_) PetscCheck(name != t->Name(), comm, PETSC_ERR_ARG_WRONG, "Option -physics: term '%s' is listed twice", name.c_str());
+    PetscCheck(std::find(seen.begin(), seen.end(), name) == seen.end(), comm, PETSC_ERR_ARG_WRONG, "Option -physics: term '%s' is listed twice", name.c_str());
+    seen.push_back(name);
     std::unique_ptr<ForceTerm> t;
-    PetscCall(CreateForceTerm(comm, name, "-physics", &t));
-    if (std::find(skip.begin(), skip.end(), name) != skip.end()) continue;
-    PetscCall(t->SetFromOptions(comm));
+    PetscCall(ForceTermCreate(comm, name, "-physics", &t));
+    if (!with_loads && t->IsLoad()) continue;
+    PetscCall(t->SetFromOptions(comm, ctx));
     terms_.push_back(std::move(t));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::SetUp(const ParticleSet &P)
+std::vector<std::string> PhysicsSpec::ActiveTerms() const
+{
+  std::vector<std::string> active;
+  for (const auto &t : terms_) active.push_back(t->Name());
+  return active;
+}
+
+PetscReal PhysicsSpec::CharacteristicForce(PetscReal length, PetscReal density) const
+{
+  for (const auto &t : terms_) {
+    const PetscReal f = t->CharacteristicForce(length, density);
+    if (f > 0) return f;
+  }
+  return 0;
+}
+
+PetscErrorCode ForceModel::SetUp(const PhysicsSpec &physics, const ParticleSet &P)
 {
   PetscFunctionBeginUser;
   P_ = &P;
   for (PetscInt i = 0; i < P.n; i++) PetscCheck(P.mass[i] > 0 && std::isfinite(P.mass[i]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Particle %" PetscInt_FMT " has mass %g: every particle mass must be > 0", i, (double)P.mass[i]);
   nb_.Reset();
+  nb_.SetSkin(physics.neighbour_skin);
+  terms_.clear();
   events_.clear();
-  for (auto &t : terms_) {
-    PetscCall(t->SetUp(P, nb_));
-    std::string   ename = std::string("Tg_") + t->Name();
+  for (const auto &proto : physics.Terms()) {
+    terms_.push_back(proto->Clone());
+    PetscCall(terms_.back()->SetUp(P, nb_));
+    std::string   ename = std::string("Tg_") + terms_.back()->Name();
     PetscLogEvent ev;
     PetscCall(PetscLogEventRegister(ename.c_str(), PETSC_OBJECT_CLASSID, &ev));
     events_.push_back(ev);
@@ -139,20 +156,18 @@ PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, Pet
 
 PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits)
 {
+  std::vector<PetscReal> a;
   PetscFunctionBeginUser;
-  PetscCall(nb_.Update(*P_, x, images_));
-  const ForceInput in = {P_, x, v, &nb_, &images_};
-  limits.clear();
-  for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));
-  /* eq 40's force criterion 0.25 sqrt(h / |a|), with h the SPH smoothing length */
-  if (auto *sph = dynamic_cast<SPHFluid *>(Term("sph"))) {
-    std::vector<PetscReal> a(2 * P_->n);
+  if (std::any_of(terms_.begin(), terms_.end(), [](const auto &t) { return t->NeedsAccelerations(); })) {
+    a.resize(2 * P_->n);
     PetscCall(ComputeAcceleration(x, v, a.data()));
     evaluations_--; /* not an integrator evaluation */
-    PetscReal amax = 0;
-    for (PetscInt i = 0; i < P_->n; i++) amax = PetscMax(amax, std::hypot(a[2 * i], a[2 * i + 1]));
-    if (amax > 0) limits.push_back({0.25 * std::sqrt(sph->smoothing_length / amax), "largest acceleration: 0.25 sqrt(h / |a|) (eq 40)"});
   }
+  PetscCall(nb_.Update(*P_, x, images_));
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.a          = a.empty() ? nullptr : a.data();
+  limits.clear();
+  for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -4,7 +4,7 @@
 
 namespace turgor {
 
-PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm)
+PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "repulsion_", "Particle-spring repulsion (TW 562 eq 17)", "turgor");

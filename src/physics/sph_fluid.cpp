@@ -3,7 +3,7 @@
 
 namespace turgor {
 
-PetscErrorCode SPHFluid::SetFromOptions(MPI_Comm comm)
+PetscErrorCode SPHFluid::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "sph_", "SPH cell fluid (TW 562 eqs 2-15)", "turgor");
@@ -286,13 +286,19 @@ PetscErrorCode SPHFluid::Energy(const ForceInput &in, PetscReal *E, PetscBool *h
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* TW 562 eq 40: dt <= 0.25 h / c_s and dt <= 0.125 h^2 / nu, nu = mu / rho (smallest density). */
+/* TW 562 eq 40: dt <= 0.25 h / c_s, dt <= 0.125 h^2 / nu, nu = mu / rho (smallest density), and
+   dt <= 0.25 sqrt(h / |a|_max). */
 PetscErrorCode SPHFluid::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
 {
-  PetscFunctionBeginUser;
-  if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   const PetscReal h = smoothing_length;
   char            why[256];
+  PetscFunctionBeginUser;
+  if (in.a) { /* the force criterion, with the accelerations of all terms together */
+    PetscReal amax = 0;
+    for (PetscInt i = 0; i < in.P->n; i++) amax = PetscMax(amax, std::hypot(in.a[2 * i], in.a[2 * i + 1]));
+    if (amax > 0) limits.push_back({0.25 * std::sqrt(h / amax), "largest acceleration: 0.25 sqrt(h / |a|) (eq 40)"});
+  }
+  if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   if (sound_speed > 0) {
     PetscCall(PetscSNPrintf(why, sizeof why, "sound speed: 0.25 h / c_s (eq 40), c_s = %g µm/µs", (double)sound_speed));
     limits.push_back({0.25 * h / sound_speed, why});

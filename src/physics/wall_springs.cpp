@@ -3,7 +3,7 @@
 
 namespace turgor {
 
-PetscErrorCode WallSprings::SetFromOptions(MPI_Comm comm)
+PetscErrorCode WallSprings::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "wall_", "Wall springs with dashpots (TW 562 eq 16)", "turgor");

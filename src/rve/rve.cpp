@@ -1,6 +1,4 @@
 #include <turgor/core/log.h>
-#include <turgor/physics/sph_fluid.h>
-#include <turgor/physics/wall_springs.h>
 #include <turgor/rve/rve.h>
 #include <algorithm>
 #include <cmath>
@@ -25,7 +23,7 @@ PetscErrorCode RVE::SetFromOptions()
 {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
-  PetscCall(spec_.SetFromOptions(comm_));
+  PetscCall(spec_.SetFromOptions(comm_, false));
   PetscOptionsBegin(comm_, "rve_", "RVE material point (TW 562 §3.2)", "turgor");
   PetscCall(PetscOptionsInt("-cells", "Cells per side of the periodic RVE", "RVE", cells_, &cells_, NULL));
   {
@@ -47,7 +45,8 @@ PetscErrorCode RVE::SetFromOptions()
   PetscCheck(dt0_ > 0 && warm_dt0_ > 0 && increment_ >= 1 && dt_max_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_psi_dt0, -rve_warm_dt0, -rve_psi_dt_max must be > 0 and -rve_psi_increment >= 1");
   PetscCheck(atol_ > 0 && steptol_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_psi_atol = %g, -rve_psi_steptol = %g: must be > 0", (double)atol_, (double)steptol_);
   /* the body force is a load on the coarse model, not part of the material */
-  PetscCall(model_.SetFromOptions(comm_, {"body_force"}));
+  physics_.with_loads = false;
+  PetscCall(physics_.SetFromOptions(comm_, TermContext{}));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -61,16 +60,15 @@ PetscErrorCode RVE::SetUp()
   const ParticleSet &P = tissue_.particles;
   for (PetscInt i = 0; i < P.n; i++)
     if (!P.fixed[i]) free_.push_back(i);
-  PetscCall(model_.SetUp(P));
+  PetscCall(model_.SetUp(physics_, P));
   x_.assign(2 * P.n, 0);
   v_.assign(2 * P.n, 0);
   f_.assign(2 * P.n, 0);
 
   /* scales: lengths by the cell size, forces by k_w x cell size (or the fluid's c_s^2 rho x cell) */
   length_scale_ = spec_.cell_size;
-  force_scale_  = length_scale_;
-  if (auto *s = dynamic_cast<WallSprings *>(model_.Term("springs"))) force_scale_ = s->stiffness * length_scale_;
-  else if (auto *f = dynamic_cast<SPHFluid *>(model_.Term("sph"))) force_scale_ = f->sound_speed * f->sound_speed * spec_.fluid_density * length_scale_;
+  force_scale_  = physics_.CharacteristicForce(length_scale_, spec_.fluid_density);
+  if (force_scale_ == 0) force_scale_ = length_scale_; /* no term sets one: forces in µN */
   PetscCheck(force_scale_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "RVE: the force scale must be > 0 (check -wall_stiffness / -sph_sound_speed)");
 
   PetscCall(VecCreateMPI(comm_, rank_ == 0 ? NumUnknowns() : 0, PETSC_DETERMINE, &W_));

@@ -2,14 +2,12 @@
    lattice of spacing cell_size/s (s = springs per side): every lattice point with at least one
    coordinate on a cell boundary. For 16 x 16 cells and s = 2 this gives 17^2 corners + 544 edge
    midpoints = 833 wall particles, as in the seed (TW 562, Fig. 2). */
-#include <turgor/tissue/tissue.h>
-#include <algorithm>
+#include <turgor/tissue/square_grid.h>
 #include <cmath>
-#include <limits>
 
 namespace turgor {
 
-PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue)
+PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue)
 {
   const PetscInt  nx = spec.cells_x, ny = spec.cells_y, s = spec.springs_per_side;
   const PetscInt  ax = nx * s + 1, ay = ny * s + 1; /* lattice points per direction */
@@ -65,7 +63,7 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, T
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue)
+PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue)
 {
   const PetscInt  nx = spec.cells_x, ny = spec.cells_y, s = spec.springs_per_side;
   const PetscInt  ax = nx * s, ay = ny * s; /* unique lattice points per direction */
@@ -123,75 +121,46 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const TissueSpec 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscInt Tissue::AddParticle(PetscReal x, PetscReal y, PetscReal mass, ParticleKind kind, PetscInt cell)
-{
-  X.push_back(x);
-  X.push_back(y);
-  particles.mass.push_back(mass);
-  particles.kind.push_back(kind);
-  particles.cell.push_back(cell);
-  return particles.n++;
-}
-
-void Tissue::AddSpring(PetscInt i, PetscInt j)
-{
-  particles.springs.push_back({i, j, std::hypot(X[2 * j] - X[2 * i], X[2 * j + 1] - X[2 * i + 1])});
-}
-
-void Tissue::Finalize()
-{
-  ParticleSet &P = particles;
-  P.n_owned      = P.n;
-  P.gid.resize(P.n);
-  for (PetscInt i = 0; i < P.n; i++) P.gid[i] = i;
-  P.fixed.assign(P.n, 0);
-  for (int d = 0; d < 2; d++) {
-    lo[d] = P.n ? X[d] : 0;
-    hi[d] = P.n ? X[d] : 0;
-    for (PetscInt i = 1; i < P.n; i++) {
-      lo[d] = std::min(lo[d], X[2 * i + d]);
-      hi[d] = std::max(hi[d], X[2 * i + d]);
-    }
-  }
-}
-
-PetscInt Tissue::ClosestWallParticle(PetscReal px, PetscReal py) const
-{
-  PetscInt  best = -1;
-  PetscReal d2   = std::numeric_limits<PetscReal>::max();
-  for (PetscInt i = 0; i < particles.n; i++) {
-    if (particles.kind[i] != KIND_WALL) continue;
-    const PetscReal dx = X[2 * i] - px, dy = X[2 * i + 1] - py, r2 = dx * dx + dy * dy;
-    if (r2 < d2) { d2 = r2; best = i; }
-  }
-  return best;
-}
-
-PetscErrorCode Tissue::Clamp(MPI_Comm comm, const std::vector<std::string> &sides, const char *option)
+PetscErrorCode SquareGridSpec::SetFromOptions(MPI_Comm comm, bool layout)
 {
   PetscFunctionBeginUser;
-  const PetscReal tol = 1e-9 * (hi[0] - lo[0] + hi[1] - lo[1]);
-  for (const std::string &side : sides) {
-    if (side == "none") continue;
-    PetscCheck(side == "left" || side == "right" || side == "bottom" || side == "top", comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option %s: unknown side '%s' (known: left, right, bottom, top, none)", option, side.c_str());
-    for (PetscInt i = 0; i < particles.n; i++) {
-      if (particles.kind[i] != KIND_WALL) continue;
-      const PetscReal x = X[2 * i], y = X[2 * i + 1];
-      const bool      hit = (side == "left" && x < lo[0] + tol) || (side == "right" && x > hi[0] - tol) || (side == "bottom" && y < lo[1] + tol) || (side == "top" && y > hi[1] - tol);
-      if (hit) particles.fixed[i] = 1;
-    }
+  PetscOptionsBegin(comm, "tissue_", "Tissue geometry (square cells with shared walls; units µm, ng)", "turgor");
+  if (layout) {
+    PetscCall(PetscOptionsInt("-cells_x", "Cells in x", "SquareGridSpec", cells_x, &cells_x, NULL));
+    PetscCall(PetscOptionsInt("-cells_y", "Cells in y", "SquareGridSpec", cells_y, &cells_y, NULL));
   }
+  PetscCall(PetscOptionsReal("-cell_size", "Cell side length [µm]", "SquareGridSpec", cell_size, &cell_size, NULL));
+  PetscCall(PetscOptionsInt("-springs_per_side", "Wall springs along one cell side", "SquareGridSpec", springs_per_side, &springs_per_side, NULL));
+  PetscCall(PetscOptionsInt("-fluid_per_cell", "SPH particles per cell (a square number k^2)", "SquareGridSpec", fluid_per_cell, &fluid_per_cell, NULL));
+  PetscCall(PetscOptionsReal("-wall_particle_mass", "Wall (DEM) particle mass m_DEM [ng]", "SquareGridSpec", wall_mass, &wall_mass, NULL));
+  PetscCall(PetscOptionsReal("-fluid_density", "2D fluid density = 3D density x thickness [ng/µm^2]", "SquareGridSpec", fluid_density, &fluid_density, NULL));
+  PetscCall(PetscOptionsReal("-fluid_particle_mass", "SPH particle mass m_SPH [ng]; 0: fluid_density x cell area / fluid_per_cell", "SquareGridSpec", fluid_mass, &fluid_mass, NULL));
+  PetscOptionsEnd();
+
+  PetscCheck(cells_x >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cells_x = %" PetscInt_FMT ": must be >= 1", cells_x);
+  PetscCheck(cells_y >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cells_y = %" PetscInt_FMT ": must be >= 1", cells_y);
+  PetscCheck(cell_size > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cell_size = %g: must be > 0", (double)cell_size);
+  PetscCheck(springs_per_side >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_springs_per_side = %" PetscInt_FMT ": must be >= 1", springs_per_side);
+  PetscInt k = (PetscInt)std::lround(std::sqrt((double)fluid_per_cell));
+  PetscCheck(fluid_per_cell >= 0 && k * k == fluid_per_cell, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_per_cell = %" PetscInt_FMT ": must be a square number (k x k lattice per cell)", fluid_per_cell);
+  PetscCheck(wall_mass > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_wall_particle_mass = %g: a particle mass must be > 0", (double)wall_mass);
+  PetscCheck(fluid_density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_density = %g: must be > 0", (double)fluid_density);
+  PetscCheck(std::isfinite(fluid_mass) && fluid_mass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass = %g: a particle mass must be > 0 (or 0 to derive it from -tissue_fluid_density)", (double)fluid_mass);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscReal PolygonArea(const std::vector<PetscInt> &ring, const PetscReal *x)
+PetscReal SquareGridSpec::FluidParticleMass() const
 {
-  PetscReal a = 0;
-  for (size_t t = 0; t < ring.size(); t++) {
-    const PetscInt i = ring[t], j = ring[(t + 1) % ring.size()];
-    a += x[2 * i] * x[2 * j + 1] - x[2 * j] * x[2 * i + 1];
-  }
-  return 0.5 * a;
+  if (fluid_mass > 0) return fluid_mass;
+  if (fluid_per_cell == 0) return 0;
+  return fluid_density * cell_size * cell_size / (PetscReal)fluid_per_cell;
+}
+
+PetscErrorCode SquareGridGenerator::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue square_grid: %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g µm, %" PetscInt_FMT " springs per side, %" PetscInt_FMT " fluid particles per cell\n", spec.cells_x, spec.cells_y, (double)spec.cell_size, spec.springs_per_side, spec.fluid_per_cell));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

@@ -17,7 +17,7 @@ PetscErrorCode TurgorUnregister(void)
 
 } // namespace
 
-PetscErrorCode TurgorRegisterAll(void)
+PetscErrorCode TurgorTSRegisterAll(void)
 {
   PetscFunctionBeginUser;
   if (registered) PetscFunctionReturn(PETSC_SUCCESS);

@@ -13,6 +13,7 @@
    Dirichlet label values are constrained (all four dofs; displacement from SetBoundaryDisplacement,
    zero by default, velocity zero). */
 #include <turgor/material/material_pool.h>
+#include <turgor/physics/load_spec.h>
 #include <petscdmplex.h>
 #include <functional>
 #include <string>
@@ -30,8 +31,13 @@ public:
   CoarseModel(const CoarseModel &)            = delete;
   CoarseModel &operator=(const CoarseModel &) = delete;
 
-  /* -coarse_* options (mesh, Dirichlet label and values, mass), -body_force, and the pool's. */
+  /* -coarse_* options (mesh, Dirichlet label and values, mass) and the pool's. */
   PetscErrorCode SetFromOptions();
+  /* The scene's loads (the body force); before SetUp. */
+  void           SetLoad(const LoadSpec &load)
+  {
+    for (int d = 0; d < 2; d++) g_[d] = load.body_acceleration[d];
+  }
   /* Override the mesh before SetUp (tests distort it); the model takes a reference. */
   PetscErrorCode SetMesh(DM dm);
   PetscErrorCode SetUp();

@@ -40,6 +40,7 @@ private:
   PetscErrorCode        Observe(PetscReal t, Vec U);
 
   MPI_Comm           comm_;
+  LoadSpec           load_;
   CoarseModel        model_;
   TS                 ts_ = nullptr;
   Vec                U_ = nullptr;

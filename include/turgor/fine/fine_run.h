@@ -9,7 +9,7 @@
 #include <turgor/physics/force_model.h>
 #include <turgor/io/output.h>
 #include <turgor/io/particle_snapshots.h>
-#include <turgor/tissue/tissue.h>
+#include <turgor/tissue/tissue_generator.h>
 #include <turgor/io/time_sampler.h>
 #include <petscts.h>
 #include <petscdmswarm.h>
@@ -40,7 +40,7 @@ public:
   /* summary.json and the final report; call after Solve */
   PetscErrorCode WriteSummary();
 
-  const TissueSpec &Spec() const { return spec_; }
+  const TissueSpec &Tissues() const { return spec_; }
   TS           GetTS() const { return ts_; }
   /* The integrator state [x (2n) | v (2n)] of this rank's particles. */
   Vec          GetState() const { return U_; }
@@ -65,6 +65,8 @@ private:
   TissueSpec spec_;
   Tissue     tissue_;
   bool       have_tissue_ = false;
+  LoadSpec   load_;
+  PhysicsSpec physics_;
   ForceModel model_;
   DM         swarm_ = nullptr;
   TS         ts_    = nullptr;

@@ -1,13 +1,15 @@
 #pragma once
-/* Uniform body force (acceleration g on every particle), e.g. the seed's 0.2 µm/µs^2 downward. */
+/* Uniform body force (acceleration g on every particle), e.g. the seed's 0.2 µm/µs^2 downward.
+   g is the scene's load (-body_force, LoadSpec), not an option of this term. */
 #include <turgor/physics/force_term.h>
 
 namespace turgor {
 
-class BodyForce : public ForceTerm {
+class BodyForce : public ForceTermBase<BodyForce> {
 public:
   const char    *Name() const override { return "body_force"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
+  bool           IsLoad() const override { return true; }
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override { return PETSC_SUCCESS; }
   /* External forces contribute no internal virial. */
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;

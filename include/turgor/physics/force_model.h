@@ -1,7 +1,8 @@
 #pragma once
-/* The fine-scale force model: the physics terms a scene enables (-physics), one neighbour search
-   shared by them, and the evaluation of forces / accelerations on plain arrays. Used by the full
-   fine-scale run and (later) by the RVE, which calls it on its own periodic patch. */
+/* The fine-scale physics: PhysicsSpec is what a scene enables (-physics and each listed term's
+   parameters, read once); ForceModel evaluates its own copy of those terms with one neighbour
+   search shared by them, on plain arrays. The full fine-scale run has one ForceModel; every RVE has
+   its own, built from one PhysicsSpec shared by all of them. */
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/physics/force_term.h>
 #include <memory>
@@ -10,19 +11,33 @@
 
 namespace turgor {
 
-/* Names accepted by -physics, in evaluation order. */
-const std::vector<std::string> &KnownPhysicsTerms();
-/* Create a term by name; an unknown name is an error naming `option` and the known names. */
-PetscErrorCode CreateForceTerm(MPI_Comm comm, const std::string &name, const char *option, std::unique_ptr<ForceTerm> *term);
+class PhysicsSpec {
+public:
+  /* API defaults, overridden by -physics (comma-separated, in evaluation order; "none": no forces)
+     and -neighbour_skin. */
+  std::vector<std::string> names = {"springs", "repulsion", "sph", "body_force"};
+  PetscReal                neighbour_skin = 1.0; /* Verlet skin [µm] */
+  /* false for a material (an RVE): terms that are loads (IsLoad) are accepted in the list but left
+     out -- the coarse model applies the loads. */
+  bool                     with_loads = true;
+
+  /* Read -physics and -neighbour_skin, then create and configure every listed term. */
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx);
+  /* Add a configured term (tests, custom physics), after the listed ones. */
+  void           Add(std::unique_ptr<ForceTerm> term) { terms_.push_back(std::move(term)); }
+  const std::vector<std::unique_ptr<ForceTerm>> &Terms() const { return terms_; }
+  std::vector<std::string>                       ActiveTerms() const;
+  /* A typical force of a cell (the first term that defines one; 0 if none does). */
+  PetscReal                                      CharacteristicForce(PetscReal length, PetscReal density) const;
+
+private:
+  std::vector<std::unique_ptr<ForceTerm>> terms_;
+};
 
 class ForceModel {
 public:
-  /* Reads -physics (comma-separated term names; default: all) and each term's own options. Terms
-     named in `skip` are not constructed even if listed (an RVE skips the body force, a load). */
-  PetscErrorCode SetFromOptions(MPI_Comm comm, const std::vector<std::string> &skip = {});
-  /* Add a term programmatically (tests); call before SetUp. */
-  void           AddTerm(std::unique_ptr<ForceTerm> term) { terms_.push_back(std::move(term)); }
-  PetscErrorCode SetUp(const ParticleSet &P);
+  /* Copies of the spec's terms, set up for these particles. */
+  PetscErrorCode SetUp(const PhysicsSpec &physics, const ParticleSet &P);
 
   /* f[2n] = sum of all terms' forces; virial[4] (may be NULL) = -sum f_k (x) x_k of internal forces. */
   PetscErrorCode ComputeForces(const PetscReal *x, const PetscReal *v, PetscReal *f, PetscReal *virial);
@@ -30,7 +45,7 @@ public:
   PetscErrorCode ComputeAcceleration(const PetscReal *x, const PetscReal *v, PetscReal *a);
   /* Sum of the conservative terms' energies; *complete = PETSC_FALSE if some active term has none. */
   PetscErrorCode PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete);
-  /* Stability bounds of an explicit step at state (x, v): every term's, plus eq 40's force bound. */
+  /* Stability bounds of an explicit step at state (x, v), every term's. */
   PetscErrorCode TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits);
 
   std::vector<std::string> ActiveTerms() const;

@@ -1,10 +1,16 @@
 #pragma once
 /* One physics term of the fine-scale model. A scene lists the terms it wants (-physics); a term
-   not in the list is never constructed, so it costs nothing: no neighbour lists, no passes. */
+   not in the list is never constructed, so it costs nothing: no neighbour lists, no passes.
+
+   A new term is one file (a class derived from ForceTermBase<Term>) plus one line in
+   src/core/register_all.cpp: ForceTermRegister("name", CreateInstance<ForceTerm, Term>). */
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
+#include <turgor/physics/load_spec.h>
 #include <petscviewer.h>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace turgor {
 
@@ -14,6 +20,7 @@ struct ForceInput {
   const PetscReal       *x, *v;
   const NeighbourSearch *nb;
   const PeriodicImages  *images; /* never NULL; all zero shifts unless periodic */
+  const PetscReal       *a = nullptr; /* accelerations of all terms together, where a criterion needs them */
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */
@@ -22,12 +29,22 @@ struct TimeStepLimit {
   std::string why;
 };
 
+/* What a term may take from the scene besides its own options. */
+struct TermContext {
+  const LoadSpec *load = nullptr; /* external loads (the body force); NULL where a scene has none */
+};
+
 class ForceTerm {
 public:
   virtual ~ForceTerm() = default;
   virtual const char *Name() const = 0;
+  /* A configured term that has not been set up: every force model (each RVE has one) takes a copy. */
+  virtual std::unique_ptr<ForceTerm> Clone() const = 0;
   /* Read this term's parameters (one options block with the term's prefix) and validate them. */
-  virtual PetscErrorCode SetFromOptions(MPI_Comm comm) = 0;
+  virtual PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) = 0;
+  /* An external load (the body force) rather than a property of the tissue: a material (an RVE)
+     does not include it; the coarse model applies the load itself. */
+  virtual bool IsLoad() const { return false; }
   /* Precompute per-particle/per-bond data and ask the neighbour search for the lists needed. */
   virtual PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) = 0;
   /* f[2n] += forces. If virial is not NULL, virial[4] += -sum_k f_k (x) x_k over this term's
@@ -40,9 +57,27 @@ public:
     *has = PETSC_FALSE;
     return PETSC_SUCCESS;
   }
-  /* Stability bounds for an explicit step at the current state (TW 562 eq 40 and bond frequencies). */
+  /* Stability bounds for an explicit step at the current state (TW 562 eq 40 and bond
+     frequencies); in.a holds the accelerations if NeedsAccelerations(). */
   virtual PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) { return PETSC_SUCCESS; }
+  virtual bool           NeedsAccelerations() const { return false; }
+  /* A typical force of a cell of size `length` and fluid density `density` (an RVE scales its
+     equations by it); 0 if the term sets none. */
+  virtual PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const { return 0; }
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
 };
+
+/* Clone() for a term that is copyable while configured and not yet set up. */
+template <class Term>
+class ForceTermBase : public ForceTerm {
+public:
+  std::unique_ptr<ForceTerm> Clone() const override { return std::make_unique<Term>(static_cast<const Term &>(*this)); }
+};
+
+using ForceTermCreator = Registry<ForceTerm>::Creator;
+PetscErrorCode ForceTermRegister(const char name[], ForceTermCreator create);
+/* A term by name (unconfigured); an unknown name is an error naming `option` and the known names. */
+PetscErrorCode ForceTermCreate(MPI_Comm comm, const std::string &name, const char *option, std::unique_ptr<ForceTerm> *term);
+std::string    ForceTermNames();
 
 } // namespace turgor

@@ -8,10 +8,10 @@
 
 namespace turgor {
 
-class Repulsion : public ForceTerm {
+class Repulsion : public ForceTermBase<Repulsion> {
 public:
   const char    *Name() const override { return "repulsion"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   /* Energy lambda (r^-5/5 + r/x0^6 - 6/(5 x0^5)) per pair; the force is its gradient wherever the

@@ -15,15 +15,19 @@
 
 namespace turgor {
 
-class SPHFluid : public ForceTerm {
+class SPHFluid : public ForceTermBase<SPHFluid> {
 public:
   const char    *Name() const override { return "sph"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   /* Pressure energy sum_i m_i c_s^2 ln(rho_i): the pressure forces are exactly its negative gradient. */
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  /* eq 40: sound speed, viscosity and, from the accelerations, the force criterion 0.25 sqrt(h/|a|) */
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  bool           NeedsAccelerations() const override { return true; }
+  /* c_s^2 rho x cell size: the turgor pressure's force on a cell side */
+  PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return sound_speed * sound_speed * density * length; }
   PetscErrorCode View(PetscViewer viewer) const override;
 
   /* Kernel W(r) and dW/dr of eq 2 in 2D. */

@@ -6,14 +6,16 @@
 
 namespace turgor {
 
-class WallSprings : public ForceTerm {
+class WallSprings : public ForceTermBase<WallSprings> {
 public:
   const char    *Name() const override { return "springs"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  /* k_w x cell size: the force of a wall stretched by its own length */
+  PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return stiffness * length; }
   PetscErrorCode View(PetscViewer viewer) const override;
 
   PetscReal stiffness     = 4000.0; /* k_w [µN/µm = N/m] */

@@ -12,7 +12,7 @@
    Stress by the virial (eq 30) over all pairs, including periodic images; rho = mass / area. */
 #include <turgor/physics/force_model.h>
 #include <turgor/material/material_point.h>
-#include <turgor/tissue/tissue.h>
+#include <turgor/tissue/square_grid.h>
 #include <petscts.h>
 
 namespace turgor {
@@ -72,8 +72,9 @@ private:
 
   MPI_Comm               comm_;
   PetscMPIInt            rank_ = 0;
-  TissueSpec             spec_;
+  SquareGridSpec         spec_;
   Tissue                 tissue_;
+  PhysicsSpec            physics_;
   ForceModel             model_;
   std::vector<PetscInt>  free_;      /* free particle of each unknown pair */
   std::vector<PetscReal> x_, v_, f_; /* all particles */

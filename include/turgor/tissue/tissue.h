@@ -1,27 +1,11 @@
 #pragma once
-/* Tissue geometry: the regular grid of square cells of the seed paper (TW 562 §5), with shared
-   walls discretised by springs and each cell filled with a square lattice of SPH particles. */
+/* A tissue: its particles (wall and fluid), wall springs and cells, whichever generator made it
+   (tissue_generator.h). Units: µm, µs, ng (1e-12 kg); see docs/model.md. */
 #include <turgor/particles/particles.h>
 #include <string>
 #include <vector>
 
 namespace turgor {
-
-/* Geometry and particle masses of a square-cell tissue, read from options with prefix tissue_.
-   Units: µm, µs, ng (1e-12 kg); see docs/model.md. */
-struct TissueSpec {
-  PetscInt  cells_x          = 16;
-  PetscInt  cells_y          = 16;
-  PetscReal cell_size        = 25.0; /* µm */
-  PetscInt  springs_per_side = 2;
-  PetscInt  fluid_per_cell   = 16;   /* a square number k*k: k x k lattice per cell */
-  PetscReal wall_mass        = 0.5;  /* ng, m_DEM */
-  PetscReal fluid_density    = 0.01; /* ng/µm², 2D density = 1000 kg/m³ x 10 µm thickness */
-  PetscReal fluid_mass       = 0.0;  /* ng, m_SPH; 0 means fluid_density * cell area / fluid_per_cell */
-
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
-  PetscReal      FluidParticleMass() const;
-};
 
 /* A generated tissue: reference positions X, constant particle data, and per-cell wall polygons. */
 struct Tissue {
@@ -45,12 +29,6 @@ struct Tissue {
      clamps nothing. Unknown names are an error naming `option`. */
   PetscErrorCode Clamp(MPI_Comm comm, const std::vector<std::string> &sides, const char *option);
 };
-
-PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue);
-/* The same grid as one period of an infinite tissue (an RVE): the top row and right column of wall
-   points are the periodic images of the bottom row and left column, so springs that cross the
-   boundary bond to an image (Spring::image); the corner particle at the origin is fixed. */
-PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const TissueSpec &spec, Tissue *tissue);
 
 /* Signed area of the polygon through the given particles (counter-clockwise positive). */
 PetscReal PolygonArea(const std::vector<PetscInt> &ring, const PetscReal *x);

@@ -1,0 +1,7 @@
+#pragma once
+/* Registration of everything pluggable in turgor (src/core/register_all.cpp): turgor's TS types,
+   physics terms, materials, tissue generators and run modes. Call once after PetscInitialize();
+   calling it again is harmless. */
+#include <turgor/core/petsc_compat.h>
+
+PetscErrorCode TurgorRegisterAll(void);

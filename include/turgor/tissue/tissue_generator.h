@@ -1,0 +1,39 @@
+#pragma once
+/* Tissue generators: each builds a Tissue from its own options (prefix tissue_), chosen by
+   -tissue_type. A new generator is one file (a class derived from TissueGenerator) plus one line
+   in src/core/register_all.cpp: TissueGeneratorRegister("name", CreateInstance<TissueGenerator, G>). */
+#include <turgor/core/registry.h>
+#include <turgor/tissue/tissue.h>
+#include <petscviewer.h>
+#include <memory>
+#include <string>
+
+namespace turgor {
+
+class TissueGenerator {
+public:
+  virtual ~TissueGenerator() = default;
+  virtual const char    *Name() const = 0;
+  virtual PetscErrorCode SetFromOptions(MPI_Comm comm) = 0;
+  virtual PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const = 0;
+  virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+};
+
+using TissueGeneratorCreator = Registry<TissueGenerator>::Creator;
+PetscErrorCode TissueGeneratorRegister(const char name[], TissueGeneratorCreator create);
+PetscErrorCode TissueGeneratorCreate(MPI_Comm comm, const std::string &name, std::unique_ptr<TissueGenerator> *generator);
+
+/* The tissue of a fine run: -tissue_type (API default: square_grid) and that generator's options. */
+class TissueSpec {
+public:
+  std::string type = "square_grid";
+
+  PetscErrorCode   SetFromOptions(MPI_Comm comm);
+  PetscErrorCode   Generate(MPI_Comm comm, Tissue *tissue) const;
+  TissueGenerator *Generator() const { return generator_.get(); }
+
+private:
+  std::unique_ptr<TissueGenerator> generator_;
+};
+
+} // namespace turgor

@@ -1,0 +1,37 @@
+/* TurgorRegisterAll(): every pluggable part of turgor, one line each -- TS types, physics terms,
+   (later) materials, tissue generators and run modes. */
+#include <turgor/core/register_all.h>
+#include <turgor/physics/body_force.h>
+#include <turgor/physics/repulsion.h>
+#include <turgor/physics/sph_fluid.h>
+#include <turgor/physics/wall_springs.h>
+#include <turgor/tissue/square_grid.h>
+#include <turgor/ts_register.h>
+
+namespace {
+PetscBool registered = PETSC_FALSE; /* PETSc-style registration flag, cleared at PetscFinalize() */
+
+PetscErrorCode Unregister(void)
+{
+  registered = PETSC_FALSE;
+  return PETSC_SUCCESS;
+}
+} // namespace
+
+PetscErrorCode TurgorRegisterAll(void)
+{
+  using namespace turgor;
+  PetscFunctionBeginUser;
+  if (registered) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(TurgorTSRegisterAll());
+  /* physics terms (-physics) */
+  PetscCall(ForceTermRegister("springs", CreateInstance<ForceTerm, WallSprings>));
+  PetscCall(ForceTermRegister("repulsion", CreateInstance<ForceTerm, Repulsion>));
+  PetscCall(ForceTermRegister("sph", CreateInstance<ForceTerm, SPHFluid>));
+  PetscCall(ForceTermRegister("body_force", CreateInstance<ForceTerm, BodyForce>));
+  /* tissue generators (-tissue_type) */
+  PetscCall(TissueGeneratorRegister("square_grid", CreateInstance<TissueGenerator, SquareGridGenerator>));
+  PetscCall(PetscRegisterFinalize(Unregister));
+  registered = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
