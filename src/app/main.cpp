@@ -16,7 +16,7 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
 
 #include <turgor/turgor.h>
 #include <turgor/coarse/fe2_run.h>
-#include <turgor/rve/rve_run.h>
+#include <turgor/material/strain_path_run.h>
 
 /* A misspelled option in a scene must not pass unnoticed. */
 static PetscErrorCode WarnUnusedOptions(void)
@@ -63,7 +63,7 @@ int main(int argc, char **argv)
     PetscCall(RunMode<turgor::FineRun>(PETSC_COMM_WORLD, help_requested));
     break;
   case 1:
-    PetscCall(RunMode<turgor::RVERun>(PETSC_COMM_WORLD, help_requested));
+    PetscCall(RunMode<turgor::StrainPathRun>(PETSC_COMM_WORLD, help_requested));
     break;
   case 2:
     PetscCall(RunMode<turgor::FE2Run>(PETSC_COMM_WORLD, help_requested));

@@ -18,14 +18,11 @@ FE2Run::~FE2Run()
 PetscErrorCode FE2Run::SetFromOptions()
 {
   PetscFunctionBeginUser;
-  /* FE^2 default for the RVEs' Psi-tc tolerance: 1e-9 rather than the seed's 1e-12 (-mode rve keeps
-     1e-12). On the bending bar the tip history moves by 2.7e-6 µm, far below the coarse tolerance,
-     for 1.5x less time (docs/benchmarks.md); set the options to override. */
-  for (const char *name : {"-rve_psi_atol", "-rve_psi_steptol"}) {
-    PetscBool set;
-    PetscCall(PetscOptionsHasName(NULL, NULL, name, &set));
-    if (!set) PetscCall(PetscOptionsSetValue(NULL, name, "1e-9"));
-  }
+  /* FE^2 default for the material points' accuracy (an RVE's Psi-tc tolerance): 1e-9 rather than
+     the seed's 1e-12 (-mode rve keeps 1e-12). On the bending bar the tip history moves by 2.7e-6 µm,
+     far below the coarse tolerance, for 1.5x less time (docs/benchmarks.md); -rve_psi_atol and
+     -rve_psi_steptol override it. */
+  model_.Pool().SetDefaultTolerance(1e-9);
   PetscCall(load_.SetFromOptions(comm_));
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions());
@@ -257,7 +254,7 @@ PetscErrorCode FE2Run::WriteSummary()
   TSType      type;
   PetscReal   rtol, atol, t;
   PetscInt    steps, rej, snes_its, ksp_its;
-  RVECounters rc;
+  MaterialCounters rc;
   PetscFunctionBeginUser;
   PetscCall(TSGetType(ts_, &type));
   std::string ts_type = type;
@@ -279,20 +276,9 @@ PetscErrorCode FE2Run::WriteSummary()
   PetscCall(model_.Pool().GlobalCounters(&rc));
   const CoarseCounters &cc = model_.Counters();
   /* particles: of one RVE, and in all RVEs together */
-  PetscInt                 per[2] = {0, 0};
-  std::vector<std::string> physics;
-  if (model_.Pool().GroupEnd() > model_.Pool().GroupBegin())
-    if (auto *rve = dynamic_cast<RVE *>(model_.Pool().GroupPoint(0))) {
-      per[0] = rve->GetTissue().particles.Count(KIND_WALL);
-      per[1] = rve->GetTissue().particles.Count(KIND_FLUID);
-    }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, per, 2, MPIU_INT, MPI_MAX, comm_));
-  if (!strcmp(model_.Pool().MaterialName(), "rve")) {
-    PhysicsSpec fm; /* the RVEs' terms, as configured */
-    fm.with_loads = false;
-    PetscCall(fm.SetFromOptions(comm_, TermContext{}));
-    physics = fm.ActiveTerms();
-  } else physics = {"neo_hookean"};
+  PetscInt                       per[2];
+  const std::vector<std::string> physics = model_.Pool().Model().Physics();
+  model_.Pool().Model().ParticlesPerPoint(&per[0], &per[1]);
   const PetscInt npts = model_.NumMaterialPoints();
 
   js.Set("mode", "fe2");
@@ -336,6 +322,7 @@ PetscErrorCode FE2Run::WriteSummary()
     PetscCallMPI(MPI_Comm_size(comm_, &size));
     js.Set("mpi_ranks", (PetscInt)size);
   }
+  js.Set("pool_remote_bytes_per_evaluation", model_.Pool().RemoteBytesPerEvaluation());
   js.Set("snapshots", fields_.Count());
   PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
   PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %" PetscInt_FMT " function and %" PetscInt_FMT " Jacobian evaluations, %" PetscInt_FMT " RVE solves (%" PetscInt_FMT " for tangents), %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, cc.residuals, cc.tangent_evals, rc.solves, rc.tangent_solves, (double)wall_, (double)tip_final_, output_dir_.c_str(), snapshots_ > 0 ? ", coarse.h5 + coarse.xmf" : ""));

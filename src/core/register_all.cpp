@@ -1,10 +1,12 @@
 /* TurgorRegisterAll(): every pluggable part of turgor, one line each -- TS types, physics terms,
    (later) materials, tissue generators and run modes. */
 #include <turgor/core/register_all.h>
+#include <turgor/material/neo_hookean.h>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
+#include <turgor/rve/rve.h>
 #include <turgor/tissue/square_grid.h>
 #include <turgor/ts_register.h>
 
@@ -29,6 +31,9 @@ PetscErrorCode TurgorRegisterAll(void)
   PetscCall(ForceTermRegister("repulsion", CreateInstance<ForceTerm, Repulsion>));
   PetscCall(ForceTermRegister("sph", CreateInstance<ForceTerm, SPHFluid>));
   PetscCall(ForceTermRegister("body_force", CreateInstance<ForceTerm, BodyForce>));
+  /* materials (-material) */
+  PetscCall(MaterialModelRegister("rve", CreateInstance<MaterialModel, RVEMaterial>));
+  PetscCall(MaterialModelRegister("neo_hookean", CreateInstance<MaterialModel, NeoHookeanMaterial>));
   /* tissue generators (-tissue_type) */
   PetscCall(TissueGeneratorRegister("square_grid", CreateInstance<TissueGenerator, SquareGridGenerator>));
   PetscCall(PetscRegisterFinalize(Unregister));

@@ -1,105 +1,168 @@
 #include <turgor/material/material_pool.h>
-#include <turgor/material/neo_hookean.h>
+#include <cmath>
 #include <cstring>
 
 namespace turgor {
 
+PetscErrorCode MaterialModelRegister(const char name[], MaterialModelCreator create) { return Registry<MaterialModel>::Instance().Add(name, create); }
+
+PetscErrorCode MaterialModelCreate(MPI_Comm comm, const std::string &name, std::unique_ptr<MaterialModel> *model)
+{
+  return Registry<MaterialModel>::Instance().Create(comm, name, "-material", "material", model);
+}
+
+std::string MaterialModelNames() { return Registry<MaterialModel>::Instance().Names(); }
+
+namespace {
+
+/* What travels per point. Counts ride as reals (exact below 2^53) so that each struct is one
+   contiguous MPI type of PetscReal. */
+struct PointInput {
+  PetscReal F[4], Fdot[4];
+};
+struct PointResult {
+  PetscReal sigma[4], rho, residual;
+  PetscReal De[9], Dv[9];
+  PetscReal ok, iterations, snes_its, ksp_its;
+};
+struct PointReason {
+  char text[160];
+};
+static_assert(sizeof(PointInput) % sizeof(PetscReal) == 0 && sizeof(PointResult) % sizeof(PetscReal) == 0, "structs of PetscReal only");
+
+PetscErrorCode ContiguousType(int count, MPI_Datatype base, MPI_Datatype *type)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Type_contiguous(count, base, type));
+  PetscCallMPI(MPI_Type_commit(type));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
 MaterialPointPool::~MaterialPointPool()
 {
   points_.clear(); /* before the sub-communicator they live on */
-  (void)PetscSubcommDestroy(&subcomm_);
+  PetscCallVoid(PetscSFDestroy(&in_sf_));
+  PetscCallVoid(PetscSFDestroy(&out_sf_));
+  for (MPI_Datatype *t : {&in_type_, &out_type_, &reason_type_})
+    if (*t != MPI_DATATYPE_NULL) PetscCallVoid(MPI_Type_free(t) == MPI_SUCCESS ? PETSC_SUCCESS : PETSC_ERR_MPI);
+  PetscCallVoid(PetscSubcommDestroy(&subcomm_));
 }
 
 PetscErrorCode MaterialPointPool::SetFromOptions()
 {
   const char *const tangents[] = {"forward", "central"};
-  PetscInt          tangent    = 0;
+  PetscInt          tangent    = tangent_.central ? 1 : 0;
+  char              name[64];
+  PetscBool         set;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm_, NULL, "Material points of the coarse model", "turgor");
-  PetscCall(PetscOptionsString("-material", "Material point: rve (fine-scale RVE) or neo_hookean (closed form, verification)", "MaterialPointPool", material_, material_, sizeof material_, NULL));
-  PetscCall(PetscOptionsInt("-rve_comm_size", "MPI ranks per material-point group (sub-communicator)", "MaterialPointPool", comm_size_, &comm_size_, NULL));
-  PetscCall(PetscOptionsEList("-rve_tangent", "Finite differences of the tangents (eqs 46-53)", "MaterialPointPool", tangents, 2, tangents[tangent], &tangent, NULL));
-  PetscCall(PetscOptionsReal("-rve_tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ, &tangent_.Fdot_typ, NULL));
+  if (!model_) {
+    const std::string help = "Material point: " + MaterialModelNames();
+    PetscCall(PetscStrncpy(name, type_.c_str(), sizeof name));
+    PetscOptionsBegin(comm_, NULL, "Material points of the coarse model", "turgor");
+    PetscCall(PetscOptionsString("-material", help.c_str(), "MaterialPointPool", name, name, sizeof name, &set));
+    PetscOptionsEnd();
+    type_ = name;
+    PetscCall(MaterialModelCreate(comm_, type_, &model_));
+    if (default_tol_ > 0) model_->SetDefaultTolerance(default_tol_);
+    PetscCall(model_->SetFromOptions(comm_));
+  }
+  PetscOptionsBegin(comm_, "material_", "Material-point groups and tangents", "turgor");
+  PetscCall(PetscOptionsInt("-comm_size", "MPI ranks per material-point group (sub-communicator)", "MaterialPointPool", comm_size_, &comm_size_, NULL));
+  PetscCall(PetscOptionsEList("-tangent", "Finite differences of the tangents (eqs 46-53)", "MaterialPointPool", tangents, 2, tangents[tangent], &tangent, NULL));
+  PetscCall(PetscOptionsReal("-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ, &tangent_.Fdot_typ, NULL));
   PetscOptionsEnd();
   tangent_.central = tangent == 1;
-  PetscCheck(!strcmp(material_, "rve") || !strcmp(material_, "neo_hookean"), comm_, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option -material = %s: unknown material (known: rve, neo_hookean)", material_);
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  PetscCheck(comm_size_ >= 1 && size % comm_size_ == 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_comm_size = %" PetscInt_FMT ": must divide the number of MPI ranks (%d)", comm_size_, size);
-  PetscCheck(tangent_.Fdot_typ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_tangent_fdot_typ = %g: must be > 0", (double)tangent_.Fdot_typ);
+  PetscCheck(comm_size_ >= 1 && size % comm_size_ == 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_comm_size = %" PetscInt_FMT ": must divide the number of MPI ranks (%d)", comm_size_, size);
+  PetscCheck(tangent_.Fdot_typ > 0 && std::isfinite(tangent_.Fdot_typ), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_tangent_fdot_typ = %g: must be > 0", (double)tangent_.Fdot_typ);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode MaterialPointPool::SetUp(PetscInt n_local)
 {
-  PetscMPIInt size, color;
+  PetscMPIInt size, rank;
   PetscFunctionBeginUser;
+  PetscCheck(model_, comm_, PETSC_ERR_ORDER, "MaterialPointPool::SetFromOptions() must be called before SetUp()");
   PetscCall(PetscLogEventRegister("TgMaterialPoints", PETSC_OBJECT_CLASSID, &ev_evaluate_));
   PetscCall(PetscLogEventRegister("TgTangents", PETSC_OBJECT_CLASSID, &ev_tangents_));
   n_local_ = n_local;
-  offset_  = 0;
-  PetscCallMPI(MPI_Exscan(&n_local_, &offset_, 1, MPIU_INT, MPI_SUM, comm_));
-  PetscCallMPI(MPI_Allreduce(&n_local_, &n_global_, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  std::vector<PetscInt> counts(size), offsets(size + 1, 0);
+  PetscCallMPI(MPI_Allgather(&n_local_, 1, MPIU_INT, counts.data(), 1, MPIU_INT, comm_));
+  for (int r = 0; r < size; r++) offsets[r + 1] = offsets[r] + counts[r];
+  n_global_ = offsets[size];
   n_groups_ = size / comm_size_;
   PetscCall(PetscSubcommCreate(comm_, &subcomm_));
   PetscCall(PetscSubcommSetNumber(subcomm_, n_groups_));
   PetscCall(PetscSubcommSetType(subcomm_, PETSC_SUBCOMM_CONTIGUOUS));
-  color  = subcomm_->color;
-  begin_ = (color * n_global_) / n_groups_;
-  end_   = ((color + 1) * n_global_) / n_groups_;
-  MPI_Comm group = PetscSubcommChild(subcomm_);
+  const PetscMPIInt color = subcomm_->color;
+  begin_                  = (color * n_global_) / n_groups_;
+  end_                    = ((color + 1) * n_global_) / n_groups_;
+  MPI_Comm group          = PetscSubcommChild(subcomm_);
+  PetscCallMPI(MPI_Comm_rank(group, &group_rank_));
   for (PetscInt g = begin_; g < end_; g++) {
-    if (!strcmp(material_, "rve")) {
-      auto rve = std::make_unique<RVE>(group);
-      PetscCall(rve->SetFromOptions());
-      PetscCall(rve->SetUp());
-      points_.push_back(std::move(rve));
-    } else {
-      auto nh = std::make_unique<NeoHookean>();
-      PetscCall(nh->SetFromOptions(group));
-      points_.push_back(std::move(nh));
-    }
+    std::unique_ptr<MaterialPoint> p;
+    PetscCall(model_->CreatePoint(group, &p));
+    points_.push_back(std::move(p));
   }
+
+  /* every rank of a group receives its block's inputs; only the group's first rank sends results */
+  const PetscInt           nblock = end_ - begin_;
+  std::vector<PetscSFNode> remote(nblock);
+  PetscInt                 n_remote = 0;
+  for (PetscInt k = 0; k < nblock; k++) {
+    const PetscInt g = begin_ + k;
+    int            r = 0;
+    while (offsets[r + 1] <= g) r++;
+    remote[k].rank  = r;
+    remote[k].index = g - offsets[r];
+    n_remote += r != rank;
+  }
+  PetscCall(PetscSFCreate(comm_, &in_sf_));
+  PetscCall(PetscSFSetGraph(in_sf_, n_local_, nblock, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
+  PetscCall(PetscSFSetUp(in_sf_));
+  PetscCall(PetscSFCreate(comm_, &out_sf_));
+  PetscCall(PetscSFSetGraph(out_sf_, n_local_, group_rank_ == 0 ? nblock : 0, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
+  PetscCall(PetscSFSetUp(out_sf_));
+  PetscCall(ContiguousType(sizeof(PointInput) / sizeof(PetscReal), MPIU_REAL, &in_type_));
+  PetscCall(ContiguousType(sizeof(PointResult) / sizeof(PetscReal), MPIU_REAL, &out_type_));
+  PetscCall(ContiguousType(sizeof(PointReason), MPI_CHAR, &reason_type_));
+  remote_bytes_ = n_remote * (PetscInt)(sizeof(PointInput) + (group_rank_ == 0 ? sizeof(PointResult) : 0));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &remote_bytes_, 1, MPIU_INT, MPI_SUM, comm_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Per point: sigma (4), rho, ok, iterations, snes, ksp, residual, De (9), Dv (9). */
-static const int kSlot = 28;
-
 PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D)
 {
-  std::vector<PetscReal> in(8 * n_local_), all(8 * n_global_), res(kSlot * n_global_, 0.0);
-  std::vector<int>       counts, displs;
-  PetscMPIInt            size, grank, n8 = (PetscMPIInt)(8 * n_local_);
+  const PetscInt           nblock = end_ - begin_;
+  std::vector<PointInput>  in(n_local_), block(nblock);
+  std::vector<PointResult> res(n_local_), done(group_rank_ == 0 ? nblock : 0);
+  std::vector<std::string> reasons(nblock);
+  PetscInt                 failed = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_evaluate_, 0, 0, 0, 0));
   for (PetscInt k = 0; k < n_local_; k++)
     for (int c = 0; c < 4; c++) {
-      in[8 * k + c]     = F[k].a[c / 2][c % 2];
-      in[8 * k + 4 + c] = Fdot[k].a[c / 2][c % 2];
+      in[k].F[c]    = F[k].a[c / 2][c % 2];
+      in[k].Fdot[c] = Fdot[k].a[c / 2][c % 2];
     }
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
-  counts.resize(size);
-  displs.resize(size);
-  PetscCallMPI(MPI_Allgather(&n8, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
-  displs[0] = 0;
-  for (int r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
-  PetscCallMPI(MPI_Allgatherv(in.data(), n8, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, comm_));
+  PetscCall(PetscSFBcastBegin(in_sf_, in_type_, in.data(), block.data(), MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(in_sf_, in_type_, in.data(), block.data(), MPI_REPLACE));
 
-  /* this group's block; only the group's first rank reports (the others hold the same values) */
-  PetscCallMPI(MPI_Comm_rank(PetscSubcommChild(subcomm_), &grank));
-  std::vector<std::string> reasons(end_ - begin_);
-  for (PetscInt g = begin_; g < end_; g++) {
+  for (PetscInt k = 0; k < nblock; k++) {
     Tensor2 Fg, Fdg;
     for (int c = 0; c < 4; c++) {
-      Fg.a[c / 2][c % 2]  = all[8 * g + c];
-      Fdg.a[c / 2][c % 2] = all[8 * g + 4 + c];
+      Fg.a[c / 2][c % 2]  = block[k].F[c];
+      Fdg.a[c / 2][c % 2] = block[k].Fdot[c];
     }
-    MaterialPoint   &mp = *points_[g - begin_];
+    MaterialPoint   &mp = *points_[k];
     MaterialResponse r, status;
     Tangents         T;
-    PetscLogDouble t0, t1, t2;
+    PetscLogDouble   t0, t1, t2;
     PetscCall(PetscTime(&t0));
     PetscCall(mp.Evaluate(Fg, Fdg, EvaluationKind::Trial, &r));
     PetscCall(PetscTime(&t1));
@@ -116,49 +179,50 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
       }
       r.iterations += status.iterations;
     }
-    reasons[g - begin_] = r.reason;
-    if (grank != 0) continue;
-    PetscReal *s = &res[kSlot * g];
-    for (int c = 0; c < 4; c++) s[c] = r.sigma.a[c / 2][c % 2];
-    s[4] = r.rho;
-    s[5] = r.ok ? 1 : 0;
-    s[6] = r.iterations;
-    s[7] = r.snes_its;
-    s[8] = r.ksp_its;
-    s[9] = r.residual;
+    reasons[k] = r.reason;
+    failed += !r.ok;
+    if (group_rank_ != 0) continue; /* the group's other ranks hold the same values */
+    PointResult &s = done[k];
+    for (int c = 0; c < 4; c++) s.sigma[c] = r.sigma.a[c / 2][c % 2];
+    s.rho        = r.rho;
+    s.residual   = r.residual;
+    s.ok         = r.ok ? 1 : 0;
+    s.iterations = r.iterations;
+    s.snes_its   = r.snes_its;
+    s.ksp_its    = r.ksp_its;
     for (int i = 0; i < 9; i++) {
-      s[10 + i] = T.De[i / 3][i % 3];
-      s[19 + i] = T.Dv[i / 3][i % 3];
+      s.De[i] = T.De[i / 3][i % 3];
+      s.Dv[i] = T.Dv[i / 3][i % 3];
     }
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, res.data(), (PetscMPIInt)res.size(), MPIU_REAL, MPI_SUM, comm_));
+  PetscCall(PetscSFReduceBegin(out_sf_, out_type_, done.data(), res.data(), MPI_REPLACE));
+  PetscCall(PetscSFReduceEnd(out_sf_, out_type_, done.data(), res.data(), MPI_REPLACE));
 
   /* failure reasons travel only when something failed */
-  PetscInt nfail = 0;
-  for (PetscInt g = 0; g < n_global_; g++) nfail += res[kSlot * g + 5] == 0;
-  std::vector<char> why;
-  if (nfail) {
-    why.assign(160 * n_global_, 0);
-    if (grank == 0)
-      for (PetscInt g = begin_; g < end_; g++) strncpy(&why[160 * g], reasons[g - begin_].c_str(), 159);
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, why.data(), (PetscMPIInt)why.size(), MPI_CHAR, MPI_SUM, comm_));
+  std::vector<PointReason> why;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPIU_INT, MPI_SUM, comm_));
+  if (failed) {
+    std::vector<PointReason> sent(group_rank_ == 0 ? nblock : 0);
+    for (size_t k = 0; k < sent.size(); k++) PetscCall(PetscStrncpy(sent[k].text, reasons[k].c_str(), sizeof sent[k].text));
+    why.resize(n_local_);
+    PetscCall(PetscSFReduceBegin(out_sf_, reason_type_, sent.data(), why.data(), MPI_REPLACE));
+    PetscCall(PetscSFReduceEnd(out_sf_, reason_type_, sent.data(), why.data(), MPI_REPLACE));
   }
   for (PetscInt k = 0; k < n_local_; k++) {
-    const PetscInt   g = offset_ + k;
-    const PetscReal *s = &res[kSlot * g];
-    out[k]             = MaterialResponse();
-    out[k].sigma       = {{{s[0], s[1]}, {s[2], s[3]}}};
-    out[k].rho         = s[4];
-    out[k].ok          = s[5] != 0;
-    out[k].iterations  = (PetscInt)s[6];
-    out[k].snes_its    = (PetscInt)s[7];
-    out[k].ksp_its     = (PetscInt)s[8];
-    out[k].residual    = s[9];
-    if (!out[k].ok) out[k].reason = std::string(&why[160 * g]);
+    const PointResult &s = res[k];
+    out[k]               = MaterialResponse();
+    out[k].sigma         = {{{s.sigma[0], s.sigma[1]}, {s.sigma[2], s.sigma[3]}}};
+    out[k].rho           = s.rho;
+    out[k].ok            = s.ok != 0;
+    out[k].iterations    = (PetscInt)s.iterations;
+    out[k].snes_its      = (PetscInt)s.snes_its;
+    out[k].ksp_its       = (PetscInt)s.ksp_its;
+    out[k].residual      = s.residual;
+    if (!out[k].ok) out[k].reason = why[k].text;
     if (D)
       for (int i = 0; i < 9; i++) {
-        D[k].De[i / 3][i % 3] = s[10 + i];
-        D[k].Dv[i / 3][i % 3] = s[19 + i];
+        D[k].De[i / 3][i % 3] = s.De[i];
+        D[k].Dv[i / 3][i % 3] = s.Dv[i];
       }
   }
   PetscCall(PetscLogEventEnd(ev_evaluate_, 0, 0, 0, 0));
@@ -189,21 +253,15 @@ PetscErrorCode MaterialPointPool::Revert()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MaterialPointPool::GlobalCounters(RVECounters *c) const
+PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
 {
-  PetscMPIInt grank;
-  PetscInt    v[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  MaterialCounters k;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(PetscSubcommChild(subcomm_), &grank));
-  if (grank == 0)
-    for (const auto &p : points_)
-      if (auto *rve = dynamic_cast<const RVE *>(p.get())) {
-        const RVECounters &k = rve->Counters();
-        const PetscInt     w[8] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves};
-        for (int i = 0; i < 8; i++) v[i] += w[i];
-      }
+  if (group_rank_ == 0)
+    for (const auto &p : points_) p->AddCounters(k);
+  PetscInt v[8] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 8, MPIU_INT, MPI_SUM, comm_));
-  *c = RVECounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
+  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

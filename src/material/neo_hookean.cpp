@@ -3,14 +3,14 @@
 
 namespace turgor {
 
-PetscErrorCode NeoHookean::SetFromOptions(MPI_Comm comm)
+PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "nh_", "Closed-form neo-Hookean material point (verification)", "turgor");
-  PetscCall(PetscOptionsReal("-mu", "Shear modulus mu [N/m]", "NeoHookean", mu, &mu, NULL));
-  PetscCall(PetscOptionsReal("-lambda", "Lame constant lambda [N/m]", "NeoHookean", lambda, &lambda, NULL));
-  PetscCall(PetscOptionsReal("-viscosity", "Viscosity eta in eta (l + l^T) [ng/µs]", "NeoHookean", viscosity, &viscosity, NULL));
-  PetscCall(PetscOptionsReal("-density", "Reference density rho0 [ng/µm^2]", "NeoHookean", density, &density, NULL));
+  PetscCall(PetscOptionsReal("-mu", "Shear modulus mu [N/m]", "NeoHookeanSpec", mu, &mu, NULL));
+  PetscCall(PetscOptionsReal("-lambda", "Lame constant lambda [N/m]", "NeoHookeanSpec", lambda, &lambda, NULL));
+  PetscCall(PetscOptionsReal("-viscosity", "Viscosity eta in eta (l + l^T) [ng/µs]", "NeoHookeanSpec", viscosity, &viscosity, NULL));
+  PetscCall(PetscOptionsReal("-density", "Reference density rho0 [ng/µm^2]", "NeoHookeanSpec", density, &density, NULL));
   PetscOptionsEnd();
   PetscCheck(mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_mu = %g: must be > 0", (double)mu);
   PetscCheck(lambda > -mu, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_lambda = %g: must be > -mu", (double)lambda);
@@ -22,7 +22,7 @@ PetscErrorCode NeoHookean::SetFromOptions(MPI_Comm comm)
 PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out)
 {
   PetscFunctionBeginUser;
-  *out            = MaterialResponse();
+  *out              = MaterialResponse();
   const PetscReal J = F.Det();
   if (!(J > 0)) {
     out->ok     = false;
@@ -30,8 +30,8 @@ PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, Evalu
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   const Tensor2 b = F * F.T(), l = Fdot * F.Inverse();
-  out->sigma      = (mu / J) * (b - Tensor2::Identity()) + (lambda * std::log(J) / J) * Tensor2::Identity() + viscosity * (l + l.T());
-  out->rho        = density / J;
+  out->sigma      = (p.mu / J) * (b - Tensor2::Identity()) + (p.lambda * std::log(J) / J) * Tensor2::Identity() + p.viscosity * (l + l.T());
+  out->rho        = p.density / J;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -40,13 +40,27 @@ PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, Evalu
    eta (l + l^T) gives D^v = diag(2 eta, 2 eta, eta). */
 void NeoHookean::AnalyticTangents(const Tensor2 &F, Tangents *D) const
 {
-  const PetscReal J = F.Det(), m = (mu - lambda * std::log(J)) / J;
-  *D             = Tangents();
-  D->De[0][0]    = D->De[1][1] = lambda / J + 2 * m;
-  D->De[0][1]    = D->De[1][0] = lambda / J;
-  D->De[2][2]    = m;
-  D->Dv[0][0]    = D->Dv[1][1] = 2 * viscosity;
-  D->Dv[2][2]    = viscosity;
+  const PetscReal J = F.Det(), m = (p.mu - p.lambda * std::log(J)) / J;
+  *D                = Tangents();
+  D->De[0][0] = D->De[1][1] = p.lambda / J + 2 * m;
+  D->De[0][1] = D->De[1][0] = p.lambda / J;
+  D->De[2][2]               = m;
+  D->Dv[0][0] = D->Dv[1][1] = 2 * p.viscosity;
+  D->Dv[2][2]               = p.viscosity;
+}
+
+PetscErrorCode NeoHookeanMaterial::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
+{
+  PetscFunctionBeginUser;
+  *point = std::make_unique<NeoHookean>(spec);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode NeoHookeanMaterial::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "material neo_hookean: mu = %g, lambda = %g N/m, eta = %g ng/µs, rho0 = %g ng/µm^2\n", (double)spec.mu, (double)spec.lambda, (double)spec.viscosity, (double)spec.density));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

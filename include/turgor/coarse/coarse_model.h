@@ -15,6 +15,7 @@
 #include <turgor/material/material_pool.h>
 #include <turgor/physics/load_spec.h>
 #include <petscdmplex.h>
+#include <petscksp.h>
 #include <functional>
 #include <string>
 

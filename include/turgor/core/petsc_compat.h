@@ -6,3 +6,8 @@
 #if PETSC_VERSION_LT(3, 19, 0)
   #define PETSC_SUCCESS 0
 #endif
+
+#if PETSC_VERSION_LT(3, 19, 0)
+/* public from PETSc 3.19 on; 3.18 declares it only in a private header */
+PETSC_EXTERN PetscErrorCode PetscObjectStateGet(PetscObject, PetscObjectState *);
+#endif

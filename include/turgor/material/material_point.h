@@ -2,13 +2,22 @@
 /* The material-point interface of the coarse model: given a deformation gradient F and its rate
    Fdot, return the Cauchy stress sigma and density rho (TW 562 eq 30, 41), and -- through
    ComputeTangents() -- the elasticity and viscosity matrices D^e, D^v (eqs 37, 39) by the finite
-   differences of eqs 46-53. Implementations: the RVE (rve.h) and a closed-form compressible
-   neo-Hookean solid with linear viscosity (neo_hookean.h), which verifies this machinery.
+   differences of eqs 46-53.
+
+   A MaterialModel is a material configured once from its options (an RVE's geometry, physics and
+   relaxation settings; a closed-form law's constants); it creates the material points, one per
+   coarse quadrature point, each on its group's communicator. A new material is one file (a
+   MaterialModel and its MaterialPoint) plus one line in src/core/register_all.cpp:
+   MaterialModelRegister("name", CreateInstance<MaterialModel, Model>).
 
    An evaluation never aborts: a material point that cannot answer (no convergence, NaN, inverted
    element) returns ok = false with its reason, so that the caller can reject a step and retry. */
+#include <turgor/core/registry.h>
 #include <turgor/core/tensor2.h>
+#include <petscviewer.h>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace turgor {
 
@@ -22,21 +31,49 @@ struct MaterialResponse {
   PetscReal   residual = 0;   /* final scaled residual norm (RVE) */
 };
 
+/* Work done by material points (summed over points and ranks by the pool). */
+struct MaterialCounters {
+  PetscInt solves = 0, failures = 0, iterations = 0, snes_its = 0, ksp_its = 0, jacobians = 0, force_evals = 0;
+  PetscInt tangent_solves = 0; /* perturbed solves (eqs 46-53), included in solves */
+};
+
 /* Trial: the evaluation becomes the material point's current state (later evaluations start from
-   it). Perturbed: a tangent perturbation; starts from the current state and leaves it unchanged. */
+   it). Perturbed: a tangent perturbation (or an evaluation for output); starts from the current
+   state and leaves it unchanged. */
 enum class EvaluationKind { Trial, Perturbed };
 
 class MaterialPoint {
 public:
   virtual ~MaterialPoint() = default;
-  virtual const char    *Name() const = 0;
   virtual PetscErrorCode Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out) = 0;
   /* Accept the current state (after a coarse step is accepted) / return to the last accepted one. */
   virtual PetscErrorCode Commit() { return PETSC_SUCCESS; }
   virtual PetscErrorCode Revert() { return PETSC_SUCCESS; }
   /* The uncertainty U of a stress evaluation: eq 52 takes eps = sqrt(U). */
   virtual PetscReal StressUncertainty() const = 0;
+  virtual void      AddCounters(MaterialCounters &c) const { }
 };
+
+class MaterialModel {
+public:
+  virtual ~MaterialModel() = default;
+  virtual const char *Name() const = 0;
+  /* The accuracy a caller needs of a stress evaluation, as a default before SetFromOptions (the
+     material's own options still win); materials without an iterative solve ignore it. */
+  virtual void           SetDefaultTolerance(PetscReal tol) { }
+  virtual PetscErrorCode SetFromOptions(MPI_Comm comm) = 0;
+  /* A material point on `group` (collective on it). */
+  virtual PetscErrorCode CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const = 0;
+  /* For summaries: the physics inside a point, and its particles (0 for closed forms). */
+  virtual std::vector<std::string> Physics() const = 0;
+  virtual void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const { *wall = *fluid = 0; }
+  virtual PetscErrorCode           View(PetscViewer viewer) const = 0;
+};
+
+using MaterialModelCreator = Registry<MaterialModel>::Creator;
+PetscErrorCode MaterialModelRegister(const char name[], MaterialModelCreator create);
+PetscErrorCode MaterialModelCreate(MPI_Comm comm, const std::string &name, std::unique_ptr<MaterialModel> *model);
+std::string    MaterialModelNames();
 
 /* D^e, D^v as 3 x 3 matrices in the order (11, 22, 12) of eqs 37 and 39. */
 struct Tangents {

@@ -1,12 +1,16 @@
 #pragma once
 /* Many material points evaluated at once on MPI sub-communicators (TW 562 §3.3: one RVE per coarse
    quadrature point, each on its own sub-communicator). The ranks are split into groups of
-   -rve_comm_size ranks (PetscSubcomm, contiguous); the global points are dealt to the groups in
+   -material_comm_size ranks (PetscSubcomm, contiguous); the global points are dealt to the groups in
    balanced contiguous blocks, so a point always lives on the same group (its RVE keeps its warm
-   start); inputs are gathered, each group evaluates its block, and the results come back to the
-   ranks that own the points. */
+   start). The material is configured once (MaterialModel) and creates every point.
+
+   Traffic: two PetscSF built at set-up carry named structs -- the inputs (F, Fdot) from the rank
+   that owns a point to the ranks of the group that evaluates it, and the results (stress, density,
+   tangents, counts) back from the group's first rank. A rank sends and receives only the points
+   whose owner and evaluating group differ; failure reasons travel only when something failed. */
 #include <turgor/material/material_point.h>
-#include <turgor/rve/rve.h>
+#include <petscsf.h>
 #include <memory>
 #include <vector>
 
@@ -19,9 +23,20 @@ public:
   MaterialPointPool(const MaterialPointPool &)            = delete;
   MaterialPointPool &operator=(const MaterialPointPool &) = delete;
 
-  /* -material rve|neo_hookean, -rve_comm_size, -rve_tangent forward|central */
+  /* API defaults, before SetFromOptions (options still win). */
+  void            SetMaterialType(const std::string &name) { type_ = name; }
+  /* A configured material (tests, programs): -material is then not read. */
+  void            SetMaterial(std::unique_ptr<MaterialModel> model) { model_ = std::move(model); }
+  /* The accuracy the caller needs of a stress evaluation (MaterialModel::SetDefaultTolerance). */
+  void            SetDefaultTolerance(PetscReal tol) { default_tol_ = tol; }
+  TangentOptions &Tangent() { return tangent_; }
+  void            SetCommSize(PetscInt size) { comm_size_ = size; }
+
+  /* -material (API default rve) and that material's options; -material_comm_size,
+     -material_tangent forward|central, -material_tangent_fdot_typ. */
   PetscErrorCode SetFromOptions();
-  /* This rank owns n_local points. Creates the groups and the points of this rank's group. */
+  /* This rank owns n_local points. Creates the groups, the points of this rank's group and the
+     communication pattern. */
   PetscErrorCode SetUp(PetscInt n_local);
   /* Collective. F, Fdot, out: n_local each. With D != NULL also the tangents (eqs 46-53). */
   PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D = NULL);
@@ -29,15 +44,17 @@ public:
   PetscErrorCode Revert();
 
   /* Totals over all points and ranks (collective). */
-  PetscErrorCode GlobalCounters(RVECounters *c) const;
+  PetscErrorCode GlobalCounters(MaterialCounters *c) const;
   /* Seconds spent in trial evaluations and in tangents, the largest over ranks (collective):
      always measured (two clock reads per point), unlike -log_view's events, whose per-call
      overhead on millions of small RVE solves would distort the timings being broken down. */
   PetscErrorCode GlobalTimes(PetscReal *trial_s, PetscReal *tangent_s) const;
+  /* Bytes that cross between ranks in one evaluation, summed over all ranks (inputs + results). */
+  PetscInt       RemoteBytesPerEvaluation() const { return remote_bytes_; }
   PetscInt       NumGlobal() const { return n_global_; }
   PetscInt       NumGroups() const { return n_groups_; }
-  const char    *MaterialName() const { return material_; }
-  TangentOptions &Tangent() { return tangent_; }
+  const MaterialModel &Model() const { return *model_; }
+  const char          *MaterialName() const { return model_ ? model_->Name() : type_.c_str(); }
   /* The material points this rank's group evaluates (for inspection, tests). */
   MaterialPoint *GroupPoint(PetscInt k) const { return points_[k].get(); }
   PetscInt       GroupBegin() const { return begin_; }
@@ -45,11 +62,17 @@ public:
 
 private:
   MPI_Comm                                    comm_;
+  std::string                                 type_ = "rve";
+  std::unique_ptr<MaterialModel>              model_; /* before points_: they are destroyed first */
+  PetscReal                                   default_tol_ = 0;
   PetscSubcomm                                subcomm_ = nullptr;
-  char                                        material_[32] = "rve";
-  PetscInt                                    comm_size_ = 1, n_local_ = 0, n_global_ = 0, offset_ = 0, n_groups_ = 1, begin_ = 0, end_ = 0;
+  PetscInt                                    comm_size_ = 1, n_local_ = 0, n_global_ = 0, n_groups_ = 1, begin_ = 0, end_ = 0;
+  PetscMPIInt                                 group_rank_ = 0;
   std::vector<std::unique_ptr<MaterialPoint>> points_; /* [begin_, end_) of this group */
   TangentOptions                              tangent_;
+  PetscSF                                     in_sf_ = nullptr, out_sf_ = nullptr; /* roots: owned points; leaves: the group's block */
+  MPI_Datatype                                in_type_ = MPI_DATATYPE_NULL, out_type_ = MPI_DATATYPE_NULL, reason_type_ = MPI_DATATYPE_NULL;
+  PetscInt                                    remote_bytes_ = 0;
   PetscLogEvent                               ev_evaluate_ = 0, ev_tangents_ = 0;
   PetscLogDouble                              time_trial_ = 0, time_tangents_ = 0;
 };

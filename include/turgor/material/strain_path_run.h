@@ -1,15 +1,15 @@
 #pragma once
 /* -mode rve: one material point driven along a strain path (uniaxial, biaxial, simple shear,
-   rigid rotation, or hold), writing sigma, rho, D^e, D^v and iteration counts per step to rve.csv
-   and a summary.json. The material is chosen by -material (the RVE by default). */
+   rigid rotation, or hold; options path_*), writing sigma, rho, D^e, D^v and iteration counts per
+   step to rve.csv and a summary.json. The material is chosen by -material (the RVE by default). */
 #include <turgor/material/material_pool.h>
 #include <turgor/io/output.h>
 
 namespace turgor {
 
-class RVERun {
+class StrainPathRun {
 public:
-  explicit RVERun(MPI_Comm comm) : comm_(comm), pool_(comm) { }
+  explicit StrainPathRun(MPI_Comm comm) : comm_(comm), pool_(comm) { }
   PetscErrorCode SetFromOptions();
   PetscErrorCode SetUp();
   PetscErrorCode Solve();

@@ -1,28 +1,28 @@
-#include <turgor/rve/rve_run.h>
+#include <turgor/material/strain_path_run.h>
 #include <cmath>
 
 namespace turgor {
 
 static const char *const kPaths[] = {"uniaxial", "biaxial", "shear", "rotation", "hold"};
 
-PetscErrorCode RVERun::SetFromOptions()
+PetscErrorCode StrainPathRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm_, "rve_", "Material-point driver (-mode rve)", "turgor");
-  PetscCall(PetscOptionsEList("-path", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)", "RVERun", kPaths, 5, kPaths[path_], &path_, NULL));
-  PetscCall(PetscOptionsReal("-rate", "Strain rate r [1/µs] (angular velocity for rotation [rad/µs])", "RVERun", rate_, &rate_, NULL));
-  PetscCall(PetscOptionsReal("-t_final", "Duration of the path [µs]", "RVERun", t_final_, &t_final_, NULL));
-  PetscCall(PetscOptionsInt("-steps", "Material-point evaluations along the path (plus the initial one)", "RVERun", steps_, &steps_, NULL));
-  PetscCall(PetscOptionsBool("-tangents", "Also compute D^e and D^v at every step", "RVERun", tangents_, &tangents_, NULL));
+  PetscOptionsBegin(comm_, "path_", "Strain path of one material point (-mode rve)", "turgor");
+  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)", "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
+  PetscCall(PetscOptionsReal("-rate", "Strain rate r [1/µs] (angular velocity for rotation [rad/µs])", "StrainPathRun", rate_, &rate_, NULL));
+  PetscCall(PetscOptionsReal("-t_final", "Duration of the path [µs]", "StrainPathRun", t_final_, &t_final_, NULL));
+  PetscCall(PetscOptionsInt("-steps", "Material-point evaluations along the path (plus the initial one)", "StrainPathRun", steps_, &steps_, NULL));
+  PetscCall(PetscOptionsBool("-tangents", "Also compute D^e and D^v at every step", "StrainPathRun", tangents_, &tangents_, NULL));
   PetscOptionsEnd();
-  PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_steps = %" PetscInt_FMT ": must be >= 1", steps_);
-  PetscCheck(t_final_ > 0 && std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_t_final = %g must be > 0 and -rve_rate = %g finite", (double)t_final_, (double)rate_);
+  PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_steps = %" PetscInt_FMT ": must be >= 1", steps_);
+  PetscCheck(t_final_ > 0 && std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -path_t_final = %g must be > 0 and -path_rate = %g finite", (double)t_final_, (double)rate_);
   PetscCall(pool_.SetFromOptions());
   PetscCall(OutputDirectory(comm_, &output_dir_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void RVERun::Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const
+void StrainPathRun::Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const
 {
   const PetscReal r = rate_;
   *F                = Tensor2::Identity();
@@ -51,7 +51,7 @@ void RVERun::Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const
   }
 }
 
-PetscErrorCode RVERun::SetUp()
+PetscErrorCode StrainPathRun::SetUp()
 {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
@@ -60,7 +60,7 @@ PetscErrorCode RVERun::SetUp()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RVERun::Solve()
+PetscErrorCode StrainPathRun::Solve()
 {
   PetscMPIInt    rank;
   CsvWriter      csv;
@@ -103,10 +103,10 @@ PetscErrorCode RVERun::Solve()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RVERun::WriteSummary()
+PetscErrorCode StrainPathRun::WriteSummary()
 {
   JsonObject  js;
-  RVECounters c;
+  MaterialCounters c;
   PetscFunctionBeginUser;
   PetscCall(pool_.GlobalCounters(&c));
   PetscCallMPI(MPI_Bcast(&failures_, 1, MPIU_INT, 0, comm_));

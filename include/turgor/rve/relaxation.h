@@ -1,0 +1,61 @@
+#pragma once
+/* The relaxation of an RVE, G(w) = 0 (TW 562 eq 27), two ways:
+   - cold: the seed's pseudo-transient continuation (eq 28) with PETSc TSPSEUDO, one linear solve per
+     pseudo step, delta_0, delta <- increment x delta, stop at ||step|| < steptol or ||G|| < atol;
+   - warm (from a previous solution): the limit delta -> infinity of eq 28, i.e. Newton, with G'
+     and its LU factors kept from the last solve (modified Newton), backtracking on a fresh G'.
+   G' comes from MatFDColoring on the interaction graph, rebuilt only when new neighbours couple
+   unknowns the pattern does not cover. */
+#include <turgor/material/material_point.h>
+#include <turgor/rve/rve_equations.h>
+#include <turgor/rve/rve_spec.h>
+#include <petscts.h>
+
+namespace turgor {
+
+class RVERelaxation {
+public:
+  RVERelaxation()                                 = default;
+  RVERelaxation(const RVERelaxation &)            = delete;
+  RVERelaxation &operator=(const RVERelaxation &) = delete;
+  ~RVERelaxation();
+
+  PetscErrorCode SetUp(MPI_Comm comm, RVEEquations &eq, const RVESpec &spec);
+  /* From the content of W; out gets the iteration counts, the residual and, on failure, ok = false
+     and the reason. */
+  PetscErrorCode Cold(Vec W, MaterialResponse *out);
+  /* *converged = false sends the caller to a cold solve. */
+  PetscErrorCode Warm(Vec W, MaterialResponse *out, bool *converged);
+  PetscInt       Jacobians() const { return jacobians_; }
+
+private:
+  static PetscErrorCode IFunction(TS ts, PetscReal t, Vec W, Vec Wdot, Vec F, void *ctx);
+  static PetscErrorCode IJacobian(TS ts, PetscReal t, Vec W, Vec Wdot, PetscReal shift, Mat A, Mat B, void *ctx);
+  static PetscErrorCode ColoringResidual(void *unused, Vec W, Vec R, void *ctx);
+  static PetscErrorCode PseudoStep(TS ts, PetscReal *dt, void *ctx);
+  static PetscErrorCode PreStep(TS ts);
+  static PetscErrorCode PostStep(TS ts);
+
+  PetscErrorCode BuildJacobianPattern();
+  PetscErrorCode PatternStale(PetscBool *stale);
+  PetscErrorCode Refresh(Vec W); /* K = G'(W) by colouring */
+  PetscErrorCode SolveShifted(Vec b, Vec x, bool *ok); /* x = J^-1 b with J's LU factors */
+
+  MPI_Comm       comm_ = MPI_COMM_NULL;
+  PetscMPIInt    size_ = 1;
+  RVEEquations  *eq_   = nullptr;
+  const RVESpec *spec_ = nullptr;
+  TS             ts_ = nullptr;
+  Vec            Wprev_ = nullptr, R_ = nullptr, D_ = nullptr;
+  Mat            J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
+  MatFDColoring  coloring_ = nullptr;
+  Mat            factor_ = nullptr;          /* LU of J for warm solves */
+  PetscObjectState factor_state_ = -1;       /* J's state when factor_ was computed */
+  PetscInt       pattern_rebuilds_ = -1;
+  std::vector<std::vector<PetscInt>> pattern_cols_; /* columns of each unknown pair in J_ */
+  bool           have_K_    = false;               /* K_ holds G' of a recent state */
+  PetscInt       jacobians_ = 0;
+  PetscLogEvent  ev_jacobian_ = 0;
+};
+
+} // namespace turgor
