@@ -15,7 +15,7 @@
    equation z_n[1] = h f(t_n, U_n) is solved for Delta by fixed-point iteration on f.
    All coefficients are derived at each step from the actual step history (variable-coefficient
    Adams), from integrals over [-1, 0] of products of (s + xi_j). */
-#include <turgor/ts_am.h>
+#include <turgor/ts/adams_moulton.h>
 #include "ts_types_internal.h"
 #include <petsc/private/tsimpl.h>
 #include <algorithm>
@@ -769,7 +769,7 @@ PetscErrorCode TSView_AM(TS ts, PetscViewer viewer)
 
 } // namespace
 
-/* registered by TurgorRegisterAll() (register.cpp) */
+/* registered by TurgorTSRegisterAll() (ts_register.cpp) */
 PetscErrorCode TSCreate_AM(TS ts)
 {
   AM *am = new AM();

@@ -1,19 +1,23 @@
 #pragma once
-/* Radau IIA (3 stages, order 5) registered as the PETSc TS type "radau5": the method of Hairer &
+/* Radau IIA (3 stages, order 5) registered as the PETSc TS type "radauiia": the method of Hairer &
    Wanner's RADAU5 (Solving ODEs II, §IV.8) with step control through TSAdapt. Problems are given
    with TSSetIFunction/TSSetIJacobian (or TSSetRHSFunction/TSSetRHSJacobian) and must be linearly
-   implicit, F(t, U, U') = M U' - f(t, U) with a constant nonsingular M. See docs/radau5.md. */
+   implicit, F(t, U, U') = M U' - f(t, U) with a constant nonsingular M. See docs/radau_iia.md.
+
+   The type is not called "radau5": that is PETSc's TSRADAU5 (the wrapper of Hairer's code).
+   TurgorTSRegisterAll() registers "radau5" as an alias only where PETSc lacks its own; code should
+   use TSRADAUIIA. */
 #include <turgor/petsc_compat.h>
 #include <petscts.h>
 
-#include <turgor/ts_register.h> /* TurgorRegisterAll() */
+#include <turgor/ts/ts_register.h> /* TurgorTSRegisterAll() */
 
-#define TSRADAU5 "radau5"
+#define TSRADAUIIA "radauiia"
 
-/* Work done by a radau5 TS since the first step of its current TSSolve(): IJacobian (or
+/* Work done by a radauiia TS since the first step of its current TSSolve(): IJacobian (or
    RHSJacobian) calls, simplified Newton iterations, KSPSolve() calls. NULL pointers are skipped;
-   errors if ts is not of type radau5. */
-PetscErrorCode TSRadau5GetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *newton_its, PetscInt *linear_solves);
+   errors if ts is not of type radauiia. */
+PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *newton_its, PetscInt *linear_solves);
 
 /* The constants the implementation uses, for tests and documentation. Lambda = Tinv Ainv T is
    block diagonal: gamma (the real eigenvalue of Ainv) and the 2x2 block [[alpha, beta], [-beta, alpha]]
@@ -24,6 +28,6 @@ typedef struct {
   PetscReal T[3][3], Tinv[3][3], Lambda[3][3];
   PetscReal gamma, alpha, beta, gamma0;
   PetscReal e[3];
-} TSRadau5Tableau;
+} TSRadauIIATableau;
 
-PetscErrorCode TSRadau5GetTableau(TSRadau5Tableau *tableau);
+PetscErrorCode TSRadauIIAGetTableau(TSRadauIIATableau *tableau);

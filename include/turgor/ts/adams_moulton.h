@@ -6,7 +6,7 @@
    TSSetRHSFunction(); an IFunction is not supported. See docs/adams_moulton.md. */
 #include <turgor/petsc_compat.h>
 #include <petscts.h>
-#include <turgor/ts_register.h> /* TurgorRegisterAll() registers it */
+#include <turgor/ts/ts_register.h> /* TurgorTSRegisterAll() registers it */
 
 #define TSAM "am"
 
