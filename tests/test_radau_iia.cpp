@@ -5,7 +5,9 @@ static const char help[] = "The radauiia TS type (Radau IIA, order 5): (a) its c
                            "(e) domain errors (NaN, TSSetFunctionDomainError, SNESSetFunctionDomainError) force\n"
                            "rejections and the solve completes; (f) a distributed heat equation with a finite-element mass\n"
                            "matrix (also run on 2 ranks, where only (f) runs) against its semi-discrete exact solution;\n"
-                           "(g) the type is registered as radauiia, and -ts_type radau5 selects it where PETSc has no RADAU5.\n";
+                           "(g) the type is registered as radauiia, and -ts_type radau5 selects it where PETSc has no RADAU5;\n"
+                           "(h) defaults set with TSRadauIIASet*() before TSSetFromOptions() are used, options override them,\n"
+                           "and the setters are a no-op on another TS type.\n";
 #include "test_util.h"
 #include <turgor/ts/radau_iia.h>
 #include <complex>
@@ -211,6 +213,7 @@ struct RunSpec {
   PetscReal   tol      = 1e-6;
   PetscInt    max_step = 1000000;
   PetscBool   rhs_form = PETSC_FALSE;
+  PetscReal   reuse    = -1; /* >= 0: TSRadauIIASetJacobianReuse() before TSSetFromOptions() */
 };
 
 PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
@@ -251,6 +254,7 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetTolerances(ts, spec.tol, NULL, spec.tol, NULL));
   PetscCall(TSSetPostStep(ts, SampleInterior));
+  if (spec.reuse >= 0) PetscCall(TSRadauIIASetJacobianReuse(ts, spec.reuse));
   {
     /* command-line options may change the adaptive runs, but fixed steps stay fixed */
     TSAdapt   adapt;
@@ -603,6 +607,68 @@ PetscErrorCode CheckRegistration()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* (h) */
+PetscErrorCode CheckSetters()
+{
+  TS             ts;
+  PetscOptions   opts;
+  PetscReal      theta, kappa;
+  PetscInt       max_it;
+  PetscErrorCode ierr;
+  void (*method)(void);
+
+  PetscFunctionBeginUser;
+  /* a private, empty options database: the command line must not change what is checked here */
+  PetscCall(PetscOptionsCreate(&opts));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(PetscObjectSetOptions((PetscObject)ts, opts));
+  PetscCall(TSSetType(ts, TSRADAUIIA));
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
+  PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
+  TG_CHECK(theta == 1e-3 && kappa == 0.03 && max_it == 7, "defaults: Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.001, 0.03, 7)", (double)theta, (double)kappa, max_it);
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
+  PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.05));
+  PetscCall(TSRadauIIASetNewtonMaxIterations(ts, 10));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
+  PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
+  TG_CHECK(theta == 0.1 && kappa == 0.05 && max_it == 10, "set before TSSetFromOptions(): Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.1, 0.05, 10)", (double)theta, (double)kappa, max_it);
+  /* an option given for the TS still wins over the value set in code */
+  PetscCall(PetscOptionsSetValue(opts, "-ts_radauiia_jacobian_reuse", "0.2"));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  TG_CHECK(theta == 0.2, "-ts_radauiia_jacobian_reuse 0.2 must override TSRadauIIASetJacobianReuse(0.1), got %g", (double)theta);
+  /* out of range is an error */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = TSRadauIIASetJacobianReuse(ts, 1.5);
+  PetscCall(PetscPopErrorHandler());
+  TG_CHECK(ierr == PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetJacobianReuse(1.5) returned %d, expected PETSC_ERR_ARG_OUTOFRANGE", (int)ierr);
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  TG_CHECK(theta == 0.2, "a rejected value changed the Jacobian reuse to %g", (double)theta);
+  /* another type: a TS changed from radauiia, and one created as rk, ignore the setters */
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.5));
+  PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.5));
+  PetscCall(TSRadauIIASetNewtonMaxIterations(ts, 3));
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSRadauIIASetJacobianReuse_C", &method));
+  TG_CHECK(!method, "a TS changed to rk still has TSRadauIIASetJacobianReuse_C");
+  PetscCall(TSDestroy(&ts));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(PetscObjectSetOptions((PetscObject)ts, opts));
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.5));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 1.5)); /* not even checked: the value means nothing to rk */
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSRadauIIAGetJacobianReuse_C", &method));
+  TG_CHECK(!method, "a TSRK has TSRadauIIAGetJacobianReuse_C");
+  PetscCall(TSDestroy(&ts));
+  PetscCall(PetscOptionsDestroy(&opts));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(h) TSRadauIIASetJacobianReuse/NewtonTolerance/NewtonMaxIterations before TSSetFromOptions(): the values are used (0.1, 0.05, 10); -ts_radauiia_jacobian_reuse 0.2 overrides 0.1; 1.5 is rejected; no-op on rk\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -622,6 +688,7 @@ int main(int argc, char **argv)
   }
   PetscCall(CheckTableau());
   PetscCall(CheckRegistration());
+  PetscCall(CheckSetters());
 
   /* (b) fixed steps on the oscillator with mass matrix M */
   {
@@ -686,6 +753,19 @@ int main(int argc, char **argv)
     PetscCall(PrintRun("    IFunction form", r));
     TG_CHECK(r.err_scaled <= 10, "error %g x tolerance", (double)r.err_scaled);
     TG_CHECK(r.jac < r.steps, "Jacobian reuse: %" PetscInt_FMT " Jacobian evaluations for %" PetscInt_FMT " steps", r.jac, r.steps);
+    {
+      /* (h) a reuse threshold set with TSRadauIIASetJacobianReuse() reaches the solver (unless the
+         command line sets its own) */
+      PetscBool given;
+      Result    r1;
+      RunSpec   s1 = s;
+      s1.reuse     = 0.1;
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-ts_radauiia_jacobian_reuse", &given));
+      PetscCall(Run(p, s1, &r1));
+      PetscCall(PrintRun("    IFunction form, TSRadauIIASetJacobianReuse(ts, 0.1)", r1));
+      TG_CHECK(r1.err_scaled <= 10, "error %g x tolerance", (double)r1.err_scaled);
+      if (!given) TG_CHECK(r1.jac < r.jac, "Jacobian reuse 0.1 set in code: %" PetscInt_FMT " Jacobian evaluations, not fewer than the %" PetscInt_FMT " of the default 0.001", r1.jac, r.jac);
+    }
     s.rhs_form = PETSC_TRUE;
     PetscCall(Run(p, s, &rr));
     PetscCall(PrintRun("    RHS form (M = I)", rr));

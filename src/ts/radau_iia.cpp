@@ -776,13 +776,71 @@ PetscErrorCode TSRadauIIAGetCounters_RadauIIA(TS ts, PetscInt *jac, PetscInt *ne
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The setters check what TSSetFromOptions_RadauIIA() checks for the options of the same values. */
+PetscErrorCode TSRadauIIASetJacobianReuse_RadauIIA(TS ts, PetscReal theta)
+{
+  RadauIIA *r = (RadauIIA *)ts->data;
+
+  PetscFunctionBeginUser;
+  PetscCheck(theta >= 0 && theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetJacobianReuse(): theta = %g must be in [0, 1)", (double)theta);
+  r->reuse_theta = theta;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetJacobianReuse_RadauIIA(TS ts, PetscReal *theta)
+{
+  PetscFunctionBeginUser;
+  *theta = ((RadauIIA *)ts->data)->reuse_theta;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonTolerance_RadauIIA(TS ts, PetscReal kappa)
+{
+  RadauIIA *r = (RadauIIA *)ts->data;
+
+  PetscFunctionBeginUser;
+  PetscCheck(kappa > 0 && kappa < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1)", (double)kappa);
+  r->newton_tol = kappa;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonTolerance_RadauIIA(TS ts, PetscReal *kappa)
+{
+  PetscFunctionBeginUser;
+  *kappa = ((RadauIIA *)ts->data)->newton_tol;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonMaxIterations_RadauIIA(TS ts, PetscInt max_it)
+{
+  RadauIIA *r = (RadauIIA *)ts->data;
+
+  PetscFunctionBeginUser;
+  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1", max_it);
+  r->max_it = max_it;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonMaxIterations_RadauIIA(TS ts, PetscInt *max_it)
+{
+  PetscFunctionBeginUser;
+  *max_it = ((RadauIIA *)ts->data)->max_it;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* every function TSCreate_RadauIIA() composes (listed in radau_iia.h), removed again on destroy so
+   that a TS changed to another type no longer answers to them */
+const char *const kComposedNames[] = {"TSRadauIIAGetCounters_C",         "TSRadauIIASetJacobianReuse_C",     "TSRadauIIAGetJacobianReuse_C",
+                                      "TSRadauIIASetNewtonTolerance_C",  "TSRadauIIAGetNewtonTolerance_C",   "TSRadauIIASetNewtonMaxIterations_C",
+                                      "TSRadauIIAGetNewtonMaxIterations_C"};
+
 PetscErrorCode TSDestroy_RadauIIA(TS ts)
 {
   PetscFunctionBeginUser;
   PetscCall(TSReset_RadauIIA(ts));
   delete (RadauIIA *)ts->data;
   ts->data = NULL;
-  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", NULL));
+  for (const char *name : kComposedNames) PetscCall(PetscObjectComposeFunction((PetscObject)ts, name, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -880,6 +938,12 @@ PetscErrorCode TSCreate_RadauIIA(TS ts)
   ts->usessnes             = PETSC_FALSE; /* Newton is done here, on the transformed stage system */
   ts->default_adapt_type   = TSADAPTBASIC;
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", TSRadauIIAGetCounters_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetJacobianReuse_C", TSRadauIIASetJacobianReuse_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetJacobianReuse_C", TSRadauIIAGetJacobianReuse_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetNewtonTolerance_C", TSRadauIIASetNewtonTolerance_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetNewtonTolerance_C", TSRadauIIAGetNewtonTolerance_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetNewtonMaxIterations_C", TSRadauIIASetNewtonMaxIterations_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetNewtonMaxIterations_C", TSRadauIIAGetNewtonMaxIterations_RadauIIA));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -888,6 +952,61 @@ PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *
   PetscFunctionBeginUser;
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSRadauIIAGetCounters_C", (TS, PetscInt *, PetscInt *, PetscInt *), (ts, jacobian_evals, newton_its, linear_solves));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* PetscTryMethod: a no-op on a TS of another type, so callers may set it before knowing the type */
+PetscErrorCode TSRadauIIASetJacobianReuse(TS ts, PetscReal theta)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(ts, theta, 2);
+  PetscTryMethod(ts, "TSRadauIIASetJacobianReuse_C", (TS, PetscReal), (ts, theta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetJacobianReuse(TS ts, PetscReal *theta)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidRealPointer(theta, 2);
+  PetscUseMethod(ts, "TSRadauIIAGetJacobianReuse_C", (TS, PetscReal *), (ts, theta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonTolerance(TS ts, PetscReal kappa)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(ts, kappa, 2);
+  PetscTryMethod(ts, "TSRadauIIASetNewtonTolerance_C", (TS, PetscReal), (ts, kappa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonTolerance(TS ts, PetscReal *kappa)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidRealPointer(kappa, 2);
+  PetscUseMethod(ts, "TSRadauIIAGetNewtonTolerance_C", (TS, PetscReal *), (ts, kappa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonMaxIterations(TS ts, PetscInt max_it)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(ts, max_it, 2);
+  PetscTryMethod(ts, "TSRadauIIASetNewtonMaxIterations_C", (TS, PetscInt), (ts, max_it));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonMaxIterations(TS ts, PetscInt *max_it)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidIntPointer(max_it, 2);
+  PetscUseMethod(ts, "TSRadauIIAGetNewtonMaxIterations_C", (TS, PetscInt *), (ts, max_it));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
