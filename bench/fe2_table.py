@@ -16,7 +16,7 @@ SEED = {  # TW 562 Table 1 (2010 hardware)
 }
 INTEGRATORS = {
     "rk 5dp": ["-ts_type", "rk", "-ts_rk_type", "5dp"],
-    "radau5": ["-ts_type", "radau5"],
+    "radau5": ["-ts_type", "radauiia"],
     "bdf": ["-ts_type", "bdf"],
     "bdf3": ["-ts_type", "bdf", "-ts_bdf_order", "3"],
     "arkimex": ["-ts_type", "arkimex"],

@@ -24,7 +24,7 @@ INTEGRATORS = {  # name -> turgor options
     "dopri": ["-ts_type", "rk", "-ts_rk_type", "5dp"],
     "bdf": ["-ts_type", "bdf"],
     "arkimex": ["-ts_type", "arkimex"],
-    "radau5": ["-ts_type", "radau5"],
+    "radauiia": ["-ts_type", "radauiia"],
     "am": ["-ts_type", "am"],
 }
 SAMPLE_SPACING = 0.3  # µs: the fine run's tip.csv spacing (1000 samples over 300 µs)
@@ -124,14 +124,14 @@ class Study:
 
     def integration(self):
         a = self.a
-        print(f"reference: radau5 at rtol = atol = {a.ref_tol:g} to {a.t_final:g} µs", file=sys.stderr)
-        tight = ["-ts_type", "radau5", "-ts_rtol", f"{a.ref_tol:g}", "-ts_atol", f"{a.ref_tol:g}"] + psi_options(a.ref_tol)
+        print(f"reference: radauiia at rtol = atol = {a.ref_tol:g} to {a.t_final:g} µs", file=sys.stderr)
+        tight = ["-ts_type", "radauiia", "-ts_rtol", f"{a.ref_tol:g}", "-ts_atol", f"{a.ref_tol:g}"] + psi_options(a.ref_tol)
         s, d, why = self.run("reference", tight, a.t_final)
         if s is None:
             sys.exit(f"study.py: the reference run failed: {why}")
         ref = read_tip(d)
         fine = self.fine_tip()
-        self.record("reference", "radau5", a.ref_tol, a.mesh, 1, "relaxed", a.t_final, s, d, why, None, fine)
+        self.record("reference", "radauiia", a.ref_tol, a.mesh, 1, "relaxed", a.t_final, s, d, why, None, fine)
         for integ in a.integrators:
             for tol in a.tols:
                 s, d, why = self.run(f"{integ}_tol{tol:g}", INTEGRATORS[integ] + ["-ts_rtol", f"{tol:g}", "-ts_atol", f"{tol:g}"] + psi_options(tol), a.t_final)
@@ -172,9 +172,9 @@ class Study:
                     continue
                 for relax in (["relaxed", "cauchy_born"] if cells == 1 else ["relaxed"]):
                     name = f"model_mesh{mesh}_rve{cells}_{relax}"
-                    extra = ["-ts_type", "radau5", "-coarse_faces", f"{mesh},{mesh}", "-rve_cells", str(cells), "-rve_relax", relax]
+                    extra = ["-ts_type", "radauiia", "-coarse_faces", f"{mesh},{mesh}", "-rve_cells", str(cells), "-rve_relax", relax]
                     s, d, why = self.run(name, extra, tm)
-                    self.record("modelling", "radau5", 1e-3, mesh, cells, relax, tm, s, d, why, None, fine)
+                    self.record("modelling", "radauiia", 1e-3, mesh, cells, relax, tm, s, d, why, None, fine)
 
     def plots(self):
         import matplotlib
@@ -190,7 +190,7 @@ class Study:
     def integration_plots(self, plt, integ):
         out = self.a.out
         names = [n for n in INTEGRATORS if any(r["integrator"] == n for r in integ)]
-        label = {"dopri": "DOPRI (rk 5dp)", "bdf": "BDF (PETSc)", "arkimex": "ARKIMEX 3", "radau5": "Radau IIA", "am": "Adams–Moulton"}
+        label = {"dopri": "DOPRI (rk 5dp)", "bdf": "BDF (PETSc)", "arkimex": "ARKIMEX 3", "radauiia": "Radau IIA", "am": "Adams–Moulton"}
         # work-precision: error vs wall time
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
         for n in names:

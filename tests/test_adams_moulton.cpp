@@ -1,16 +1,14 @@
 static const char help[] = "The am TS type (variable-order Adams-Moulton with functional iteration) against exact solutions:\n"
                            "(1) the observed order with the order held fixed at q = 1..5 and fixed steps, and of TSInterpolate;\n"
-                           "(2) adaptive runs at rtol = atol = 1e-3, 1e-6, 1e-9 on Van der Pol (mu = 1, against radau5 at 1e-13)\n"
+                           "(2) adaptive runs at rtol = atol = 1e-3, 1e-6, 1e-9 on Van der Pol (mu = 1, against radauiia at 1e-13)\n"
                            "and Kepler's problem (e = 0.5, exact); (3) TSInterpolate inside every step of the Kepler runs;\n"
                            "(4) the exact final time (MATCHSTEP and INTERPOLATE); (5) a stiff\n"
                            "problem, y' = -1e4 (y - cos t); (6) fixed-point failures with one iteration allowed; (7) an\n"
-                           "IFunction is refused; (8) TSSetFunctionDomainError rejections; (9) TSRollBack.\n";
+                           "IFunction is refused; (8) TSSetFunctionDomainError rejections; (9) TSRollBack; (10) the TSAMSet*() defaults:\n"
+                           "used, overridden by -ts_am_* options, checked, and a no-op on another TS type.\n";
 #include "test_util.h"
-#include <turgor/ts_am.h>
-#include <turgor/ts_radau5.h>
-#include <string>
-#include <utility>
-#include <vector>
+#include <turgor/ts/adams_moulton.h>
+#include <turgor/ts/radau_iia.h>
 
 namespace {
 
@@ -23,7 +21,7 @@ enum class Kind { forced, kepler, relax, vdp };
    sqrt(1 - e^2) cos E) / (1 - e cos E).
    relax: y' = -lambda (y - cos t), y(0) = 1: y = (lambda^2 cos t + lambda sin t)/(lambda^2 + 1) + c exp(-lambda t).
    vdp: Van der Pol, y1' = y2, y2' = mu (1 - y1^2) y2 - y1, mu = 1, y(0) = (2, 0); no closed form (Exact()
-   gives only y(0)): compared with a tight radau5 solution. */
+   gives only y(0)): compared with a tight radauiia solution. */
 struct Problem {
   Kind      kind   = Kind::forced;
   PetscReal ecc    = 0.5;
@@ -97,7 +95,7 @@ PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Van der Pol's Jacobian, for the radau5 reference solution */
+/* Van der Pol's Jacobian, for the radauiia reference solution */
 PetscErrorCode VdPJacobian(TS ts, PetscReal t, Vec Y, Mat A, Mat B, void *ctx)
 {
   const PetscScalar *y;
@@ -165,12 +163,14 @@ PetscErrorCode SampleInterior(TS ts)
 }
 
 struct RunSpec {
-  PetscReal                                        tf = 1, dt = 0.1, tol = 1e-6;
-  PetscBool                                        fixed_steps = PETSC_FALSE;
-  TSExactFinalTimeOption                           final       = TS_EXACTFINALTIME_MATCHSTEP;
-  std::vector<std::pair<std::string, std::string>> options; /* -ts_am_* settings for this run only */
-  PetscBool                                        domain = PETSC_FALSE, ifunction = PETSC_FALSE;
-  const PetscReal                                 *reference = NULL; /* the solution at tf, if Exact() has none */
+  PetscReal              tf = 1, dt = 0.1, tol = 1e-6;
+  PetscBool              fixed_steps = PETSC_FALSE;
+  TSExactFinalTimeOption final       = TS_EXACTFINALTIME_MATCHSTEP;
+  /* defaults for this run only, set with TSAMSet*() (0: the type's own); -ts_am_* options override them */
+  PetscInt               max_order = 0, max_it = 0, max_conv_fails = 0;
+  PetscBool              fixed_order = PETSC_FALSE;
+  PetscBool              domain = PETSC_FALSE, ifunction = PETSC_FALSE;
+  const PetscReal       *reference = NULL; /* the solution at tf, if Exact() has none */
 };
 
 struct Result {
@@ -198,10 +198,13 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   for (PetscInt i = 0; i < p.Size(); i++) PetscCall(VecSetValue(Y, i, y0[i], INSERT_VALUES));
   PetscCall(VecAssemblyBegin(Y));
   PetscCall(VecAssemblyEnd(Y));
-  for (auto &o : spec.options) PetscCall(PetscOptionsSetValue(NULL, o.first.c_str(), o.second.empty() ? NULL : o.second.c_str()));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetApplicationContext(ts, &p));
   PetscCall(TSSetType(ts, TSAM));
+  if (spec.max_order > 0) PetscCall(TSAMSetMaxOrder(ts, spec.max_order));
+  if (spec.fixed_order) PetscCall(TSAMSetFixedOrder(ts, PETSC_TRUE));
+  if (spec.max_it > 0) PetscCall(TSAMSetMaxIterations(ts, spec.max_it));
+  if (spec.max_conv_fails > 0) PetscCall(TSAMSetMaxConvergenceFailures(ts, spec.max_conv_fails));
   if (spec.ifunction) PetscCall(TSSetIFunction(ts, NULL, IFunction, &p));
   else PetscCall(TSSetRHSFunction(ts, NULL, RHSFunction, &p));
   if (spec.domain) PetscCall(TSSetFunctionDomainError(ts, DomainCheck));
@@ -220,7 +223,6 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
     PetscCall(TSGetAdapt(ts, &adapt));
     PetscCall(TSAdaptSetType(adapt, TSADAPTNONE)); /* command-line adapters apply to the adaptive runs only */
   }
-  for (auto &o : spec.options) PetscCall(PetscOptionsClearValue(NULL, o.first.c_str()));
   PetscCall(TSSolve(ts, Y));
   PetscCall(TSGetConvergedReason(ts, &res->reason));
   PetscCall(TSGetTime(ts, &res->t));
@@ -265,8 +267,6 @@ PetscErrorCode CheckOrders()
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "(1) fixed order q, fixed steps, forced linear problem on [0, %g] (start-up errors decay like exp(-t)); max error at the step points in [20, 40] and of TSInterpolate at 0.2, 0.5, 0.8 of those steps\n", (double)T));
   for (PetscInt q = 1; q <= 5; q++) {
     PetscReal e[4], ie[4];
-    char      qs[8];
-    PetscCall(PetscSNPrintf(qs, sizeof(qs), "%" PetscInt_FMT, q));
     for (int k = 0; k < 4; k++) {
       Problem p;
       RunSpec s;
@@ -278,7 +278,9 @@ PetscErrorCode CheckOrders()
       s.dt          = hs[k];
       s.tol         = 1e-12; /* only the fixed-point test sees it: iterate to convergence (the AM corrector itself) */
       s.fixed_steps = PETSC_TRUE;
-      s.options     = {{"-ts_am_max_order", qs}, {"-ts_am_fixed_order", "true"}, {"-ts_am_max_iterations", "40"}};
+      s.max_order   = q;
+      s.fixed_order = PETSC_TRUE;
+      s.max_it      = 40;
       PetscCall(Run(p, s, &r));
       const PetscInt N = (PetscInt)std::lround(T / hs[k]);
       TG_CHECK(r.reason > 0 && r.steps == N && r.fails == 0, "q = %" PetscInt_FMT ", h = %g: %s after %" PetscInt_FMT " steps (expected %" PetscInt_FMT "), %" PetscInt_FMT " fixed-point failures", q, (double)hs[k], TSConvergedReasons[r.reason], r.steps, N, r.fails);
@@ -297,7 +299,7 @@ PetscErrorCode CheckOrders()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The Van der Pol reference at t = tf: radau5 at rtol = atol = 1e-13, checked against 1e-12. */
+/* The Van der Pol reference at t = tf: radauiia at rtol = atol = 1e-13, checked against 1e-12. */
 PetscErrorCode VdPReference(PetscReal tf, PetscReal ref[2])
 {
   PetscReal r[2][2];
@@ -317,7 +319,7 @@ PetscErrorCode VdPReference(PetscReal tf, PetscReal ref[2])
     PetscCall(VecAssemblyEnd(Y));
     PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));
     PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
-    PetscCall(TSSetType(ts, TSRADAU5));
+    PetscCall(TSSetType(ts, TSRADAUIIA));
     PetscCall(TSSetRHSFunction(ts, NULL, RHSFunction, &p));
     PetscCall(TSSetRHSJacobian(ts, J, J, VdPJacobian, &p));
     PetscCall(TSSetTimeStep(ts, 1e-4));
@@ -335,8 +337,8 @@ PetscErrorCode VdPReference(PetscReal tf, PetscReal ref[2])
     PetscCall(VecDestroy(&Y));
   }
   const PetscReal d = PetscMax(std::fabs(r[0][0] - r[1][0]), std::fabs(r[0][1] - r[1][1]));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    radau5 reference y(%g) = (%.15f, %.15f), differs by %.1e from radau5 at 1e-12\n", (double)tf, (double)r[0][0], (double)r[0][1], (double)d));
-  TG_CHECK(d < 1e-10, "the radau5 reference is not converged: %g", (double)d);
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    radauiia reference y(%g) = (%.15f, %.15f), differs by %.1e from radauiia at 1e-12\n", (double)tf, (double)r[0][0], (double)r[0][1], (double)d));
+  TG_CHECK(d < 1e-10, "the radauiia reference is not converged: %g", (double)d);
   ref[0] = r[0][0];
   ref[1] = r[0][1];
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -445,9 +447,9 @@ PetscErrorCode CheckStiff()
     s.tf      = 2;
     s.dt      = 0;
     s.tol     = 1e-6;
-    s.options = {{"-ts_am_max_iterations", "1"}};
+    s.max_it  = 1;
     PetscCall(Run(p, s, &r));
-    PetscCall(PrintRun("(6) y' = -50 (y - cos t) on [0, 2], -ts_am_max_iterations 1", r));
+    PetscCall(PrintRun("(6) y' = -50 (y - cos t) on [0, 2], TSAMSetMaxIterations(ts, 1)", r));
     TG_CHECK(r.reason > 0 && std::fabs(r.t - 2) < 1e-14, "%s at t = %g", TSConvergedReasons[r.reason], (double)r.t);
     TG_CHECK(r.fails > 0 && r.rejects >= r.fails, "one iteration per attempt must produce counted fixed-point failures: %" PetscInt_FMT " failures, %" PetscInt_FMT " rejections", r.fails, r.rejects);
     TG_CHECK(r.err_scaled <= 100, "error %g x tolerance", (double)r.err_scaled);
@@ -457,14 +459,14 @@ PetscErrorCode CheckStiff()
     Problem p;
     RunSpec s;
     Result  r;
-    p.kind    = Kind::relax;
-    p.lambda  = 1e4;
-    s.tf      = 1;
-    s.dt      = 1;
-    s.tol     = 1e-6;
-    s.options = {{"-ts_am_max_conv_fails", "3"}};
+    p.kind           = Kind::relax;
+    p.lambda         = 1e4;
+    s.tf             = 1;
+    s.dt             = 1;
+    s.tol            = 1e-6;
+    s.max_conv_fails = 3;
     PetscCall(Run(p, s, &r));
-    PetscCall(PrintRun("(6) stiff, first step 1, -ts_am_max_conv_fails 3", r));
+    PetscCall(PrintRun("(6) stiff, first step 1, TSAMSetMaxConvergenceFailures(ts, 3)", r));
     TG_CHECK(r.reason == TS_DIVERGED_NONLINEAR_SOLVE && r.fails == 3 && r.steps == 0 && r.finite, "expected DIVERGED_NONLINEAR_SOLVE after 3 fixed-point failures in the first step: %s, %" PetscInt_FMT " failures, %" PetscInt_FMT " steps", TSConvergedReasons[r.reason], r.fails, r.steps);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -554,18 +556,74 @@ PetscErrorCode CheckRollBack()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* (10) */
+PetscErrorCode CheckSetters()
+{
+  TS           ts;
+  PetscOptions opts;
+  PetscInt     q, its, fails;
+  PetscBool    fixed;
+  void (*method)(void);
+
+  PetscFunctionBeginUser;
+  /* a private, empty options database: the command line must not change what is checked here */
+  PetscCall(PetscOptionsCreate(&opts));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(PetscObjectSetOptions((PetscObject)ts, opts));
+  PetscCall(TSSetType(ts, TSAM));
+  PetscCall(TSAMSetMaxOrder(ts, 5));
+  PetscCall(TSAMSetFixedOrder(ts, PETSC_TRUE));
+  PetscCall(TSAMSetMaxIterations(ts, 7));
+  PetscCall(TSAMSetMaxConvergenceFailures(ts, 4));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSAMGetMaxOrder(ts, &q));
+  PetscCall(TSAMGetFixedOrder(ts, &fixed));
+  PetscCall(TSAMGetMaxIterations(ts, &its));
+  PetscCall(TSAMGetMaxConvergenceFailures(ts, &fails));
+  TG_CHECK(q == 5 && fixed && its == 7 && fails == 4, "set before TSSetFromOptions(): max order %" PetscInt_FMT ", fixed %d, iterations %" PetscInt_FMT ", failures %" PetscInt_FMT " (expected 5, 1, 7, 4)", q, (int)fixed, its, fails);
+  /* options given for the TS still win over the values set in code */
+  PetscCall(PetscOptionsSetValue(opts, "-ts_am_max_order", "3"));
+  PetscCall(PetscOptionsSetValue(opts, "-ts_am_max_iterations", "2"));
+  PetscCall(TSAMSetMaxOrder(ts, 5));
+  PetscCall(TSAMSetMaxIterations(ts, 7));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSAMGetMaxOrder(ts, &q));
+  PetscCall(TSAMGetMaxIterations(ts, &its));
+  TG_CHECK(q == 3 && its == 2, "-ts_am_max_order 3 -ts_am_max_iterations 2 must override the values set in code: %" PetscInt_FMT ", %" PetscInt_FMT, q, its);
+  /* out of range is an error, and changes nothing */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  const PetscErrorCode e_order = TSAMSetMaxOrder(ts, 13), e_its = TSAMSetMaxIterations(ts, 0), e_fails = TSAMSetMaxConvergenceFailures(ts, 0);
+  PetscCall(PetscPopErrorHandler());
+  TG_CHECK(e_order == PETSC_ERR_ARG_OUTOFRANGE && e_its == PETSC_ERR_ARG_OUTOFRANGE && e_fails == PETSC_ERR_ARG_OUTOFRANGE, "out-of-range values must fail with PETSC_ERR_ARG_OUTOFRANGE: %d %d %d", (int)e_order, (int)e_its, (int)e_fails);
+  PetscCall(TSAMGetMaxOrder(ts, &q));
+  TG_CHECK(q == 3, "a rejected value changed the maximum order to %" PetscInt_FMT, q);
+  /* another type ignores the setters */
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSAMSetMaxOrder(ts, 2));
+  PetscCall(TSAMSetFixedOrder(ts, PETSC_TRUE));
+  PetscCall(TSAMSetMaxIterations(ts, 1));
+  PetscCall(TSAMSetMaxConvergenceFailures(ts, 1));
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSAMGetMaxOrder_C", &method));
+  TG_CHECK(!method, "a TS changed to rk still has TSAMGetMaxOrder_C");
+  PetscCall(TSDestroy(&ts));
+  PetscCall(PetscOptionsDestroy(&opts));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(10) TSAMSetMaxOrder/FixedOrder/MaxIterations/MaxConvergenceFailures before TSSetFromOptions() are used; -ts_am_* options override them; 13, 0, 0 are rejected; no-op on rk\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(TurgorRegisterAll());
+  PetscCall(TurgorTSRegisterAll());
   PetscCall(CheckOrders());
   PetscCall(CheckAdaptive());
   PetscCall(CheckStiff());
   PetscCall(CheckErrorsAndDomain());
   PetscCall(CheckRollBack());
+  PetscCall(CheckSetters());
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_adams_moulton: all checks passed\n"));
   PetscCall(PetscFinalize());
   return 0;

@@ -8,8 +8,8 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
 #include <turgor/tissue/square_grid.h>
-#include <turgor/ts_am.h>
-#include <turgor/ts_radau5.h>
-#include <turgor/ts_register.h>
+#include <turgor/ts/adams_moulton.h>
+#include <turgor/ts/radau_iia.h>
+#include <turgor/ts/ts_register.h>
 
 #define TURGOR_VERSION_STRING "0.1.0"

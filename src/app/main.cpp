@@ -53,7 +53,7 @@ int main(int argc, char **argv)
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(TurgorRegisterAll()); /* -ts_type radau5 in every mode */
+  PetscCall(TurgorRegisterAll()); /* TS types, physics, materials, tissues, modes */
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "turgor", "turgor");
   PetscCall(PetscOptionsEList("-mode", "What to run", "turgor", modes, (PetscInt)(sizeof modes / sizeof modes[0]), modes[mode], &mode, NULL));
   PetscOptionsEnd();

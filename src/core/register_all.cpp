@@ -8,7 +8,7 @@
 #include <turgor/physics/wall_springs.h>
 #include <turgor/rve/rve.h>
 #include <turgor/tissue/square_grid.h>
-#include <turgor/ts_register.h>
+#include <turgor/ts/ts_register.h>
 
 namespace {
 PetscBool registered = PETSC_FALSE; /* PETSc-style registration flag, cleared at PetscFinalize() */

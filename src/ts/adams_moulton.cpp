@@ -15,7 +15,7 @@
    equation z_n[1] = h f(t_n, U_n) is solved for Delta by fixed-point iteration on f.
    All coefficients are derived at each step from the actual step history (variable-coefficient
    Adams), from integrals over [-1, 0] of products of (s + xi_j). */
-#include <turgor/ts_am.h>
+#include <turgor/ts/adams_moulton.h>
 #include "ts_types_internal.h"
 #include <petsc/private/tsimpl.h>
 #include <algorithm>
@@ -692,13 +692,79 @@ PetscErrorCode TSAMGetCounters_AM(TS ts, PetscInt *its, PetscInt *fails, PetscIn
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The setters check what TSSetFromOptions_AM() checks for the options of the same values. */
+PetscErrorCode TSAMSetMaxOrder_AM(TS ts, PetscInt max_order)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(max_order >= 1 && max_order <= kMaxOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxOrder(): max_order = %" PetscInt_FMT " must be in 1..%" PetscInt_FMT, max_order, kMaxOrder);
+  ((AM *)ts->data)->max_order = max_order;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetMaxOrder_AM(TS ts, PetscInt *max_order)
+{
+  PetscFunctionBeginUser;
+  *max_order = ((AM *)ts->data)->max_order;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMSetFixedOrder_AM(TS ts, PetscBool fixed)
+{
+  PetscFunctionBeginUser;
+  ((AM *)ts->data)->fixed_order = fixed;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetFixedOrder_AM(TS ts, PetscBool *fixed)
+{
+  PetscFunctionBeginUser;
+  *fixed = ((AM *)ts->data)->fixed_order;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMSetMaxIterations_AM(TS ts, PetscInt max_it)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1", max_it);
+  ((AM *)ts->data)->max_it = max_it;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetMaxIterations_AM(TS ts, PetscInt *max_it)
+{
+  PetscFunctionBeginUser;
+  *max_it = ((AM *)ts->data)->max_it;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMSetMaxConvergenceFailures_AM(TS ts, PetscInt max_fails)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(max_fails >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxConvergenceFailures(): max_fails = %" PetscInt_FMT " must be >= 1", max_fails);
+  ((AM *)ts->data)->max_conv_fails = max_fails;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetMaxConvergenceFailures_AM(TS ts, PetscInt *max_fails)
+{
+  PetscFunctionBeginUser;
+  *max_fails = ((AM *)ts->data)->max_conv_fails;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* every function TSCreate_AM() composes (listed in adams_moulton.h), removed again on destroy so
+   that a TS changed to another type no longer answers to them */
+const char *const kComposedNames[] = {"TSAMGetCounters_C",      "TSAMSetMaxOrder_C",      "TSAMGetMaxOrder_C",
+                                      "TSAMSetFixedOrder_C",    "TSAMGetFixedOrder_C",    "TSAMSetMaxIterations_C",
+                                      "TSAMGetMaxIterations_C", "TSAMSetMaxConvergenceFailures_C", "TSAMGetMaxConvergenceFailures_C"};
+
 PetscErrorCode TSDestroy_AM(TS ts)
 {
   PetscFunctionBeginUser;
   PetscCall(TSReset_AM(ts));
   delete (AM *)ts->data;
   ts->data = NULL;
-  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMGetCounters_C", NULL));
+  for (const char *name : kComposedNames) PetscCall(PetscObjectComposeFunction((PetscObject)ts, name, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -769,7 +835,7 @@ PetscErrorCode TSView_AM(TS ts, PetscViewer viewer)
 
 } // namespace
 
-/* registered by TurgorRegisterAll() (register.cpp) */
+/* registered by TurgorTSRegisterAll() (ts_register.cpp) */
 PetscErrorCode TSCreate_AM(TS ts)
 {
   AM *am = new AM();
@@ -788,6 +854,14 @@ PetscErrorCode TSCreate_AM(TS ts)
   ts->usessnes            = PETSC_FALSE; /* functional iteration: no nonlinear solver */
   ts->default_adapt_type  = TSADAPTBASIC;
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMGetCounters_C", TSAMGetCounters_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMSetMaxOrder_C", TSAMSetMaxOrder_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMGetMaxOrder_C", TSAMGetMaxOrder_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMSetFixedOrder_C", TSAMSetFixedOrder_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMGetFixedOrder_C", TSAMGetFixedOrder_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMSetMaxIterations_C", TSAMSetMaxIterations_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMGetMaxIterations_C", TSAMGetMaxIterations_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMSetMaxConvergenceFailures_C", TSAMSetMaxConvergenceFailures_AM));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSAMGetMaxConvergenceFailures_C", TSAMGetMaxConvergenceFailures_AM));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -796,5 +870,78 @@ PetscErrorCode TSAMGetCounters(TS ts, PetscInt *fixed_point_its, PetscInt *fixed
   PetscFunctionBeginUser;
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSAMGetCounters_C", (TS, PetscInt *, PetscInt *, PetscInt *), (ts, fixed_point_its, fixed_point_failures, current_order));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* PetscTryMethod: a no-op on a TS of another type, so callers may set it before knowing the type */
+PetscErrorCode TSAMSetMaxOrder(TS ts, PetscInt max_order)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(ts, max_order, 2);
+  PetscTryMethod(ts, "TSAMSetMaxOrder_C", (TS, PetscInt), (ts, max_order));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetMaxOrder(TS ts, PetscInt *max_order)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidIntPointer(max_order, 2);
+  PetscUseMethod(ts, "TSAMGetMaxOrder_C", (TS, PetscInt *), (ts, max_order));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMSetFixedOrder(TS ts, PetscBool fixed)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(ts, fixed, 2);
+  PetscTryMethod(ts, "TSAMSetFixedOrder_C", (TS, PetscBool), (ts, fixed));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetFixedOrder(TS ts, PetscBool *fixed)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidBoolPointer(fixed, 2);
+  PetscUseMethod(ts, "TSAMGetFixedOrder_C", (TS, PetscBool *), (ts, fixed));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMSetMaxIterations(TS ts, PetscInt max_it)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(ts, max_it, 2);
+  PetscTryMethod(ts, "TSAMSetMaxIterations_C", (TS, PetscInt), (ts, max_it));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetMaxIterations(TS ts, PetscInt *max_it)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidIntPointer(max_it, 2);
+  PetscUseMethod(ts, "TSAMGetMaxIterations_C", (TS, PetscInt *), (ts, max_it));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMSetMaxConvergenceFailures(TS ts, PetscInt max_fails)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(ts, max_fails, 2);
+  PetscTryMethod(ts, "TSAMSetMaxConvergenceFailures_C", (TS, PetscInt), (ts, max_fails));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSAMGetMaxConvergenceFailures(TS ts, PetscInt *max_fails)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidIntPointer(max_fails, 2);
+  PetscUseMethod(ts, "TSAMGetMaxConvergenceFailures_C", (TS, PetscInt *), (ts, max_fails));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,4 +1,4 @@
-/* Radau IIA, 3 stages, order 5, as the PETSc TS type "radau5" (docs/radau5.md).
+/* Radau IIA, 3 stages, order 5, as the PETSc TS type "radauiia" (docs/radau_iia.md).
 
    Problem: F(t, U, U') = 0 from TSSetIFunction/TSSetIJacobian (or U' = G(t, U) from the RHS
    interface), assumed linearly implicit, F = M U' - f(t, U), with a constant nonsingular M.
@@ -12,7 +12,7 @@
    real 2N x 2N system [[alpha/h M - J, beta/h M], [-beta/h M, alpha/h M - J]] (interleaved rows).
    Error estimate, Jacobian reuse and Newton control follow Hairer & Wanner's RADAU5; the step
    size is chosen by TSAdapt through ops->evaluatewlte. */
-#include <turgor/ts_radau5.h>
+#include <turgor/ts/radau_iia.h>
 #include "ts_types_internal.h"
 #include <petsc/private/tsimpl.h>
 #include <petsc/private/snesimpl.h> /* to clear a domain error raised with SNESSetFunctionDomainError() */
@@ -42,7 +42,7 @@ void Invert3(const Mat3 a, Mat3 inv)
 
 /* The method's constants, derived numerically from A so that no transcribed digits are trusted:
    the unit test checks them against independent derivations. */
-void ComputeTableau(TSRadau5Tableau *t)
+void ComputeTableau(TSRadauIIATableau *t)
 {
   const PetscReal s6 = std::sqrt(6.0);
   const PetscReal A[3][3] = {
@@ -122,8 +122,8 @@ void ComputeTableau(TSRadau5Tableau *t)
   }
 }
 
-struct Radau5 {
-  TSRadau5Tableau tab;
+struct RadauIIA {
+  TSRadauIIATableau tab;
 
   /* options */
   PetscInt  max_it        = 7;     /* Newton iterations per attempt */
@@ -163,7 +163,7 @@ enum class NewtonOutcome { converged, diverged, slow, too_many, domain, linear_s
 
 const char *const NewtonOutcomeNames[] = {"converged", "diverged (rate >= 0.99)", "predicted not to converge", "too many iterations", "domain error or non-finite residual", "linear solve failed"};
 
-PetscErrorCode Radau5EnsureKSPs(TS ts, Radau5 *r)
+PetscErrorCode RadauIIAEnsureKSPs(TS ts, RadauIIA *r)
 {
   const char *prefix;
   PetscMPIInt size;
@@ -177,7 +177,7 @@ PetscErrorCode Radau5EnsureKSPs(TS ts, Radau5 *r)
     PetscCall(KSPCreate(PetscObjectComm((PetscObject)ts), k));
     PetscCall(PetscObjectIncrementTabLevel((PetscObject)*k, (PetscObject)ts, 1));
     PetscCall(KSPSetOptionsPrefix(*k, prefix));
-    PetscCall(KSPAppendOptionsPrefix(*k, "ts_radau5_"));
+    PetscCall(KSPAppendOptionsPrefix(*k, "ts_radauiia_"));
     PetscCall(KSPSetType(*k, KSPPREONLY));
     PetscCall(KSPGetPC(*k, &pc));
     PetscCall(PCSetType(pc, PCLU));
@@ -187,7 +187,7 @@ PetscErrorCode Radau5EnsureKSPs(TS ts, Radau5 *r)
 }
 
 /* F(t, U, Udot) into Fv; *bad when the application flagged a domain error or F is not finite. */
-PetscErrorCode Radau5Residual(TS ts, Radau5 *r, PetscReal t, Vec U, Vec Udot, Vec Fv, PetscBool *bad)
+PetscErrorCode RadauIIAResidual(TS ts, RadauIIA *r, PetscReal t, Vec U, Vec Udot, Vec Fv, PetscBool *bad)
 {
   PetscBool domain = PETSC_FALSE;
   PetscReal nrm;
@@ -205,7 +205,7 @@ PetscErrorCode Radau5Residual(TS ts, Radau5 *r, PetscReal t, Vec U, Vec Udot, Ve
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode Radau5Solve(Radau5 *r, KSP ksp, Vec b, Vec x, PetscBool *ok, TS ts)
+PetscErrorCode RadauIIASolve(RadauIIA *r, KSP ksp, Vec b, Vec x, PetscBool *ok, TS ts)
 {
   KSPConvergedReason reason;
   PetscInt           its;
@@ -221,7 +221,7 @@ PetscErrorCode Radau5Solve(Radau5 *r, KSP ksp, Vec b, Vec x, PetscBool *ok, TS t
 }
 
 /* Copy the application's Jacobian into r->P, re-creating it when its nonzero pattern changed. */
-PetscErrorCode Radau5CopyJacobian(Radau5 *r, Mat B)
+PetscErrorCode RadauIIACopyJacobian(RadauIIA *r, Mat B)
 {
   PetscObjectState nz;
 
@@ -239,7 +239,7 @@ PetscErrorCode Radau5CopyJacobian(Radau5 *r, Mat B)
 /* J at (t0, U0). With an IFunction, P = (gamma/h) M - J comes from one IJacobian call; the very
    first evaluation makes a second call at the same state with shift alpha/h to recover the
    constant M. Without one (U' = G), M = I and P = -dG/dU. */
-PetscErrorCode Radau5EvaluateJacobian(TS ts, Radau5 *r)
+PetscErrorCode RadauIIAEvaluateJacobian(TS ts, RadauIIA *r)
 {
   TSIFunction ifunction;
   Mat         A, B;
@@ -250,10 +250,10 @@ PetscErrorCode Radau5EvaluateJacobian(TS ts, Radau5 *r)
     const PetscReal s1 = r->tab.gamma / r->h, s2 = r->tab.alpha / r->h;
     PetscCall(TSGetIJacobian(ts, &A, &B, NULL, NULL));
     if (!B) B = A;
-    PetscCheck(B, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radau5 needs a Jacobian: call TSSetIJacobian() (or TSSetRHSJacobian() for U' = G(t, U))");
+    PetscCheck(B, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radauiia needs a Jacobian: call TSSetIJacobian() (or TSSetRHSJacobian() for U' = G(t, U))");
     PetscCall(TSComputeIJacobian(ts, r->t0, r->U0, r->Udot0, s1, A, B, PETSC_FALSE));
     r->n_jac++;
-    PetscCall(Radau5CopyJacobian(r, B));
+    PetscCall(RadauIIACopyJacobian(r, B));
     r->shiftP = s1;
     if (!r->M) {
       PetscCall(TSComputeIJacobian(ts, r->t0, r->U0, r->Udot0, s2, A, B, PETSC_FALSE));
@@ -266,10 +266,10 @@ PetscErrorCode Radau5EvaluateJacobian(TS ts, Radau5 *r)
   } else {
     PetscCall(TSGetRHSJacobian(ts, &A, &B, NULL, NULL));
     if (!B) B = A;
-    PetscCheck(B, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radau5 needs a Jacobian: call TSSetRHSJacobian() (or TSSetIJacobian())");
+    PetscCheck(B, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radauiia needs a Jacobian: call TSSetRHSJacobian() (or TSSetIJacobian())");
     PetscCall(TSComputeRHSJacobian(ts, r->t0, r->U0, A, B));
     r->n_jac++;
-    PetscCall(Radau5CopyJacobian(r, B));
+    PetscCall(RadauIIACopyJacobian(r, B));
     PetscCall(MatScale(r->P, -1.0));
     r->shiftP = 0;
     if (!r->M) {
@@ -289,7 +289,7 @@ PetscErrorCode Radau5EvaluateJacobian(TS ts, Radau5 *r)
 
 /* (Re)create Ar (N x N) and Ac (2N x 2N, rows 2i and 2i+1 for the real and imaginary parts of
    unknown i) preallocated for the union of the patterns of P and M. */
-PetscErrorCode Radau5CreateMatrices(TS ts, Radau5 *r)
+PetscErrorCode RadauIIACreateMatrices(TS ts, RadauIIA *r)
 {
   PetscInt              n, rs, re, cs, ce;
   std::vector<PetscInt> dr, orr, dc, oc, cols;
@@ -337,7 +337,7 @@ PetscErrorCode Radau5CreateMatrices(TS ts, Radau5 *r)
 }
 
 /* Ar = (gamma/h) M - J and Ac for step size h; the KSPs factor them at their next solve. */
-PetscErrorCode Radau5AssembleMatrices(TS ts, Radau5 *r)
+PetscErrorCode RadauIIAAssembleMatrices(TS ts, RadauIIA *r)
 {
   const PetscReal        h = r->h;
   const PetscReal        ar = r->tab.gamma / h - r->shiftP, a11 = r->tab.Lambda[1][1] / h - r->shiftP, a22 = r->tab.Lambda[2][2] / h - r->shiftP;
@@ -347,7 +347,7 @@ PetscErrorCode Radau5AssembleMatrices(TS ts, Radau5 *r)
   std::vector<PetscReal> v1, v2;
 
   PetscFunctionBeginUser;
-  if (r->pattern_dirty || !r->Ar) PetscCall(Radau5CreateMatrices(ts, r));
+  if (r->pattern_dirty || !r->Ar) PetscCall(RadauIIACreateMatrices(ts, r));
   PetscCall(MatZeroEntries(r->Ar));
   PetscCall(MatZeroEntries(r->Ac));
   PetscCall(MatGetOwnershipRange(r->P, &rs, &re));
@@ -400,7 +400,7 @@ PetscErrorCode Radau5AssembleMatrices(TS ts, Radau5 *r)
 }
 
 /* Error weights atol + rtol |U0| for the Newton increments. */
-PetscErrorCode Radau5Weights(TS ts, Radau5 *r)
+PetscErrorCode RadauIIAWeights(TS ts, RadauIIA *r)
 {
   PetscReal atol, rtol, wmin;
   Vec       vatol, vrtol;
@@ -414,14 +414,14 @@ PetscErrorCode Radau5Weights(TS ts, Radau5 *r)
   if (vatol) PetscCall(VecAXPY(r->scal, 1.0, vatol));
   else PetscCall(VecShift(r->scal, atol));
   PetscCall(VecMin(r->scal, NULL, &wmin));
-  PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TS radau5: the error weights atol + rtol |U| must be positive (a component is 0 with atol = 0; set -ts_atol > 0)");
+  PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TS radauiia: the error weights atol + rtol |U| must be positive (a component is 0 with atol = 0; set -ts_atol > 0)");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Coefficients of the collocation polynomial of the step [cont_t0, cont_t0 + cont_h] in Newton
    form on the nodes s = 1, c2, c1, 0 (s = (t - cont_t0)/cont_h), so that
    U(s) = U_end + (s-1) [D1 + (s-c2) (D2 + (s-c1) D3)]. */
-PetscErrorCode Radau5BuildPolynomial(Radau5 *r)
+PetscErrorCode RadauIIABuildPolynomial(RadauIIA *r)
 {
   const PetscReal *c = r->tab.c;
 
@@ -439,7 +439,7 @@ PetscErrorCode Radau5BuildPolynomial(Radau5 *r)
 }
 
 /* X = sum of the polynomial's terms at s, without U_end (X = U(s) - U_end). */
-PetscErrorCode Radau5PolynomialIncrement(Radau5 *r, PetscReal s, Vec X)
+PetscErrorCode RadauIIAPolynomialIncrement(RadauIIA *r, PetscReal s, Vec X)
 {
   const PetscReal *c = r->tab.c;
   const PetscReal  w0 = s - 1, w1 = w0 * (s - c[1]), w2 = w1 * (s - c[0]);
@@ -452,9 +452,9 @@ PetscErrorCode Radau5PolynomialIncrement(Radau5 *r, PetscReal s, Vec X)
 }
 
 /* Simplified Newton on the stage system for the attempt (t0, h), in the transformed variables. */
-PetscErrorCode Radau5Newton(TS ts, Radau5 *r, NewtonOutcome *outcome, PetscReal *hfac)
+PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscReal *hfac)
 {
-  const TSRadau5Tableau &tab = r->tab;
+  const TSRadauIIATableau &tab = r->tab;
   PetscInt               N;
   PetscReal              dynold = 1, thqold = 1;
 
@@ -477,7 +477,7 @@ PetscErrorCode Radau5Newton(TS ts, Radau5 *r, NewtonOutcome *outcome, PetscReal 
       PetscCall(VecWAXPY(r->Y[i], 1.0, r->U0, r->Z[i]));
       PetscCall(VecZeroEntries(r->Udot));
       PetscCall(VecMAXPY(r->Udot, 3, a, r->Z));
-      PetscCall(Radau5Residual(ts, r, r->t0 + tab.c[i] * r->h, r->Y[i], r->Udot, r->R[i], &bad));
+      PetscCall(RadauIIAResidual(ts, r, r->t0 + tab.c[i] * r->h, r->Y[i], r->Udot, r->R[i], &bad));
     }
     if (bad) {
       *outcome = NewtonOutcome::domain;
@@ -493,8 +493,8 @@ PetscErrorCode Radau5Newton(TS ts, Radau5 *r, NewtonOutcome *outcome, PetscReal 
     }
     PetscCall(VecStrideScatter(r->dW[1], 0, r->Xc, INSERT_VALUES));
     PetscCall(VecStrideScatter(r->dW[2], 1, r->Xc, INSERT_VALUES));
-    PetscCall(Radau5Solve(r, r->kspr, r->rhs, r->dW[0], &ok, ts));
-    if (ok) PetscCall(Radau5Solve(r, r->kspc, r->Xc, r->Yc, &ok, ts));
+    PetscCall(RadauIIASolve(r, r->kspr, r->rhs, r->dW[0], &ok, ts));
+    if (ok) PetscCall(RadauIIASolve(r, r->kspc, r->Xc, r->Yc, &ok, ts));
     r->n_newton++;
     ts->snes_its++;
     if (!ok) {
@@ -550,9 +550,9 @@ PetscErrorCode Radau5Newton(TS ts, Radau5 *r, NewtonOutcome *outcome, PetscReal 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSStep_Radau5(TS ts)
+PetscErrorCode TSStep_RadauIIA(TS ts)
 {
-  Radau5   *r          = (Radau5 *)ts->data;
+  RadauIIA   *r          = (RadauIIA *)ts->data;
   PetscInt  rejections = 0;
   PetscBool accept     = PETSC_TRUE;
   PetscReal next_h     = ts->time_step;
@@ -572,7 +572,7 @@ PetscErrorCode TSStep_Radau5(TS ts)
   } else if (!ts->steprollback) PetscCall(VecCopy(r->Udot1, r->Udot0)); /* U' at the new step's start */
   r->t0 = ts->ptime;
   PetscCall(VecCopy(ts->vec_sol, r->U0));
-  PetscCall(Radau5Weights(ts, r));
+  PetscCall(RadauIIAWeights(ts, r));
 
   while (!ts->reason) {
     NewtonOutcome outcome = NewtonOutcome::too_many;
@@ -582,20 +582,20 @@ PetscErrorCode TSStep_Radau5(TS ts)
     r->h          = ts->time_step;
     r->wlte_valid = PETSC_FALSE;
     if (r->need_jac) {
-      PetscCall(Radau5EvaluateJacobian(ts, r));
+      PetscCall(RadauIIAEvaluateJacobian(ts, r));
       r->need_jac  = PETSC_FALSE;
       r->jac_fresh = PETSC_TRUE;
       r->h_fact    = 0;
     }
-    if (r->h != r->h_fact || r->pattern_dirty) PetscCall(Radau5AssembleMatrices(ts, r));
+    if (r->h != r->h_fact || r->pattern_dirty) PetscCall(RadauIIAAssembleMatrices(ts, r));
 
     /* starting values: the previous step's collocation polynomial continued, or zero */
     for (int i = 0; i < 3; i++) {
-      if (r->have_cont && r->extrapolate) PetscCall(Radau5PolynomialIncrement(r, 1 + r->tab.c[i] * r->h / r->cont_h, r->Z[i]));
+      if (r->have_cont && r->extrapolate) PetscCall(RadauIIAPolynomialIncrement(r, 1 + r->tab.c[i] * r->h / r->cont_h, r->Z[i]));
       else PetscCall(VecZeroEntries(r->Z[i]));
       PetscCall(TSPreStage(ts, r->t0 + r->tab.c[i] * r->h));
     }
-    PetscCall(Radau5Newton(ts, r, &outcome, &hfac));
+    PetscCall(RadauIIANewton(ts, r, &outcome, &hfac));
     if (outcome != NewtonOutcome::converged) {
       PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g h=%g: Newton %s, retrying with h=%g\n", ts->steps, (double)r->t0, (double)r->h, NewtonOutcomeNames[(int)outcome], (double)(r->h * hfac)));
       if (outcome == NewtonOutcome::domain) r->n_domain++;
@@ -619,7 +619,7 @@ PetscErrorCode TSStep_Radau5(TS ts)
 
     PetscCall(VecWAXPY(r->U1, 1.0, r->U0, r->Z[2]));
     PetscCall(TSAdaptCandidatesClear(ts->adapt));
-    PetscCall(TSAdaptCandidateAdd(ts->adapt, "radau5", 5, 3, 1.0, 1.0, PETSC_TRUE));
+    PetscCall(TSAdaptCandidateAdd(ts->adapt, "radauiia", 5, 3, 1.0, 1.0, PETSC_TRUE));
     PetscCall(TSAdaptChoose(ts->adapt, ts, r->h, NULL, &next_h, &accept));
     if (!accept) {
       /* a first step that fails the error test is usually far too large (e.g. across an initial
@@ -632,7 +632,7 @@ PetscErrorCode TSStep_Radau5(TS ts)
     /* accepted */
     PetscCall(VecCopy(r->U1, ts->vec_sol));
     ts->ptime += r->h;
-    PetscCall(Radau5BuildPolynomial(r));
+    PetscCall(RadauIIABuildPolynomial(r));
     r->cont_t0   = r->t0;
     r->cont_h    = r->h;
     r->have_cont = PETSC_TRUE;
@@ -671,9 +671,9 @@ PetscErrorCode TSStep_Radau5(TS ts)
 /* RADAU5's estimate err = (gamma/h M - J)^-1 [f(t0, U0) + (1/(gamma0 h)) M sum_i e_i Z_i], written
    with F: the bracket is -F(t0, U0, V) with V = -sum_i e_i Z_i / (gamma0 h). On the first step and
    after a rejection a large estimate is filtered once more, with f evaluated at U0 + err. */
-PetscErrorCode TSEvaluateWLTE_Radau5(TS ts, NormType wnormtype, PetscInt *order, PetscReal *wlte)
+PetscErrorCode TSEvaluateWLTE_RadauIIA(TS ts, NormType wnormtype, PetscInt *order, PetscReal *wlte)
 {
-  Radau5   *r = (Radau5 *)ts->data;
+  RadauIIA   *r = (RadauIIA *)ts->data;
   PetscReal wa, wr;
   PetscBool bad, ok;
 
@@ -683,7 +683,7 @@ PetscErrorCode TSEvaluateWLTE_Radau5(TS ts, NormType wnormtype, PetscInt *order,
     *wlte = r->wlte;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCheck(r->h > 0 && r->h == r->h_fact, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radau5: no step to estimate the error of");
+  PetscCheck(r->h > 0 && r->h == r->h_fact, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radauiia: no step to estimate the error of");
   {
     PetscScalar a[3];
     for (int i = 0; i < 3; i++) a[i] = -r->tab.e[i] / (r->tab.gamma0 * r->h);
@@ -691,10 +691,10 @@ PetscErrorCode TSEvaluateWLTE_Radau5(TS ts, NormType wnormtype, PetscInt *order,
     PetscCall(VecMAXPY(r->Udot, 3, a, r->Z));
   }
   *wlte = PETSC_INFINITY;
-  PetscCall(Radau5Residual(ts, r, r->t0, r->U0, r->Udot, r->rhs, &bad));
+  PetscCall(RadauIIAResidual(ts, r, r->t0, r->U0, r->Udot, r->rhs, &bad));
   if (!bad) {
     PetscCall(VecScale(r->rhs, -1.0));
-    PetscCall(Radau5Solve(r, r->kspr, r->rhs, r->err, &ok, ts));
+    PetscCall(RadauIIASolve(r, r->kspr, r->rhs, r->err, &ok, ts));
     if (ok) {
       PetscCall(VecWAXPY(r->work, 1.0, r->U1, r->err));
       PetscCall(TSErrorWeightedNorm(ts, r->U1, r->work, wnormtype, wlte, &wa, &wr));
@@ -703,10 +703,10 @@ PetscErrorCode TSEvaluateWLTE_Radau5(TS ts, NormType wnormtype, PetscInt *order,
   }
   if (*wlte >= 1 && *wlte < PETSC_INFINITY && (r->first || r->last_rejected)) {
     PetscCall(VecWAXPY(r->work, 1.0, r->U0, r->err));
-    PetscCall(Radau5Residual(ts, r, r->t0, r->work, r->Udot, r->rhs, &bad));
+    PetscCall(RadauIIAResidual(ts, r, r->t0, r->work, r->Udot, r->rhs, &bad));
     if (!bad) {
       PetscCall(VecScale(r->rhs, -1.0));
-      PetscCall(Radau5Solve(r, r->kspr, r->rhs, r->err, &ok, ts));
+      PetscCall(RadauIIASolve(r, r->kspr, r->rhs, r->err, &ok, ts));
       if (ok) {
         PetscReal w2;
         PetscCall(VecWAXPY(r->work, 1.0, r->U1, r->err));
@@ -721,20 +721,20 @@ PetscErrorCode TSEvaluateWLTE_Radau5(TS ts, NormType wnormtype, PetscInt *order,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSInterpolate_Radau5(TS ts, PetscReal t, Vec X)
+PetscErrorCode TSInterpolate_RadauIIA(TS ts, PetscReal t, Vec X)
 {
-  Radau5 *r = (Radau5 *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(r->have_cont, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radau5: no completed step to interpolate in");
-  PetscCall(Radau5PolynomialIncrement(r, (t - r->cont_t0) / r->cont_h, X));
+  PetscCheck(r->have_cont, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radauiia: no completed step to interpolate in");
+  PetscCall(RadauIIAPolynomialIncrement(r, (t - r->cont_t0) / r->cont_h, X));
   PetscCall(VecAXPY(X, 1.0, r->U1));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSRollBack_Radau5(TS ts)
+PetscErrorCode TSRollBack_RadauIIA(TS ts)
 {
-  Radau5 *r = (Radau5 *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
   PetscCall(VecCopy(r->U0, ts->vec_sol));
@@ -746,9 +746,9 @@ PetscErrorCode TSRollBack_Radau5(TS ts)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSReset_Radau5(TS ts)
+PetscErrorCode TSReset_RadauIIA(TS ts)
 {
-  Radau5 *r = (Radau5 *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
   for (Vec *v : {&r->U0, &r->U1, &r->Udot, &r->Udot0, &r->Udot1, &r->scal, &r->work, &r->rhs, &r->err, &r->Xc, &r->Yc}) PetscCall(VecDestroy(v));
@@ -765,9 +765,9 @@ PetscErrorCode TSReset_Radau5(TS ts)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSRadau5GetCounters_Radau5(TS ts, PetscInt *jac, PetscInt *newton, PetscInt *solves)
+PetscErrorCode TSRadauIIAGetCounters_RadauIIA(TS ts, PetscInt *jac, PetscInt *newton, PetscInt *solves)
 {
-  Radau5 *r = (Radau5 *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
   if (jac) *jac = r->n_jac;
@@ -776,25 +776,83 @@ PetscErrorCode TSRadau5GetCounters_Radau5(TS ts, PetscInt *jac, PetscInt *newton
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSDestroy_Radau5(TS ts)
+/* The setters check what TSSetFromOptions_RadauIIA() checks for the options of the same values. */
+PetscErrorCode TSRadauIIASetJacobianReuse_RadauIIA(TS ts, PetscReal theta)
 {
+  RadauIIA *r = (RadauIIA *)ts->data;
+
   PetscFunctionBeginUser;
-  PetscCall(TSReset_Radau5(ts));
-  delete (Radau5 *)ts->data;
-  ts->data = NULL;
-  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadau5GetCounters_C", NULL));
+  PetscCheck(theta >= 0 && theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetJacobianReuse(): theta = %g must be in [0, 1)", (double)theta);
+  r->reuse_theta = theta;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSSetUp_Radau5(TS ts)
+PetscErrorCode TSRadauIIAGetJacobianReuse_RadauIIA(TS ts, PetscReal *theta)
 {
-  Radau5  *r = (Radau5 *)ts->data;
+  PetscFunctionBeginUser;
+  *theta = ((RadauIIA *)ts->data)->reuse_theta;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonTolerance_RadauIIA(TS ts, PetscReal kappa)
+{
+  RadauIIA *r = (RadauIIA *)ts->data;
+
+  PetscFunctionBeginUser;
+  PetscCheck(kappa > 0 && kappa < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1)", (double)kappa);
+  r->newton_tol = kappa;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonTolerance_RadauIIA(TS ts, PetscReal *kappa)
+{
+  PetscFunctionBeginUser;
+  *kappa = ((RadauIIA *)ts->data)->newton_tol;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonMaxIterations_RadauIIA(TS ts, PetscInt max_it)
+{
+  RadauIIA *r = (RadauIIA *)ts->data;
+
+  PetscFunctionBeginUser;
+  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1", max_it);
+  r->max_it = max_it;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonMaxIterations_RadauIIA(TS ts, PetscInt *max_it)
+{
+  PetscFunctionBeginUser;
+  *max_it = ((RadauIIA *)ts->data)->max_it;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* every function TSCreate_RadauIIA() composes (listed in radau_iia.h), removed again on destroy so
+   that a TS changed to another type no longer answers to them */
+const char *const kComposedNames[] = {"TSRadauIIAGetCounters_C",         "TSRadauIIASetJacobianReuse_C",     "TSRadauIIAGetJacobianReuse_C",
+                                      "TSRadauIIASetNewtonTolerance_C",  "TSRadauIIAGetNewtonTolerance_C",   "TSRadauIIASetNewtonMaxIterations_C",
+                                      "TSRadauIIAGetNewtonMaxIterations_C"};
+
+PetscErrorCode TSDestroy_RadauIIA(TS ts)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSReset_RadauIIA(ts));
+  delete (RadauIIA *)ts->data;
+  ts->data = NULL;
+  for (const char *name : kComposedNames) PetscCall(PetscObjectComposeFunction((PetscObject)ts, name, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSSetUp_RadauIIA(TS ts)
+{
+  RadauIIA  *r = (RadauIIA *)ts->data;
   PetscInt n;
 
   PetscFunctionBeginUser;
   PetscCall(TSGetAdapt(ts, &ts->adapt));
   PetscCall(TSAdaptCandidatesClear(ts->adapt));
-  PetscCall(Radau5EnsureKSPs(ts, r));
+  PetscCall(RadauIIAEnsureKSPs(ts, r));
   /* sub-solver options are read here, as PETSc's block preconditioners do for their blocks */
   PetscCall(KSPSetFromOptions(r->kspr));
   PetscCall(KSPSetFromOptions(r->kspc));
@@ -811,29 +869,29 @@ PetscErrorCode TSSetUp_Radau5(TS ts)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSSetFromOptions_Radau5(TS ts, PetscOptionItems *PetscOptionsObject)
+PetscErrorCode TSSetFromOptions_RadauIIA(TS ts, PetscOptionItems *PetscOptionsObject)
 {
-  Radau5 *r = (Radau5 *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscOptionsHeadBegin(PetscOptionsObject, "Radau IIA order 5 (radau5) options; linear solvers: -ts_radau5_ksp_*, -ts_radau5_pc_*");
-  PetscCall(PetscOptionsInt("-ts_radau5_newton_max_it", "Simplified Newton iterations per step attempt", "TSRADAU5", r->max_it, &r->max_it, NULL));
-  PetscCall(PetscOptionsReal("-ts_radau5_newton_tol", "Newton stops when its estimated error is below this fraction of the error tolerance", "TSRADAU5", r->newton_tol, &r->newton_tol, NULL));
-  PetscCall(PetscOptionsReal("-ts_radau5_jacobian_reuse", "Keep the Jacobian for the next step while the Newton contraction rate is below this", "TSRADAU5", r->reuse_theta, &r->reuse_theta, NULL));
-  PetscCall(PetscOptionsReal("-ts_radau5_keep_step_min", "Keep h (and the factorisations) if TSAdapt proposes between min x h ...", "TSRADAU5", r->keep_step[0], &r->keep_step[0], NULL));
-  PetscCall(PetscOptionsReal("-ts_radau5_keep_step_max", "... and max x h", "TSRADAU5", r->keep_step[1], &r->keep_step[1], NULL));
-  PetscCall(PetscOptionsBool("-ts_radau5_extrapolate", "Start Newton from the previous step's collocation polynomial (else from zero)", "TSRADAU5", r->extrapolate, &r->extrapolate, NULL));
+  PetscOptionsHeadBegin(PetscOptionsObject, "Radau IIA order 5 (radauiia) options; linear solvers: -ts_radauiia_ksp_*, -ts_radauiia_pc_*");
+  PetscCall(PetscOptionsInt("-ts_radauiia_newton_max_it", "Simplified Newton iterations per step attempt", "TSRADAUIIA", r->max_it, &r->max_it, NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol", "Newton stops when its estimated error is below this fraction of the error tolerance", "TSRADAUIIA", r->newton_tol, &r->newton_tol, NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_jacobian_reuse", "Keep the Jacobian for the next step while the Newton contraction rate is below this", "TSRADAUIIA", r->reuse_theta, &r->reuse_theta, NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_min", "Keep h (and the factorisations) if TSAdapt proposes between min x h ...", "TSRADAUIIA", r->keep_step[0], &r->keep_step[0], NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_max", "... and max x h", "TSRADAUIIA", r->keep_step[1], &r->keep_step[1], NULL));
+  PetscCall(PetscOptionsBool("-ts_radauiia_extrapolate", "Start Newton from the previous step's collocation polynomial (else from zero)", "TSRADAUIIA", r->extrapolate, &r->extrapolate, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(r->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radau5_newton_max_it = %" PetscInt_FMT ": must be >= 1", r->max_it);
-  PetscCheck(r->newton_tol > 0 && r->newton_tol < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radau5_newton_tol = %g: must be in (0, 1)", (double)r->newton_tol);
-  PetscCheck(r->reuse_theta >= 0 && r->reuse_theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radau5_jacobian_reuse = %g: must be in [0, 1)", (double)r->reuse_theta);
-  PetscCheck(r->keep_step[0] <= r->keep_step[1], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Options -ts_radau5_keep_step_min = %g > -ts_radau5_keep_step_max = %g", (double)r->keep_step[0], (double)r->keep_step[1]);
+  PetscCheck(r->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_max_it = %" PetscInt_FMT ": must be >= 1", r->max_it);
+  PetscCheck(r->newton_tol > 0 && r->newton_tol < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_tol = %g: must be in (0, 1)", (double)r->newton_tol);
+  PetscCheck(r->reuse_theta >= 0 && r->reuse_theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_jacobian_reuse = %g: must be in [0, 1)", (double)r->reuse_theta);
+  PetscCheck(r->keep_step[0] <= r->keep_step[1], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Options -ts_radauiia_keep_step_min = %g > -ts_radauiia_keep_step_max = %g", (double)r->keep_step[0], (double)r->keep_step[1]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSView_Radau5(TS ts, PetscViewer viewer)
+PetscErrorCode TSView_RadauIIA(TS ts, PetscViewer viewer)
 {
-  Radau5   *r = (Radau5 *)ts->data;
+  RadauIIA   *r = (RadauIIA *)ts->data;
   PetscBool ascii;
 
   PetscFunctionBeginUser;
@@ -860,38 +918,99 @@ PetscErrorCode TSView_Radau5(TS ts, PetscViewer viewer)
 
 } // namespace
 
-/* registered by TurgorRegisterAll() (register.cpp) */
-PetscErrorCode TSCreate_Radau5(TS ts)
+/* registered by TurgorTSRegisterAll() (ts_register.cpp), also as "radau5" where PETSc has no RADAU5 */
+PetscErrorCode TSCreate_RadauIIA(TS ts)
 {
-  Radau5 *r = new Radau5();
+  RadauIIA *r = new RadauIIA();
 
   PetscFunctionBeginUser;
   ComputeTableau(&r->tab);
   ts->data                 = r;
-  ts->ops->setup           = TSSetUp_Radau5;
-  ts->ops->step            = TSStep_Radau5;
-  ts->ops->interpolate     = TSInterpolate_Radau5;
-  ts->ops->evaluatewlte    = TSEvaluateWLTE_Radau5;
-  ts->ops->rollback        = TSRollBack_Radau5;
-  ts->ops->setfromoptions  = TSSetFromOptions_Radau5;
-  ts->ops->view            = TSView_Radau5;
-  ts->ops->reset           = TSReset_Radau5;
-  ts->ops->destroy         = TSDestroy_Radau5;
+  ts->ops->setup           = TSSetUp_RadauIIA;
+  ts->ops->step            = TSStep_RadauIIA;
+  ts->ops->interpolate     = TSInterpolate_RadauIIA;
+  ts->ops->evaluatewlte    = TSEvaluateWLTE_RadauIIA;
+  ts->ops->rollback        = TSRollBack_RadauIIA;
+  ts->ops->setfromoptions  = TSSetFromOptions_RadauIIA;
+  ts->ops->view            = TSView_RadauIIA;
+  ts->ops->reset           = TSReset_RadauIIA;
+  ts->ops->destroy         = TSDestroy_RadauIIA;
   ts->usessnes             = PETSC_FALSE; /* Newton is done here, on the transformed stage system */
   ts->default_adapt_type   = TSADAPTBASIC;
-  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadau5GetCounters_C", TSRadau5GetCounters_Radau5));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", TSRadauIIAGetCounters_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetJacobianReuse_C", TSRadauIIASetJacobianReuse_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetJacobianReuse_C", TSRadauIIAGetJacobianReuse_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetNewtonTolerance_C", TSRadauIIASetNewtonTolerance_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetNewtonTolerance_C", TSRadauIIAGetNewtonTolerance_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetNewtonMaxIterations_C", TSRadauIIASetNewtonMaxIterations_RadauIIA));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetNewtonMaxIterations_C", TSRadauIIAGetNewtonMaxIterations_RadauIIA));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSRadau5GetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *newton_its, PetscInt *linear_solves)
+PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *newton_its, PetscInt *linear_solves)
 {
   PetscFunctionBeginUser;
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
-  PetscUseMethod(ts, "TSRadau5GetCounters_C", (TS, PetscInt *, PetscInt *, PetscInt *), (ts, jacobian_evals, newton_its, linear_solves));
+  PetscUseMethod(ts, "TSRadauIIAGetCounters_C", (TS, PetscInt *, PetscInt *, PetscInt *), (ts, jacobian_evals, newton_its, linear_solves));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TSRadau5GetTableau(TSRadau5Tableau *tableau)
+/* PetscTryMethod: a no-op on a TS of another type, so callers may set it before knowing the type */
+PetscErrorCode TSRadauIIASetJacobianReuse(TS ts, PetscReal theta)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(ts, theta, 2);
+  PetscTryMethod(ts, "TSRadauIIASetJacobianReuse_C", (TS, PetscReal), (ts, theta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetJacobianReuse(TS ts, PetscReal *theta)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidRealPointer(theta, 2);
+  PetscUseMethod(ts, "TSRadauIIAGetJacobianReuse_C", (TS, PetscReal *), (ts, theta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonTolerance(TS ts, PetscReal kappa)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(ts, kappa, 2);
+  PetscTryMethod(ts, "TSRadauIIASetNewtonTolerance_C", (TS, PetscReal), (ts, kappa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonTolerance(TS ts, PetscReal *kappa)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidRealPointer(kappa, 2);
+  PetscUseMethod(ts, "TSRadauIIAGetNewtonTolerance_C", (TS, PetscReal *), (ts, kappa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIASetNewtonMaxIterations(TS ts, PetscInt max_it)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(ts, max_it, 2);
+  PetscTryMethod(ts, "TSRadauIIASetNewtonMaxIterations_C", (TS, PetscInt), (ts, max_it));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetNewtonMaxIterations(TS ts, PetscInt *max_it)
+{
+  PetscFunctionBeginUser;
+  PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
+  PetscValidIntPointer(max_it, 2);
+  PetscUseMethod(ts, "TSRadauIIAGetNewtonMaxIterations_C", (TS, PetscInt *), (ts, max_it));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSRadauIIAGetTableau(TSRadauIIATableau *tableau)
 {
   PetscFunctionBeginUser;
   PetscValidPointer(tableau, 1);

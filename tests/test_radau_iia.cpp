@@ -1,12 +1,15 @@
-static const char help[] = "The radau5 TS type (Radau IIA, order 5): (a) its constants against independent derivations;\n"
+static const char help[] = "The radauiia TS type (Radau IIA, order 5): (a) its constants against independent derivations;\n"
                            "(b) the order measured with fixed steps on a linear system with a non-trivial mass matrix,\n"
                            "and the order of the error estimate; (c) adaptive runs on a stiff nonlinear problem\n"
                            "(IFunction and RHS forms) against the exact solution; (d) TSInterpolate inside steps;\n"
                            "(e) domain errors (NaN, TSSetFunctionDomainError, SNESSetFunctionDomainError) force\n"
                            "rejections and the solve completes; (f) a distributed heat equation with a finite-element mass\n"
-                           "matrix (also run on 2 ranks, where only (f) runs) against its semi-discrete exact solution.\n";
+                           "matrix (also run on 2 ranks, where only (f) runs) against its semi-discrete exact solution;\n"
+                           "(g) the type is registered as radauiia, and -ts_type radau5 selects it where PETSc has no RADAU5;\n"
+                           "(h) defaults set with TSRadauIIASet*() before TSSetFromOptions() are used, options override them,\n"
+                           "and the setters are a no-op on another TS type.\n";
 #include "test_util.h"
-#include <turgor/ts_radau5.h>
+#include <turgor/ts/radau_iia.h>
 #include <complex>
 
 namespace {
@@ -210,6 +213,7 @@ struct RunSpec {
   PetscReal   tol      = 1e-6;
   PetscInt    max_step = 1000000;
   PetscBool   rhs_form = PETSC_FALSE;
+  PetscReal   reuse    = -1; /* >= 0: TSRadauIIASetJacobianReuse() before TSSetFromOptions() */
 };
 
 PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
@@ -234,7 +238,7 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetApplicationContext(ts, &p));
-  PetscCall(TSSetType(ts, TSRADAU5));
+  PetscCall(TSSetType(ts, TSRADAUIIA));
   if (spec.rhs_form) {
     PetscCall(TSSetRHSFunction(ts, NULL, RHSFunction, &p));
     PetscCall(TSSetRHSJacobian(ts, J, J, RHSJacobian, &p));
@@ -250,6 +254,7 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCall(TSSetTolerances(ts, spec.tol, NULL, spec.tol, NULL));
   PetscCall(TSSetPostStep(ts, SampleInterior));
+  if (spec.reuse >= 0) PetscCall(TSRadauIIASetJacobianReuse(ts, spec.reuse));
   {
     /* command-line options may change the adaptive runs, but fixed steps stay fixed */
     TSAdapt   adapt;
@@ -266,7 +271,7 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscCall(TSGetTime(ts, &res->t));
   PetscCall(TSGetStepNumber(ts, &res->steps));
   PetscCall(TSGetStepRejections(ts, &res->rejects));
-  PetscCall(TSRadau5GetCounters(ts, &res->jac, &res->newton, &res->solves));
+  PetscCall(TSRadauIIAGetCounters(ts, &res->jac, &res->newton, &res->solves));
   res->wlte = -1;
   if (spec.max_step == 1) {
     PetscInt order;
@@ -305,11 +310,11 @@ PetscErrorCode PrintRun(const char *what, const Result &r)
 /* (a) */
 PetscErrorCode CheckTableau()
 {
-  TSRadau5Tableau t;
+  TSRadauIIATableau t;
   const PetscReal s6 = std::sqrt(6.0);
 
   PetscFunctionBeginUser;
-  PetscCall(TSRadau5GetTableau(&t));
+  PetscCall(TSRadauIIAGetTableau(&t));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "(a) c = (%.16f, %.16f, %g); gamma = %.15f, alpha = %.15f, beta = %.15f, gamma0 = %.15f\n", (double)t.c[0], (double)t.c[1], (double)t.c[2], (double)t.gamma, (double)t.alpha, (double)t.beta, (double)t.gamma0));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "    e = (%.15f, %.15f, %.15f)\n", (double)t.e[0], (double)t.e[1], (double)t.e[2]));
   /* Radau right points: zeros of d^2/dx^2 [x^2 (x-1)^3] = 20x^3 - 36x^2 + 18x - 2 */
@@ -409,7 +414,7 @@ PetscErrorCode CheckRollBack()
   PetscCall(VecDuplicate(U, &U3));
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
-  PetscCall(TSSetType(ts, TSRADAU5));
+  PetscCall(TSSetType(ts, TSRADAUIIA));
   PetscCall(TSSetIFunction(ts, NULL, IFunction, &p));
   PetscCall(TSSetIJacobian(ts, J, J, IJacobian, &p));
   PetscCall(TSSetTimeStep(ts, 0.1));
@@ -428,7 +433,7 @@ PetscErrorCode CheckRollBack()
   PetscCall(VecCopy(U, U2));
   PetscCall(TSStep(ts));
   PetscCall(VecCopy(U, U3));
-  PetscCall(TSRadau5GetCounters(ts, &jac_before, NULL, NULL));
+  PetscCall(TSRadauIIAGetCounters(ts, &jac_before, NULL, NULL));
   PetscCall(TSRollBack(ts));
   PetscCall(TSGetTime(ts, &t));
   PetscCall(VecAXPY(U2, -1.0, U));
@@ -436,7 +441,7 @@ PetscErrorCode CheckRollBack()
   TG_CHECK(std::fabs(t - 0.2) < 1e-14 && d2 == 0, "TSRollBack: t = %g, |U - U(0.2)| = %g", (double)t, (double)d2);
   PetscCall(TSStep(ts));
   PetscCall(TSGetTime(ts, &t));
-  PetscCall(TSRadau5GetCounters(ts, &jac_after, NULL, NULL));
+  PetscCall(TSRadauIIAGetCounters(ts, &jac_after, NULL, NULL));
   PetscCall(VecAXPY(U3, -1.0, U));
   PetscCall(VecNorm(U3, NORM_INFINITY, &d3));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "    TSRollBack: back to t = 0.2 exactly; the retried step differs by %.2e; Jacobian evaluations %" PetscInt_FMT " -> %" PetscInt_FMT "\n", (double)d3, jac_before, jac_after));
@@ -523,7 +528,7 @@ PetscErrorCode HeatRun()
   PetscCall(VecAssemblyBegin(E));
   PetscCall(VecAssemblyEnd(E));
   PetscCall(TSCreate(PETSC_COMM_WORLD, &ts));
-  PetscCall(TSSetType(ts, TSRADAU5));
+  PetscCall(TSSetType(ts, TSRADAUIIA));
   PetscCall(TSSetIFunction(ts, NULL, HeatIFunction, &p));
   PetscCall(TSSetIJacobian(ts, J, J, HeatIJacobian, &p));
   PetscCall(TSSetMaxTime(ts, tf));
@@ -536,7 +541,7 @@ PetscErrorCode HeatRun()
   TG_CHECK(reason > 0, "heat: TSSolve did not converge: %s", TSConvergedReasons[reason]);
   PetscCall(TSGetStepNumber(ts, &steps));
   PetscCall(TSGetStepRejections(ts, &rejects));
-  PetscCall(TSRadau5GetCounters(ts, &jac, &newton, &solves));
+  PetscCall(TSRadauIIAGetCounters(ts, &jac, &newton, &solves));
   PetscCall(VecNorm(E, NORM_INFINITY, &nrm));
   PetscCall(VecAXPY(E, -1.0, U));
   PetscCall(VecNorm(E, NORM_INFINITY, &err));
@@ -552,6 +557,118 @@ PetscErrorCode HeatRun()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A TS whose options come from a private database holding only "-ts_type <type>", so that neither
+   the command line nor other checks can change what is tested. */
+PetscErrorCode CreateTSFromTypeOption(const char *type, PetscOptions *opts, TS *ts)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsCreate(opts));
+  PetscCall(PetscOptionsSetValue(*opts, "-ts_type", type));
+  PetscCall(TSCreate(PETSC_COMM_SELF, ts));
+  PetscCall(PetscObjectSetOptions((PetscObject)*ts, *opts));
+  PetscCall(TSSetFromOptions(*ts));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* (g) */
+PetscErrorCode CheckRegistration()
+{
+  TS           ts;
+  PetscOptions opts;
+  PetscBool    same;
+  PetscInt     jac = -1;
+  void (*counters)(void);
+
+  PetscFunctionBeginUser;
+  PetscCall(CreateTSFromTypeOption(TSRADAUIIA, &opts, &ts));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSRADAUIIA, &same));
+  TG_CHECK(same, "-ts_type " TSRADAUIIA " did not give a TS of that type");
+  PetscCall(TSRadauIIAGetCounters(ts, &jac, NULL, NULL));
+  TG_CHECK(jac == 0, "a new radauiia TS has %" PetscInt_FMT " Jacobian evaluations", jac);
+  PetscCall(TSDestroy(&ts));
+  PetscCall(PetscOptionsDestroy(&opts));
+
+  PetscCall(CreateTSFromTypeOption("radau5", &opts, &ts));
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", &counters));
+#if !defined(PETSC_HAVE_RADAU5)
+  /* the alias: the same constructor under the former name */
+  TG_CHECK(counters, "-ts_type radau5 must give turgor's Radau IIA where PETSc has no RADAU5");
+  jac = -1;
+  PetscCall(TSRadauIIAGetCounters(ts, &jac, NULL, NULL));
+  TG_CHECK(jac == 0, "radau5 alias: %" PetscInt_FMT " Jacobian evaluations on a new TS", jac);
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(g) -ts_type radauiia and -ts_type radau5 (alias: PETSc has no RADAU5) both give turgor's Radau IIA\n"));
+#else
+  /* PETSc's own TSRADAU5 must have been left in place */
+  TG_CHECK(!counters, "-ts_type radau5 must stay PETSc's TSRADAU5 when PETSc has it");
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(g) -ts_type radauiia gives turgor's Radau IIA; radau5 is PETSc's own TSRADAU5\n"));
+#endif
+  PetscCall(TSDestroy(&ts));
+  PetscCall(PetscOptionsDestroy(&opts));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* (h) */
+PetscErrorCode CheckSetters()
+{
+  TS             ts;
+  PetscOptions   opts;
+  PetscReal      theta, kappa;
+  PetscInt       max_it;
+  PetscErrorCode ierr;
+  void (*method)(void);
+
+  PetscFunctionBeginUser;
+  /* a private, empty options database: the command line must not change what is checked here */
+  PetscCall(PetscOptionsCreate(&opts));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(PetscObjectSetOptions((PetscObject)ts, opts));
+  PetscCall(TSSetType(ts, TSRADAUIIA));
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
+  PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
+  TG_CHECK(theta == 1e-3 && kappa == 0.03 && max_it == 7, "defaults: Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.001, 0.03, 7)", (double)theta, (double)kappa, max_it);
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
+  PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.05));
+  PetscCall(TSRadauIIASetNewtonMaxIterations(ts, 10));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
+  PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
+  TG_CHECK(theta == 0.1 && kappa == 0.05 && max_it == 10, "set before TSSetFromOptions(): Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.1, 0.05, 10)", (double)theta, (double)kappa, max_it);
+  /* an option given for the TS still wins over the value set in code */
+  PetscCall(PetscOptionsSetValue(opts, "-ts_radauiia_jacobian_reuse", "0.2"));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  TG_CHECK(theta == 0.2, "-ts_radauiia_jacobian_reuse 0.2 must override TSRadauIIASetJacobianReuse(0.1), got %g", (double)theta);
+  /* out of range is an error */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = TSRadauIIASetJacobianReuse(ts, 1.5);
+  PetscCall(PetscPopErrorHandler());
+  TG_CHECK(ierr == PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetJacobianReuse(1.5) returned %d, expected PETSC_ERR_ARG_OUTOFRANGE", (int)ierr);
+  PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
+  TG_CHECK(theta == 0.2, "a rejected value changed the Jacobian reuse to %g", (double)theta);
+  /* another type: a TS changed from radauiia, and one created as rk, ignore the setters */
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.5));
+  PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.5));
+  PetscCall(TSRadauIIASetNewtonMaxIterations(ts, 3));
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSRadauIIASetJacobianReuse_C", &method));
+  TG_CHECK(!method, "a TS changed to rk still has TSRadauIIASetJacobianReuse_C");
+  PetscCall(TSDestroy(&ts));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(PetscObjectSetOptions((PetscObject)ts, opts));
+  PetscCall(TSSetType(ts, TSRK));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 0.5));
+  PetscCall(TSRadauIIASetJacobianReuse(ts, 1.5)); /* not even checked: the value means nothing to rk */
+  PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSRadauIIAGetJacobianReuse_C", &method));
+  TG_CHECK(!method, "a TSRK has TSRadauIIAGetJacobianReuse_C");
+  PetscCall(TSDestroy(&ts));
+  PetscCall(PetscOptionsDestroy(&opts));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(h) TSRadauIIASetJacobianReuse/NewtonTolerance/NewtonMaxIterations before TSSetFromOptions(): the values are used (0.1, 0.05, 10); -ts_radauiia_jacobian_reuse 0.2 overrides 0.1; 1.5 is rejected; no-op on rk\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -560,16 +677,18 @@ int main(int argc, char **argv)
 
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(TurgorRegisterAll());
-  PetscCall(TurgorRegisterAll()); /* idempotent */
+  PetscCall(TurgorTSRegisterAll());
+  PetscCall(TurgorTSRegisterAll()); /* idempotent */
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(HeatRun());
   if (size > 1) { /* (a)-(e) are serial */
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_radau5: all checks passed\n"));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_radau_iia: all checks passed\n"));
     PetscCall(PetscFinalize());
     return 0;
   }
   PetscCall(CheckTableau());
+  PetscCall(CheckRegistration());
+  PetscCall(CheckSetters());
 
   /* (b) fixed steps on the oscillator with mass matrix M */
   {
@@ -634,6 +753,19 @@ int main(int argc, char **argv)
     PetscCall(PrintRun("    IFunction form", r));
     TG_CHECK(r.err_scaled <= 10, "error %g x tolerance", (double)r.err_scaled);
     TG_CHECK(r.jac < r.steps, "Jacobian reuse: %" PetscInt_FMT " Jacobian evaluations for %" PetscInt_FMT " steps", r.jac, r.steps);
+    {
+      /* (h) a reuse threshold set with TSRadauIIASetJacobianReuse() reaches the solver (unless the
+         command line sets its own) */
+      PetscBool given;
+      Result    r1;
+      RunSpec   s1 = s;
+      s1.reuse     = 0.1;
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-ts_radauiia_jacobian_reuse", &given));
+      PetscCall(Run(p, s1, &r1));
+      PetscCall(PrintRun("    IFunction form, TSRadauIIASetJacobianReuse(ts, 0.1)", r1));
+      TG_CHECK(r1.err_scaled <= 10, "error %g x tolerance", (double)r1.err_scaled);
+      if (!given) TG_CHECK(r1.jac < r.jac, "Jacobian reuse 0.1 set in code: %" PetscInt_FMT " Jacobian evaluations, not fewer than the %" PetscInt_FMT " of the default 0.001", r1.jac, r.jac);
+    }
     s.rhs_form = PETSC_TRUE;
     PetscCall(Run(p, s, &rr));
     PetscCall(PrintRun("    RHS form (M = I)", rr));
@@ -673,7 +805,7 @@ int main(int argc, char **argv)
     }
   }
 
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_radau5: all checks passed\n"));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_radau_iia: all checks passed\n"));
   PetscCall(PetscFinalize());
   return 0;
 }
