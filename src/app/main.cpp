@@ -15,8 +15,6 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
                            "  fe2    (default) coarse Q1 model on DMPlex whose stress comes from RVEs at the quadrature points\n\n";
 
 #include <turgor/turgor.h>
-#include <turgor/coarse/fe2_run.h>
-#include <turgor/material/strain_path_run.h>
 
 /* A misspelled option in a scene must not pass unnoticed. */
 static PetscErrorCode WarnUnusedOptions(void)
@@ -30,45 +28,34 @@ static PetscErrorCode WarnUnusedOptions(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* One mode: configure, set up, and (unless -help: every object is then configured, so all options
-   are listed, but nothing is solved) solve and summarise. Run is FineRun, RVERun or FE2Run. */
-template <class Run>
-static PetscErrorCode RunMode(MPI_Comm comm, PetscBool help_only)
+/* Configure, set up, and (unless -help: every object is then configured, so all options are
+   listed, but nothing is solved) solve and summarise the chosen mode. */
+static PetscErrorCode Run(MPI_Comm comm)
 {
-  Run run(comm);
+  std::unique_ptr<turgor::Simulation> sim;
+  char                                mode[64] = "fe2"; /* the default scene: the seed's bending bar with FE^2 */
+  PetscBool                           help;
   PetscFunctionBeginUser;
-  PetscCall(run.SetFromOptions());
-  PetscCall(run.SetUp());
-  if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(run.Solve());
-  PetscCall(run.WriteSummary());
+  const std::string modes = "What to run: " + turgor::SimulationNames();
+  PetscOptionsBegin(comm, NULL, "turgor", "turgor");
+  PetscCall(PetscOptionsString("-mode", modes.c_str(), "turgor", mode, mode, sizeof mode, NULL));
+  PetscOptionsEnd();
+  PetscCall(turgor::SimulationCreate(comm, mode, &sim));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  PetscCall(sim->SetFromOptions());
+  PetscCall(sim->SetUp());
+  if (help) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(sim->Solve());
+  PetscCall(sim->WriteSummary());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 int main(int argc, char **argv)
 {
-  const char *const modes[] = {"fine", "rve", "fe2"};
-  PetscInt          mode    = 2; /* the default scene: the seed's bending bar with FE^2 */
-  PetscBool         help_requested;
-
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(TurgorRegisterAll()); /* TS types, physics, materials, tissues, modes */
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "turgor", "turgor");
-  PetscCall(PetscOptionsEList("-mode", "What to run", "turgor", modes, (PetscInt)(sizeof modes / sizeof modes[0]), modes[mode], &mode, NULL));
-  PetscOptionsEnd();
-  PetscCall(PetscOptionsHasHelp(NULL, &help_requested));
-  switch (mode) {
-  case 0:
-    PetscCall(RunMode<turgor::FineRun>(PETSC_COMM_WORLD, help_requested));
-    break;
-  case 1:
-    PetscCall(RunMode<turgor::StrainPathRun>(PETSC_COMM_WORLD, help_requested));
-    break;
-  case 2:
-    PetscCall(RunMode<turgor::FE2Run>(PETSC_COMM_WORLD, help_requested));
-    break;
-  }
+  PetscCall(TurgorRegisterAll()); /* TS types, physics terms, materials, tissues, modes */
+  PetscCall(Run(PETSC_COMM_WORLD));
   PetscCall(WarnUnusedOptions());
   PetscCall(PetscFinalize());
   return 0;

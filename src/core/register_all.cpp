@@ -1,7 +1,10 @@
 /* TurgorRegisterAll(): every pluggable part of turgor, one line each -- TS types, physics terms,
    (later) materials, tissue generators and run modes. */
 #include <turgor/core/register_all.h>
+#include <turgor/coarse/fe2_run.h>
+#include <turgor/fine/fine_run.h>
 #include <turgor/material/neo_hookean.h>
+#include <turgor/material/strain_path_run.h>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
@@ -36,6 +39,10 @@ PetscErrorCode TurgorRegisterAll(void)
   PetscCall(MaterialModelRegister("neo_hookean", CreateInstance<MaterialModel, NeoHookeanMaterial>));
   /* tissue generators (-tissue_type) */
   PetscCall(TissueGeneratorRegister("square_grid", CreateInstance<TissueGenerator, SquareGridGenerator>));
+  /* run modes (-mode) */
+  PetscCall(SimulationRegister("fine", CreateInstance<Simulation, FineRun>));
+  PetscCall(SimulationRegister("rve", CreateInstance<Simulation, StrainPathRun>));
+  PetscCall(SimulationRegister("fe2", CreateInstance<Simulation, FE2Run>));
   PetscCall(PetscRegisterFinalize(Unregister));
   registered = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -1,47 +1,52 @@
 #include <turgor/fine/fine_run.h>
-#include <turgor/core/log.h>
 #include <algorithm>
 #include <cmath>
 
 namespace turgor {
 
-FineRun::~FineRun()
-{
-  (void)TSDestroy(&ts_);
-  (void)VecDestroy(&U_);
-  (void)ISDestroy(&is_x_);
-  (void)ISDestroy(&is_v_);
-  (void)DMDestroy(&swarm_);
-}
-
-PetscErrorCode FineRun::SetFromOptions()
+PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
 {
   char     *sides[8];
   PetscInt  nsides = 8;
   PetscBool set;
-
   PetscFunctionBeginUser;
-  PetscCall(spec_.SetFromOptions(comm_));
-  PetscCall(load_.SetFromOptions(comm_));
-  PetscCall(physics_.SetFromOptions(comm_, TermContext{&load_}));
-  PetscOptionsBegin(comm_, "fine_", "Full fine-scale run (-mode fine)", "turgor");
-  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRun", sides, &nsides, &set));
-  PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "FineRun", tip_samples_, &tip_samples_, NULL));
-  PetscCall(PetscOptionsInt("-snapshots", "Particle snapshots (HDF5 + XDMF) over [0, ts_max_time]; 0 = none", "FineRun", snapshots_, &snapshots_, NULL));
-  PetscCall(PetscOptionsReal("-progress_interval", "Seconds of wall time between progress lines; 0 = none", "FineRun", progress_interval_, &progress_interval_, NULL));
-  PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRun", dt_safety_, &dt_safety_, NULL));
+  PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
+  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec", sides, &nsides, &set));
+  PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec", dt_safety, &dt_safety, NULL));
   PetscOptionsEnd();
   if (set) {
-    clamp_.clear();
+    clamp.clear();
     for (PetscInt k = 0; k < nsides; k++) {
-      clamp_.push_back(sides[k]);
+      clamp.push_back(sides[k]);
       PetscCall(PetscFree(sides[k]));
     }
   }
-  PetscCheck(tip_samples_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_tip_samples = %" PetscInt_FMT ": must be >= 1", tip_samples_);
-  PetscCheck(snapshots_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_snapshots = %" PetscInt_FMT ": must be >= 0", snapshots_);
-  PetscCheck(dt_safety_ > 0 && dt_safety_ <= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety_);
-  PetscCall(OutputDirectory(comm_, &output_dir_));
+  PetscCheck(dt_safety > 0 && dt_safety <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+FineRun::~FineRun()
+{
+  PetscCallVoid(ISDestroy(&is_x_));
+  PetscCallVoid(ISDestroy(&is_v_));
+  PetscCallVoid(DMDestroy(&swarm_));
+}
+
+PetscErrorCode FineRun::SetTSDefaults()
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSSetType(ts_, TSRK));
+  PetscCall(TSRKSetType(ts_, TSRK5DP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::ModeSetFromOptions()
+{
+  PetscFunctionBeginUser;
+  PetscCall(tissues_.SetFromOptions(comm_));
+  PetscCall(load_.SetFromOptions(comm_));
+  PetscCall(physics_.SetFromOptions(comm_, TermContext{&load_}));
+  PetscCall(spec_.SetFromOptions(comm_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -76,10 +81,10 @@ PetscErrorCode FineRun::CreateSwarm()
     pos[2 * i + 1] = tissue_.X[2 * i + 1];
     vel[2 * i]     = tissue_.V.empty() ? 0 : tissue_.V[2 * i];
     vel[2 * i + 1] = tissue_.V.empty() ? 0 : tissue_.V[2 * i + 1];
-    mass[i]                     = P.mass[i];
-    kind[i]                     = P.kind[i];
-    cell[i]                     = P.cell[i];
-    pid[i]                      = P.gid[i];
+    mass[i]        = P.mass[i];
+    kind[i]        = P.kind[i];
+    cell[i]        = P.cell[i];
+    pid[i]         = P.gid[i];
   }
   PetscCall(DMSwarmRestoreField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
   PetscCall(DMSwarmRestoreField(swarm_, "cell", NULL, NULL, (void **)&cell));
@@ -108,18 +113,13 @@ PetscErrorCode FineRun::SyncSwarm(Vec U)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FineRun::SetUp()
+PetscErrorCode FineRun::SetUpModel()
 {
   PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCall(RegisterLogStage("Fine setup", &stage_setup_));
-  PetscCall(RegisterLogStage("Fine solve", &stage_solve_));
-  PetscCall(PetscLogEventRegister("TgOutput", PETSC_OBJECT_CLASSID, &ev_output_));
-  PetscCall(PetscLogStagePush(stage_setup_));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-
-  if (!have_tissue_) PetscCall(spec_.Generate(comm_, &tissue_));
-  PetscCall(tissue_.Clamp(comm_, clamp_, "-fine_clamp"));
+  if (!have_tissue_) PetscCall(tissues_.Generate(comm_, &tissue_));
+  PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
   /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
   tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
@@ -149,82 +149,86 @@ PetscErrorCode FineRun::SetUp()
   PetscCall(VecRestoreArray(U_, &u));
   v_stale_.assign(2 * n_local_, 0);
 
-  PetscCall(TSCreate(comm_, &ts_));
-  PetscCall(TSSetApplicationContext(ts_, this));
-  PetscCall(TSSetProblemType(ts_, TS_NONLINEAR));
-  PetscCall(TSSetType(ts_, TSRK));
-  PetscCall(TSRKSetType(ts_, TSRK5DP));
-  PetscCall(TSSetTolerances(ts_, 1e-3, NULL, 1e-3, NULL));
-  PetscCall(TSSetMaxTime(ts_, kBendingBarFinalTime));
-  PetscCall(TSSetMaxSteps(ts_, PETSC_MAX_INT));
-  PetscCall(TSSetExactFinalTime(ts_, TS_EXACTFINALTIME_MATCHSTEP));
-  PetscCall(TSSetErrorIfStepFails(ts_, PETSC_FALSE));
   PetscCall(TSSetRHSFunction(ts_, NULL, RHSFunction, this));
   PetscCall(TSRHSSplitSetIS(ts_, "position", is_x_));
   PetscCall(TSRHSSplitSetIS(ts_, "momentum", is_v_));
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "position", NULL, RHSPosition, this));
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "momentum", NULL, RHSMomentum, this));
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
-  PetscCall(TSMonitorSet(ts_, Monitor, this, NULL));
   PetscCall(ChooseTimeStep());
-  PetscCall(TSSetTimeStep(ts_, dt_safety_ * dt_stable_));
-  PetscCall(TSSetFromOptions(ts_));
+  dt_initial_ = spec_.dt_safety * dt_stable_;
+  PetscCall(TSSetTimeStep(ts_, dt_initial_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::AfterTSSetFromOptions()
+{
+  PetscBool symplectic;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &symplectic));
+  if (!symplectic) PetscFunctionReturn(PETSC_SUCCESS);
   {
     /* PETSc's basicsymplectic defaults to first-order symplectic Euler; velocity Verlet unless asked */
-    TSType    type;
     const char *prefix;
     PetscBool   chosen;
-    PetscCall(TSGetType(ts_, &type));
     PetscCall(TSGetOptionsPrefix(ts_, &prefix));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_basicsymplectic_type", &chosen));
-    if (std::string(type) == TSBASICSYMPLECTIC && !chosen) PetscCall(TSBasicSymplecticSetType(ts_, TSBASICSYMPLECTICVELVERLET));
+    if (!chosen) PetscCall(TSBasicSymplecticSetType(ts_, TSBASICSYMPLECTICVELVERLET));
   }
-  PetscCall(TSGetMaxTime(ts_, &t_final_));
-  PetscCheck(t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be > 0", (double)t_final_);
-  sampler_.Configure(t_final_, tip_samples_, snapshots_, progress_interval_);
   {
     /* a fixed step is not clipped at the final time: shorten it so that whole steps end there */
-    TSType    type;
     PetscReal dt;
-    PetscCall(TSGetType(ts_, &type));
-    PetscCall(TSGetTimeStep(ts_, &dt));
     PetscInt  max_steps;
+    PetscCall(TSGetTimeStep(ts_, &dt));
     PetscCall(TSGetMaxSteps(ts_, &max_steps));
-    if (std::string(type) == TSBASICSYMPLECTIC && t_final_ < 1e12 * dt) {
+    if (t_final_ < 1e12 * dt) {
       const PetscReal n = std::ceil(t_final_ / dt * (1 - 1e-12));
       PetscCall(TSSetTimeStep(ts_, t_final_ / n));
       if (max_steps == PETSC_MAX_INT) PetscCall(TSSetMaxSteps(ts_, (PetscInt)n)); /* round-off must not add a step */
     }
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-  /* report */
+PetscErrorCode FineRun::Report()
+{
   PetscViewer out = PETSC_VIEWER_STDOUT_(comm_);
   PetscInt    nw, nf, nl[2] = {tissue_.particles.Count(KIND_WALL), tissue_.particles.Count(KIND_FLUID)};
+  TSType      type;
+  PetscReal   dt;
+  PetscBool   fixed;
+  PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(&nl[0], &nw, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(&nl[1], &nf, 1, MPIU_INT, MPI_SUM, comm_));
   PetscInt ncells = tissue_.NumCells(), nsprings = (PetscInt)tissue_.particles.springs.size();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsprings, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCall(PetscPrintf(comm_, "turgor fine: %" PetscInt_FMT " cells, %" PetscInt_FMT " wall + %" PetscInt_FMT " fluid particles, %" PetscInt_FMT " springs, clamp:", ncells, nw, nf, nsprings));
-  for (const std::string &c : clamp_) PetscCall(PetscPrintf(comm_, " %s", c.c_str()));
+  for (const std::string &c : spec_.clamp) PetscCall(PetscPrintf(comm_, " %s", c.c_str()));
   PetscCall(PetscPrintf(comm_, "\n"));
   PetscCall(model_.View(out));
   PetscCall(PetscPrintf(comm_, "Explicit stability limits at t = 0 (smallest first):\n"));
   for (const TimeStepLimit &l : limits_) PetscCall(PetscPrintf(comm_, "  dt <= %-11.4g %s\n", (double)l.dt, l.why.c_str()));
-  {
-    TSType    type;
-    PetscReal dt;
-    PetscCall(TSGetType(ts_, &type));
-    PetscCall(TSGetTimeStep(ts_, &dt));
-    const bool fixed = std::string(type) == TSBASICSYMPLECTIC;
-    PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, fixed ? "fixed" : "initial", (double)dt));
-    if (fixed && dt > dt_stable_) PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt, (double)dt_stable_));
-  }
+  PetscCall(TSGetType(ts_, &type));
+  PetscCall(TSGetTimeStep(ts_, &dt));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &fixed));
+  PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, fixed ? "fixed" : "initial", (double)dt));
+  if (fixed && dt > dt_stable_) PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt, (double)dt_stable_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-  /* outputs */
-  if (rank == 0) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"time", "tip_displacement_y", "kinetic_energy"}));
-  if (snapshots_ > 0) PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, output_dir_, "particles"));
-  PetscCall(PetscLogStagePop());
+PetscErrorCode FineRun::OpenSnapshots()
+{
+  PetscFunctionBeginUser;
+  PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, out_.dir, "particles"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SyncSwarm(U));
+  PetscCall(snapshots_writer_.Write(swarm_, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -275,7 +279,7 @@ PetscErrorCode FineRun::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *c
   PetscCall(VecGetArray(Xdot, &xd));
   const std::vector<char> &fixed = run->tissue_.particles.fixed;
   for (PetscInt k = 0; k < 2 * run->n_local_; k++) {
-    xd[k]             = fixed[k / 2] ? 0 : v[k];
+    xd[k]            = fixed[k / 2] ? 0 : v[k];
     run->v_stale_[k] = v[k];
   }
   PetscCall(VecRestoreArray(Xdot, &xd));
@@ -310,7 +314,7 @@ PetscErrorCode FineRun::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FineRun::Observe(PetscReal t, Vec U)
+PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
 {
   const PetscScalar *u;
   PetscReal          vals[2] = {0, 0}, ke = 0;
@@ -322,96 +326,35 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U)
   PetscCall(VecRestoreArrayRead(U, &u));
   vals[1] = ke;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, vals, 2, MPIU_REAL, MPIU_SUM, comm_));
-  tip_final_ = vals[0];
-  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({t, vals[0], vals[1]}));
+  row = {vals[0], vals[1]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FineRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+PetscErrorCode FineRun::AddSummary(JsonObject &js)
 {
-  FineRun *run = (FineRun *)ctx;
+  PetscInt nw, nf, nl[2] = {tissue_.particles.Count(KIND_WALL), tissue_.particles.Count(KIND_FLUID)};
+  PetscInt nsprings = (PetscInt)tissue_.particles.springs.size(), rebuilds = model_.Neighbours().Rebuilds();
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
-  PetscCall(run->sampler_.Monitor(
-    ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Observe(tk, X); },
-    [run](PetscReal tk, Vec X) -> PetscErrorCode {
-      PetscFunctionBeginUser;
-      PetscCall(run->SyncSwarm(X));
-      PetscCall(run->snapshots_writer_.Write(run->swarm_, tk));
-      PetscFunctionReturn(PETSC_SUCCESS);
-    },
-    run->rhs_evals_));
-  PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FineRun::Solve()
-{
-  TSConvergedReason reason;
-  PetscReal         t;
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogStagePush(stage_solve_));
-  PetscCall(TSSolve(ts_, U_));
-  wall_ = sampler_.Elapsed();
-  PetscCall(TSGetConvergedReason(ts_, &reason));
-  PetscCall(TSGetSolveTime(ts_, &t));
-  PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "Fine run failed at t = %g µs (%s): the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters", (double)t, TSConvergedReasons[reason]);
-  PetscCall(SyncSwarm(U_));
-  PetscCall(PetscLogStagePop());
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FineRun::WriteSummary()
-{
-  JsonObject js;
-  TSType     type;
-  PetscReal  rtol, atol, t, dt0 = dt_safety_ * dt_stable_;
-  PetscInt   steps, rej, nw, nf, nl[2] = {tissue_.particles.Count(KIND_WALL), tissue_.particles.Count(KIND_FLUID)};
-  PetscFunctionBeginUser;
-  PetscCall(TSGetType(ts_, &type));
-  std::string ts_type = type;
-  if (ts_type == TSRK) {
-    TSRKType rk;
-    PetscCall(TSRKGetType(ts_, &rk));
-    ts_type += std::string(" ") + rk;
-  }
-  PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
-  PetscCall(TSGetSolveTime(ts_, &t));
-  PetscCall(TSGetStepNumber(ts_, &steps));
-  PetscCall(TSGetStepRejections(ts_, &rej));
   PetscCallMPI(MPI_Allreduce(&nl[0], &nw, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(&nl[1], &nf, 1, MPIU_INT, MPI_SUM, comm_));
-  PetscInt evals = rhs_evals_, rebuilds = model_.Neighbours().Rebuilds();
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsprings, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &rebuilds, 1, MPIU_INT, MPI_MAX, comm_));
-  PetscMPIInt size;
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
-
-  js.Set("mode", "fine");
-  js.Set("ts_type", ts_type);
-  js.Set("rtol", rtol);
-  js.Set("atol", atol);
-  js.Set("t_final", t);
-  js.Set("steps", steps);
-  js.Set("rejected_steps", rej);
-  js.Set("rhs_evals", evals);
-  js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("n_wall_particles", nw);
   js.Set("n_fluid_particles", nf);
-  PetscInt nsprings = (PetscInt)tissue_.particles.springs.size();
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsprings, 1, MPIU_INT, MPI_SUM, comm_));
   js.Set("n_springs", nsprings);
   js.Set("physics", model_.ActiveTerms());
-  js.Set("clamp", clamp_);
-  js.Set("tip_displacement_final", tip_final_);
+  js.Set("clamp", spec_.clamp);
   js.Set("dt_stable", dt_stable_);
-  js.Set("dt_initial", dt0);
+  js.Set("dt_initial", dt_initial_);
   js.Set("neighbour_rebuilds", rebuilds);
-  js.Set("mpi_ranks", (PetscInt)size);
-  js.Set("snapshots", snapshots_writer_.Count());
-  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
-  PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %" PetscInt_FMT " RHS evaluations, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, evals, wall_, (double)tip_final_, output_dir_.c_str(), snapshots_ > 0 ? ", particles.h5 + particles.xmf" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::string FineRun::DoneDetails()
+{
+  PetscInt evals = rhs_evals_;
+  (void)MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_);
+  return std::to_string(evals) + " RHS evaluations";
 }
 
 } // namespace turgor

@@ -1,34 +1,44 @@
 #pragma once
-/* -mode fe2: the coarse tissue model of FE^2 integrated with PETSc TS (TW 562 §3.3-§5). The
-   integrator is an option: explicit (-ts_type rk -ts_rk_type 5dp) gets the RHS form
-   Udot = Mt^{-1} G(U); implicit ones (bdf, arkimex -- made fully implicit --, radau5, theta, ...)
-   get the IFunction F = Mt Udot - G(U) and the IJacobian shift Mt + [[0, -I], [K, C]] assembled
-   from the material tangents. A failed material evaluation (no RVE convergence, inverted element)
-   rejects the step and TS retries with a smaller one. */
-#include <turgor/coarse/coarse_model.h>
+/* -mode fe2: the coarse tissue model of FE^2 integrated with PETSc TS on the run skeleton
+   (time_run.h; TW 562 §3.3-§5). The integrator is an option: explicit ones (-ts_type rk
+   -ts_rk_type 5dp, euler, ssp, am) get the RHS form Udot = Mt^{-1} G(U); implicit ones (radauiia,
+   bdf, arkimex -- made fully implicit --, theta, ...) get the IFunction F = Mt Udot - G(U) and the
+   IJacobian shift Mt + [[0, -I], [K, C]] assembled from the material tangents. A failed material
+   evaluation (no RVE convergence, inverted element) rejects the step and TS retries with a smaller
+   one. */
 #include <turgor/coarse/coarse_fields.h>
-#include <turgor/io/output.h>
-#include <turgor/io/time_sampler.h>
-#include <petscts.h>
+#include <turgor/coarse/coarse_model.h>
+#include <turgor/run/time_run.h>
 
 namespace turgor {
 
-class FE2Run {
+class FE2Run : public TimeRun {
 public:
-  explicit FE2Run(MPI_Comm comm) : comm_(comm), model_(comm) { }
-  ~FE2Run();
-  FE2Run(const FE2Run &)            = delete;
-  FE2Run &operator=(const FE2Run &) = delete;
-
-  PetscErrorCode SetFromOptions();
-  PetscErrorCode SetUp();
-  PetscErrorCode Solve();
-  PetscErrorCode WriteSummary();
+  explicit FE2Run(MPI_Comm comm) : TimeRun(comm, "fe2"), model_(comm) { }
+  ~FE2Run() override;
 
   CoarseModel &Model() { return model_; }
-  TS           GetTS() const { return ts_; }
-  Vec          GetState() const { return U_; }
-  PetscReal    TipDisplacement() const { return tip_final_; }
+  LoadSpec    &Load() { return load_; }
+
+protected:
+  PetscErrorCode           SetTSDefaults() override;
+  PetscErrorCode           ModeSetFromOptions() override;
+  PetscErrorCode           SetUpModel() override;
+  PetscErrorCode           AfterTSSetFromOptions() override;
+  PetscErrorCode           Report() override;
+  std::vector<std::string> ObservedColumns() const override { return {"tip_displacement_y"}; }
+  PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) override;
+  PetscErrorCode           OpenSnapshots() override { return fields_.Open(model_, out_.dir, "coarse"); }
+  PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) override;
+  PetscInt                 SnapshotCount() const override { return fields_.Count(); }
+  const char              *SnapshotFiles() const override { return "coarse.h5 + coarse.xmf"; }
+  PetscInt                 FunctionEvaluations() const override { return model_.Counters().residuals; }
+  PetscErrorCode           AddSummary(JsonObject &js) override;
+  std::string              DoneDetails() override;
+  const char              *FailureAdvice() const override
+  {
+    return "steps were rejected repeatedly (more than -ts_max_reject in a row); see the material-point failures above (-info for all of them), or lower -ts_dt / tighten -ts_rtol";
+  }
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx);
@@ -36,27 +46,15 @@ private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   static PetscErrorCode PostStep(TS ts);
-  static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
-  PetscErrorCode        Observe(PetscReal t, Vec U);
 
-  MPI_Comm           comm_;
   LoadSpec           load_;
   CoarseModel        model_;
-  TS                 ts_ = nullptr;
-  Vec                U_ = nullptr;
   Mat                J_ = nullptr;
-  std::string        output_dir_;
-  PetscInt           tip_samples_ = 1000, snapshots_ = 20;
   /* material tangents are recomputed when the Jacobian is older than this many accepted steps, or
      after a step rejection; 0: at every Jacobian request (each Newton iteration) */
   PetscInt           jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
-  PetscReal          progress_interval_ = 10.0, t_final_ = 0, tip_final_ = 0;
   bool               explicit_ = false;
-  CsvWriter          tip_csv_;
   CoarseFieldsWriter fields_;
-  TimeSampler        sampler_;
-  PetscLogDouble     wall_ = 0;
-  PetscLogStage      stage_setup_ = 0, stage_solve_ = 0;
 };
 
 } // namespace turgor

@@ -3,17 +3,18 @@
    rigid rotation, or hold; options path_*), writing sigma, rho, D^e, D^v and iteration counts per
    step to rve.csv and a summary.json. The material is chosen by -material (the RVE by default). */
 #include <turgor/material/material_pool.h>
+#include <turgor/run/simulation.h>
 #include <turgor/io/output.h>
 
 namespace turgor {
 
-class StrainPathRun {
+class StrainPathRun : public Simulation {
 public:
   explicit StrainPathRun(MPI_Comm comm) : comm_(comm), pool_(comm) { }
-  PetscErrorCode SetFromOptions();
-  PetscErrorCode SetUp();
-  PetscErrorCode Solve();
-  PetscErrorCode WriteSummary();
+  PetscErrorCode SetFromOptions() override;
+  PetscErrorCode SetUp() override;
+  PetscErrorCode Solve() override;
+  PetscErrorCode WriteSummary() override;
 
   /* The imposed deformation at time t. */
   void Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const;

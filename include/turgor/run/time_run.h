@@ -1,0 +1,102 @@
+#pragma once
+/* The skeleton every time-dependent mode shares (-mode fine, -mode fe2): a PETSc TS with common
+   defaults set through the API before TSSetFromOptions (so the user's -ts_* options win), an
+   observable sampled at fixed times (tip.csv), snapshots, progress lines, the solve with its
+   converged-reason check, and the common summary keys. A mode supplies its equations, its
+   observable and its writers through the hooks below.
+
+   Order: SetFromOptions() creates the TS with the defaults and reads the options; programs may
+   then adjust the TS or the specs through the API; SetUp() builds the model, calls
+   TSSetFromOptions() and opens the outputs. */
+#include <turgor/io/output.h>
+#include <turgor/io/time_sampler.h>
+#include <turgor/run/simulation.h>
+#include <petscts.h>
+#include <string>
+#include <vector>
+
+namespace turgor {
+
+/* Outputs of a time-dependent run: -output_dir, and with the mode's prefix -<mode>_tip_samples,
+   -<mode>_snapshots, -<mode>_progress_interval. */
+struct RunOutputSpec {
+  std::string dir               = "./out";
+  PetscInt    samples           = 1000; /* samples of the observable over [0, ts_max_time] */
+  PetscInt    snapshots         = 20;   /* field snapshots over [0, ts_max_time]; 0 = none */
+  PetscReal   progress_interval = 10;   /* seconds of wall time between progress lines; 0 = none */
+
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const std::string &prefix);
+};
+
+class TimeRun : public Simulation {
+public:
+  ~TimeRun() override;
+  TimeRun(const TimeRun &)            = delete;
+  TimeRun &operator=(const TimeRun &) = delete;
+
+  PetscErrorCode SetFromOptions() final;
+  PetscErrorCode SetUp() final;
+  PetscErrorCode Solve() final;
+  PetscErrorCode WriteSummary() final;
+
+  TS             GetTS() const { return ts_; }
+  Vec            GetState() const { return U_; }
+  RunOutputSpec &Output() { return out_; }
+  /* The observable (the tip displacement) at the last sample. */
+  PetscReal      TipDisplacement() const { return observed_; }
+
+protected:
+  TimeRun(MPI_Comm comm, const char *mode) : comm_(comm), mode_(mode) { }
+
+  /* The mode's integrator defaults (type, step size, solvers), on a TS that has the common ones. */
+  virtual PetscErrorCode SetTSDefaults() = 0;
+  /* The mode's own options (its specs). */
+  virtual PetscErrorCode ModeSetFromOptions() = 0;
+  /* The model and the initial state U_ (created here), the TS callbacks, model-dependent TS
+     defaults (a step from the stability limit). */
+  virtual PetscErrorCode SetUpModel() = 0;
+  /* Choices that depend on the integrator the user picked (after TSSetFromOptions). */
+  virtual PetscErrorCode AfterTSSetFromOptions() { return PETSC_SUCCESS; }
+  /* The start-up report. */
+  virtual PetscErrorCode Report() = 0;
+  /* tip.csv: the columns after "time"; the first is the tip displacement. */
+  virtual std::vector<std::string> ObservedColumns() const = 0;
+  /* Collective; row gets one value per column (all ranks). */
+  virtual PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) = 0;
+  virtual PetscErrorCode           OpenSnapshots()                   = 0;
+  virtual PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) = 0;
+  virtual PetscInt                 SnapshotCount() const             = 0;
+  virtual const char              *SnapshotFiles() const             = 0; /* for the final report */
+  /* The right-hand-side / residual evaluations so far (this rank). */
+  virtual PetscInt                 FunctionEvaluations() const = 0;
+  /* After a successful TSSolve (e.g. the particle record brought up to date). */
+  virtual PetscErrorCode           AfterSolve() { return PETSC_SUCCESS; }
+  /* The mode's summary keys (collective), and the details of the final report line. */
+  virtual PetscErrorCode           AddSummary(JsonObject &js)  = 0;
+  virtual std::string              DoneDetails()                = 0;
+  /* What a user should try when the integration fails. */
+  virtual const char              *FailureAdvice() const = 0;
+
+  /* Seconds of wall time in TSSolve. */
+  PetscReal     WallTime() const { return (PetscReal)wall_; }
+
+  MPI_Comm      comm_;
+  TS            ts_ = nullptr;
+  Vec           U_  = nullptr;
+  RunOutputSpec out_;
+  PetscReal     t_final_ = 0;
+
+private:
+  static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
+  PetscErrorCode        Sample(PetscReal t, Vec U);
+
+  std::string    mode_;
+  CsvWriter      tip_csv_;
+  TimeSampler    sampler_;
+  PetscLogDouble wall_     = 0;
+  PetscReal      observed_ = 0;
+  PetscLogStage  stage_setup_ = 0, stage_solve_ = 0;
+  PetscLogEvent  ev_output_ = 0;
+};
+
+} // namespace turgor
