@@ -19,24 +19,29 @@ CoarseModel::~CoarseModel()
   (void)DMDestroy(&dm_);
 }
 
+PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
+{
+  char      label[64];
+  PetscInt  values[8], n = 8;
+  PetscBool set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
+  PetscOptionsBegin(comm, "coarse_", "Coarse FE^2 model (TW 562 §3.3); the mesh: -coarse_dm_plex_* (DMSetFromOptions)", "turgor");
+  PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseSpec", label, label, sizeof label, NULL));
+  PetscCall(PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
+  PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
+  PetscOptionsEnd();
+  dirichlet_label = label;
+  if (set) dirichlet_values.assign(values, values + n);
+  lumped_mass = lumped;
+  PetscCheck(!dirichlet_values.empty(), comm, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_values: no value given");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CoarseModel::SetFromOptions()
 {
-  PetscInt  n2 = 2, nl = 2, nu = 2;
-  PetscBool set;
   PetscFunctionBeginUser;
-  n_bc_values_ = 8;
-  PetscOptionsBegin(comm_, "coarse_", "Coarse FE^2 model (TW 562 §3.3)", "turgor");
-  PetscCall(PetscOptionsString("-mesh_file", "Mesh file DMPlex reads (Gmsh .msh, ...); empty: a box of -coarse_faces", "CoarseModel", mesh_file_, mesh_file_, sizeof mesh_file_, NULL));
-  PetscCall(PetscOptionsIntArray("-faces", "Box mesh: elements in x,y (default 4,4)", "CoarseModel", faces_, &n2, NULL));
-  PetscCall(PetscOptionsRealArray("-lower", "Box mesh: lower corner [µm] (default 0,0)", "CoarseModel", lower_, &nl, NULL));
-  PetscCall(PetscOptionsRealArray("-upper", "Box mesh: upper corner [µm] (default 400,400)", "CoarseModel", upper_, &nu, NULL));
-  PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseModel", label_, label_, sizeof label_, NULL));
-  PetscCall(PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseModel", bc_values_, &n_bc_values_, &set));
-  PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseModel", lumped_, &lumped_, NULL));
-  PetscOptionsEnd();
-  if (!set) n_bc_values_ = 1;
-  PetscCheck(faces_[0] >= 1 && faces_[1] >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -coarse_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": must be >= 1", faces_[0], faces_[1]);
-  PetscCheck(upper_[0] > lower_[0] && upper_[1] > lower_[1], comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -coarse_lower / -coarse_upper: the box is empty");
+  PetscCall(spec_.SetFromOptions(comm_));
   PetscCall(pool_.SetFromOptions());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -50,102 +55,89 @@ PetscErrorCode CoarseModel::SetMesh(DM dm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The mesh is PETSc's: DMSetFromOptions with prefix coarse_ builds it from -coarse_dm_plex_box_*
+   or -coarse_dm_plex_filename (Gmsh physical lines become "Face Sets"), distributes it and applies
+   -coarse_dm_refine, -coarse_dm_view, ... Without any of those options the default is the seed's
+   bar, a 4 x 4 box of quadrilaterals on [0, 400]^2 µm, set through the API. */
 PetscErrorCode CoarseModel::CreateMesh()
 {
-  PetscMPIInt size;
   PetscFunctionBeginUser;
   if (!dm_) {
-    if (mesh_file_[0]) PetscCall(DMPlexCreateFromFile(comm_, mesh_file_, "coarse", PETSC_TRUE, &dm_));
-    else PetscCall(DMPlexCreateBoxMesh(comm_, 2, PETSC_FALSE, faces_, lower_, upper_, NULL, PETSC_TRUE, &dm_));
-  }
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
-  if (size > 1) {
-    PetscSF sf;
-    DM      dist = NULL;
-    PetscCall(DMPlexDistribute(dm_, 0, &sf, &dist));
-    PetscCall(PetscSFDestroy(&sf));
-    if (dist) {
-      PetscCall(DMDestroy(&dm_));
-      dm_ = dist;
+    PetscBool file, simplex, box = PETSC_FALSE;
+    for (const char *o : {"-coarse_dm_plex_box_faces", "-coarse_dm_plex_box_lower", "-coarse_dm_plex_box_upper", "-coarse_dm_plex_shape"}) {
+      PetscBool has;
+      PetscCall(PetscOptionsHasName(NULL, NULL, o, &has));
+      box = (PetscBool)(box || has);
+    }
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_filename", &file));
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_simplex", &simplex));
+    PetscCheck(!box || simplex || file, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_box_*: PETSc's box mesh is made of triangles unless -coarse_dm_plex_simplex 0 is given, and the coarse model needs quadrilaterals (the default mesh is -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 4,4 -coarse_dm_plex_box_upper 400,400)");
+    if (box || simplex || file) { /* DMSetFromOptions builds it */
+      PetscCall(DMCreate(comm_, &dm_));
+      PetscCall(DMSetType(dm_, DMPLEX));
+    } else {
+      const PetscInt  faces[2] = {4, 4};
+      const PetscReal lower[2] = {0, 0}, upper[2] = {400, 400};
+      PetscCall(DMPlexCreateBoxMesh(comm_, 2, PETSC_FALSE, faces, lower, upper, NULL, PETSC_TRUE, &dm_));
     }
   }
   PetscCall(PetscObjectSetName((PetscObject)dm_, "coarse"));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)dm_, "coarse_"));
+  PetscCall(DMSetFromOptions(dm_));
   PetscCall(DMViewFromOptions(dm_, NULL, "-dm_view"));
   PetscInt dim;
   PetscCall(DMGetDimension(dm_, &dim));
-  PetscCheck(dim == 2, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_mesh_file: the coarse mesh must be 2D (got %" PetscInt_FMT "D)", dim);
+  PetscCheck(dim == 2, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_*: the coarse mesh must be 2D (got %" PetscInt_FMT "D)", dim);
   PetscCall(DMPlexGetHeightStratum(dm_, 0, &c_start_, &c_end_));
   for (PetscInt c = c_start_; c < c_end_; c++) {
     DMPolytopeType ct;
     PetscCall(DMPlexGetCellType(dm_, c, &ct));
-    PetscCheck(ct == DM_POLYTOPE_QUADRILATERAL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Option -coarse_mesh_file: cell %" PetscInt_FMT " is a %s; the coarse model needs quadrilaterals", c, DMPolytopeTypes[ct]);
+    PetscCheck(ct == DM_POLYTOPE_QUADRILATERAL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_*: cell %" PetscInt_FMT " is a %s; the coarse model needs quadrilaterals (-coarse_dm_plex_simplex 0 for a box)", c, DMPolytopeTypes[ct]);
   }
   PetscCall(DMPlexGetDepthStratum(dm_, 0, &v_start_, &v_end_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Four dofs per vertex [ux, uy, vx, vy]; all four constrained on the Dirichlet boundary, so they
-   drop out of the global vectors and matrices. */
+/* Essential condition (DMAddBoundary): u = g(X) and v = 0 on the clamped vertices. */
+PetscErrorCode CoarseModel::BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx)
+{
+  const CoarseModel *model = (const CoarseModel *)ctx;
+  PetscReal          g[2]  = {0, 0};
+  if (model->boundary_) model->boundary_(X, g);
+  u[0] = g[0];
+  u[1] = g[1];
+  u[2] = u[3] = 0;
+  return PETSC_SUCCESS;
+}
+
+/* Four dofs per vertex [ux, uy, vx, vy]: a Q1 Lagrange field of 4 components (PetscFE) gives the
+   section; the essential condition on the Dirichlet label values constrains all four, so they drop
+   out of the global vectors and matrices, and DMPlexInsertBoundaryValues fills them in local ones. */
 PetscErrorCode CoarseModel::CreateSection()
 {
-  DMLabel      label;
-  PetscSection s;
-  PetscInt     pStart, pEnd;
+  DMLabel  label;
+  PetscFE  fe;
   PetscFunctionBeginUser;
-  PetscCall(DMGetLabel(dm_, label_, &label));
-  PetscCheck(label, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_label = %s: the mesh has no such label", label_);
-  constrained_.assign(v_end_ - v_start_, 0);
-  for (PetscInt k = 0; k < n_bc_values_; k++) {
-    IS              pts;
-    const PetscInt *p;
-    PetscInt        np;
-    PetscCall(DMLabelGetStratumIS(label, bc_values_[k], &pts));
-    if (!pts) continue;
-    PetscCall(ISGetLocalSize(pts, &np));
-    PetscCall(ISGetIndices(pts, &p));
-    for (PetscInt q = 0; q < np; q++) {
-      PetscInt *cl = NULL, ncl;
-      PetscCall(DMPlexGetTransitiveClosure(dm_, p[q], PETSC_TRUE, &ncl, &cl));
-      for (PetscInt r = 0; r < ncl; r++)
-        if (cl[2 * r] >= v_start_ && cl[2 * r] < v_end_) constrained_[cl[2 * r] - v_start_] = 1;
-      PetscCall(DMPlexRestoreTransitiveClosure(dm_, p[q], PETSC_TRUE, &ncl, &cl));
-    }
-    PetscCall(ISRestoreIndices(pts, &p));
-    PetscCall(ISDestroy(&pts));
-  }
-  PetscInt nc = 0, ncg;
-  for (char c : constrained_) nc += c;
-  PetscCallMPI(MPI_Allreduce(&nc, &ncg, 1, MPIU_INT, MPI_SUM, comm_));
-  PetscCheck(ncg > 0, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dirichlet_label %s / -coarse_dirichlet_values: no vertex is clamped; the problem would be singular", label_);
-
-  PetscCall(DMPlexGetChart(dm_, &pStart, &pEnd));
-  PetscCall(PetscSectionCreate(comm_, &s));
-  PetscCall(PetscSectionSetNumFields(s, 1));
-  PetscCall(PetscSectionSetFieldName(s, 0, "state"));
-  PetscCall(PetscSectionSetFieldComponents(s, 0, 4));
-  PetscCall(PetscSectionSetChart(s, pStart, pEnd));
-  for (PetscInt v = v_start_; v < v_end_; v++) {
-    PetscCall(PetscSectionSetDof(s, v, 4));
-    PetscCall(PetscSectionSetFieldDof(s, v, 0, 4));
-    if (constrained_[v - v_start_]) {
-      PetscCall(PetscSectionSetConstraintDof(s, v, 4));
-      PetscCall(PetscSectionSetFieldConstraintDof(s, v, 0, 4));
-    }
-  }
-  PetscCall(PetscSectionSetUp(s));
-  const PetscInt all[4] = {0, 1, 2, 3};
-  for (PetscInt v = v_start_; v < v_end_; v++)
-    if (constrained_[v - v_start_]) {
-      PetscCall(PetscSectionSetConstraintIndices(s, v, all));
-      PetscCall(PetscSectionSetFieldConstraintIndices(s, v, 0, all));
-    }
-  PetscCall(DMSetLocalSection(dm_, s));
-  PetscCall(PetscSectionDestroy(&s));
+  PetscCall(DMGetLabel(dm_, spec_.dirichlet_label.c_str(), &label));
+  PetscCheck(label, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_label = %s: the mesh has no such label", spec_.dirichlet_label.c_str());
+  PetscCall(PetscFECreateLagrange(comm_, 2, 4, PETSC_FALSE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(PetscObjectSetName((PetscObject)fe, "state"));
+  PetscCall(DMSetField(dm_, 0, NULL, (PetscObject)fe));
+  PetscCall(PetscFEDestroy(&fe));
+  PetscCall(DMCreateDS(dm_));
+  PetscCall(DMAddBoundary(dm_, DM_BC_ESSENTIAL, "clamp", label, (PetscInt)spec_.dirichlet_values.size(), spec_.dirichlet_values.data(), 0, 0, NULL, (void (*)(void))BoundaryValues, NULL, this, NULL));
+  PetscSection ls, gs;
+  PetscInt     storage, free_storage, nc;
+  PetscCall(DMGetLocalSection(dm_, &ls));
+  PetscCall(PetscSectionGetStorageSize(ls, &storage));
+  PetscCall(PetscSectionGetConstrainedStorageSize(ls, &free_storage));
+  nc = storage - free_storage;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCheck(nc > 0, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dirichlet_label %s / -coarse_dirichlet_values: no vertex is clamped; the problem would be singular", spec_.dirichlet_label.c_str());
   PetscCall(DMCreateLocalVector(dm_, &Uloc_));
   PetscCall(VecDuplicate(Uloc_, &Floc_));
+  PetscCall(InsertBoundaryValues(Uloc_));
   /* the rows the residual and Jacobian touch vertex by vertex (udot - v), found once */
-  PetscSection gs;
   PetscCall(DMGetGlobalSection(dm_, &gs));
   free_rows_.clear();
   for (PetscInt v = v_start_; v < v_end_; v++) {
@@ -155,6 +147,22 @@ PetscErrorCode CoarseModel::CreateSection()
     PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
     if (off >= 0 && dof - cdof == 4) free_rows_.push_back(off); /* owned and not clamped */
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::SetBoundaryDisplacement(std::function<void(const PetscReal X[2], PetscReal u[2])> g)
+{
+  PetscFunctionBeginUser;
+  boundary_ = std::move(g);
+  if (Uloc_) PetscCall(InsertBoundaryValues(Uloc_));
+  cached_valid_ = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::InsertBoundaryValues(Vec Uloc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexInsertBoundaryValues(dm_, PETSC_TRUE, Uloc, 0.0, NULL, NULL, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -244,7 +252,7 @@ PetscErrorCode CoarseModel::AssembleMass()
       }
     for (int a = 0; a < 4; a++)
       for (int b = 0; b < 4; b++) {
-        const PetscReal mab = lumped_ ? (a == b ? m[a][0] + m[a][1] + m[a][2] + m[a][3] : 0.0) : m[a][b];
+        const PetscReal mab = spec_.lumped_mass ? (a == b ? m[a][0] + m[a][1] + m[a][2] + m[a][3] : 0.0) : m[a][b];
         for (int d = 0; d < 2; d++) me[(4 * a + 2 + d) * 16 + 4 * b + 2 + d] = mab;
       }
     PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, Mt_, c, me, ADD_VALUES));
@@ -308,35 +316,14 @@ PetscInt CoarseModel::NumElements() const
   return N;
 }
 
+/* The constrained entries of a local vector are not touched by DMGlobalToLocal: the model's own
+   local vector keeps the boundary values inserted once (and again when they change); any other one
+   gets them here. */
 PetscErrorCode CoarseModel::GlobalToLocal(Vec U, Vec Uloc)
 {
-  PetscSection ls;
-  PetscScalar *u;
-  DM           cdm;
-  Vec          coords;
-  PetscSection cs;
-  const PetscScalar *xc;
   PetscFunctionBeginUser;
+  if (Uloc != Uloc_) PetscCall(InsertBoundaryValues(Uloc));
   PetscCall(DMGlobalToLocal(dm_, U, INSERT_VALUES, Uloc));
-  PetscCall(DMGetLocalSection(dm_, &ls));
-  PetscCall(DMGetCoordinateDM(dm_, &cdm));
-  PetscCall(DMGetCoordinatesLocal(dm_, &coords));
-  PetscCall(DMGetLocalSection(cdm, &cs));
-  PetscCall(VecGetArray(Uloc, &u));
-  PetscCall(VecGetArrayRead(coords, &xc));
-  for (PetscInt v = v_start_; v < v_end_; v++) {
-    if (!constrained_[v - v_start_]) continue;
-    PetscInt off, coff;
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    PetscCall(PetscSectionGetOffset(cs, v, &coff));
-    PetscReal X[2] = {PetscRealPart(xc[coff]), PetscRealPart(xc[coff + 1])}, g[2] = {0, 0};
-    if (boundary_) boundary_(X, g);
-    u[off]     = g[0];
-    u[off + 1] = g[1];
-    u[off + 2] = u[off + 3] = 0;
-  }
-  PetscCall(VecRestoreArrayRead(coords, &xc));
-  PetscCall(VecRestoreArray(Uloc, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -156,7 +156,7 @@ PetscErrorCode FineRun::SetUpModel()
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "momentum", NULL, RHSMomentum, this));
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
   PetscCall(ChooseTimeStep());
-  dt_initial_ = spec_.dt_safety * dt_stable_;
+  dt_initial_ = spec_.dt > 0 ? spec_.dt : spec_.dt_safety * dt_stable_;
   PetscCall(TSSetTimeStep(ts_, dt_initial_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -9,20 +9,31 @@
    with M the consistent (or lumped) mass matrix, f_int the internal force from the Cauchy stress,
    f_ext the body force. Its Jacobian dF/dU + shift dF/dUdot = shift Mt + [[0, -I], [K, C]] uses
    the stiffness K = initial-stress part + constitutive part with D^e (eqs 35-37) and the damping C
-   with D^v (eqs 38-39), consistent with the selectively integrated residual. Vertices on the
-   Dirichlet label values are constrained (all four dofs; displacement from SetBoundaryDisplacement,
-   zero by default, velocity zero). */
+   with D^v (eqs 38-39), consistent with the selectively integrated residual. The mesh and the
+   essential condition are PETSc's (DMSetFromOptions, a Q1 PetscFE section, DMAddBoundary): the
+   vertices on the Dirichlet label values are constrained (all four dofs; displacement from
+   SetBoundaryDisplacement, zero by default, velocity zero); the 5-point assembly is our own. */
 #include <turgor/material/material_pool.h>
 #include <turgor/physics/load_spec.h>
 #include <petscdmplex.h>
 #include <petscksp.h>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace turgor {
 
 struct CoarseCounters {
   PetscInt residuals = 0, jacobians = 0, material_evals = 0, tangent_evals = 0, failures = 0;
+};
+
+/* -coarse_ options besides the mesh's (API defaults; options win). */
+struct CoarseSpec {
+  std::string           dirichlet_label  = "Face Sets";
+  std::vector<PetscInt> dirichlet_values = {4}; /* box: 1 bottom, 2 right, 3 top, 4 left */
+  bool                  lumped_mass      = false;
+
+  PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
 
 class CoarseModel {
@@ -32,7 +43,8 @@ public:
   CoarseModel(const CoarseModel &)            = delete;
   CoarseModel &operator=(const CoarseModel &) = delete;
 
-  /* -coarse_* options (mesh, Dirichlet label and values, mass) and the pool's. */
+  /* -coarse_* options (Dirichlet label and values, mass; the mesh's -coarse_dm_* are read by
+     DMSetFromOptions at SetUp) and the pool's. */
   PetscErrorCode SetFromOptions();
   /* The scene's loads (the body force); before SetUp. */
   void           SetLoad(const LoadSpec &load)
@@ -44,7 +56,7 @@ public:
   PetscErrorCode SetUp();
   /* Boundary displacement g(X) on constrained vertices (default 0); call before SetUp or between
      evaluations. */
-  void SetBoundaryDisplacement(std::function<void(const PetscReal X[2], PetscReal u[2])> g) { boundary_ = std::move(g); }
+  PetscErrorCode SetBoundaryDisplacement(std::function<void(const PetscReal X[2], PetscReal u[2])> g);
 
   /* F = Mt Udot - G(U). *ok = false (F filled with NaN) when a material point failed. */
   PetscErrorCode IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok);
@@ -67,7 +79,8 @@ public:
   PetscInt           NumElements() const; /* global */
   PetscInt           NumMaterialPoints() const { return pool_.NumGlobal(); }
   PetscReal          ReferenceDensity() const { return rho0_; }
-  bool               LumpedMass() const { return lumped_; }
+  bool               LumpedMass() const { return spec_.lumped_mass; }
+  CoarseSpec        &Spec() { return spec_; }
   /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
   PetscErrorCode     TipDisplacement(Vec U, PetscReal *uy);
   /* Per local cell: the mean Cauchy stress of its Gauss points with the centre pressure
@@ -76,8 +89,11 @@ public:
   PetscErrorCode     CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
   /* Global vector with the boundary values inserted into the local constrained dofs. */
   PetscErrorCode     GlobalToLocal(Vec U, Vec Uloc);
+  /* The boundary values (u = g(X), v = 0) into the constrained dofs of a local vector. */
+  PetscErrorCode     InsertBoundaryValues(Vec Uloc);
 
 private:
+  static PetscErrorCode BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx);
   PetscErrorCode CreateMesh();
   PetscErrorCode CreateSection();
   PetscErrorCode PrecomputeElements();
@@ -96,12 +112,7 @@ private:
   Vec               rhs_r_ = nullptr, rhs_z_ = nullptr; /* RHSFunction work vectors */
 
   /* options */
-  char      mesh_file_[PETSC_MAX_PATH_LEN] = "";
-  PetscInt  faces_[2] = {4, 4};
-  PetscReal lower_[2] = {0, 0}, upper_[2] = {400, 400};
-  char      label_[64] = "Face Sets";
-  PetscInt  bc_values_[8] = {4}, n_bc_values_ = 1;
-  PetscBool lumped_ = PETSC_FALSE;
+  CoarseSpec spec_;
   PetscReal g_[2] = {0.0, -0.2};
   std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
 
@@ -111,7 +122,6 @@ private:
   std::vector<PetscReal> dN_;      /* [cell][point][4][2] */
   std::vector<PetscReal> wdet_;    /* [cell][point]: weight x det(dX/dxi) */
   std::vector<PetscReal> f_ext_;   /* [cell][4][2] */
-  std::vector<char>      constrained_; /* per local vertex (point - vStart) */
   std::vector<PetscInt>  free_rows_;   /* global row of ux of each owned, unclamped vertex */
   PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
   PetscReal              rho0_ = 0;

@@ -19,6 +19,7 @@ namespace turgor {
 struct FineRunSpec {
   std::vector<std::string> clamp     = {"left"}; /* sides whose wall particles are fixed */
   PetscReal                dt_safety = 0.5;      /* fixed steps: this fraction of the stability limit */
+  PetscReal                dt        = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
