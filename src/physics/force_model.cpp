@@ -59,6 +59,7 @@ PetscErrorCode PhysicsSpec::SetFromOptions(MPI_Comm comm, const TermContext &ctx
     PetscCall(t->SetFromOptions(comm, ctx));
     terms_.push_back(std::move(t));
   }
+  for (const auto &t : added_) terms_.push_back(t->Clone());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -23,15 +23,20 @@ public:
 
   /* Read -physics and -neighbour_skin, then create and configure every listed term. */
   PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx);
-  /* Add a configured term (tests, custom physics), after the listed ones. */
-  void           Add(std::unique_ptr<ForceTerm> term) { terms_.push_back(std::move(term)); }
+  /* Add a configured term (tests, custom physics) after the listed ones; it stays when
+     SetFromOptions is called later. */
+  void           Add(std::unique_ptr<ForceTerm> term)
+  {
+    added_.push_back(term->Clone());
+    terms_.push_back(std::move(term));
+  }
   const std::vector<std::unique_ptr<ForceTerm>> &Terms() const { return terms_; }
   std::vector<std::string>                       ActiveTerms() const;
   /* A typical force of a cell (the first term that defines one; 0 if none does). */
   PetscReal                                      CharacteristicForce(PetscReal length, PetscReal density) const;
 
 private:
-  std::vector<std::unique_ptr<ForceTerm>> terms_;
+  std::vector<std::unique_ptr<ForceTerm>> terms_, added_;
 };
 
 class ForceModel {
