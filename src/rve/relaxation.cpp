@@ -49,8 +49,12 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
     PetscCall(SNESGetKSP(snes, &ksp));
     PetscCall(KSPSetType(ksp, KSPPREONLY));
     PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCSetType(pc, PCLU));
-    if (size_ > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    /* the pseudo steps and the warm Newton iterations share one LU factor of J, kept here */
+    PetscCall(PCSetType(pc, PCSHELL));
+    PetscCall(PCShellSetContext(pc, this));
+    PetscCall(PCShellSetName(pc, "LU factors of G' + shift I, kept by the RVE relaxation"));
+    PetscCall(PCShellSetSetUp(pc, FactorSetUp));
+    PetscCall(PCShellSetApply(pc, FactorApply));
   }
   PetscCall(BuildJacobianPattern());
   PetscCall(TSSetFromOptions(ts_));
@@ -270,43 +274,64 @@ PetscErrorCode RVERelaxation::Cold(Vec W, MaterialResponse *out)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* x = J^-1 b. The LU factors of J are computed here (PETSc's LU with nested-dissection ordering,
-   as PCLU; MUMPS on a group of several ranks) and kept until J changes. The triangular solves are
-   called directly: on these few-dozen-unknown systems KSPSolve's bookkeeping cost as much as the
-   solve itself (-log_view). */
-PetscErrorCode RVERelaxation::SolveShifted(Vec b, Vec x, bool *ok)
+/* The LU factors of J (PETSc's LU with nested-dissection ordering and PCLU's settings; MUMPS on a
+   group of several ranks): the symbolic factorisation once per sparsity pattern, the numeric one
+   whenever J has changed since. Both the pseudo steps (through the shell PC) and the warm iterations
+   solve with them, so a warm solve right after a cold one reuses the cold solve's last factors. */
+PetscErrorCode RVERelaxation::Factor(bool *ok)
 {
   PetscObjectState state;
+  MatFactorInfo    info;
+  MatFactorError   err;
   PetscFunctionBeginUser;
   *ok = true;
-  PetscCall(PetscObjectStateGet((PetscObject)J_, &state));
-  if (!factor_ || state != factor_state_) {
-    MatFactorInfo info;
-    IS            row = NULL, col = NULL;
-    PetscBool     ordering;
-    MatFactorError err;
-    PetscCall(MatDestroy(&factor_));
+  PetscCall(MatFactorInfoInitialize(&info));
+  info.fill          = 5.0;
+  info.dtcol         = 1e-6;
+  info.zeropivot     = 100.0 * PETSC_MACHINE_EPSILON;
+  info.pivotinblocks = 1.0;
+  if (!factor_) {
+    IS        row = NULL, col = NULL;
+    PetscBool ordering;
     PetscCall(MatGetFactor(J_, size_ > 1 ? MATSOLVERMUMPS : MATSOLVERPETSC, MAT_FACTOR_LU, &factor_));
-    PetscCall(MatFactorInfoInitialize(&info));
-    info.fill          = 5.0;   /* PCLU's defaults */
-    info.dtcol         = 1e-6;
-    info.zeropivot     = 100.0 * PETSC_MACHINE_EPSILON;
-    info.pivotinblocks = 1.0;
     PetscCall(MatFactorGetCanUseOrdering(factor_, &ordering));
     if (ordering) PetscCall(MatGetOrdering(J_, MATORDERINGND, &row, &col));
     PetscCall(MatLUFactorSymbolic(factor_, J_, row, col, &info));
-    PetscCall(MatLUFactorNumeric(factor_, J_, &info));
     PetscCall(ISDestroy(&row));
     PetscCall(ISDestroy(&col));
-    PetscCall(MatFactorGetError(factor_, &err));
-    if (err != MAT_FACTOR_NOERROR) {
-      PetscCall(MatDestroy(&factor_));
-      *ok = false;
-      PetscFunctionReturn(PETSC_SUCCESS);
-    }
-    factor_state_ = state;
+    factor_state_ = -1;
   }
-  PetscCall(MatSolve(factor_, b, x));
+  PetscCall(PetscObjectStateGet((PetscObject)J_, &state));
+  if (state == factor_state_) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MatLUFactorNumeric(factor_, J_, &info));
+  PetscCall(MatFactorGetError(factor_, &err));
+  if (err != MAT_FACTOR_NOERROR) {
+    PetscCall(MatFactorClearError(factor_));
+    factor_state_ = -1;
+    *ok           = false;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  factor_state_ = state;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVERelaxation::FactorSetUp(PC pc)
+{
+  RVERelaxation *rx;
+  bool           ok;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &rx));
+  PetscCall(rx->Factor(&ok));
+  if (!ok) PetscCall(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVERelaxation::FactorApply(PC pc, Vec x, Vec y)
+{
+  RVERelaxation *rx;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &rx));
+  PetscCall(MatSolve(rx->factor_, x, y));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -340,8 +365,9 @@ PetscErrorCode RVERelaxation::Warm(Vec W, MaterialResponse *out, bool *converged
       PetscCall(eq_->ResidualNorm(W, R_, &res)); /* the colouring evaluated elsewhere: G(W) back into R_ */
     }
     bool ok;
-    PetscCall(SolveShifted(R_, D_, &ok));
+    PetscCall(Factor(&ok));
     if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(MatSolve(factor_, R_, D_)); /* direct: KSPSolve's bookkeeping cost as much as these small solves (-log_view) */
     PetscCall(VecAXPY(W, -1.0, D_));
     PetscCall(VecNorm(D_, NORM_2, &step));
     PetscCall(eq_->ResidualNorm(W, R_, &res_new));

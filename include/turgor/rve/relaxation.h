@@ -5,7 +5,8 @@
    - warm (from a previous solution): the limit delta -> infinity of eq 28, i.e. Newton, with G'
      and its LU factors kept from the last solve (modified Newton), backtracking on a fresh G'.
    G' comes from MatFDColoring on the interaction graph, rebuilt only when new neighbours couple
-   unknowns the pattern does not cover. */
+   unknowns the pattern does not cover. Both solves use one LU factorisation of G' + shift I kept
+   here (the TSPSEUDO linear solve through a shell PC), so -rve_pc_* options do not apply. */
 #include <turgor/material/material_point.h>
 #include <turgor/rve/rve_equations.h>
 #include <turgor/rve/rve_spec.h>
@@ -39,7 +40,9 @@ private:
   PetscErrorCode BuildJacobianPattern();
   PetscErrorCode PatternStale(PetscBool *stale);
   PetscErrorCode Refresh(Vec W); /* K = G'(W) by colouring */
-  PetscErrorCode SolveShifted(Vec b, Vec x, bool *ok); /* x = J^-1 b with J's LU factors */
+  PetscErrorCode Factor(bool *ok); /* J's LU factors, up to date */
+  static PetscErrorCode FactorSetUp(PC pc);
+  static PetscErrorCode FactorApply(PC pc, Vec x, Vec y);
 
   MPI_Comm       comm_ = MPI_COMM_NULL;
   PetscMPIInt    size_ = 1;
@@ -49,7 +52,7 @@ private:
   Vec            Wprev_ = nullptr, R_ = nullptr, D_ = nullptr;
   Mat            J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
   MatFDColoring  coloring_ = nullptr;
-  Mat            factor_ = nullptr;          /* LU of J for warm solves */
+  Mat            factor_ = nullptr;          /* LU of J, for the pseudo steps and the warm solves */
   PetscObjectState factor_state_ = -1;       /* J's state when factor_ was computed */
   PetscInt       pattern_rebuilds_ = -1;
   std::vector<std::vector<PetscInt>> pattern_cols_; /* columns of each unknown pair in J_ */
