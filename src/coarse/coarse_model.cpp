@@ -9,14 +9,14 @@ namespace turgor {
 
 CoarseModel::~CoarseModel()
 {
-  (void)KSPDestroy(&mass_ksp_);
-  (void)MatDestroy(&Mt_);
-  (void)MatDestroy(&KC_);
-  (void)VecDestroy(&Uloc_);
-  (void)VecDestroy(&Floc_);
-  (void)VecDestroy(&rhs_r_);
-  (void)VecDestroy(&rhs_z_);
-  (void)DMDestroy(&dm_);
+  PetscCallVoid(KSPDestroy(&mass_ksp_));
+  PetscCallVoid(MatDestroy(&Mt_));
+  PetscCallVoid(MatDestroy(&KC_));
+  PetscCallVoid(VecDestroy(&Uloc_));
+  PetscCallVoid(VecDestroy(&Floc_));
+  PetscCallVoid(VecDestroy(&rhs_r_));
+  PetscCallVoid(VecDestroy(&rhs_z_));
+  PetscCallVoid(DMDestroy(&dm_));
 }
 
 PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
@@ -72,6 +72,12 @@ PetscErrorCode CoarseModel::CreateMesh()
     PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_filename", &file));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_simplex", &simplex));
     PetscCheck(!box || simplex || file, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_box_*: PETSc's box mesh is made of triangles unless -coarse_dm_plex_simplex 0 is given, and the coarse model needs quadrilaterals (the default mesh is -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 4,4 -coarse_dm_plex_box_upper 400,400)");
+    {
+      PetscInt  faces[3] = {1, 1, 1}, n = 3;
+      PetscBool set;
+      PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-coarse_dm_plex_box_faces", faces, &n, &set));
+      PetscCheck(!set || (n == 2 && faces[0] >= 1 && faces[1] >= 1), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -coarse_dm_plex_box_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": needs two numbers of elements, each >= 1", faces[0], n > 1 ? faces[1] : 0);
+    }
     if (box || simplex || file) { /* DMSetFromOptions builds it */
       PetscCall(DMCreate(comm_, &dm_));
       PetscCall(DMSetType(dm_, DMPLEX));
@@ -306,14 +312,9 @@ PetscErrorCode CoarseModel::SetUp()
   PetscCallMPI(MPI_Allreduce(&r, &rho0_, 1, MPIU_REAL, MPIU_MAX, comm_));
   PetscCall(pool_.Commit());
   PetscCall(AssembleMass());
+  n_elements_ = c_end_ - c_start_;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n_elements_, 1, MPIU_INT, MPI_SUM, comm_));
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscInt CoarseModel::NumElements() const
-{
-  PetscInt n = c_end_ - c_start_, N = 0;
-  (void)MPI_Allreduce(&n, &N, 1, MPIU_INT, MPI_SUM, comm_);
-  return N;
 }
 
 /* The constrained entries of a local vector are not touched by DMGlobalToLocal: the model's own

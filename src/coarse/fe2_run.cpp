@@ -246,12 +246,14 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-std::string FE2Run::DoneDetails()
+PetscErrorCode FE2Run::DoneDetails(std::string *details)
 {
-  MaterialCounters rc;
+  MaterialCounters      rc;
   const CoarseCounters &cc = model_.Counters();
-  (void)model_.Pool().GlobalCounters(&rc);
-  return std::to_string(cc.residuals) + " function and " + std::to_string(cc.tangent_evals) + " Jacobian evaluations, " + std::to_string(rc.solves) + " RVE solves (" + std::to_string(rc.tangent_solves) + " for tangents)";
+  PetscFunctionBeginUser;
+  PetscCall(model_.Pool().GlobalCounters(&rc));
+  *details = std::to_string(cc.residuals) + " function and " + std::to_string(cc.tangent_evals) + " Jacobian evaluations, " + std::to_string(rc.solves) + " RVE solves (" + std::to_string(rc.tangent_solves) + " for tangents)";
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

@@ -350,11 +350,11 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-std::string FineRun::DoneDetails()
+PetscErrorCode FineRun::DoneDetails(std::string *details)
 {
-  PetscInt evals = rhs_evals_;
-  (void)MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_);
-  return std::to_string(evals) + " RHS evaluations";
+  PetscFunctionBeginUser;
+  *details = std::to_string(rhs_evals_) + " RHS evaluations";
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

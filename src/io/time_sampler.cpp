@@ -3,7 +3,7 @@
 
 namespace turgor {
 
-TimeSampler::~TimeSampler() { (void)VecDestroy(&work_); }
+TimeSampler::~TimeSampler() { PetscCallVoid(VecDestroy(&work_)); }
 
 PetscLogDouble TimeSampler::Elapsed() const
 {

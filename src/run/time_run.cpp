@@ -162,7 +162,8 @@ PetscErrorCode TimeRun::WriteSummary()
   js.Set("mpi_ranks", (PetscInt)size);
   js.Set("snapshots", SnapshotCount());
   PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
-  const std::string details = DoneDetails();
+  std::string details;
+  PetscCall(DoneDetails(&details));
   PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(), out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -16,7 +16,7 @@ public:
   /* U global state; the stresses of the model's last material evaluation (call after one at U). */
   PetscErrorCode Write(CoarseModel &model, Vec U, PetscReal time);
   PetscErrorCode Close();
-  ~CoarseFieldsWriter() { (void)Close(); }
+  ~CoarseFieldsWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
 
 private:

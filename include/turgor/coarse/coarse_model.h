@@ -76,7 +76,7 @@ public:
   Mat                MassMatrix() const { return Mt_; }
   MaterialPointPool &Pool() { return pool_; }
   const CoarseCounters &Counters() const { return counters_; }
-  PetscInt           NumElements() const; /* global */
+  PetscInt           NumElements() const { return n_elements_; } /* global */
   PetscInt           NumMaterialPoints() const { return pool_.NumGlobal(); }
   PetscReal          ReferenceDensity() const { return rho0_; }
   bool               LumpedMass() const { return spec_.lumped_mass; }
@@ -125,6 +125,7 @@ private:
   std::vector<PetscInt>  free_rows_;   /* global row of ux of each owned, unclamped vertex */
   PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
   PetscReal              rho0_ = 0;
+  PetscInt               n_elements_ = 0;
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;

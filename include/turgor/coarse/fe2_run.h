@@ -34,7 +34,7 @@ protected:
   const char              *SnapshotFiles() const override { return "coarse.h5 + coarse.xmf"; }
   PetscInt                 FunctionEvaluations() const override { return model_.Counters().residuals; }
   PetscErrorCode           AddSummary(JsonObject &js) override;
-  std::string              DoneDetails() override;
+  PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
   {
     return "steps were rejected repeatedly (more than -ts_max_reject in a row); see the material-point failures above (-info for all of them), or lower -ts_dt / tighten -ts_rtol";

@@ -61,7 +61,7 @@ protected:
   PetscInt                 FunctionEvaluations() const override { return rhs_evals_; }
   PetscErrorCode           AfterSolve() override { return SyncSwarm(U_); }
   PetscErrorCode           AddSummary(JsonObject &js) override;
-  std::string              DoneDetails() override;
+  PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
   {
     return "the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters";

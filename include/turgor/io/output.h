@@ -19,7 +19,7 @@ public:
   PetscErrorCode Row(const std::vector<PetscReal> &values);
   PetscErrorCode Close();
   bool           IsOpen() const { return comm_ != MPI_COMM_NULL; }
-  ~CsvWriter() { (void)Close(); }
+  ~CsvWriter() { PetscCallVoid(Close()); }
 
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;

@@ -18,7 +18,7 @@ public:
   PetscErrorCode Open(DM swarm, const ParticleSet &P, const std::string &dir, const std::string &base);
   PetscErrorCode Write(DM swarm, PetscReal time);
   PetscErrorCode Close();
-  ~ParticleSnapshotWriter() { (void)Close(); }
+  ~ParticleSnapshotWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
 
 private:

@@ -73,7 +73,7 @@ protected:
   virtual PetscErrorCode           AfterSolve() { return PETSC_SUCCESS; }
   /* The mode's summary keys (collective), and the details of the final report line. */
   virtual PetscErrorCode           AddSummary(JsonObject &js)  = 0;
-  virtual std::string              DoneDetails()                = 0;
+  virtual PetscErrorCode           DoneDetails(std::string *details) = 0; /* collective */
   /* What a user should try when the integration fails. */
   virtual const char              *FailureAdvice() const = 0;
 
