@@ -3,6 +3,7 @@ static const char help[] = "RVE benchmark: wall time of a cold RVE solve, a warm
                            "-cells 1,4 cells per side (the seed's parameters; other options as for turgor).\n\n"
                            "  bench_rve [-cells 1,4] [-repeats 5]\n";
 
+#include <turgor/core/register_all.h>
 #include <turgor/rve/rve.h>
 
 using namespace turgor;
@@ -21,37 +22,42 @@ int main(int argc, char **argv)
   PetscOptionsEnd();
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%6s %9s %10s %7s %10s %7s %12s %12s %9s %11s\n", "cells", "unknowns", "cold [ms]", "its", "warm [ms]", "its", "warm/cold", "tangent[ms]", "its", "tan/cold"));
   for (PetscInt c = 0; c < ncells; c++) {
-    char opt[32];
-    PetscCall(PetscSNPrintf(opt, sizeof opt, "%" PetscInt_FMT, cells[c]));
-    PetscCall(PetscOptionsSetValue(NULL, "-rve_cells", opt));
+    /* one material per RVE size (its options, e.g. -rve_psi_atol, still apply; -rve_cells would
+       override -cells, so the size printed is the material's), a fresh point per repetition */
+    RVEMaterial material;
+    material.spec.cells = cells[c];
+    PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
     PetscReal      best[3] = {1e30, 1e30, 1e30};
     PetscInt       its[3]  = {0, 0, 0}, unknowns = 0;
     const Tensor2  F0 = {{{1.01, 0}, {0, 1}}}, F1 = {{{1.011, 0}, {0, 1}}}, Fd = {{{1e-3, 0}, {0, 0}}};
     for (PetscInt r = 0; r < repeats; r++) {
-      RVE              rve(PETSC_COMM_SELF);
-      MaterialResponse a, b, s;
-      Tangents         D;
-      PetscLogDouble   t0, t1, t2, t3;
-      PetscCall(rve.SetFromOptions());
-      PetscCall(rve.SetUp());
-      unknowns = rve.NumUnknowns();
+      std::unique_ptr<MaterialPoint> point;
+      MaterialResponse               a, b, s;
+      Tangents                       D;
+      MaterialCounters               before, after;
+      PetscLogDouble                 t0, t1, t2, t3;
+      PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
+      const RVE *rve = dynamic_cast<const RVE *>(point.get());
+      PetscCheck(rve, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the rve material must create RVE points");
+      unknowns = rve->NumUnknowns();
       PetscCall(PetscTime(&t0));
-      PetscCall(rve.Evaluate(F0, Fd, EvaluationKind::Trial, &a));
+      PetscCall(point->Evaluate(F0, Fd, EvaluationKind::Trial, &a));
       PetscCall(PetscTime(&t1));
-      PetscCall(rve.Evaluate(F1, Fd, EvaluationKind::Trial, &b));
+      PetscCall(point->Evaluate(F1, Fd, EvaluationKind::Trial, &b));
       PetscCall(PetscTime(&t2));
-      const PetscInt before = rve.Counters().iterations;
-      PetscCall(ComputeTangents(rve, F1, Fd, b, TangentOptions(), &D, &s));
+      point->AddCounters(before);
+      PetscCall(ComputeTangents(*point, F1, Fd, b, TangentOptions(), &D, &s));
       PetscCall(PetscTime(&t3));
+      point->AddCounters(after);
       PetscCheck(a.ok && b.ok && s.ok, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "RVE evaluation failed");
       best[0] = PetscMin(best[0], t1 - t0);
       best[1] = PetscMin(best[1], t2 - t1);
       best[2] = PetscMin(best[2], t3 - t2);
       its[0]  = a.iterations;
       its[1]  = b.iterations;
-      its[2]  = rve.Counters().iterations - before;
+      its[2]  = after.iterations - before.iterations;
     }
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%6" PetscInt_FMT " %9" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %12.3f %12.3f %9" PetscInt_FMT " %11.2f\n", cells[c], unknowns, 1e3 * best[0], its[0], 1e3 * best[1], its[1], best[1] / best[0], 1e3 * best[2], its[2], best[2] / best[0]));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%6" PetscInt_FMT " %9" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %12.3f %12.3f %9" PetscInt_FMT " %11.2f\n", material.spec.cells, unknowns, 1e3 * best[0], its[0], 1e3 * best[1], its[1], best[1] / best[0], 1e3 * best[2], its[2], best[2] / best[0]));
   }
   PetscCall(PetscFinalize());
   return 0;

@@ -2,7 +2,7 @@
 """What accuracy costs in time: work-precision studies of turgor's FE^2 bending bar.
 
 Integration error: every coarse integrator at every tolerance rtol = atol = tol, against a
-tight-tolerance radau5 run of the same model (--ref-tol). The RVEs' Psi-tc tolerance follows the
+tight-tolerance radauiia run of the same model (--ref-tol). The RVEs' Psi-tc tolerance follows the
 coarse one (min(1e-9, 1e-4 tol)), so that their residual noise stays below the error measured. Modelling error: FE^2
 with RVEs of k x k cells on n x n coarse meshes, relaxed and Cauchy-Born, against the full fine-scale
 run (--fine DIR, or run here with --run-fine).
@@ -172,7 +172,7 @@ class Study:
                     continue
                 for relax in (["relaxed", "cauchy_born"] if cells == 1 else ["relaxed"]):
                     name = f"model_mesh{mesh}_rve{cells}_{relax}"
-                    extra = ["-ts_type", "radauiia", "-coarse_faces", f"{mesh},{mesh}", "-rve_cells", str(cells), "-rve_relax", relax]
+                    extra = ["-ts_type", "radauiia", "-coarse_dm_plex_box_faces", f"{mesh},{mesh}", "-rve_cells", str(cells), "-rve_relax", relax]
                     s, d, why = self.run(name, extra, tm)
                     self.record("modelling", "radauiia", 1e-3, mesh, cells, relax, tm, s, d, why, None, fine)
 

@@ -75,6 +75,40 @@ static PetscErrorCode StaticSolve(CoarseModel &model, Vec U, PetscInt *its)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The material of the coarse model, configured here (its own options still apply): -material is
+   not read. */
+static PetscErrorCode UseMaterial(CoarseModel &model, const char *name)
+{
+  std::unique_ptr<MaterialModel> material;
+  PetscFunctionBeginUser;
+  PetscCall(MaterialModelCreate(PETSC_COMM_WORLD, name, &material));
+  PetscCall(material->SetFromOptions(PETSC_COMM_WORLD));
+  model.Pool().SetMaterial(std::move(material));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A box of nx x ny quadrilaterals on [0, Lx] x [0, Ly] (faces labelled 1 bottom, 2 right, 3 top,
+   4 left) as the model's mesh. */
+static PetscErrorCode UseBox(CoarseModel &model, PetscInt nx, PetscInt ny, PetscReal Lx, PetscReal Ly)
+{
+  DM              dm;
+  const PetscInt  faces[2] = {nx, ny};
+  const PetscReal lo[2] = {0, 0}, hi[2] = {Lx, Ly};
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexCreateBoxMesh(PETSC_COMM_WORLD, 2, PETSC_FALSE, faces, lo, hi, NULL, PETSC_TRUE, &dm));
+  PetscCall(model.SetMesh(dm));
+  PetscCall(DMDestroy(&dm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static void SetBodyForce(CoarseModel &model, PetscReal gx, PetscReal gy)
+{
+  LoadSpec load;
+  load.body_acceleration[0] = gx;
+  load.body_acceleration[1] = gy;
+  model.SetLoad(load);
+}
+
 /* 1. Patch test on a distorted 4 x 4 mesh. */
 static PetscErrorCode PatchTest()
 {
@@ -102,15 +136,15 @@ static PetscErrorCode PatchTest()
     PetscCall(DMSetCoordinatesLocal(dm, c));
   }
   CoarseModel model(PETSC_COMM_WORLD);
-  PetscCall(PetscOptionsInsertString(NULL, "-coarse_dirichlet_values 1,2,3,4 -body_force 0,0"));
+  model.Spec().dirichlet_values = {1, 2, 3, 4}; /* the whole boundary */
+  SetBodyForce(model, 0, 0);
+  PetscCall(UseMaterial(model, "neo_hookean"));
   PetscCall(model.SetFromOptions());
-  PetscCall(PetscOptionsClearValue(NULL, "-coarse_dirichlet_values"));
-  PetscCall(PetscOptionsClearValue(NULL, "-body_force"));
   PetscCall(model.SetMesh(dm));
   PetscCall(DMDestroy(&dm));
-  model.SetBoundaryDisplacement([&](const PetscReal X[2], PetscReal u[2]) {
+  PetscCall(model.SetBoundaryDisplacement([&](const PetscReal X[2], PetscReal u[2]) {
     for (int i = 0; i < 2; i++) u[i] = (F0[i][0] - (i == 0)) * X[0] + (F0[i][1] - (i == 1)) * X[1];
-  });
+  }));
   PetscCall(model.SetUp());
   Vec U;
   PetscCall(model.CreateGlobalVector(&U));
@@ -157,13 +191,11 @@ static PetscErrorCode PatchTest()
 static PetscErrorCode JacobianCheck(const char *material, PetscReal tol)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsSetValue(NULL, "-material", material));
-  PetscCall(PetscOptionsSetValue(NULL, "-coarse_faces", "2,2"));
   CoarseModel model(PETSC_COMM_WORLD);
+  PetscCall(UseMaterial(model, material));
   PetscCall(model.SetFromOptions());
+  PetscCall(UseBox(model, 2, 2, 400, 400));
   PetscCall(model.SetUp());
-  PetscCall(PetscOptionsClearValue(NULL, "-material"));
-  PetscCall(PetscOptionsClearValue(NULL, "-coarse_faces"));
   Vec       U, Ud, w, Jw, Fp, Fm, Up;
   Mat       J;
   PetscBool ok;
@@ -220,16 +252,14 @@ static PetscErrorCode JacobianCheck(const char *material, PetscReal tol)
    q L^4 / (8 E' I) + q L^2 / (2 kappa G A) with the plane-strain E' = 4 mu (lambda + mu) / (lambda + 2 mu). */
 static PetscErrorCode Cantilever(PetscInt nx, PetscInt ny, PetscReal *deflection, PetscReal *theory)
 {
-  char opt[64];
   PetscInt its;
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opt, sizeof opt, "%" PetscInt_FMT ",%" PetscInt_FMT, nx, ny));
-  PetscCall(PetscOptionsSetValue(NULL, "-coarse_faces", opt));
-  PetscCall(PetscOptionsInsertString(NULL, "-material neo_hookean -coarse_upper 400,100 -body_force 0,-1e-2"));
   CoarseModel model(PETSC_COMM_WORLD);
+  SetBodyForce(model, 0, -1e-2);
+  PetscCall(UseMaterial(model, "neo_hookean"));
   PetscCall(model.SetFromOptions());
+  PetscCall(UseBox(model, nx, ny, 400, 100));
   PetscCall(model.SetUp());
-  for (const char *o : {"-coarse_faces", "-material", "-coarse_upper", "-body_force"}) PetscCall(PetscOptionsClearValue(NULL, o));
   Vec U;
   PetscCall(model.CreateGlobalVector(&U));
   PetscCall(VecZeroEntries(U));
@@ -249,9 +279,7 @@ int main(int argc, char **argv)
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
-  PetscCall(PetscOptionsInsertString(NULL, "-material neo_hookean"));
   PetscCall(PatchTest());
-  PetscCall(PetscOptionsClearValue(NULL, "-material"));
   PetscCall(JacobianCheck("neo_hookean", 1e-6));
   PetscCall(JacobianCheck("rve", 1e-4));
   /* uniform refinement through the 32 x 8 mesh; the observed order from the three finest meshes,

@@ -22,8 +22,14 @@ int main(int argc, char **argv)
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
-  NeoHookean nh;
-  PetscCall(nh.SetFromOptions(PETSC_COMM_SELF));
+  /* the material configured once (-nh_* options), one point from it */
+  NeoHookeanMaterial             material;
+  std::unique_ptr<MaterialPoint> point;
+  PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
+  PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
+  NeoHookean *const nhp = dynamic_cast<NeoHookean *>(point.get());
+  TG_CHECK(nhp, "the neo_hookean material must create NeoHookean points");
+  NeoHookean &nh = *nhp;
   const Tensor2 Fs[] = {Tensor2::Identity(), {{{1.1, 0.0}, {0.0, 0.95}}}, {{{1.0, 0.2}, {0.0, 1.0}}}, Tensor2::Rotation(0.7) * Tensor2{{{1.05, 0.1}, {-0.05, 0.9}}}};
   for (const Tensor2 &F : Fs) {
     Tangents         fd, cd, exact;

@@ -1,6 +1,6 @@
 static const char help[] = "Material-point pool on sub-communicators: evaluates six RVEs (stress, density, tangents) spread\n"
                            "over the ranks and writes them in global order to -o FILE; run with 1 and 2 ranks (and\n"
-                           "-rve_comm_size 2) and compare the files: the results must not depend on the distribution.\n";
+                           "-material_comm_size 2) and compare the files: the results must not depend on the distribution.\n";
 #include "test_util.h"
 #include <turgor/material/material_pool.h>
 
@@ -52,7 +52,7 @@ int main(int argc, char **argv)
       PetscCall(PetscFPrintf(PETSC_COMM_WORLD, fp, "\n"));
     }
     PetscCall(PetscFClose(PETSC_COMM_WORLD, fp));
-    RVECounters c;
+    MaterialCounters c;
     PetscCall(pool.GlobalCounters(&c));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%d ranks, %" PetscInt_FMT " groups: %" PetscInt_FMT " points, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, sigma_11 of point 5 = %.12g N/m\n", size, pool.NumGroups(), pool.NumGlobal(), c.solves, c.iterations, (double)all[23 * 5]));
     TG_CHECK(c.solves == N * 7, "expected one trial and six tangent solves per point, got %" PetscInt_FMT, c.solves);

@@ -9,15 +9,40 @@ static const char help[] = "RVE material point (TW 562 §3.2, eq 30, eqs 46-53):
                            " 8. a large shear path with a rate (a corner element of the 8 x 8 FE^2 bar) converges at every point.\n";
 #include "test_util.h"
 #include <turgor/rve/rve.h>
+#include <turgor/physics/repulsion.h>
+#include <turgor/physics/sph_fluid.h>
+#include <turgor/physics/wall_springs.h>
 
 using namespace turgor;
 
-static PetscErrorCode MakeRVE(std::unique_ptr<RVE> *rve)
+/* A point of a configured RVE material (an RVE: the tests use its RVE-only accessors). */
+static PetscErrorCode CreateRVE(const RVEMaterial &material, std::unique_ptr<RVE> *rve)
+{
+  std::unique_ptr<MaterialPoint> point;
+  PetscFunctionBeginUser;
+  PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
+  RVE *r = dynamic_cast<RVE *>(point.get());
+  TG_CHECK(r, "the rve material must create RVE points");
+  point.release();
+  rve->reset(r);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A point of `material` after its options (the members set by the caller are the defaults). */
+static PetscErrorCode MakeRVE(RVEMaterial &material, std::unique_ptr<RVE> *rve)
 {
   PetscFunctionBeginUser;
-  rve->reset(new RVE(PETSC_COMM_SELF));
-  PetscCall((*rve)->SetFromOptions());
-  PetscCall((*rve)->SetUp());
+  PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
+  PetscCall(CreateRVE(material, rve));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A point of the default RVE material. */
+static PetscErrorCode MakeRVE(std::unique_ptr<RVE> *rve)
+{
+  RVEMaterial material;
+  PetscFunctionBeginUser;
+  PetscCall(MakeRVE(material, rve));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -53,17 +78,20 @@ static PetscErrorCode Symmetry()
   const Tensor2 F = {{{1, 0.1}, {0, 1}}}, Fd = {{{0, 0.1}, {0, 0}}};
   PetscReal     asym[2];
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsSetValue(NULL, "-sph_viscosity", "5"));
   for (int c = 0; c < 2; c++) {
-    std::unique_ptr<RVE> rve;
-    MaterialResponse     r;
-    PetscCall(PetscOptionsSetValue(NULL, "-sph_correction", c ? "0" : "1"));
-    PetscCall(MakeRVE(&rve));
+    /* the default physics with its SPH fluid configured here: viscosity 5, correction on / off */
+    RVEMaterial               material;
+    std::unique_ptr<SPHFluid> sph(new SPHFluid);
+    std::unique_ptr<RVE>      rve;
+    MaterialResponse          r;
+    sph->viscosity         = 5;
+    sph->correction        = c ? PETSC_FALSE : PETSC_TRUE;
+    material.physics.names = {"springs", "repulsion"};
+    material.physics.Add(std::move(sph));
+    PetscCall(MakeRVE(material, &rve));
     PetscCall(Eval(*rve, F, Fd, &r));
     asym[c] = Asymmetry(r.sigma);
   }
-  PetscCall(PetscOptionsClearValue(NULL, "-sph_correction"));
-  PetscCall(PetscOptionsClearValue(NULL, "-sph_viscosity"));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "1. |sigma - sigma^T| / |sigma| under 10%% shear, shear rate 0.1/µs: with correction %.2e, without %.2e (ratio %.1e)\n", (double)asym[0], (double)asym[1], (double)(asym[1] / asym[0])));
   TG_CHECK(asym[0] * 10 <= asym[1], "the correction must make the stress at least 10x more symmetric");
   TG_CHECK(asym[0] < 1e-10, "corrected stress not symmetric to round-off: %.3e", (double)asym[0]);
@@ -75,17 +103,19 @@ static PetscErrorCode Objectivity()
 {
   const Tensor2    F = {{{1.04, 0.05}, {-0.02, 0.97}}}, Fd = {{{0.002, 0.01}, {0, -0.001}}};
   MaterialResponse r0;
+  RVEMaterial      material; /* configured once, a fresh point for every rotation */
   PetscFunctionBeginUser;
+  PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
   {
     std::unique_ptr<RVE> rve;
-    PetscCall(MakeRVE(&rve));
+    PetscCall(CreateRVE(material, &rve));
     PetscCall(Eval(*rve, F, Fd, &r0));
   }
   for (PetscReal deg : {10.0, 45.0, 90.0}) {
     const Tensor2        R = Tensor2::Rotation(deg * PETSC_PI / 180);
     std::unique_ptr<RVE> rve;
     MaterialResponse     r;
-    PetscCall(MakeRVE(&rve));
+    PetscCall(CreateRVE(material, &rve));
     PetscCall(Eval(*rve, R * F, R * Fd, &r));
     const Tensor2   expect = R * r0.sigma * R.T();
     const PetscReal err    = (r.sigma - expect).Norm() / expect.Norm();
@@ -101,26 +131,37 @@ static PetscErrorCode StaticState()
 {
   const Tensor2        F = {{{1.03, 0.02}, {0.0, 0.99}}};
   MaterialResponse     cold, warm, detour;
+  RVEMaterial          standard; /* two points of one material */
   std::unique_ptr<RVE> a, b;
   PetscFunctionBeginUser;
-  PetscCall(MakeRVE(&a));
+  PetscCall(MakeRVE(standard, &a));
   PetscCall(Eval(*a, F, Tensor2::Zero(), &cold));
-  PetscCall(MakeRVE(&b));
+  PetscCall(CreateRVE(standard, &b));
   PetscCall(Eval(*b, {{{0.95, -0.05}, {0.03, 1.06}}}, Tensor2::Zero(), &detour)); /* elsewhere first */
   PetscCall(Eval(*b, F, Tensor2::Zero(), &warm));
   const PetscReal d = (cold.sigma - warm.sigma).Norm() / cold.sigma.Norm();
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "3. sigma(F, 0): cold start (%" PetscInt_FMT " its) vs warm start from another F (%" PetscInt_FMT " its): relative difference %.2e\n", cold.iterations, warm.iterations, (double)d));
   TG_CHECK(d < 1e-10, "relaxed stress depends on the start: %.3e", (double)d);
 
-  for (const char *opt : {"-wall_damping_ratio 0", "-repulsion_damping 0", "-sph_viscosity 0"}) PetscCall(PetscOptionsInsertString(NULL, opt));
+  /* the default physics without its rate terms: undamped springs and repulsion, inviscid fluid */
+  RVEMaterial                  material;
+  std::unique_ptr<WallSprings> springs(new WallSprings);
+  std::unique_ptr<Repulsion>   repulsion(new Repulsion);
+  std::unique_ptr<SPHFluid>    sph(new SPHFluid);
+  springs->damping_ratio = 0;
+  repulsion->damping     = PETSC_FALSE;
+  sph->viscosity         = 0;
+  material.physics.names.clear();
+  material.physics.Add(std::move(springs));
+  material.physics.Add(std::move(repulsion));
+  material.physics.Add(std::move(sph));
   std::unique_ptr<RVE> c;
   MaterialResponse     r, r2, status;
   Tangents             D;
-  PetscCall(MakeRVE(&c));
+  PetscCall(MakeRVE(material, &c));
   PetscCall(Eval(*c, F, Tensor2::Zero(), &r));
   PetscCall(Eval(*c, F, {{{0.01, 0.02}, {-0.01, 0.0}}}, &r2));
   PetscCall(ComputeTangents(*c, F, Tensor2::Zero(), r, TangentOptions(), &D, &status));
-  for (const char *opt : {"-wall_damping_ratio", "-repulsion_damping", "-sph_viscosity"}) PetscCall(PetscOptionsClearValue(NULL, opt));
   TG_CHECK(status.ok, "tangents failed");
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "   without rate terms: |sigma(F, Fdot) - sigma(F, 0)| = %.2e N/m, max |D^v| = %.2e (max |D^e| = %.4g)\n", (double)(r2.sigma - r.sigma).Norm(), (double)MaxAbs(D.Dv), (double)MaxAbs(D.De)));
   TG_CHECK((r2.sigma - r.sigma).Norm() < 1e-10 * r.sigma.Norm(), "stress depends on Fdot without rate terms");
@@ -154,11 +195,13 @@ static PetscErrorCode ForwardVsCentral()
 static PetscErrorCode SpringLattice()
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsInsertString(NULL, "-physics springs -rve_cells 2"));
+  RVEMaterial          material;
   std::unique_ptr<RVE> rve;
   MaterialResponse     r, status;
   Tangents             D;
-  PetscCall(MakeRVE(&rve));
+  material.physics.names = {"springs"};
+  material.spec.cells    = 2;
+  PetscCall(MakeRVE(material, &rve));
   PetscCall(Eval(*rve, Tensor2::Identity(), Tensor2::Zero(), &r));
   PetscCall(ComputeTangents(*rve, Tensor2::Identity(), Tensor2::Zero(), r, TangentOptions(), &D, &status));
   const PetscReal k = 4000.0 / 2, exact[3][3] = {{k, 0, 0}, {0, k, 0}, {0, 0, 0}};
@@ -169,13 +212,11 @@ static PetscErrorCode SpringLattice()
   const Tensor2    F = {{{1.05, 0.02}, {0.01, 0.98}}};
   MaterialResponse relaxed, cb;
   PetscCall(Eval(*rve, F, Tensor2::Zero(), &relaxed));
-  rve->SetMode(RVE::Relaxation::CauchyBorn);
+  rve->SetMode(RelaxationMode::CauchyBorn);
   PetscCall(Eval(*rve, F, Tensor2::Zero(), &cb));
   const PetscReal d = (relaxed.sigma - cb.sigma).Norm() / relaxed.sigma.Norm();
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "6. springs-only lattice at 5%% strain: |relaxed - Cauchy-Born| / |sigma| = %.2e\n", (double)d));
   TG_CHECK(d < 1e-10, "the lattice should relax affinely");
-  PetscCall(PetscOptionsClearValue(NULL, "-physics"));
-  PetscCall(PetscOptionsClearValue(NULL, "-rve_cells"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -193,12 +234,12 @@ static PetscErrorCode TurgidRelaxation()
   for (PetscReal e : {1e-4, 1e-3, 5e-2}) {
     const Tensor2    F = {{{1 + e, 0.5 * e}, {0, 1 - 0.3 * e}}};
     MaterialResponse relaxed, frozen, cb;
-    rve->SetMode(RVE::Relaxation::Relaxed);
+    rve->SetMode(RelaxationMode::Relaxed);
     PetscCall(Eval(*rve, F, Tensor2::Zero(), &relaxed));
     PetscCall(rve->Revert());
-    rve->SetMode(RVE::Relaxation::Frozen);
+    rve->SetMode(RelaxationMode::Frozen);
     PetscCall(Eval(*rve, F, Tensor2::Zero(), &frozen));
-    rve->SetMode(RVE::Relaxation::CauchyBorn);
+    rve->SetMode(RelaxationMode::CauchyBorn);
     PetscCall(Eval(*rve, F, Tensor2::Zero(), &cb));
     const PetscReal dinc = (relaxed.sigma - frozen.sigma).Norm() / (relaxed.sigma - ref.sigma).Norm();
     const PetscReal dabs = (relaxed.sigma - frozen.sigma).Norm() / relaxed.sigma.Norm();
@@ -222,9 +263,11 @@ static PetscErrorCode Failures()
   PetscCall(rve->Evaluate({{{1, 0}, {0, -0.2}}}, Tensor2::Zero(), EvaluationKind::Trial, &r));
   TG_CHECK(!r.ok, "an inverted F must fail");
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "7. inverted F: %s\n", r.reason.c_str()));
-  PetscCall(PetscOptionsSetValue(NULL, "-rve_max_it", "2"));
-  PetscCall(MakeRVE(&rve));
-  PetscCall(PetscOptionsClearValue(NULL, "-rve_max_it"));
+  {
+    RVEMaterial material;
+    material.spec.max_it = 2;
+    PetscCall(MakeRVE(material, &rve));
+  }
   PetscCall(rve->Evaluate({{{1.05, 0}, {0, 1}}}, Tensor2::Zero(), EvaluationKind::Trial, &r));
   TG_CHECK(!r.ok, "two Psi-tc iterations cannot converge from a cold start");
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "   -rve_max_it 2: %s\n", r.reason.c_str()));
