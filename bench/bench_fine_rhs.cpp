@@ -4,6 +4,7 @@ static const char help[] = "Fine-scale force evaluation benchmark: RHS evaluatio
                            "  bench_fine_rhs [-sizes 16,64,256] [-min_time 2] [-repeats 3]\n";
 
 #include <turgor/turgor.h>
+#include <algorithm>
 #include <cmath>
 
 using namespace turgor;
@@ -16,7 +17,7 @@ struct Timing {
 /* A perturbed tissue in motion, so that every pass does real work. */
 static PetscErrorCode MakeTissue(PetscInt cells, Tissue *T)
 {
-  TissueSpec spec;
+  SquareGridSpec spec;
   PetscFunctionBeginUser;
   spec.cells_x = spec.cells_y = cells;
   PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, T));
@@ -28,15 +29,26 @@ static PetscErrorCode MakeTissue(PetscInt cells, Tissue *T)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode TimeModel(const Tissue &T, const char *physics, PetscReal min_time, PetscInt repeats, PetscLogDouble mem_before, Timing *t)
+/* The terms of a comma-separated list, each with its options (-wall_*, -sph_*, ...). */
+static PetscErrorCode ListedPhysics(const std::string &list, const LoadSpec &load, PhysicsSpec *physics)
+{
+  PetscFunctionBeginUser;
+  physics->names.clear();
+  for (size_t begin = 0, end; begin <= list.size(); begin = end + 1) {
+    end = std::min(list.find(',', begin), list.size());
+    physics->names.push_back(list.substr(begin, end - begin));
+  }
+  PetscCall(physics->SetFromOptions(PETSC_COMM_SELF, TermContext{&load}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode TimeModel(const Tissue &T, const PhysicsSpec &physics, PetscReal min_time, PetscInt repeats, PetscLogDouble mem_before, Timing *t)
 {
   ForceModel             model;
   std::vector<PetscReal> a(T.X.size());
   PetscLogDouble         mem_after, t0, t1;
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsSetValue(NULL, "-physics", physics));
-  PetscCall(model.SetFromOptions(PETSC_COMM_SELF));
-  PetscCall(model.SetUp(T.particles));
+  PetscCall(model.SetUp(physics, T.particles));
   PetscCall(model.ComputeAcceleration(T.X.data(), T.V.data(), a.data())); /* builds the lists */
   PetscCall(PetscMemoryGetCurrentUsage(&mem_after));
   t->n                  = T.particles.n;
@@ -62,16 +74,20 @@ int main(int argc, char **argv)
 {
   PetscInt  sizes[8] = {16, 64, 256}, nsizes = 3, repeats = 3;
   PetscReal min_time = 1.0;
+  PetscBool set, physics_set;
+  LoadSpec  load;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
   PetscOptionsBegin(PETSC_COMM_SELF, "", "Benchmark options", "bench");
-  PetscBool set;
   PetscCall(PetscOptionsIntArray("-sizes", "Cells per side of the square tissues (default 16,64,256)", "", sizes, &nsizes, &set));
   if (!set) nsizes = 3;
   PetscCall(PetscOptionsReal("-min_time", "Seconds per timing batch", "", min_time, &min_time, NULL));
   PetscCall(PetscOptionsInt("-repeats", "Timing batches (best is reported)", "", repeats, &repeats, NULL));
   PetscOptionsEnd();
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-physics", &physics_set));
+  PetscCheck(!physics_set, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Option -physics: the benchmark chooses the terms of each row itself");
+  PetscCall(load.SetFromOptions(PETSC_COMM_SELF));
 
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "All terms (springs, repulsion, sph, body_force), one core; best of %" PetscInt_FMT " batches of >= %g s\n", repeats, (double)min_time));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "%8s %10s %10s %12s %12s %14s %14s %12s\n", "cells", "particles", "ms/RHS", "RHS/s", "ns/particle", "updates/s", "bytes/particle", "fluid pairs"));
@@ -79,10 +95,12 @@ int main(int argc, char **argv)
   for (PetscInt k = 0; k < nsizes; k++) {
     PetscLogDouble mem0;
     Tissue         T;
+    PhysicsSpec    spec;
     Timing         t;
     PetscCall(PetscMemoryGetCurrentUsage(&mem0));
     PetscCall(MakeTissue(sizes[k], &T));
-    PetscCall(TimeModel(T, "springs,repulsion,sph,body_force", min_time, repeats, mem0, &t));
+    PetscCall(ListedPhysics("springs,repulsion,sph,body_force", load, &spec));
+    PetscCall(TimeModel(T, spec, min_time, repeats, mem0, &t));
     per_particle.push_back(1e9 * t.seconds_per_eval / t.n);
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "%5" PetscInt_FMT "^2 %10" PetscInt_FMT " %10.4f %12.1f %12.1f %14.4g %14.0f %12" PetscInt_FMT "\n", sizes[k], t.n, 1e3 * t.seconds_per_eval, 1.0 / t.seconds_per_eval, per_particle.back(), t.n / t.seconds_per_eval, t.bytes_per_particle, t.pairs_fluid));
   }
@@ -98,10 +116,12 @@ int main(int argc, char **argv)
   for (const char *physics : {"springs", "springs,repulsion", "springs,repulsion,sph", "springs,repulsion,sph,body_force"}) {
     PetscLogDouble mem0;
     Tissue         T;
+    PhysicsSpec    spec;
     Timing         t;
     PetscCall(PetscMemoryGetCurrentUsage(&mem0));
     PetscCall(MakeTissue(16, &T));
-    PetscCall(TimeModel(T, physics, min_time, repeats, mem0, &t));
+    PetscCall(ListedPhysics(physics, load, &spec));
+    PetscCall(TimeModel(T, spec, min_time, repeats, mem0, &t));
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-36s %10.4f %12.1f %14" PetscInt_FMT " %14" PetscInt_FMT "\n", physics, 1e3 * t.seconds_per_eval, 1.0 / t.seconds_per_eval, t.pairs_fluid, t.pairs_spring));
   }
   PetscCall(PetscFinalize());

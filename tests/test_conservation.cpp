@@ -3,6 +3,7 @@ static const char help[] = "Momentum conservation of the fine model, term by ter
                            "angular momentum over 1000 steps of velocity Verlet (basicsymplectic, which keeps\n"
                            "sum x cross m v exactly when every force is torque-free).\n";
 #include "test_util.h"
+#include <algorithm>
 
 using namespace turgor;
 
@@ -28,15 +29,37 @@ static Momenta Measure(const ParticleSet &Pset, Vec U)
   return m;
 }
 
-/* Run 1000 steps of `ts_type` with only `physics`; report the relative drifts. */
-static PetscErrorCode RunCase(const char *physics, const char *ts_type, const Tissue &T, PetscReal *dP, PetscReal *dL)
+/* The names in a comma-separated list. */
+static std::vector<std::string> Split(const std::string &list)
 {
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsSetValue(NULL, "-physics", physics));
-  PetscCall(PetscOptionsSetValue(NULL, "-ts_type", ts_type));
+  std::vector<std::string> names;
+  for (size_t begin = 0, end; begin <= list.size(); begin = end + 1) {
+    end = std::min(list.find(',', begin), list.size());
+    names.push_back(list.substr(begin, end - begin));
+  }
+  return names;
+}
+
+/* Run 1000 steps of `ts_type` (fixed steps of 5e-4 µs) with only `physics`; report the relative drifts. */
+static PetscErrorCode RunCase(const char *physics, TSType ts_type, const Tissue &T, PetscReal *dP, PetscReal *dL)
+{
   FineRun run(PETSC_COMM_SELF);
+  TSAdapt adapt;
+  PetscFunctionBeginUser;
+  run.Spec().clamp               = {"none"};
+  run.Spec().dt                  = 5e-4;
+  run.Physics().names            = Split(physics);
+  run.Output().dir               = "test_conservation_out";
+  run.Output().samples           = 1;
+  run.Output().snapshots         = 0;
+  run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());
   run.SetTissue(T);
+  PetscCall(TSSetType(run.GetTS(), ts_type));
+  PetscCall(TSSetMaxSteps(run.GetTS(), 1000));
+  PetscCall(TSSetMaxTime(run.GetTS(), 1e6));
+  PetscCall(TSGetAdapt(run.GetTS(), &adapt));
+  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
   PetscCall(run.SetUp());
   const Momenta a = Measure(T.particles, run.GetState());
   PetscCall(run.Solve());
@@ -56,23 +79,22 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
   /* 3 x 3 cells, perturbed positions and random velocities: every term is active */
-  TissueSpec spec;
-  Tissue     T;
+  SquareGridSpec spec;
+  Tissue         T;
   spec.cells_x = spec.cells_y = 3;
   PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &T));
   turgor_test::Random rnd(3);
   for (PetscReal &x : T.X) x += 0.3 * rnd();
   T.V.resize(T.X.size());
   for (PetscReal &v : T.V) v = rnd();
-  for (const char *opt : {"-fine_clamp none", "-fine_snapshots 0", "-fine_progress_interval 0", "-fine_tip_samples 1", "-output_dir test_conservation_out", "-ts_dt 5e-4", "-ts_max_steps 1000", "-ts_max_time 1e6", "-ts_adapt_type none"}) PetscCall(PetscOptionsInsertString(NULL, opt));
 
   PetscReal dP, dL;
   for (const char *physics : {"springs", "repulsion", "sph", "springs,repulsion,sph"}) {
-    PetscCall(RunCase(physics, "rk", T, &dP, &dL));
+    PetscCall(RunCase(physics, TSRK, T, &dP, &dL));
     TG_CHECK(dP < 1e-13, "%s: linear momentum drift %.3e under rk", physics, (double)dP);
   }
   for (const char *physics : {"springs", "repulsion", "sph", "springs,repulsion,sph"}) {
-    PetscCall(RunCase(physics, "basicsymplectic", T, &dP, &dL));
+    PetscCall(RunCase(physics, TSBASICSYMPLECTIC, T, &dP, &dL));
     TG_CHECK(dP < 1e-13, "%s: linear momentum drift %.3e under velocity Verlet", physics, (double)dP);
     TG_CHECK(dL < 1e-12, "%s: angular momentum drift %.3e under velocity Verlet", physics, (double)dL);
   }

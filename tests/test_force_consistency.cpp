@@ -13,7 +13,7 @@ using namespace turgor;
 /* A 2 x 2 cell tissue with every particle displaced at random (up to `amp` µm). */
 static PetscErrorCode DisorderedTissue(PetscReal amp, Tissue *T)
 {
-  TissueSpec spec;
+  SquareGridSpec spec;
   PetscFunctionBeginUser;
   spec.cells_x = spec.cells_y = 2;
   PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, T));
@@ -49,12 +49,32 @@ static PetscErrorCode CompareWithEnergy(ForceModel &model, const Tissue &T, cons
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode ModelWith(const char *physics, const Tissue &T, ForceModel *model)
+/* A model of the named terms, in this order, each configured from its options (the defaults unless
+   given on the command line), except the repulsion's angle factor: off, so that its forces are the
+   gradient of its energy. */
+static PetscErrorCode ModelWith(const std::vector<std::string> &names, const Tissue &T, ForceModel *model)
 {
+  PhysicsSpec physics;
+  LoadSpec    load;
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsSetValue(NULL, "-physics", physics));
-  PetscCall(model->SetFromOptions(PETSC_COMM_SELF));
-  PetscCall(model->SetUp(T.particles));
+  for (const std::string &name : names) {
+    std::unique_ptr<ForceTerm> term;
+    PetscCall(ForceTermCreate(PETSC_COMM_SELF, name, "-physics", &term));
+    PetscCall(term->SetFromOptions(PETSC_COMM_SELF, TermContext{&load}));
+    if (auto *rep = dynamic_cast<Repulsion *>(term.get())) rep->angle_factor = PETSC_FALSE;
+    physics.Add(std::move(term));
+  }
+  PetscCall(model->SetUp(physics, T.particles));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A model of one term built by hand. */
+static PetscErrorCode ModelOf(std::unique_ptr<ForceTerm> term, const Tissue &T, ForceModel *model)
+{
+  PhysicsSpec physics;
+  PetscFunctionBeginUser;
+  physics.Add(std::move(term));
+  PetscCall(model->SetUp(physics, T.particles));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -75,8 +95,7 @@ static PetscErrorCode RepulsionAngleFactor()
       ForceModel model;
       auto       rep   = std::make_unique<Repulsion>();
       rep->angle_factor = angle;
-      model.AddTerm(std::move(rep));
-      PetscCall(model.SetUp(T.particles));
+      PetscCall(ModelOf(std::move(rep), T, &model));
       PetscCall(model.ComputeForces(T.X.data(), v.data(), angle ? f_on.data() : f_off.data(), NULL));
     }
     const PetscReal dx = px - std::min<PetscReal>(px, 10), dy = 2.5, cosa = dy / std::hypot(dx, dy);
@@ -106,8 +125,7 @@ static PetscErrorCode DampingTerms()
     const std::vector<PetscReal> v = {0.2, -0.4, -0.7, 0.9}, v0(4, 0.0);
     std::vector<PetscReal>       f(4), f0(4);
     ForceModel                   model;
-    model.AddTerm(std::make_unique<WallSprings>());
-    PetscCall(model.SetUp(T.particles));
+    PetscCall(ModelOf(std::make_unique<WallSprings>(), T, &model));
     PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
     PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
     const PetscReal dx = T.X[2] - T.X[0], dy = T.X[3] - T.X[1], r = std::hypot(dx, dy), ex = dx / r, ey = dy / r;
@@ -126,8 +144,7 @@ static PetscErrorCode DampingTerms()
     const std::vector<PetscReal> v = {0.1, 0.2, -0.2, 0.5, 0.3, -1.2}, v0(6, 0.0);
     std::vector<PetscReal>       f(6), f0(6);
     ForceModel                   model;
-    model.AddTerm(std::make_unique<Repulsion>());
-    PetscCall(model.SetUp(T.particles));
+    PetscCall(ModelOf(std::make_unique<Repulsion>(), T, &model));
     PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
     PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
     const PetscReal t = 0.4, r = 2.5, vh = (1 - t) * v[1] + t * v[3]; /* closest point (4, 0), normal e = (0, 1) */
@@ -151,8 +168,7 @@ static PetscErrorCode DampingTerms()
       ForceModel                   model;
       auto                         rep = std::make_unique<Repulsion>();
       rep->damping_taper             = taper;
-      model.AddTerm(std::move(rep));
-      PetscCall(model.SetUp(T.particles));
+      PetscCall(ModelOf(std::move(rep), T, &model));
       PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
       PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
       const PetscReal literal = 2 * std::sqrt(6 * 5e5 * 0.4 / std::pow(5.0, 7)); /* |v| = 1 */
@@ -175,13 +191,12 @@ static PetscErrorCode ViscousPower(const Tissue &T, PetscBool correction)
   PetscFunctionBeginUser;
   for (PetscReal &vk : v) vk = rnd();
   ForceModel model;
-  auto       sph_own  = std::make_unique<SPHFluid>();
-  SPHFluid  *sph      = sph_own.get();
-  sph->sound_speed    = 0; /* viscous stress only */
-  sph->viscosity      = 0.5;
-  sph->correction     = correction;
-  model.AddTerm(std::move(sph_own));
-  PetscCall(model.SetUp(T.particles));
+  auto       own   = std::make_unique<SPHFluid>();
+  own->sound_speed = 0; /* viscous stress only */
+  own->viscosity   = 0.5;
+  own->correction  = correction;
+  PetscCall(ModelOf(std::move(own), T, &model));
+  auto *sph = dynamic_cast<SPHFluid *>(model.Term("sph")); /* the model's own, set-up copy */
   PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
   const ForceInput in = {&T.particles, T.X.data(), v.data(), &model.Neighbours(), &model.Images()};
   PetscCall(sph->DensityAndVelocityGradient(in, rho, gradv));
@@ -208,31 +223,27 @@ int main(int argc, char **argv)
   PetscCall(DisorderedTissue(0.8, &T));
   {
     ForceModel m;
-    PetscCall(ModelWith("springs", T, &m));
+    PetscCall(ModelWith({"springs"}, T, &m));
     PetscCall(CompareWithEnergy(m, T, "springs", 1e-7));
   }
   {
     ForceModel m;
-    PetscCall(PetscOptionsSetValue(NULL, "-repulsion_angle_factor", "0"));
-    PetscCall(ModelWith("repulsion", T, &m));
-    PetscCall(PetscOptionsClearValue(NULL, "-repulsion_angle_factor"));
+    PetscCall(ModelWith({"repulsion"}, T, &m));
     PetscCall(CompareWithEnergy(m, T, "repulsion (no angle factor)", 1e-7));
   }
   {
     ForceModel m;
-    PetscCall(ModelWith("sph", T, &m));
+    PetscCall(ModelWith({"sph"}, T, &m));
     PetscCall(CompareWithEnergy(m, T, "sph pressure", 1e-6, 1e-4));
   }
   {
     ForceModel m;
-    PetscCall(ModelWith("body_force", T, &m));
+    PetscCall(ModelWith({"body_force"}, T, &m));
     PetscCall(CompareWithEnergy(m, T, "body force", 1e-7, 1e-2)); /* linear energy: any step is exact */
   }
   {
     ForceModel m;
-    PetscCall(PetscOptionsSetValue(NULL, "-repulsion_angle_factor", "0"));
-    PetscCall(ModelWith("springs,repulsion,sph,body_force", T, &m));
-    PetscCall(PetscOptionsClearValue(NULL, "-repulsion_angle_factor"));
+    PetscCall(ModelWith({"springs", "repulsion", "sph", "body_force"}, T, &m));
     PetscCall(CompareWithEnergy(m, T, "all terms together", 1e-6, 1e-4));
   }
   PetscCall(RepulsionAngleFactor());

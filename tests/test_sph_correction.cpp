@@ -25,15 +25,16 @@ static PetscErrorCode LinearField(PetscBool correction, PetscReal *err_grad, Pet
   const PetscInt         n = T.particles.n;
   const PetscReal        A[4] = {0.3, -0.7, 0.45, -0.1}, W[4] = {0, -0.8, 0.8, 0}; /* general and rigid rotation */
   std::vector<PetscReal> v(2 * n), f(2 * n), rho, gradv;
+  PhysicsSpec            physics;
   ForceModel             model;
   auto                   own = std::make_unique<SPHFluid>();
-  SPHFluid              *sph = own.get();
   PetscFunctionBeginUser;
-  sph->correction  = correction;
-  sph->sound_speed = 0; /* viscous stress only */
-  sph->viscosity   = 5.0;
-  model.AddTerm(std::move(own));
-  PetscCall(model.SetUp(T.particles));
+  own->correction  = correction;
+  own->sound_speed = 0; /* viscous stress only */
+  own->viscosity   = 5.0;
+  physics.Add(std::move(own));
+  PetscCall(model.SetUp(physics, T.particles));
+  auto *sph = dynamic_cast<SPHFluid *>(model.Term("sph")); /* the model's own, set-up copy */
   for (PetscInt i = 0; i < n; i++) {
     v[2 * i]     = A[0] * T.X[2 * i] + A[1] * T.X[2 * i + 1];
     v[2 * i + 1] = A[2] * T.X[2 * i] + A[3] * T.X[2 * i + 1];
@@ -56,11 +57,14 @@ static PetscErrorCode LinearField(PetscBool correction, PetscReal *err_grad, Pet
 }
 
 /* One closed cell (8 wall particles, 16 fluid particles moved at random) spinning rigidly with
-   period 10 µs, integrated over one revolution by velocity Verlet; returns |L(T) - L(0)| / |L(0)|. */
+   period 10 µs, integrated over one revolution by velocity Verlet (dt = 1e-3 µs), no clamps;
+   returns |L(T) - L(0)| / |L(0)|. */
 static PetscErrorCode SpinningCell(PetscBool correction, PetscReal *drift)
 {
-  TissueSpec spec;
-  Tissue     T;
+  SquareGridSpec spec;
+  Tissue         T;
+  FineRun        run(PETSC_COMM_SELF);
+  auto           sph = std::make_unique<SPHFluid>();
   PetscFunctionBeginUser;
   spec.cells_x = spec.cells_y = 1;
   PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &T));
@@ -75,10 +79,21 @@ static PetscErrorCode SpinningCell(PetscBool correction, PetscReal *drift)
     T.V[2 * i]     = -omega * (T.X[2 * i + 1] - c);
     T.V[2 * i + 1] = omega * (T.X[2 * i] - c);
   }
-  PetscCall(PetscOptionsSetValue(NULL, "-sph_correction", correction ? "1" : "0"));
-  FineRun run(PETSC_COMM_SELF);
+  /* springs and repulsion with their defaults; the fluid viscous (mu = 5) */
+  sph->viscosity      = 5;
+  sph->correction     = correction;
+  run.Physics().names = {"springs", "repulsion"};
+  run.Physics().Add(std::move(sph));
+  run.Spec().clamp               = {"none"};
+  run.Spec().dt                  = 1e-3;
+  run.Output().dir               = "test_sph_correction_out";
+  run.Output().samples           = 1;
+  run.Output().snapshots         = 0;
+  run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());
   run.SetTissue(T);
+  PetscCall(TSSetType(run.GetTS(), TSBASICSYMPLECTIC));
+  PetscCall(TSSetMaxTime(run.GetTS(), 10));
   PetscCall(run.SetUp());
   auto L = [&](Vec U) {
     const PetscScalar *u;
@@ -109,7 +124,6 @@ int main(int argc, char **argv)
   TG_CHECK(err_off > 1e-2, "the uncorrected gradient should be visibly wrong on a disordered patch (%.3e)", (double)err_off);
   TG_CHECK(f_on < 1e-12 * f_off, "rigid rotation must not produce viscous forces with the correction (%.3e vs %.3e)", (double)f_on, (double)f_off);
 
-  for (const char *opt : {"-physics springs,repulsion,sph", "-sph_viscosity 5", "-fine_clamp none", "-fine_snapshots 0", "-fine_progress_interval 0", "-fine_tip_samples 1", "-output_dir test_sph_correction_out", "-ts_type basicsymplectic", "-ts_dt 1e-3", "-ts_max_time 10"}) PetscCall(PetscOptionsInsertString(NULL, opt));
   PetscCall(SpinningCell(PETSC_TRUE, &drift_on));
   PetscCall(SpinningCell(PETSC_FALSE, &drift_off));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "spinning cell, one revolution: |dL|/|L| corrected %.2e, uncorrected %.2e (ratio %.2e)\n", (double)drift_on, (double)drift_off, (double)(drift_off / drift_on)));

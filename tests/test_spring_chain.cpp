@@ -4,6 +4,7 @@ static const char help[] = "Undamped chain of wall springs with clamped ends:\n"
                            "2. velocity Verlet keeps the energy error bounded over 10^4 steps (within the modified-energy\n"
                            "   bound, and no drift); this caught PETSc defaulting basicsymplectic to symplectic Euler.\n";
 #include "test_util.h"
+#include <turgor/physics/wall_springs.h>
 
 using namespace turgor;
 
@@ -34,25 +35,37 @@ static PetscErrorCode Record(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Clamped chain of N+2 particles; initial displacement `shape(i)`; run `ts_type` for `steps` steps of dt. */
-static PetscErrorCode RunChain(const char *ts_type, PetscReal dt, PetscInt steps, bool first_mode, ChainRecord *rec)
+/* Clamped chain of N+2 undamped springs; initial displacement: the first mode or random; run
+   `ts_type` for `steps` fixed steps of dt. */
+static PetscErrorCode RunChain(TSType ts_type, PetscReal dt, PetscInt steps, bool first_mode, ChainRecord *rec)
 {
-  Tissue T;
+  Tissue  T;
+  FineRun run(PETSC_COMM_SELF);
+  auto    springs = std::make_unique<WallSprings>();
+  TSAdapt adapt;
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < N + 2; i++) T.AddParticle(i * l0, 0, m, KIND_WALL);
   for (PetscInt i = 0; i + 1 < N + 2; i++) T.AddSpring(i, i + 1);
   T.Finalize();
   turgor_test::Random rnd(1);
   for (PetscInt i = 1; i <= N; i++) T.X[2 * i] += first_mode ? 0.01 * std::sin(PETSC_PI * i / (N + 1)) : 0.5 * rnd();
-  char opt[64];
-  PetscCall(PetscOptionsSetValue(NULL, "-ts_type", ts_type));
-  PetscCall(PetscSNPrintf(opt, sizeof opt, "%g", (double)dt));
-  PetscCall(PetscOptionsSetValue(NULL, "-ts_dt", opt));
-  PetscCall(PetscSNPrintf(opt, sizeof opt, "%" PetscInt_FMT, steps));
-  PetscCall(PetscOptionsSetValue(NULL, "-ts_max_steps", opt));
-  FineRun run(PETSC_COMM_SELF);
+  springs->stiffness     = k;
+  springs->damping_ratio = 0;
+  run.Physics().names    = {}; /* no listed terms: the springs below only */
+  run.Physics().Add(std::move(springs));
+  run.Spec().clamp               = {"left", "right"};
+  run.Spec().dt                  = dt;
+  run.Output().dir               = "test_spring_chain_out";
+  run.Output().samples           = 1;
+  run.Output().snapshots         = 0;
+  run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());
   run.SetTissue(T);
+  PetscCall(TSSetType(run.GetTS(), ts_type));
+  PetscCall(TSSetMaxSteps(run.GetTS(), steps));
+  PetscCall(TSSetMaxTime(run.GetTS(), 1e6));
+  PetscCall(TSGetAdapt(run.GetTS(), &adapt));
+  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
   PetscCall(run.SetUp());
   PetscCall(TSMonitorSet(run.GetTS(), Record, rec, NULL));
   PetscCall(run.Solve());
@@ -73,10 +86,9 @@ int main(int argc, char **argv)
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
-  for (const char *opt : {"-physics springs", "-wall_damping_ratio 0", "-fine_clamp left,right", "-fine_snapshots 0", "-fine_progress_interval 0", "-fine_tip_samples 1", "-output_dir test_spring_chain_out", "-ts_max_time 1e6", "-ts_adapt_type none"}) PetscCall(PetscOptionsInsertString(NULL, opt));
   const PetscReal omega1 = 2 * std::sqrt(k / m) * std::sin(PETSC_PI / (2 * (N + 1))), T1 = 2 * PETSC_PI / omega1;
   const PetscReal omega_max = 2 * std::sqrt(k / m);
-  for (const char *type : {"rk", "basicsymplectic"}) {
+  for (TSType type : {TSRK, TSBASICSYMPLECTIC}) {
     ChainRecord rec;
     PetscCall(RunChain(type, T1 / 400, 4000, true, &rec)); /* ten periods */
     const PetscReal T = MeasuredPeriod(rec);
@@ -86,7 +98,7 @@ int main(int argc, char **argv)
   {
     /* all modes excited, dt at half the Verlet stability limit 2/omega_max */
     ChainRecord rec;
-    PetscCall(RunChain("basicsymplectic", 1.0 / omega_max, 10000, false, &rec));
+    PetscCall(RunChain(TSBASICSYMPLECTIC, 1.0 / omega_max, 10000, false, &rec));
     const PetscReal E0 = rec.E[0];
     PetscReal       emax = 0, mean_first = 0, mean_last = 0;
     const size_t    ns = rec.E.size(), w = 1000;

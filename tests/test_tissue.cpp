@@ -10,8 +10,8 @@ int main(int argc, char **argv)
   PetscCall(TurgorRegisterAll());
   {
     /* the seed's 16 x 16 tissue: 833 wall and 4096 SPH particles (TW 562 Fig. 2) */
-    TissueSpec spec;
-    Tissue     T;
+    SquareGridSpec spec;
+    Tissue         T;
     PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &T));
     const ParticleSet &P = T.particles;
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "16x16: %" PetscInt_FMT " wall, %" PetscInt_FMT " fluid, %zu springs\n", P.Count(KIND_WALL), P.Count(KIND_FLUID), P.springs.size()));
@@ -43,7 +43,7 @@ int main(int argc, char **argv)
   }
   {
     /* general counts: corners (nx+1)(ny+1) + (s-1) per wall segment */
-    TissueSpec spec;
+    SquareGridSpec spec;
     spec.cells_x          = 5;
     spec.cells_y          = 3;
     spec.springs_per_side = 4;

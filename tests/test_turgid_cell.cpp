@@ -8,16 +8,25 @@ static const char help[] = "A single closed square cell reaches a turgid equilib
 
 using namespace turgor;
 
-/* Relax a 400 µm cell with 64 x 64 fluid particles (the seed's spacing 6.25 µm) and smoothing
-   length h; return T / (p L / 2). The wall particles keep the seed's wall mass per length. */
-static PetscErrorCode LaplaceRatio(PetscReal h, PetscReal *ratio)
+/* Relax the cell for 50 µs (DOPRI, no clamps) with a viscous fluid (mu = 5) of smoothing length h;
+   return T / (p L / 2). */
+static PetscErrorCode LaplaceRatio(const Tissue &cell, PetscReal h, PetscReal *ratio)
 {
-  char hs[32];
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(hs, sizeof hs, "%g", (double)h));
-  PetscCall(PetscOptionsSetValue(NULL, "-sph_smoothing_length", hs));
   FineRun run(PETSC_COMM_SELF);
+  auto    fluid = std::make_unique<SPHFluid>();
+  PetscFunctionBeginUser;
+  fluid->smoothing_length = h;
+  fluid->viscosity        = 5;
+  run.Physics().names     = {"springs", "repulsion"};
+  run.Physics().Add(std::move(fluid));
+  run.Spec().clamp               = {"none"};
+  run.Output().dir               = "test_turgid_cell_out";
+  run.Output().samples           = 1;
+  run.Output().snapshots         = 0;
+  run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());
+  run.SetTissue(cell);
+  PetscCall(TSSetMaxTime(run.GetTS(), 50));
   PetscCall(run.SetUp());
   PetscCall(run.Solve());
 
@@ -73,18 +82,27 @@ static PetscErrorCode LaplaceRatio(PetscReal h, PetscReal *ratio)
 
 int main(int argc, char **argv)
 {
-  PetscReal seed, consistent;
+  SquareGridSpec spec;
+  Tissue         cell;
+  PetscReal      seed, consistent;
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
-  for (const char *opt : {"-tissue_cells_x 1", "-tissue_cells_y 1", "-tissue_cell_size 400", "-tissue_springs_per_side 1", "-tissue_fluid_per_cell 4096", "-tissue_wall_particle_mass 16", "-physics springs,repulsion,sph", "-sph_viscosity 5", "-fine_clamp none", "-fine_snapshots 0", "-fine_progress_interval 0", "-fine_tip_samples 1", "-output_dir test_turgid_cell_out", "-ts_max_time 50"}) PetscCall(PetscOptionsInsertString(NULL, opt));
+  /* a 400 µm cell with 64 x 64 fluid particles (the seed's spacing 6.25 µm); the wall particles
+     keep the seed's wall mass per length */
+  spec.cells_x = spec.cells_y = 1;
+  spec.cell_size              = 400;
+  spec.springs_per_side       = 1;
+  spec.fluid_per_cell         = 4096;
+  spec.wall_mass              = 16;
+  PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &cell));
   /* h = 1.1 dx: the SPH pressure gradient is consistent to 0.3% on a square lattice, so the balance
      tests the model (walls, repulsion, fluid) rather than the kernel's discretisation error */
-  PetscCall(LaplaceRatio(6.875, &consistent));
+  PetscCall(LaplaceRatio(cell, 6.875, &consistent));
   TG_CHECK(std::fabs(consistent - 1) < 0.02, "Laplace balance off by %.2f%%", 100 * (double)std::fabs(consistent - 1));
   /* the seed's h = 5.5 µm = 0.88 dx: sum_j V_j (-W') r / 2 = 0.965 on the lattice, so SPH transmits
      3.5% less than c_s^2 rho; docs/model.md */
-  PetscCall(LaplaceRatio(5.5, &seed));
+  PetscCall(LaplaceRatio(cell, 5.5, &seed));
   TG_CHECK(std::fabs(seed - 1) < 0.06, "Laplace balance at the seed's h off by %.2f%%", 100 * (double)std::fabs(seed - 1));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_turgid_cell: all checks passed\n"));
   PetscCall(PetscFinalize());

@@ -7,11 +7,12 @@ namespace turgor {
 
 PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir)
 {
-  char        buf[PETSC_MAX_PATH_LEN] = "./out";
+  char        buf[PETSC_MAX_PATH_LEN];
   PetscMPIInt rank;
   int         err = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(buf, dir->empty() ? "./out" : dir->c_str(), sizeof buf));
   PetscOptionsBegin(comm, NULL, "Output", "turgor");
   PetscCall(PetscOptionsString("-output_dir", "Directory for all outputs of the run", "turgor", buf, buf, sizeof buf, NULL));
   PetscOptionsEnd();

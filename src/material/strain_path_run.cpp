@@ -16,7 +16,8 @@ PetscErrorCode StrainPathRun::SetFromOptions()
   PetscCall(PetscOptionsBool("-tangents", "Also compute D^e and D^v at every step", "StrainPathRun", tangents_, &tangents_, NULL));
   PetscOptionsEnd();
   PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_steps = %" PetscInt_FMT ": must be >= 1", steps_);
-  PetscCheck(t_final_ > 0 && std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -path_t_final = %g must be > 0 and -path_rate = %g finite", (double)t_final_, (double)rate_);
+  PetscCheck(t_final_ > 0 && std::isfinite(t_final_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_t_final = %g: must be > 0 and finite", (double)t_final_);
+  PetscCheck(std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_rate = %g: must be finite", (double)rate_);
   PetscCall(pool_.SetFromOptions());
   PetscCall(OutputDirectory(comm_, &output_dir_));
   PetscFunctionReturn(PETSC_SUCCESS);

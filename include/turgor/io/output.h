@@ -9,7 +9,7 @@
 
 namespace turgor {
 
-/* Read -output_dir (default ./out), create it on rank 0, return its path. */
+/* Read -output_dir (default: *dir, or ./out if empty), create it on rank 0, return its path. */
 PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir);
 
 /* A CSV file with a header row; numbers are written with full precision. */
