@@ -21,8 +21,11 @@ static PetscErrorCode MakeTissue(PetscInt cells, Tissue *T)
   PetscFunctionBeginUser;
   spec.cells_x = spec.cells_y = cells;
   PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, T));
-  unsigned long long s = 12345;
-  auto rnd = [&]() { s = s * 6364136223846793005ULL + 1442695040888963407ULL; return ((s >> 11) * (1.0 / 9007199254740992.0)) * 2.0 - 1.0; };
+  unsigned long long s   = 12345;
+  auto               rnd = [&]() {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return ((s >> 11) * (1.0 / 9007199254740992.0)) * 2.0 - 1.0;
+  };
   for (PetscReal &x : T->X) x += 0.2 * rnd();
   T->V.resize(T->X.size());
   for (PetscReal &v : T->V) v = 0.1 * rnd();
@@ -89,8 +92,10 @@ int main(int argc, char **argv)
   PetscCheck(!physics_set, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Option -physics: the benchmark chooses the terms of each row itself");
   PetscCall(load.SetFromOptions(PETSC_COMM_SELF));
 
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "All terms (springs, repulsion, sph, body_force), one core; best of %" PetscInt_FMT " batches of >= %g s\n", repeats, (double)min_time));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%8s %10s %10s %12s %12s %14s %14s %12s\n", "cells", "particles", "ms/RHS", "RHS/s", "ns/particle", "updates/s", "bytes/particle", "fluid pairs"));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "All terms (springs, repulsion, sph, body_force), one core; best of %" PetscInt_FMT " batches of >= %g s\n", repeats,
+                        (double)min_time));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%8s %10s %10s %12s %12s %14s %14s %12s\n", "cells", "particles", "ms/RHS", "RHS/s", "ns/particle", "updates/s",
+                        "bytes/particle", "fluid pairs"));
   std::vector<PetscReal> per_particle;
   for (PetscInt k = 0; k < nsizes; k++) {
     PetscLogDouble mem0;
@@ -102,13 +107,16 @@ int main(int argc, char **argv)
     PetscCall(ListedPhysics("springs,repulsion,sph,body_force", load, &spec));
     PetscCall(TimeModel(T, spec, min_time, repeats, mem0, &t));
     per_particle.push_back(1e9 * t.seconds_per_eval / t.n);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%5" PetscInt_FMT "^2 %10" PetscInt_FMT " %10.4f %12.1f %12.1f %14.4g %14.0f %12" PetscInt_FMT "\n", sizes[k], t.n, 1e3 * t.seconds_per_eval, 1.0 / t.seconds_per_eval, per_particle.back(), t.n / t.seconds_per_eval, t.bytes_per_particle, t.pairs_fluid));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%5" PetscInt_FMT "^2 %10" PetscInt_FMT " %10.4f %12.1f %12.1f %14.4g %14.0f %12" PetscInt_FMT "\n", sizes[k], t.n,
+                          1e3 * t.seconds_per_eval, 1.0 / t.seconds_per_eval, per_particle.back(), t.n / t.seconds_per_eval, t.bytes_per_particle,
+                          t.pairs_fluid));
   }
   if (per_particle.size() > 1) {
     PetscReal lo = per_particle[0], hi = per_particle[0];
     for (PetscReal c : per_particle) lo = PetscMin(lo, c), hi = PetscMax(hi, c);
     PetscReal mean = 0.5 * (lo + hi);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "cost per particle: %.1f .. %.1f ns, i.e. within +-%.0f%% of %.1f ns\n", (double)lo, (double)hi, 100.0 * (hi - mean) / mean, (double)mean));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "cost per particle: %.1f .. %.1f ns, i.e. within +-%.0f%% of %.1f ns\n", (double)lo, (double)hi,
+                          100.0 * (hi - mean) / mean, (double)mean));
   }
 
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "\nPhysics subsets on the 16 x 16 tissue (a term that is off costs nothing):\n"));
@@ -122,7 +130,8 @@ int main(int argc, char **argv)
     PetscCall(MakeTissue(16, &T));
     PetscCall(ListedPhysics(physics, load, &spec));
     PetscCall(TimeModel(T, spec, min_time, repeats, mem0, &t));
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-36s %10.4f %12.1f %14" PetscInt_FMT " %14" PetscInt_FMT "\n", physics, 1e3 * t.seconds_per_eval, 1.0 / t.seconds_per_eval, t.pairs_fluid, t.pairs_spring));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-36s %10.4f %12.1f %14" PetscInt_FMT " %14" PetscInt_FMT "\n", physics, 1e3 * t.seconds_per_eval,
+                          1.0 / t.seconds_per_eval, t.pairs_fluid, t.pairs_spring));
   }
   PetscCall(PetscFinalize());
   return 0;

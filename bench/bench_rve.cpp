@@ -20,16 +20,21 @@ int main(int argc, char **argv)
   if (!set) ncells = 2;
   PetscCall(PetscOptionsInt("-repeats", "Repetitions (best time is reported)", "", repeats, &repeats, NULL));
   PetscOptionsEnd();
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%6s %9s %10s %7s %10s %7s %12s %12s %9s %11s\n", "cells", "unknowns", "cold [ms]", "its", "warm [ms]", "its", "warm/cold", "tangent[ms]", "its", "tan/cold"));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%6s %9s %10s %7s %10s %7s %12s %12s %9s %11s\n", "cells", "unknowns", "cold [ms]", "its", "warm [ms]", "its",
+                        "warm/cold", "tangent[ms]", "its", "tan/cold"));
   for (PetscInt c = 0; c < ncells; c++) {
     /* one material per RVE size (its options, e.g. -rve_psi_atol, still apply; -rve_cells would
        override -cells, so the size printed is the material's), a fresh point per repetition */
     RVEMaterial material;
     material.spec.cells = cells[c];
     PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
-    PetscReal      best[3] = {1e30, 1e30, 1e30};
-    PetscInt       its[3]  = {0, 0, 0}, unknowns = 0;
-    const Tensor2  F0 = {{{1.01, 0}, {0, 1}}}, F1 = {{{1.011, 0}, {0, 1}}}, Fd = {{{1e-3, 0}, {0, 0}}};
+    PetscReal     best[3] = {1e30, 1e30, 1e30};
+    PetscInt      its[3] = {0, 0, 0}, unknowns = 0;
+    const Tensor2 F0 =
+                    {
+                      {{1.01, 0}, {0, 1}}
+    },
+                  F1 = {{{1.011, 0}, {0, 1}}}, Fd = {{{1e-3, 0}, {0, 0}}};
     for (PetscInt r = 0; r < repeats; r++) {
       std::unique_ptr<MaterialPoint> point;
       MaterialResponse               a, b, s;
@@ -57,7 +62,10 @@ int main(int argc, char **argv)
       its[1]  = b.iterations;
       its[2]  = after.iterations - before.iterations;
     }
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%6" PetscInt_FMT " %9" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %12.3f %12.3f %9" PetscInt_FMT " %11.2f\n", material.spec.cells, unknowns, 1e3 * best[0], its[0], 1e3 * best[1], its[1], best[1] / best[0], 1e3 * best[2], its[2], best[2] / best[0]));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "%6" PetscInt_FMT " %9" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %10.3f %7" PetscInt_FMT " %12.3f %12.3f %9" PetscInt_FMT " %11.2f\n",
+                          material.spec.cells, unknowns, 1e3 * best[0], its[0], 1e3 * best[1], its[1], best[1] / best[0], 1e3 * best[2], its[2],
+                          best[2] / best[0]));
   }
   PetscCall(PetscFinalize());
   return 0;

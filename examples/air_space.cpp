@@ -10,8 +10,8 @@ static const char help[] = "A tissue with an intercellular air space, built with
 /* Copy `in` without the fluid particles of the cells in `empty`. */
 static turgor::Tissue WithoutFluid(const turgor::Tissue &in, const std::vector<PetscInt> &empty)
 {
-  turgor::Tissue out;
-  const auto    &P = in.particles;
+  turgor::Tissue        out;
+  const auto           &P = in.particles;
   std::vector<PetscInt> index(P.n, -1);
   for (PetscInt i = 0; i < P.n; i++) {
     if (P.kind[i] == turgor::KIND_FLUID && std::count(empty.begin(), empty.end(), P.cell[i])) continue;
@@ -39,7 +39,9 @@ int main(int argc, char **argv)
     turgor::FineRun run(PETSC_COMM_WORLD);
     PetscCall(run.SetFromOptions());
     PetscCall(run.Tissues().Generate(PETSC_COMM_WORLD, &tissue));
-    for (PetscInt k = 0; k < nempty; k++) PetscCheck(empty[k] >= 0 && empty[k] < tissue.NumCells(), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "Option -empty_cells: cell %" PetscInt_FMT " is not in 0..%" PetscInt_FMT, empty[k], tissue.NumCells() - 1);
+    for (PetscInt k = 0; k < nempty; k++)
+      PetscCheck(empty[k] >= 0 && empty[k] < tissue.NumCells(), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+                 "Option -empty_cells: cell %" PetscInt_FMT " is not in 0..%" PetscInt_FMT, empty[k], tissue.NumCells() - 1);
     run.SetTissue(WithoutFluid(tissue, std::vector<PetscInt>(empty, empty + nempty)));
     PetscCall(run.SetUp());
     PetscCall(run.Solve());

@@ -66,15 +66,15 @@ static PetscErrorCode IJacobian(TS ts, PetscReal t, Vec Y, Vec Ydot, PetscReal s
 
 int main(int argc, char **argv)
 {
-  const PetscReal    ref[2] = {1.706167732170469, -0.8928097010248125};
-  VdP                p;
-  TS                 ts;
-  Vec                Y;
-  Mat                J;
-  TSType             type;
-  TSConvergedReason  reason;
-  PetscReal          t, rtol, atol, err = 0;
-  PetscInt           steps, rejects;
+  const PetscReal   ref[2] = {1.706167732170469, -0.8928097010248125};
+  VdP               p;
+  TS                ts;
+  Vec               Y;
+  Mat               J;
+  TSType            type;
+  TSConvergedReason reason;
+  PetscReal         t, rtol, atol, err = 0;
+  PetscInt          steps, rejects;
   void (*radau_counters)(void);
   const PetscScalar *y;
 
@@ -112,23 +112,31 @@ int main(int argc, char **argv)
   PetscCall(TSGetTolerances(ts, &atol, NULL, &rtol, NULL));
   PetscCall(VecGetArrayRead(Y, &y));
   for (int i = 0; i < 2; i++) err = PetscMax(err, PetscAbsScalar(y[i] - ref[i]) / (atol + rtol * PetscAbsReal(ref[i])));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "van_der_pol: ts_type %s, rtol %g, atol %g, %s form: %s at t = %g\n", type, (double)rtol, (double)atol, p.mass ? "M = diag(1, eps)" : "M = I", TSConvergedReasons[reason], (double)t));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "  y(2) = (%.12f, %.12f), reference (%.12f, %.12f)\n", (double)PetscRealPart(y[0]), (double)PetscRealPart(y[1]), (double)ref[0], (double)ref[1]));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "van_der_pol: ts_type %s, rtol %g, atol %g, %s form: %s at t = %g\n", type, (double)rtol, (double)atol,
+                        p.mass ? "M = diag(1, eps)" : "M = I", TSConvergedReasons[reason], (double)t));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "  y(2) = (%.12f, %.12f), reference (%.12f, %.12f)\n", (double)PetscRealPart(y[0]), (double)PetscRealPart(y[1]),
+                        (double)ref[0], (double)ref[1]));
   PetscCall(VecRestoreArrayRead(Y, &y));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "  steps %" PetscInt_FMT ", rejected %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT ", IJacobian evaluations %" PetscInt_FMT "\n", steps, rejects, p.nf, p.nj));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "  steps %" PetscInt_FMT ", rejected %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT ", IJacobian evaluations %" PetscInt_FMT
+                        "\n",
+                        steps, rejects, p.nf, p.nj));
   /* by method, not by name: -ts_type radau5 may be the alias of radauiia */
   PetscCall(PetscObjectQueryFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", &radau_counters));
   if (radau_counters) {
     PetscInt jac, newton, solves;
     PetscCall(TSRadauIIAGetCounters(ts, &jac, &newton, &solves));
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  radauiia: Jacobian evaluations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT ", linear solves %" PetscInt_FMT "\n", jac, newton, solves));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "  radauiia: Jacobian evaluations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT ", linear solves %" PetscInt_FMT "\n", jac,
+                          newton, solves));
   } else {
     PetscInt snes_its, ksp_its;
     PetscCall(TSGetSNESIterations(ts, &snes_its));
     PetscCall(TSGetKSPIterations(ts, &ksp_its));
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "  nonlinear iterations %" PetscInt_FMT ", linear iterations %" PetscInt_FMT "\n", snes_its, ksp_its));
   }
-  PetscCheck(reason > 0 && PetscAbsReal(t - 2) < 1e-10, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "van_der_pol: the solve stopped at t = %g (%s)", (double)t, TSConvergedReasons[reason]);
+  PetscCheck(reason > 0 && PetscAbsReal(t - 2) < 1e-10, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "van_der_pol: the solve stopped at t = %g (%s)", (double)t,
+             TSConvergedReasons[reason]);
   PetscCheck(err <= 10, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "van_der_pol: error %.3g x (atol + rtol |ref|) exceeds 10", (double)err);
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "van_der_pol: error within tolerance scale: %.3g x (atol + rtol |ref|) <= 10\n", (double)err));
 

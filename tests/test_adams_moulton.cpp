@@ -12,7 +12,12 @@ static const char help[] = "The am TS type (variable-order Adams-Moulton with fu
 
 namespace {
 
-enum class Kind { forced, kepler, relax, vdp };
+enum class Kind {
+  forced,
+  kepler,
+  relax,
+  vdp
+};
 
 /* forced: y' = A (y - g(t)) + g'(t), A = [[-1, 1], [-1, -1]], g = (sin t, cos 2t), y(0) = g(0):
    y = g, and errors decay like exp(-t), so start-up errors vanish from long fixed-step runs.
@@ -76,7 +81,7 @@ PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
   PetscCall(VecGetArrayRead(Y, &y));
   PetscCall(VecGetArray(F, &f));
   if (p->kind == Kind::forced) {
-    const PetscReal g[2] = {std::sin(t), std::cos(2 * t)}, dg[2] = {std::cos(t), -2 * std::sin(2 * t)};
+    const PetscReal   g[2] = {std::sin(t), std::cos(2 * t)}, dg[2] = {std::cos(t), -2 * std::sin(2 * t)};
     const PetscScalar e0 = y[0] - g[0], e1 = y[1] - g[1];
     f[0] = -e0 + e1 + dg[0];
     f[1] = -e0 - e1 + dg[1];
@@ -129,7 +134,7 @@ PetscErrorCode DomainCheck(TS ts, PetscReal t, Vec Y, PetscBool *accept)
   PetscFunctionBeginUser;
   PetscCall(TSGetApplicationContext(ts, &p));
   PetscCall(TSGetTime(ts, &tn));
-  *accept = (PetscBool)!(p->hlim > 0 && t - tn > p->hlim * (1 + 1e-12));
+  *accept = (PetscBool) !(p->hlim > 0 && t - tn > p->hlim * (1 + 1e-12));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -146,7 +151,7 @@ PetscErrorCode SampleInterior(TS ts)
   PetscCall(TSGetTime(ts, &t1));
   if (!p->sample || t0 < p->t_sample) PetscFunctionReturn(PETSC_SUCCESS);
   for (PetscReal s : {0.2, 0.5, 0.8, 1.0}) {
-    const PetscReal t = t0 + s * (t1 - t0);
+    const PetscReal t   = t0 + s * (t1 - t0);
     PetscReal      *err = s < 1 ? &p->interp_err : &p->step_err;
     Vec             U   = p->X;
     if (s < 1) PetscCall(TSInterpolate(ts, t, p->X));
@@ -167,10 +172,10 @@ struct RunSpec {
   PetscBool              fixed_steps = PETSC_FALSE;
   TSExactFinalTimeOption final       = TS_EXACTFINALTIME_MATCHSTEP;
   /* defaults for this run only, set with TSAMSet*() (0: the type's own); -ts_am_* options override them */
-  PetscInt               max_order = 0, max_it = 0, max_conv_fails = 0;
-  PetscBool              fixed_order = PETSC_FALSE;
-  PetscBool              domain = PETSC_FALSE, ifunction = PETSC_FALSE;
-  const PetscReal       *reference = NULL; /* the solution at tf, if Exact() has none */
+  PetscInt         max_order = 0, max_it = 0, max_conv_fails = 0;
+  PetscBool        fixed_order = PETSC_FALSE;
+  PetscBool        domain = PETSC_FALSE, ifunction = PETSC_FALSE;
+  const PetscReal *reference = NULL; /* the solution at tf, if Exact() has none */
 };
 
 struct Result {
@@ -253,8 +258,11 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
 PetscErrorCode PrintRun(const char *what, const Result &r)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s: %s at t = %g, steps %" PetscInt_FMT ", rejected %" PetscInt_FMT " (fixed point %" PetscInt_FMT "), f evals %" PetscInt_FMT ", fixed-point its %" PetscInt_FMT ", final order %" PetscInt_FMT ", error %.3e (%.3g x tol)\n", what,
-                        TSConvergedReasons[r.reason], (double)r.t, r.steps, r.rejects, r.fails, r.nf, r.its, r.order, (double)r.err_max, (double)r.err_scaled));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "%s: %s at t = %g, steps %" PetscInt_FMT ", rejected %" PetscInt_FMT " (fixed point %" PetscInt_FMT "), f evals %" PetscInt_FMT
+                        ", fixed-point its %" PetscInt_FMT ", final order %" PetscInt_FMT ", error %.3e (%.3g x tol)\n",
+                        what, TSConvergedReasons[r.reason], (double)r.t, r.steps, r.rejects, r.fails, r.nf, r.its, r.order, (double)r.err_max,
+                        (double)r.err_scaled));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -264,7 +272,10 @@ PetscErrorCode CheckOrders()
   const PetscReal T = 40, hs[4] = {0.2, 0.1, 0.05, 0.025};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(1) fixed order q, fixed steps, forced linear problem on [0, %g] (start-up errors decay like exp(-t)); max error at the step points in [20, 40] and of TSInterpolate at 0.2, 0.5, 0.8 of those steps\n", (double)T));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "(1) fixed order q, fixed steps, forced linear problem on [0, %g] (start-up errors decay like exp(-t)); max error at the step points "
+                        "in [20, 40] and of TSInterpolate at 0.2, 0.5, 0.8 of those steps\n",
+                        (double)T));
   for (PetscInt q = 1; q <= 5; q++) {
     PetscReal e[4], ie[4];
     for (int k = 0; k < 4; k++) {
@@ -283,18 +294,24 @@ PetscErrorCode CheckOrders()
       s.max_it      = 40;
       PetscCall(Run(p, s, &r));
       const PetscInt N = (PetscInt)std::lround(T / hs[k]);
-      TG_CHECK(r.reason > 0 && r.steps == N && r.fails == 0, "q = %" PetscInt_FMT ", h = %g: %s after %" PetscInt_FMT " steps (expected %" PetscInt_FMT "), %" PetscInt_FMT " fixed-point failures", q, (double)hs[k], TSConvergedReasons[r.reason], r.steps, N, r.fails);
+      TG_CHECK(r.reason > 0 && r.steps == N && r.fails == 0,
+               "q = %" PetscInt_FMT ", h = %g: %s after %" PetscInt_FMT " steps (expected %" PetscInt_FMT "), %" PetscInt_FMT " fixed-point failures", q,
+               (double)hs[k], TSConvergedReasons[r.reason], r.steps, N, r.fails);
       TG_CHECK(r.order == q, "the order must be held at %" PetscInt_FMT ", got %" PetscInt_FMT, q, r.order);
       e[k]  = p.step_err;
       ie[k] = p.interp_err;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "    q = %" PetscInt_FMT ", h = %.3f (%4" PetscInt_FMT " steps, %5" PetscInt_FMT " f evals): error %.3e, interpolation error %.3e", q, (double)hs[k], r.steps, r.nf, (double)e[k], (double)ie[k]));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "    q = %" PetscInt_FMT ", h = %.3f (%4" PetscInt_FMT " steps, %5" PetscInt_FMT " f evals): error %.3e, interpolation error %.3e",
+                            q, (double)hs[k], r.steps, r.nf, (double)e[k], (double)ie[k]));
       if (k) PetscCall(PetscPrintf(PETSC_COMM_SELF, "  order %.3f, dense %.3f", (double)std::log2(e[k - 1] / e[k]), (double)std::log2(ie[k - 1] / ie[k])));
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n"));
     }
     const PetscReal order = std::log2(e[2] / e[3]), order2 = std::log2(e[1] / e[2]), dense = std::log2(ie[2] / ie[3]);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "    q = %" PetscInt_FMT ": observed order %.3f (h 0.05 -> 0.025), %.3f (0.1 -> 0.05); dense output %.3f\n", q, (double)order, (double)order2, (double)dense));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "    q = %" PetscInt_FMT ": observed order %.3f (h 0.05 -> 0.025), %.3f (0.1 -> 0.05); dense output %.3f\n", q,
+                          (double)order, (double)order2, (double)dense));
     TG_CHECK(std::fabs(order - q) <= 0.3 && std::fabs(order2 - q) <= 0.3, "order %" PetscInt_FMT ": observed %g and %g", q, (double)order, (double)order2);
-    TG_CHECK(std::fabs(dense - q) <= 0.3, "order %" PetscInt_FMT ": dense output order %g (the interpolant carries the global error, O(h^q))", q, (double)dense);
+    TG_CHECK(std::fabs(dense - q) <= 0.3, "order %" PetscInt_FMT ": dense output order %g (the interpolant carries the global error, O(h^q))", q,
+             (double)dense);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -337,7 +354,8 @@ PetscErrorCode VdPReference(PetscReal tf, PetscReal ref[2])
     PetscCall(VecDestroy(&Y));
   }
   const PetscReal d = PetscMax(std::fabs(r[0][0] - r[1][0]), std::fabs(r[0][1] - r[1][1]));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    radauiia reference y(%g) = (%.15f, %.15f), differs by %.1e from radauiia at 1e-12\n", (double)tf, (double)r[0][0], (double)r[0][1], (double)d));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    radauiia reference y(%g) = (%.15f, %.15f), differs by %.1e from radauiia at 1e-12\n", (double)tf, (double)r[0][0],
+                        (double)r[0][1], (double)d));
   TG_CHECK(d < 1e-10, "the radauiia reference is not converged: %g", (double)d);
   ref[0] = r[0][0];
   ref[1] = r[0][1];
@@ -366,15 +384,19 @@ PetscErrorCode CheckAdaptive()
     PetscCall(Run(p, s, &r));
     PetscCall(PetscSNPrintf(what, sizeof(what), "    rtol = atol = %g", (double)tols[k]));
     PetscCall(PrintRun(what, r));
-    TG_CHECK(r.reason > 0 && std::fabs(r.t - 2) <= 1e-14, "(4) MATCHSTEP must end at t = 2 exactly: %s at t = %.17g", TSConvergedReasons[r.reason], (double)r.t);
+    TG_CHECK(r.reason > 0 && std::fabs(r.t - 2) <= 1e-14, "(4) MATCHSTEP must end at t = 2 exactly: %s at t = %.17g", TSConvergedReasons[r.reason],
+             (double)r.t);
     TG_CHECK(r.err_scaled <= 100, "error %g x tolerance", (double)r.err_scaled);
-    TG_CHECK(r.nf == r.its + 2, "f evaluations: %" PetscInt_FMT " by the application, expected %" PetscInt_FMT " fixed-point iterations + 2 at the start", r.nf, r.its);
+    TG_CHECK(r.nf == r.its + 2, "f evaluations: %" PetscInt_FMT " by the application, expected %" PetscInt_FMT " fixed-point iterations + 2 at the start", r.nf,
+             r.its);
     err[k] = r.err_max;
   }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "    error ratios per factor 1000 in tolerance: %.3g, %.3g\n", (double)(err[0] / err[1]), (double)(err[1] / err[2])));
-  TG_CHECK(err[1] < err[0] / 10 && err[2] < err[1] / 10, "tolerance proportionality: errors %g, %g, %g for tolerances 1e-3, 1e-6, 1e-9", (double)err[0], (double)err[1], (double)err[2]);
+  TG_CHECK(err[1] < err[0] / 10 && err[2] < err[1] / 10, "tolerance proportionality: errors %g, %g, %g for tolerances 1e-3, 1e-6, 1e-9", (double)err[0],
+           (double)err[1], (double)err[2]);
 
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    Kepler e = 0.5 on [0, pi] (perihelion to aphelion) against the exact orbit; (3) TSInterpolate at 0.2, 0.5, 0.8 of every step\n"));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "    Kepler e = 0.5 on [0, pi] (perihelion to aphelion) against the exact orbit; (3) TSInterpolate at 0.2, 0.5, 0.8 of every step\n"));
   for (int k = 0; k < 3; k++) {
     Problem p;
     RunSpec s;
@@ -389,13 +411,17 @@ PetscErrorCode CheckAdaptive()
     PetscCall(Run(p, s, &r));
     PetscCall(PetscSNPrintf(what, sizeof(what), "    rtol = atol = %g", (double)tols[k]));
     PetscCall(PrintRun(what, r));
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "        largest error at the step points %.3g x tol, of TSInterpolate inside the steps %.3g x tol\n", (double)p.step_err, (double)p.interp_err));
-    TG_CHECK(r.reason > 0 && std::fabs(r.t - PETSC_PI) <= 1e-14, "(4) MATCHSTEP must end at t = pi exactly: %s at t = %.17g", TSConvergedReasons[r.reason], (double)r.t);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "        largest error at the step points %.3g x tol, of TSInterpolate inside the steps %.3g x tol\n",
+                          (double)p.step_err, (double)p.interp_err));
+    TG_CHECK(r.reason > 0 && std::fabs(r.t - PETSC_PI) <= 1e-14, "(4) MATCHSTEP must end at t = pi exactly: %s at t = %.17g", TSConvergedReasons[r.reason],
+             (double)r.t);
     TG_CHECK(p.step_err <= 300, "error %g x tolerance", (double)p.step_err);
-    TG_CHECK(p.interp_err <= 2 * p.step_err + 1, "(3) the dense output (%g x tol) must be about as accurate as the steps (%g x tol)", (double)p.interp_err, (double)p.step_err);
+    TG_CHECK(p.interp_err <= 2 * p.step_err + 1, "(3) the dense output (%g x tol) must be about as accurate as the steps (%g x tol)", (double)p.interp_err,
+             (double)p.step_err);
     err[k] = p.step_err * tols[k];
   }
-  TG_CHECK(err[1] < err[0] / 10 && err[2] < err[1] / 10, "tolerance proportionality: errors %g, %g, %g for tolerances 1e-3, 1e-6, 1e-9", (double)err[0], (double)err[1], (double)err[2]);
+  TG_CHECK(err[1] < err[0] / 10 && err[2] < err[1] / 10, "tolerance proportionality: errors %g, %g, %g for tolerances 1e-3, 1e-6, 1e-9", (double)err[0],
+           (double)err[1], (double)err[2]);
 
   /* (4) INTERPOLATE: the solution returned at max_time comes from the dense output */
   {
@@ -431,7 +457,8 @@ PetscErrorCode CheckStiff()
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(5) stiff y' = -1e4 (y - cos t) on [0, 1], rtol = atol = 1e-6", r));
     TG_CHECK(r.finite, "the state must stay finite");
-    TG_CHECK(r.reason > 0 || r.reason == TS_DIVERGED_NONLINEAR_SOLVE || r.reason == TS_DIVERGED_STEP_REJECTED, "unexpected reason %s", TSConvergedReasons[r.reason]);
+    TG_CHECK(r.reason > 0 || r.reason == TS_DIVERGED_NONLINEAR_SOLVE || r.reason == TS_DIVERGED_STEP_REJECTED, "unexpected reason %s",
+             TSConvergedReasons[r.reason]);
     if (r.reason > 0) {
       TG_CHECK(std::fabs(r.t - 1) < 1e-14, "t = %g", (double)r.t);
       TG_CHECK(r.err_scaled <= 100, "error %g x tolerance", (double)r.err_scaled);
@@ -442,16 +469,18 @@ PetscErrorCode CheckStiff()
     Problem p;
     RunSpec s;
     Result  r;
-    p.kind    = Kind::relax;
-    p.lambda  = 50;
-    s.tf      = 2;
-    s.dt      = 0;
-    s.tol     = 1e-6;
-    s.max_it  = 1;
+    p.kind   = Kind::relax;
+    p.lambda = 50;
+    s.tf     = 2;
+    s.dt     = 0;
+    s.tol    = 1e-6;
+    s.max_it = 1;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(6) y' = -50 (y - cos t) on [0, 2], TSAMSetMaxIterations(ts, 1)", r));
     TG_CHECK(r.reason > 0 && std::fabs(r.t - 2) < 1e-14, "%s at t = %g", TSConvergedReasons[r.reason], (double)r.t);
-    TG_CHECK(r.fails > 0 && r.rejects >= r.fails, "one iteration per attempt must produce counted fixed-point failures: %" PetscInt_FMT " failures, %" PetscInt_FMT " rejections", r.fails, r.rejects);
+    TG_CHECK(r.fails > 0 && r.rejects >= r.fails,
+             "one iteration per attempt must produce counted fixed-point failures: %" PetscInt_FMT " failures, %" PetscInt_FMT " rejections", r.fails,
+             r.rejects);
     TG_CHECK(r.err_scaled <= 100, "error %g x tolerance", (double)r.err_scaled);
   }
   {
@@ -467,7 +496,9 @@ PetscErrorCode CheckStiff()
     s.max_conv_fails = 3;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(6) stiff, first step 1, TSAMSetMaxConvergenceFailures(ts, 3)", r));
-    TG_CHECK(r.reason == TS_DIVERGED_NONLINEAR_SOLVE && r.fails == 3 && r.steps == 0 && r.finite, "expected DIVERGED_NONLINEAR_SOLVE after 3 fixed-point failures in the first step: %s, %" PetscInt_FMT " failures, %" PetscInt_FMT " steps", TSConvergedReasons[r.reason], r.fails, r.steps);
+    TG_CHECK(r.reason == TS_DIVERGED_NONLINEAR_SOLVE && r.fails == 3 && r.steps == 0 && r.finite,
+             "expected DIVERGED_NONLINEAR_SOLVE after 3 fixed-point failures in the first step: %s, %" PetscInt_FMT " failures, %" PetscInt_FMT " steps",
+             TSConvergedReasons[r.reason], r.fails, r.steps);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -580,7 +611,10 @@ PetscErrorCode CheckSetters()
   PetscCall(TSAMGetFixedOrder(ts, &fixed));
   PetscCall(TSAMGetMaxIterations(ts, &its));
   PetscCall(TSAMGetMaxConvergenceFailures(ts, &fails));
-  TG_CHECK(q == 5 && fixed && its == 7 && fails == 4, "set before TSSetFromOptions(): max order %" PetscInt_FMT ", fixed %d, iterations %" PetscInt_FMT ", failures %" PetscInt_FMT " (expected 5, 1, 7, 4)", q, (int)fixed, its, fails);
+  TG_CHECK(q == 5 && fixed && its == 7 && fails == 4,
+           "set before TSSetFromOptions(): max order %" PetscInt_FMT ", fixed %d, iterations %" PetscInt_FMT ", failures %" PetscInt_FMT
+           " (expected 5, 1, 7, 4)",
+           q, (int)fixed, its, fails);
   /* options given for the TS still win over the values set in code */
   PetscCall(PetscOptionsSetValue(opts, "-ts_am_max_order", "3"));
   PetscCall(PetscOptionsSetValue(opts, "-ts_am_max_iterations", "2"));
@@ -594,7 +628,8 @@ PetscErrorCode CheckSetters()
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   const PetscErrorCode e_order = TSAMSetMaxOrder(ts, 13), e_its = TSAMSetMaxIterations(ts, 0), e_fails = TSAMSetMaxConvergenceFailures(ts, 0);
   PetscCall(PetscPopErrorHandler());
-  TG_CHECK(e_order == PETSC_ERR_ARG_OUTOFRANGE && e_its == PETSC_ERR_ARG_OUTOFRANGE && e_fails == PETSC_ERR_ARG_OUTOFRANGE, "out-of-range values must fail with PETSC_ERR_ARG_OUTOFRANGE: %d %d %d", (int)e_order, (int)e_its, (int)e_fails);
+  TG_CHECK(e_order == PETSC_ERR_ARG_OUTOFRANGE && e_its == PETSC_ERR_ARG_OUTOFRANGE && e_fails == PETSC_ERR_ARG_OUTOFRANGE,
+           "out-of-range values must fail with PETSC_ERR_ARG_OUTOFRANGE: %d %d %d", (int)e_order, (int)e_its, (int)e_fails);
   PetscCall(TSAMGetMaxOrder(ts, &q));
   TG_CHECK(q == 3, "a rejected value changed the maximum order to %" PetscInt_FMT, q);
   /* another type ignores the setters */
@@ -607,7 +642,8 @@ PetscErrorCode CheckSetters()
   TG_CHECK(!method, "a TS changed to rk still has TSAMGetMaxOrder_C");
   PetscCall(TSDestroy(&ts));
   PetscCall(PetscOptionsDestroy(&opts));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(10) TSAMSetMaxOrder/FixedOrder/MaxIterations/MaxConvergenceFailures before TSSetFromOptions() are used; -ts_am_* options override them; 13, 0, 0 are rejected; no-op on rk\n"));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(10) TSAMSetMaxOrder/FixedOrder/MaxIterations/MaxConvergenceFailures before TSSetFromOptions() are used; -ts_am_* "
+                                         "options override them; 13, 0, 0 are rejected; no-op on rk\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -39,11 +39,11 @@ static PetscErrorCode StaticJacobian(SNES snes, Vec U, Mat A, Mat B, void *ctx)
    (the displacement rows have no diagonal without a time-step shift). */
 static PetscErrorCode StaticSolve(CoarseModel &model, Vec U, PetscInt *its)
 {
-  SNES          snes;
-  Mat           J;
-  KSP           ksp;
-  PC            pc;
-  StaticContext ctx = {&model, NULL};
+  SNES                snes;
+  Mat                 J;
+  KSP                 ksp;
+  PC                  pc;
+  StaticContext       ctx = {&model, NULL};
   SNESConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(U, &ctx.zero));
@@ -112,17 +112,20 @@ static void SetBodyForce(CoarseModel &model, PetscReal gx, PetscReal gy)
 /* 1. Patch test on a distorted 4 x 4 mesh. */
 static PetscErrorCode PatchTest()
 {
-  const PetscReal F0[2][2] = {{1.02, 0.03}, {-0.01, 0.97}};
-  DM              dm;
-  PetscInt        faces[2] = {4, 4}, its;
-  PetscReal       lo[2] = {0, 0}, hi[2] = {400, 400};
+  const PetscReal F0[2][2] = {
+    {1.02,  0.03},
+    {-0.01, 0.97}
+  };
+  DM        dm;
+  PetscInt  faces[2] = {4, 4}, its;
+  PetscReal lo[2] = {0, 0}, hi[2] = {400, 400};
   PetscFunctionBeginUser;
   PetscCall(DMPlexCreateBoxMesh(PETSC_COMM_WORLD, 2, PETSC_FALSE, faces, lo, hi, NULL, PETSC_TRUE, &dm));
   {
     /* move every interior vertex at random by up to 30 µm (elements stay convex) */
-    Vec          c;
-    PetscScalar *x;
-    PetscInt     n;
+    Vec                 c;
+    PetscScalar        *x;
+    PetscInt            n;
     turgor_test::Random rnd(21);
     PetscCall(DMGetCoordinatesLocal(dm, &c));
     PetscCall(VecGetLocalSize(c, &n));
@@ -180,7 +183,10 @@ static PetscErrorCode PatchTest()
   PetscCall(VecRestoreArrayRead(Ul, &u));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &umax, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "1. patch test, distorted 4 x 4 mesh, F0 = [1.02 0.03; -0.01 0.97]: max |u - (F0 - I) X| = %.2e µm (|u| up to %.3g µm), %" PetscInt_FMT " Newton iterations\n", (double)err, (double)umax, its));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                        "1. patch test, distorted 4 x 4 mesh, F0 = [1.02 0.03; -0.01 0.97]: max |u - (F0 - I) X| = %.2e µm (|u| up to %.3g µm), %" PetscInt_FMT
+                        " Newton iterations\n",
+                        (double)err, (double)umax, its));
   TG_CHECK(err < 1e-10 * umax, "the patch test fails: %.3e", (double)err);
   PetscCall(VecDestroy(&Ul));
   PetscCall(VecDestroy(&U));
@@ -241,7 +247,8 @@ static PetscErrorCode JacobianCheck(const char *material, PetscReal tol)
   PetscCall(VecNorm(Fp, NORM_2, &nfd));
   PetscCall(VecAXPY(Fp, -1.0, Jw));
   PetscCall(VecNorm(Fp, NORM_2, &ndiff));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "2. Jacobian (%s, 2 x 2 elements) against central differences of the residual: |J w - FD| / |FD| = %.2e\n", material, (double)(ndiff / nfd)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "2. Jacobian (%s, 2 x 2 elements) against central differences of the residual: |J w - FD| / |FD| = %.2e\n", material,
+                        (double)(ndiff / nfd)));
   TG_CHECK(ndiff <= tol * nfd, "the assembled Jacobian is not the derivative of the residual (%.3e)", (double)(ndiff / nfd));
   PetscCall(MatDestroy(&J));
   for (Vec *v : {&U, &Ud, &w, &Jw, &Fp, &Fm, &Up}) PetscCall(VecDestroy(v));
@@ -265,7 +272,7 @@ static PetscErrorCode Cantilever(PetscInt nx, PetscInt ny, PetscReal *deflection
   PetscCall(VecZeroEntries(U));
   PetscCall(StaticSolve(model, U, &its));
   PetscCall(model.TipDisplacement(U, deflection));
-  *deflection = -*deflection;
+  *deflection        = -*deflection;
   const PetscReal mu = 500, lambda = 1000, L = 400, H = 100, rho = 0.0126, g = 1e-2;
   const PetscReal E = 4 * mu * (lambda + mu) / (lambda + 2 * mu), nu = lambda / (lambda + 2 * mu) / (1 + lambda / (lambda + 2 * mu)) * 1.0;
   const PetscReal q = rho * g * H, I = H * H * H / 12, kappa = 10 * (1 + nu) / (12 + 11 * nu);
@@ -285,12 +292,24 @@ int main(int argc, char **argv)
   /* uniform refinement through the 32 x 8 mesh; the observed order from the three finest meshes,
      the model error (clamped edge vs beam theory) from their extrapolated limit */
   PetscReal      d[5], t = 0;
-  const PetscInt n[5][2] = {{4, 1}, {8, 2}, {16, 4}, {32, 8}, {64, 16}};
+  const PetscInt n[5][2] = {
+    {4,  1 },
+    {8,  2 },
+    {16, 4 },
+    {32, 8 },
+    {64, 16}
+  };
   for (int k = 0; k < 5; k++) PetscCall(Cantilever(n[k][0], n[k][1], &d[k], &t));
   const PetscReal order = std::log2((d[2] - d[3]) / (d[3] - d[4]));
   const PetscReal limit = d[4] + (d[4] - d[3]) / (std::pow(2.0, order) - 1);
-  for (int k = 0; k < 5; k++) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "3. cantilever 400 x 100 µm, %2" PetscInt_FMT " x %2" PetscInt_FMT " elements: tip deflection %.6f µm, %+.2f%% from Timoshenko (%.6f µm), %.1e from the extrapolated limit\n", n[k][0], n[k][1], (double)d[k], 100 * (double)((d[k] - t) / t), (double)t, (double)(std::fabs(d[k] - limit) / limit)));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "   observed order %.2f (expected 2 for Q1); extrapolated limit %.6f µm, %+.2f%% from Timoshenko (the clamped edge)\n", (double)order, (double)limit, 100 * (double)((limit - t) / t)));
+  for (int k = 0; k < 5; k++)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                          "3. cantilever 400 x 100 µm, %2" PetscInt_FMT " x %2" PetscInt_FMT
+                          " elements: tip deflection %.6f µm, %+.2f%% from Timoshenko (%.6f µm), %.1e from the extrapolated limit\n",
+                          n[k][0], n[k][1], (double)d[k], 100 * (double)((d[k] - t) / t), (double)t, (double)(std::fabs(d[k] - limit) / limit)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                        "   observed order %.2f (expected 2 for Q1); extrapolated limit %.6f µm, %+.2f%% from Timoshenko (the clamped edge)\n", (double)order,
+                        (double)limit, 100 * (double)((limit - t) / t)));
   TG_CHECK(std::fabs(d[3] - t) < 0.02 * t, "32 x 8 mesh: tip deflection %.5f is not within 2%% of Timoshenko's %.5f", (double)d[3], (double)t);
   TG_CHECK(order > 1.8, "the discretisation error does not fall at second order (observed %.2f)", (double)order);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "test_coarse: all checks passed\n"));

@@ -15,7 +15,10 @@ static Momenta Measure(const ParticleSet &Pset, Vec U)
 {
   const PetscScalar *u;
   const PetscInt     n = Pset.n;
-  Momenta            m = {{0, 0}, 0, 0, 0};
+  Momenta            m = {
+               {0, 0},
+               0, 0, 0
+  };
   VecGetArrayRead(U, &u);
   for (PetscInt i = 0; i < n; i++) {
     const PetscReal x = u[2 * i], y = u[2 * i + 1], vx = u[2 * n + 2 * i], vy = u[2 * n + 2 * i + 1], mi = Pset.mass[i];
@@ -67,9 +70,10 @@ static PetscErrorCode RunCase(const char *physics, TSType ts_type, const Tissue 
   PetscCall(TSGetStepNumber(run.GetTS(), &steps));
   TG_CHECK(steps == 1000, "expected 1000 steps, took %" PetscInt_FMT, steps);
   const Momenta b = Measure(T.particles, run.GetState());
-  *dP = std::hypot(b.P[0] - a.P[0], b.P[1] - a.P[1]) / a.Pscale;
-  *dL = std::fabs(b.L - a.L) / a.Lscale;
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-26s %-16s |dP|/sum m|v| = %.2e   |dL|/sum m|x||v| = %.2e   (%" PetscInt_FMT " RHS evaluations)\n", physics, ts_type, (double)*dP, (double)*dL, run.RHSEvaluations()));
+  *dP             = std::hypot(b.P[0] - a.P[0], b.P[1] - a.P[1]) / a.Pscale;
+  *dL             = std::fabs(b.L - a.L) / a.Lscale;
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-26s %-16s |dP|/sum m|v| = %.2e   |dL|/sum m|x||v| = %.2e   (%" PetscInt_FMT " RHS evaluations)\n", physics, ts_type,
+                        (double)*dP, (double)*dL, run.RHSEvaluations()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -26,8 +26,8 @@ static PetscErrorCode DisorderedTissue(PetscReal amp, Tissue *T)
    large (sum m c^2 ln rho) compared with its variations, so it needs a larger step against round-off. */
 static PetscErrorCode CompareWithEnergy(ForceModel &model, const Tissue &T, const char *name, PetscReal tol, PetscReal h = 1e-6)
 {
-  const PetscInt         n = T.particles.n;
-  std::vector<PetscReal> x = T.X, v(2 * n, 0.0), f(2 * n);
+  const PetscInt         n    = T.particles.n;
+  std::vector<PetscReal> x    = T.X, v(2 * n, 0.0), f(2 * n);
   PetscReal              fmax = 0, err = 0, Ep, Em;
   PetscBool              complete;
   PetscFunctionBeginUser;
@@ -93,7 +93,7 @@ static PetscErrorCode RepulsionAngleFactor()
     std::vector<PetscReal> f_on(6), f_off(6), v(6, 0.0);
     for (PetscBool angle : {PETSC_TRUE, PETSC_FALSE}) {
       ForceModel model;
-      auto       rep   = std::make_unique<Repulsion>();
+      auto       rep    = std::make_unique<Repulsion>();
       rep->angle_factor = angle;
       PetscCall(ModelOf(std::move(rep), T, &model));
       PetscCall(model.ComputeForces(T.X.data(), v.data(), angle ? f_on.data() : f_off.data(), NULL));
@@ -104,7 +104,8 @@ static PetscErrorCode RepulsionAngleFactor()
     TG_CHECK(f_off[4] * dx + f_off[5] * dy > 0, "repulsion must push the particle away");
     TG_CHECK_CLOSE(f_on[0] + f_on[2] + f_on[4], 0.0, 1e-14, std::fabs(f_on[5]), "repulsion x momentum");
     TG_CHECK_CLOSE(f_on[1] + f_on[3] + f_on[5], 0.0, 1e-14, std::fabs(f_on[5]), "repulsion y momentum");
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion at x = %4.1f: cos(alpha) = %.4f, |F| = %.4g µN\n", (double)px, (double)cosa, (double)std::hypot(f_on[4], f_on[5])));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion at x = %4.1f: cos(alpha) = %.4f, |F| = %.4g µN\n", (double)px, (double)cosa,
+                          (double)std::hypot(f_on[4], f_on[5])));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -132,7 +133,8 @@ static PetscErrorCode DampingTerms()
     const PetscReal gamma = 2 * std::sqrt(0.5 * 4000.0), vn = (v[2] - v[0]) * ex + (v[3] - v[1]) * ey;
     TG_CHECK_CLOSE(f[0] - f0[0], gamma * vn * ex, 1e-12, std::fabs(gamma * vn), "dashpot force x");
     TG_CHECK_CLOSE(f[1] - f0[1], gamma * vn * ey, 1e-12, std::fabs(gamma * vn), "dashpot force y");
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "spring dashpot: %.6g µN along the spring, as gamma (e . v_ij) with gamma = %.6g ng/µs\n", (double)((f[0] - f0[0]) * ex + (f[1] - f0[1]) * ey), (double)gamma));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "spring dashpot: %.6g µN along the spring, as gamma (e . v_ij) with gamma = %.6g ng/µs\n",
+                          (double)((f[0] - f0[0]) * ex + (f[1] - f0[1]) * ey), (double)gamma));
   }
   {
     Tissue T;
@@ -167,7 +169,7 @@ static PetscErrorCode DampingTerms()
       std::vector<PetscReal>       f(6), f0(6);
       ForceModel                   model;
       auto                         rep = std::make_unique<Repulsion>();
-      rep->damping_taper             = taper;
+      rep->damping_taper               = taper;
       PetscCall(ModelOf(std::move(rep), T, &model));
       PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
       PetscCall(model.ComputeForces(T.X.data(), v0.data(), f0.data(), NULL));
@@ -175,7 +177,8 @@ static PetscErrorCode DampingTerms()
       const PetscReal ratio   = std::fabs(f[5] - f0[5]) / literal;
       if (taper) TG_CHECK(ratio < 1e-5, "tapered repulsion damping must vanish at the cutoff");
       else TG_CHECK(std::fabs(ratio - 1) < 1e-5, "the literal damping keeps its full value at the cutoff");
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "repulsion damping at r = x0 (1 - 1e-6), taper %s: %.3g of the literal value\n", taper ? "on" : "off", (double)ratio));
+      PetscCall(
+        PetscPrintf(PETSC_COMM_SELF, "repulsion damping at r = x0 (1 - 1e-6), taper %s: %.3g of the literal value\n", taper ? "on" : "off", (double)ratio));
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -208,7 +211,8 @@ static PetscErrorCode ViscousPower(const Tissue &T, PetscBool correction)
     const PetscReal  txx = mu * (2 * g[0] - 2.0 / 3.0 * tr), tyy = mu * (2 * g[3] - 2.0 / 3.0 * tr), txy = mu * (g[1] + g[2]);
     ps -= T.particles.mass[i] / rho[i] * (txx * g[0] + txy * (g[1] + g[2]) + tyy * g[3]);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "viscous power (correction %-3s): sum f.v = %.12g, -sum V tau:grad v = %.12g\n", correction ? "on" : "off", (double)pf, (double)ps));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "viscous power (correction %-3s): sum f.v = %.12g, -sum V tau:grad v = %.12g\n", correction ? "on" : "off", (double)pf,
+                        (double)ps));
   TG_CHECK(ps < 0, "viscosity must dissipate");
   TG_CHECK_CLOSE(pf, ps, 1e-10, 0, "viscous power identity");
   PetscFunctionReturn(PETSC_SUCCESS);

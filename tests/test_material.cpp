@@ -29,8 +29,11 @@ int main(int argc, char **argv)
   PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
   NeoHookean *const nhp = dynamic_cast<NeoHookean *>(point.get());
   TG_CHECK(nhp, "the neo_hookean material must create NeoHookean points");
-  NeoHookean &nh = *nhp;
-  const Tensor2 Fs[] = {Tensor2::Identity(), {{{1.1, 0.0}, {0.0, 0.95}}}, {{{1.0, 0.2}, {0.0, 1.0}}}, Tensor2::Rotation(0.7) * Tensor2{{{1.05, 0.1}, {-0.05, 0.9}}}};
+  NeoHookean   &nh   = *nhp;
+  const Tensor2 Fs[] = {Tensor2::Identity(),
+                        {{{1.1, 0.0}, {0.0, 0.95}}},
+                        {{{1.0, 0.2}, {0.0, 1.0}}},
+                        Tensor2::Rotation(0.7) * Tensor2{{{1.05, 0.1}, {-0.05, 0.9}}}};
   for (const Tensor2 &F : Fs) {
     Tangents         fd, cd, exact;
     MaterialResponse base, status;
@@ -43,13 +46,19 @@ int main(int argc, char **argv)
     opt.U       = 1e-10; /* central differences tolerate a larger step */
     PetscCall(ComputeTangents(nh, F, Tensor2::Zero(), base, opt, &cd, &status));
     const PetscReal efe = MaxRelDiff(fd.De, exact.De), efv = MaxRelDiff(fd.Dv, exact.Dv), ece = MaxRelDiff(cd.De, exact.De), ecv = MaxRelDiff(cd.Dv, exact.Dv);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "F = [%5.3f %5.3f; %5.3f %5.3f]: D^e forward %.2e central %.2e, D^v forward %.2e central %.2e (relative to max entry)\n", (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)efe, (double)ece, (double)efv, (double)ecv));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "F = [%5.3f %5.3f; %5.3f %5.3f]: D^e forward %.2e central %.2e, D^v forward %.2e central %.2e (relative to max entry)\n",
+                          (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)efe, (double)ece, (double)efv, (double)ecv));
     TG_CHECK(efe < 1e-6 && ece < 1e-6, "D^e differs from the analytic tangent");
     TG_CHECK(efv < 1e-6 && ecv < 1e-6, "D^v differs from the analytic tangent");
   }
   {
     MaterialResponse r;
-    PetscCall(nh.Evaluate({{{1, 0}, {0, -0.5}}}, Tensor2::Zero(), EvaluationKind::Trial, &r));
+    PetscCall(nh.Evaluate(
+      {
+        {{1, 0}, {0, -0.5}}
+    },
+      Tensor2::Zero(), EvaluationKind::Trial, &r));
     TG_CHECK(!r.ok, "an inverted deformation must be a failed evaluation");
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "inverted F: ok = %d, reason: %s\n", (int)r.ok, r.reason.c_str()));
   }

@@ -28,8 +28,12 @@ int main(int argc, char **argv)
     std::vector<Tangents>         D(n);
     for (PetscInt k = 0; k < n; k++) {
       const PetscReal g = offset + k;
-      F[k]              = {{{1 + 0.01 * g, 0.003 * g}, {0.001 * g, 1 - 0.005 * g}}};
-      Fd[k]             = {{{0.001 * g, 0.002}, {0.0, -0.001}}};
+      F[k]              = {
+                     {{1 + 0.01 * g, 0.003 * g}, {0.001 * g, 1 - 0.005 * g}}
+      };
+      Fd[k] = {
+        {{0.001 * g, 0.002}, {0.0, -0.001}}
+      };
     }
     PetscCall(pool.Evaluate(F.data(), Fd.data(), r.data(), D.data()));
     std::vector<PetscReal> mine, all(N * 23);
@@ -54,7 +58,10 @@ int main(int argc, char **argv)
     PetscCall(PetscFClose(PETSC_COMM_WORLD, fp));
     MaterialCounters c;
     PetscCall(pool.GlobalCounters(&c));
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%d ranks, %" PetscInt_FMT " groups: %" PetscInt_FMT " points, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, sigma_11 of point 5 = %.12g N/m\n", size, pool.NumGroups(), pool.NumGlobal(), c.solves, c.iterations, (double)all[23 * 5]));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                          "%d ranks, %" PetscInt_FMT " groups: %" PetscInt_FMT " points, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT
+                          " Psi-tc iterations, sigma_11 of point 5 = %.12g N/m\n",
+                          size, pool.NumGroups(), pool.NumGlobal(), c.solves, c.iterations, (double)all[23 * 5]));
     TG_CHECK(c.solves == N * 7, "expected one trial and six tangent solves per point, got %" PetscInt_FMT, c.solves);
   }
   PetscCall(PetscFinalize());

@@ -14,8 +14,16 @@ static const char help[] = "The radauiia TS type (Radau IIA, order 5): (a) its c
 
 namespace {
 
-enum class Kind { oscillator, stiff };
-enum class Domain { none, nan_values, callback, snes_flag };
+enum class Kind {
+  oscillator,
+  stiff
+};
+enum class Domain {
+  none,
+  nan_values,
+  callback,
+  snes_flag
+};
 
 /* oscillator: M U' = L U with M = [[2,1],[1,3]], L = M B, B = [[-1/2, 2], [-2, -1/2]],
    U = exp(-t/2) [[cos 2t, sin 2t], [-sin 2t, cos 2t]] U(0), U(0) = (1, 0.5).
@@ -226,7 +234,7 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscReal          u0[2];
 
   PetscFunctionBeginUser;
-  p.nf = p.nj = 0;
+  p.nf = p.nj  = 0;
   p.interp_err = 0;
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &U));
   PetscCall(VecDuplicate(U, &p.X));
@@ -302,8 +310,10 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
 PetscErrorCode PrintRun(const char *what, const Result &r)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s: t = %g, steps %" PetscInt_FMT ", rejected %" PetscInt_FMT ", Jacobian evals %" PetscInt_FMT " (callback %" PetscInt_FMT "), Newton its %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", F evals %" PetscInt_FMT ", error %.3e (%.3g x tol)\n", what,
-                        (double)r.t, r.steps, r.rejects, r.jac, r.nj, r.newton, r.solves, r.nf, (double)r.err_max, (double)r.err_scaled));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "%s: t = %g, steps %" PetscInt_FMT ", rejected %" PetscInt_FMT ", Jacobian evals %" PetscInt_FMT " (callback %" PetscInt_FMT
+                        "), Newton its %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", F evals %" PetscInt_FMT ", error %.3e (%.3g x tol)\n",
+                        what, (double)r.t, r.steps, r.rejects, r.jac, r.nj, r.newton, r.solves, r.nf, (double)r.err_max, (double)r.err_scaled));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -311,11 +321,12 @@ PetscErrorCode PrintRun(const char *what, const Result &r)
 PetscErrorCode CheckTableau()
 {
   TSRadauIIATableau t;
-  const PetscReal s6 = std::sqrt(6.0);
+  const PetscReal   s6 = std::sqrt(6.0);
 
   PetscFunctionBeginUser;
   PetscCall(TSRadauIIAGetTableau(&t));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(a) c = (%.16f, %.16f, %g); gamma = %.15f, alpha = %.15f, beta = %.15f, gamma0 = %.15f\n", (double)t.c[0], (double)t.c[1], (double)t.c[2], (double)t.gamma, (double)t.alpha, (double)t.beta, (double)t.gamma0));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(a) c = (%.16f, %.16f, %g); gamma = %.15f, alpha = %.15f, beta = %.15f, gamma0 = %.15f\n", (double)t.c[0],
+                        (double)t.c[1], (double)t.c[2], (double)t.gamma, (double)t.alpha, (double)t.beta, (double)t.gamma0));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "    e = (%.15f, %.15f, %.15f)\n", (double)t.e[0], (double)t.e[1], (double)t.e[2]));
   /* Radau right points: zeros of d^2/dx^2 [x^2 (x-1)^3] = 20x^3 - 36x^2 + 18x - 2 */
   for (int i = 0; i < 3; i++) {
@@ -370,12 +381,14 @@ PetscErrorCode CheckTableau()
       dL   = PetscMax(dL, std::fabs(s3 - s4));
       dLam = PetscMax(dLam, std::fabs(t.Lambda[i][j] - Lam[i][j]));
     }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    |Ainv A - I| %.2e, |T Tinv - I| %.2e, |Ainv T - T Lambda| %.2e, |Lambda - block form| %.2e\n", (double)dI, (double)dT, (double)dL, (double)dLam));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    |Ainv A - I| %.2e, |T Tinv - I| %.2e, |Ainv T - T Lambda| %.2e, |Lambda - block form| %.2e\n", (double)dI,
+                        (double)dT, (double)dL, (double)dLam));
   TG_CHECK(dI < 1e-12 && dT < 1e-12 && dL < 1e-12 && dLam < 1e-12, "the eigen-decomposition of Ainv is wrong");
   /* eigenvalues of Ainv are the zeros of the Pade(2,3) denominator 1 - 3z/5 + 3z^2/20 - z^3/60 */
   for (std::complex<PetscReal> z : {std::complex<PetscReal>(t.gamma, 0), std::complex<PetscReal>(t.alpha, t.beta)}) {
     const std::complex<PetscReal> q = 1.0 - 3.0 * z / 5.0 + 3.0 * z * z / 20.0 - z * z * z / 60.0;
-    TG_CHECK(std::abs(q) < 1e-13, "eigenvalue (%g, %g) is not a pole of the stability function (|Q| = %g)", (double)z.real(), (double)z.imag(), (double)std::abs(q));
+    TG_CHECK(std::abs(q) < 1e-13, "eigenvalue (%g, %g) is not a pole of the stability function (|Q| = %g)", (double)z.real(), (double)z.imag(),
+             (double)std::abs(q));
   }
   TG_CHECK_CLOSE(t.gamma0 * t.gamma, 1, 1e-15, 1, "gamma0 = 1/gamma");
   /* the error constants in closed form, and the embedded quadrature they imply */
@@ -388,7 +401,8 @@ PetscErrorCode CheckTableau()
   }
   for (int k = 0; k < 4; k++)
     for (int i = 0; i < 3; i++) cond[k] += bhat[i] * std::pow(t.c[i], k);
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    embedded quadrature (weight gamma0 at 0): moments %.15f %.15f %.15f %.15f (exact 1, 1/2, 1/3; 1/4 must fail)\n", (double)cond[0], (double)cond[1], (double)cond[2], (double)cond[3]));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    embedded quadrature (weight gamma0 at 0): moments %.15f %.15f %.15f %.15f (exact 1, 1/2, 1/3; 1/4 must fail)\n",
+                        (double)cond[0], (double)cond[1], (double)cond[2], (double)cond[3]));
   TG_CHECK(std::fabs(cond[0] - 1) < 1e-14 && std::fabs(cond[1] - 0.5) < 1e-14 && std::fabs(cond[2] - 1.0 / 3) < 1e-14, "the embedded method is not of order 3");
   TG_CHECK(std::fabs(cond[3] - 0.25) > 1e-3, "the embedded method is of order 4: the estimate would vanish");
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -397,12 +411,12 @@ PetscErrorCode CheckTableau()
 /* TSRollBack (as TSEvent uses it): the state returns exactly, and the step is retried without a new Jacobian */
 PetscErrorCode CheckRollBack()
 {
-  Problem           p;
-  TS                ts;
-  Vec               U, U2, U3;
-  Mat               J;
-  PetscReal         t, u0[2], d2, d3;
-  PetscInt          jac_before, jac_after;
+  Problem   p;
+  TS        ts;
+  Vec       U, U2, U3;
+  Mat       J;
+  PetscReal t, u0[2], d2, d3;
+  PetscInt  jac_before, jac_after;
   PetscFunctionBeginUser;
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &U));
   p.Initial(u0);
@@ -444,7 +458,10 @@ PetscErrorCode CheckRollBack()
   PetscCall(TSRadauIIAGetCounters(ts, &jac_after, NULL, NULL));
   PetscCall(VecAXPY(U3, -1.0, U));
   PetscCall(VecNorm(U3, NORM_INFINITY, &d3));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "    TSRollBack: back to t = 0.2 exactly; the retried step differs by %.2e; Jacobian evaluations %" PetscInt_FMT " -> %" PetscInt_FMT "\n", (double)d3, jac_before, jac_after));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "    TSRollBack: back to t = 0.2 exactly; the retried step differs by %.2e; Jacobian evaluations %" PetscInt_FMT " -> %" PetscInt_FMT
+                        "\n",
+                        (double)d3, jac_before, jac_after));
   TG_CHECK(std::fabs(t - 0.3) < 1e-14 && d3 < 1e-13, "the retried step: t = %g, difference %g", (double)t, (double)d3);
   TG_CHECK(jac_after == jac_before, "a rolled-back step must not need a new Jacobian");
   PetscCall(TSInterpolate(ts, 0.25, U2));
@@ -487,15 +504,15 @@ PetscErrorCode HeatIJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shif
 
 PetscErrorCode HeatRun()
 {
-  const PetscInt  n = 200, modes[2] = {1, 20};
-  const PetscReal h = 1.0 / (n + 1), amp[2] = {1, 0.5}, tf = 0.05, tol = 1e-6;
-  Heat            p;
-  TS              ts;
-  Vec             U, E;
-  Mat             J;
-  PetscInt        rs, re, steps, rejects, jac, newton, solves;
-  PetscReal       err, nrm;
-  PetscMPIInt     size;
+  const PetscInt    n = 200, modes[2] = {1, 20};
+  const PetscReal   h = 1.0 / (n + 1), amp[2] = {1, 0.5}, tf = 0.05, tol = 1e-6;
+  Heat              p;
+  TS                ts;
+  Vec               U, E;
+  Mat               J;
+  PetscInt          rs, re, steps, rejects, jac, newton, solves;
+  PetscReal         err, nrm;
+  PetscMPIInt       size;
   TSConvergedReason reason;
 
   PetscFunctionBeginUser;
@@ -516,7 +533,8 @@ PetscErrorCode HeatRun()
   for (PetscInt i = rs; i < re; i++) {
     PetscReal u0 = 0, ue = 0;
     for (int m = 0; m < 2; m++) {
-      const PetscReal kph = modes[m] * PETSC_PI * h, lam = 6 * (1 - std::cos(kph)) / (h * h * (2 + std::cos(kph))), phi = std::sin(modes[m] * PETSC_PI * (i + 1) * h);
+      const PetscReal kph = modes[m] * PETSC_PI * h, lam = 6 * (1 - std::cos(kph)) / (h * h * (2 + std::cos(kph))),
+                      phi = std::sin(modes[m] * PETSC_PI * (i + 1) * h);
       u0 += amp[m] * phi;
       ue += amp[m] * std::exp(-lam * tf) * phi;
     }
@@ -545,7 +563,10 @@ PetscErrorCode HeatRun()
   PetscCall(VecNorm(E, NORM_INFINITY, &nrm));
   PetscCall(VecAXPY(E, -1.0, U));
   PetscCall(VecNorm(E, NORM_INFINITY, &err));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "(f) heat equation, %" PetscInt_FMT " nodes on %d rank(s), t = %g, rtol = atol = %g: steps %" PetscInt_FMT ", rejected %" PetscInt_FMT ", Jacobian evals %" PetscInt_FMT ", Newton its %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", max error %.3e (%.3g x tol)\n", n, size, (double)tf, (double)tol, steps, rejects, jac, newton, solves, (double)err, (double)(err / (tol + tol * nrm))));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                        "(f) heat equation, %" PetscInt_FMT " nodes on %d rank(s), t = %g, rtol = atol = %g: steps %" PetscInt_FMT ", rejected %" PetscInt_FMT
+                        ", Jacobian evals %" PetscInt_FMT ", Newton its %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", max error %.3e (%.3g x tol)\n",
+                        n, size, (double)tf, (double)tol, steps, rejects, jac, newton, solves, (double)err, (double)(err / (tol + tol * nrm))));
   TG_CHECK(err <= 10 * (tol + tol * nrm), "heat: error %g", (double)err);
   TG_CHECK(jac == 2, "heat: a linear problem needs 2 Jacobian evaluations, got %" PetscInt_FMT, jac);
   PetscCall(TSDestroy(&ts));
@@ -626,7 +647,9 @@ PetscErrorCode CheckSetters()
   PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
   PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
   PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
-  TG_CHECK(theta == 1e-3 && kappa == 0.03 && max_it == 7, "defaults: Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.001, 0.03, 7)", (double)theta, (double)kappa, max_it);
+  TG_CHECK(theta == 1e-3 && kappa == 0.03 && max_it == 7,
+           "defaults: Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.001, 0.03, 7)", (double)theta, (double)kappa,
+           max_it);
   PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
   PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.05));
   PetscCall(TSRadauIIASetNewtonMaxIterations(ts, 10));
@@ -634,7 +657,9 @@ PetscErrorCode CheckSetters()
   PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
   PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
   PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
-  TG_CHECK(theta == 0.1 && kappa == 0.05 && max_it == 10, "set before TSSetFromOptions(): Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.1, 0.05, 10)", (double)theta, (double)kappa, max_it);
+  TG_CHECK(theta == 0.1 && kappa == 0.05 && max_it == 10,
+           "set before TSSetFromOptions(): Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.1, 0.05, 10)", (double)theta,
+           (double)kappa, max_it);
   /* an option given for the TS still wins over the value set in code */
   PetscCall(PetscOptionsSetValue(opts, "-ts_radauiia_jacobian_reuse", "0.2"));
   PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
@@ -665,7 +690,8 @@ PetscErrorCode CheckSetters()
   TG_CHECK(!method, "a TSRK has TSRadauIIAGetJacobianReuse_C");
   PetscCall(TSDestroy(&ts));
   PetscCall(PetscOptionsDestroy(&opts));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(h) TSRadauIIASetJacobianReuse/NewtonTolerance/NewtonMaxIterations before TSSetFromOptions(): the values are used (0.1, 0.05, 10); -ts_radauiia_jacobian_reuse 0.2 overrides 0.1; 1.5 is rejected; no-op on rk\n"));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(h) TSRadauIIASetJacobianReuse/NewtonTolerance/NewtonMaxIterations before TSSetFromOptions(): the values are used "
+                                         "(0.1, 0.05, 10); -ts_radauiia_jacobian_reuse 0.2 overrides 0.1; 1.5 is rejected; no-op on rk\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -695,7 +721,8 @@ int main(int argc, char **argv)
     Problem   p;
     PetscReal e[5], ie[5];
     PetscInt  N[5] = {5, 10, 20, 40, 80};
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "(b) fixed steps, M U' = L U, t in [0, 2], error at t = 2 (max norm); (d) TSInterpolate at 0.2, 0.5, 0.8 of every step\n"));
+    PetscCall(
+      PetscPrintf(PETSC_COMM_SELF, "(b) fixed steps, M U' = L U, t in [0, 2], error at t = 2 (max norm); (d) TSInterpolate at 0.2, 0.5, 0.8 of every step\n"));
     for (int k = 0; k < 5; k++) {
       RunSpec s;
       Result  r;
@@ -709,11 +736,17 @@ int main(int argc, char **argv)
       ie[k] = p.interp_err;
       TG_CHECK(r.steps == N[k] && std::fabs(r.t - 2) < 1e-12, "fixed-step run: %" PetscInt_FMT " steps to t = %g", r.steps, (double)r.t);
       TG_CHECK(r.jac == 2 && r.nj == 2, "a linear problem needs exactly the 2 IJacobian calls that recover M, got %" PetscInt_FMT, r.jac);
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "    N = %3" PetscInt_FMT ", h = %.4f: error %.3e, interpolation error %.3e; Jacobian evals %" PetscInt_FMT ", Newton its %" PetscInt_FMT "\n", N[k], (double)s.dt, (double)e[k], (double)ie[k], r.jac, r.newton));
-      if (k) PetscCall(PetscPrintf(PETSC_COMM_SELF, "        observed order %.3f, dense output order %.3f\n", (double)std::log2(e[k - 1] / e[k]), (double)std::log2(ie[k - 1] / ie[k])));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "    N = %3" PetscInt_FMT ", h = %.4f: error %.3e, interpolation error %.3e; Jacobian evals %" PetscInt_FMT
+                            ", Newton its %" PetscInt_FMT "\n",
+                            N[k], (double)s.dt, (double)e[k], (double)ie[k], r.jac, r.newton));
+      if (k)
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "        observed order %.3f, dense output order %.3f\n", (double)std::log2(e[k - 1] / e[k]),
+                              (double)std::log2(ie[k - 1] / ie[k])));
     }
     const PetscReal order = std::log2(e[3] / e[4]), order2 = std::log2(e[2] / e[3]), dense = std::log2(ie[3] / ie[4]);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "    measured order %.3f (N 40 -> 80), %.3f (N 20 -> 40); dense output %.3f\n", (double)order, (double)order2, (double)dense));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "    measured order %.3f (N 40 -> 80), %.3f (N 20 -> 40); dense output %.3f\n", (double)order, (double)order2,
+                          (double)dense));
     TG_CHECK(order >= 4.5 && order2 >= 4.5, "order %g / %g below 4.5", (double)order, (double)order2);
     TG_CHECK(order <= 6, "order %g suspiciously high", (double)order);
     TG_CHECK(dense >= 3.5, "dense output order %g below 3.5 (expected 4: the collocation polynomial is accurate to O(h^4))", (double)dense);
@@ -764,7 +797,10 @@ int main(int argc, char **argv)
       PetscCall(Run(p, s1, &r1));
       PetscCall(PrintRun("    IFunction form, TSRadauIIASetJacobianReuse(ts, 0.1)", r1));
       TG_CHECK(r1.err_scaled <= 10, "error %g x tolerance", (double)r1.err_scaled);
-      if (!given) TG_CHECK(r1.jac < r.jac, "Jacobian reuse 0.1 set in code: %" PetscInt_FMT " Jacobian evaluations, not fewer than the %" PetscInt_FMT " of the default 0.001", r1.jac, r.jac);
+      if (!given)
+        TG_CHECK(r1.jac < r.jac,
+                 "Jacobian reuse 0.1 set in code: %" PetscInt_FMT " Jacobian evaluations, not fewer than the %" PetscInt_FMT " of the default 0.001", r1.jac,
+                 r.jac);
     }
     s.rhs_form = PETSC_TRUE;
     PetscCall(Run(p, s, &rr));

@@ -54,7 +54,10 @@ static PetscErrorCode Eval(RVE &rve, const Tensor2 &F, const Tensor2 &Fd, Materi
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscReal Asymmetry(const Tensor2 &s) { return std::fabs(s(0, 1) - s(1, 0)) / s.Norm(); }
+static PetscReal Asymmetry(const Tensor2 &s)
+{
+  return std::fabs(s(0, 1) - s(1, 0)) / s.Norm();
+}
 
 static PetscReal MaxRel(const PetscReal A[3][3], const PetscReal B[3][3], PetscReal scale)
 {
@@ -75,8 +78,12 @@ static PetscReal MaxAbs(const PetscReal A[3][3])
 /* 1. The SPH viscous stress under a shear rate is torque-free only with the correction. */
 static PetscErrorCode Symmetry()
 {
-  const Tensor2 F = {{{1, 0.1}, {0, 1}}}, Fd = {{{0, 0.1}, {0, 0}}};
-  PetscReal     asym[2];
+  const Tensor2 F =
+                  {
+                    {{1, 0.1}, {0, 1}}
+  },
+                Fd = {{{0, 0.1}, {0, 0}}};
+  PetscReal asym[2];
   PetscFunctionBeginUser;
   for (int c = 0; c < 2; c++) {
     /* the default physics with its SPH fluid configured here: viscosity 5, correction on / off */
@@ -92,7 +99,9 @@ static PetscErrorCode Symmetry()
     PetscCall(Eval(*rve, F, Fd, &r));
     asym[c] = Asymmetry(r.sigma);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "1. |sigma - sigma^T| / |sigma| under 10%% shear, shear rate 0.1/µs: with correction %.2e, without %.2e (ratio %.1e)\n", (double)asym[0], (double)asym[1], (double)(asym[1] / asym[0])));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "1. |sigma - sigma^T| / |sigma| under 10%% shear, shear rate 0.1/µs: with correction %.2e, without %.2e (ratio %.1e)\n",
+                        (double)asym[0], (double)asym[1], (double)(asym[1] / asym[0])));
   TG_CHECK(asym[0] * 10 <= asym[1], "the correction must make the stress at least 10x more symmetric");
   TG_CHECK(asym[0] < 1e-10, "corrected stress not symmetric to round-off: %.3e", (double)asym[0]);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -101,7 +110,11 @@ static PetscErrorCode Symmetry()
 /* 2. A rigid rotation superposed on (F, Fdot) rotates the stress. */
 static PetscErrorCode Objectivity()
 {
-  const Tensor2    F = {{{1.04, 0.05}, {-0.02, 0.97}}}, Fd = {{{0.002, 0.01}, {0, -0.001}}};
+  const Tensor2 F =
+                  {
+                    {{1.04, 0.05}, {-0.02, 0.97}}
+  },
+                Fd = {{{0.002, 0.01}, {0, -0.001}}};
   MaterialResponse r0;
   RVEMaterial      material; /* configured once, a fresh point for every rotation */
   PetscFunctionBeginUser;
@@ -119,7 +132,8 @@ static PetscErrorCode Objectivity()
     PetscCall(Eval(*rve, R * F, R * Fd, &r));
     const Tensor2   expect = R * r0.sigma * R.T();
     const PetscReal err    = (r.sigma - expect).Norm() / expect.Norm();
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "2. rotation %4.0f deg: |sigma(RF) - R sigma(F) R^T| / |sigma| = %.2e, rho %.12g vs %.12g\n", (double)deg, (double)err, (double)r.rho, (double)r0.rho));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "2. rotation %4.0f deg: |sigma(RF) - R sigma(F) R^T| / |sigma| = %.2e, rho %.12g vs %.12g\n", (double)deg,
+                          (double)err, (double)r.rho, (double)r0.rho));
     TG_CHECK(err < 1e-8, "not objective at %g degrees: %.3e", (double)deg, (double)err);
     TG_CHECK_CLOSE(r.rho, r0.rho, 1e-14, 0, "density under rotation");
   }
@@ -129,7 +143,9 @@ static PetscErrorCode Objectivity()
 /* 3. The relaxed state is a function of (F, Fdot), not of where Psi-tc starts; no rate terms, no D^v. */
 static PetscErrorCode StaticState()
 {
-  const Tensor2        F = {{{1.03, 0.02}, {0.0, 0.99}}};
+  const Tensor2 F = {
+    {{1.03, 0.02}, {0.0, 0.99}}
+  };
   MaterialResponse     cold, warm, detour;
   RVEMaterial          standard; /* two points of one material */
   std::unique_ptr<RVE> a, b;
@@ -137,10 +153,16 @@ static PetscErrorCode StaticState()
   PetscCall(MakeRVE(standard, &a));
   PetscCall(Eval(*a, F, Tensor2::Zero(), &cold));
   PetscCall(CreateRVE(standard, &b));
-  PetscCall(Eval(*b, {{{0.95, -0.05}, {0.03, 1.06}}}, Tensor2::Zero(), &detour)); /* elsewhere first */
+  PetscCall(Eval(*b,
+                 {
+                   {{0.95, -0.05}, {0.03, 1.06}}
+  },
+                 Tensor2::Zero(), &detour)); /* elsewhere first */
   PetscCall(Eval(*b, F, Tensor2::Zero(), &warm));
   const PetscReal d = (cold.sigma - warm.sigma).Norm() / cold.sigma.Norm();
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "3. sigma(F, 0): cold start (%" PetscInt_FMT " its) vs warm start from another F (%" PetscInt_FMT " its): relative difference %.2e\n", cold.iterations, warm.iterations, (double)d));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "3. sigma(F, 0): cold start (%" PetscInt_FMT " its) vs warm start from another F (%" PetscInt_FMT " its): relative difference %.2e\n",
+                        cold.iterations, warm.iterations, (double)d));
   TG_CHECK(d < 1e-10, "relaxed stress depends on the start: %.3e", (double)d);
 
   /* the default physics without its rate terms: undamped springs and repulsion, inviscid fluid */
@@ -160,10 +182,15 @@ static PetscErrorCode StaticState()
   Tangents             D;
   PetscCall(MakeRVE(material, &c));
   PetscCall(Eval(*c, F, Tensor2::Zero(), &r));
-  PetscCall(Eval(*c, F, {{{0.01, 0.02}, {-0.01, 0.0}}}, &r2));
+  PetscCall(Eval(*c, F,
+                 {
+                   {{0.01, 0.02}, {-0.01, 0.0}}
+  },
+                 &r2));
   PetscCall(ComputeTangents(*c, F, Tensor2::Zero(), r, TangentOptions(), &D, &status));
   TG_CHECK(status.ok, "tangents failed");
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "   without rate terms: |sigma(F, Fdot) - sigma(F, 0)| = %.2e N/m, max |D^v| = %.2e (max |D^e| = %.4g)\n", (double)(r2.sigma - r.sigma).Norm(), (double)MaxAbs(D.Dv), (double)MaxAbs(D.De)));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "   without rate terms: |sigma(F, Fdot) - sigma(F, 0)| = %.2e N/m, max |D^v| = %.2e (max |D^e| = %.4g)\n",
+                        (double)(r2.sigma - r.sigma).Norm(), (double)MaxAbs(D.Dv), (double)MaxAbs(D.De)));
   TG_CHECK((r2.sigma - r.sigma).Norm() < 1e-10 * r.sigma.Norm(), "stress depends on Fdot without rate terms");
   TG_CHECK(MaxAbs(D.Dv) == 0.0, "D^v must vanish without rate terms");
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -172,7 +199,11 @@ static PetscErrorCode StaticState()
 /* 4. Forward differences (eqs 46-53) against central differences. */
 static PetscErrorCode ForwardVsCentral()
 {
-  const Tensor2        F = {{{1.02, 0.03}, {-0.01, 0.99}}}, Fd = {{{0.01, 0.0}, {0.005, -0.01}}};
+  const Tensor2 F =
+                  {
+                    {{1.02, 0.03}, {-0.01, 0.99}}
+  },
+                Fd = {{{0.01, 0.0}, {0.005, -0.01}}};
   std::unique_ptr<RVE> rve;
   MaterialResponse     r, status;
   Tangents             fwd, cen;
@@ -186,7 +217,9 @@ static PetscErrorCode ForwardVsCentral()
   PetscCall(ComputeTangents(*rve, F, Fd, r, opt, &cen, &status));
   TG_CHECK(status.ok, "central tangents failed: %s", status.reason.c_str());
   const PetscReal de = MaxRel(fwd.De, cen.De, MaxAbs(cen.De)), dv = MaxRel(fwd.Dv, cen.Dv, MaxAbs(cen.Dv));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "4. forward vs central differences: D^e %.2e, D^v %.2e (relative to the largest entry; D^e_11,11 = %.6g N/m, D^v_11,11 = %.6g ng/µs)\n", (double)de, (double)dv, (double)cen.De[0][0], (double)cen.Dv[0][0]));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "4. forward vs central differences: D^e %.2e, D^v %.2e (relative to the largest entry; D^e_11,11 = %.6g N/m, D^v_11,11 = %.6g ng/µs)\n",
+                        (double)de, (double)dv, (double)cen.De[0][0], (double)cen.Dv[0][0]));
   TG_CHECK(de < 1e-4 && dv < 1e-4, "forward and central tangents differ");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -204,12 +237,22 @@ static PetscErrorCode SpringLattice()
   PetscCall(MakeRVE(material, &rve));
   PetscCall(Eval(*rve, Tensor2::Identity(), Tensor2::Zero(), &r));
   PetscCall(ComputeTangents(*rve, Tensor2::Identity(), Tensor2::Zero(), r, TangentOptions(), &D, &status));
-  const PetscReal k = 4000.0 / 2, exact[3][3] = {{k, 0, 0}, {0, k, 0}, {0, 0, 0}};
+  const PetscReal k = 4000.0 / 2, exact[3][3] = {
+                                    {k, 0, 0},
+                                    {0, k, 0},
+                                    {0, 0, 0}
+  };
   const PetscReal err = MaxRel(D.De, exact, k);
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "5. springs-only lattice (2 x 2 cells, s = 2): D^e = [%.6g %.3g %.3g; %.3g %.6g %.3g; %.3g %.3g %.3g], analytic diag(%g, %g, 0): max error %.2e k/s\n", (double)D.De[0][0], (double)D.De[0][1], (double)D.De[0][2], (double)D.De[1][0], (double)D.De[1][1], (double)D.De[1][2], (double)D.De[2][0], (double)D.De[2][1], (double)D.De[2][2], (double)k, (double)k, (double)err));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "5. springs-only lattice (2 x 2 cells, s = 2): D^e = [%.6g %.3g %.3g; %.3g %.6g %.3g; %.3g %.3g %.3g], analytic diag(%g, %g, 0): max "
+                        "error %.2e k/s\n",
+                        (double)D.De[0][0], (double)D.De[0][1], (double)D.De[0][2], (double)D.De[1][0], (double)D.De[1][1], (double)D.De[1][2],
+                        (double)D.De[2][0], (double)D.De[2][1], (double)D.De[2][2], (double)k, (double)k, (double)err));
   TG_CHECK(err < 1e-5, "lattice stiffness differs from the analytic value");
   /* a bravais-like lattice without prestress relaxes affinely: relaxed = Cauchy-Born */
-  const Tensor2    F = {{{1.05, 0.02}, {0.01, 0.98}}};
+  const Tensor2 F = {
+    {{1.05, 0.02}, {0.01, 0.98}}
+  };
   MaterialResponse relaxed, cb;
   PetscCall(Eval(*rve, F, Tensor2::Zero(), &relaxed));
   rve->SetMode(RelaxationMode::CauchyBorn);
@@ -224,15 +267,17 @@ static PetscErrorCode SpringLattice()
    leading order (the difference vanishes linearly with the strain), and relaxation matters at 5%. */
 static PetscErrorCode TurgidRelaxation()
 {
-  std::unique_ptr<RVE> rve;
-  MaterialResponse     ref;
+  std::unique_ptr<RVE>   rve;
+  MaterialResponse       ref;
   std::vector<PetscReal> diff;
   PetscFunctionBeginUser;
   PetscCall(MakeRVE(&rve));
   PetscCall(Eval(*rve, Tensor2::Identity(), Tensor2::Zero(), &ref));
   PetscCall(rve->Commit());
   for (PetscReal e : {1e-4, 1e-3, 5e-2}) {
-    const Tensor2    F = {{{1 + e, 0.5 * e}, {0, 1 - 0.3 * e}}};
+    const Tensor2 F = {
+      {{1 + e, 0.5 * e}, {0, 1 - 0.3 * e}}
+    };
     MaterialResponse relaxed, frozen, cb;
     rve->SetMode(RelaxationMode::Relaxed);
     PetscCall(Eval(*rve, F, Tensor2::Zero(), &relaxed));
@@ -245,11 +290,15 @@ static PetscErrorCode TurgidRelaxation()
     const PetscReal dabs = (relaxed.sigma - frozen.sigma).Norm() / relaxed.sigma.Norm();
     const PetscReal dcb  = (relaxed.sigma - cb.sigma).Norm() / relaxed.sigma.Norm();
     diff.push_back(dabs);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "6. turgid cell, strain %.0e: relaxed vs Cauchy-Born about the relaxed F = I state: %.2e of |sigma| (%.1f%% of the stress increment); vs plain Cauchy-Born (u1 = 0): %.2e of |sigma|\n", (double)e, (double)dabs, 100 * (double)dinc, (double)dcb));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "6. turgid cell, strain %.0e: relaxed vs Cauchy-Born about the relaxed F = I state: %.2e of |sigma| (%.1f%% of the stress "
+                          "increment); vs plain Cauchy-Born (u1 = 0): %.2e of |sigma|\n",
+                          (double)e, (double)dabs, 100 * (double)dinc, (double)dcb));
     if (e == 5e-2) TG_CHECK(dabs > 1e-3, "relaxation should change the stress measurably at 5%% strain");
   }
   TG_CHECK(diff[0] < 1e-3, "at 1e-4 strain the relaxed and Cauchy-Born stresses should agree");
-  TG_CHECK(diff[1] / diff[0] > 5 && diff[1] / diff[0] < 20, "the difference should vanish linearly with the strain (ratio %.2f for 10x strain)", (double)(diff[1] / diff[0]));
+  TG_CHECK(diff[1] / diff[0] > 5 && diff[1] / diff[0] < 20, "the difference should vanish linearly with the strain (ratio %.2f for 10x strain)",
+           (double)(diff[1] / diff[0]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -260,7 +309,11 @@ static PetscErrorCode Failures()
   MaterialResponse     r;
   PetscFunctionBeginUser;
   PetscCall(MakeRVE(&rve));
-  PetscCall(rve->Evaluate({{{1, 0}, {0, -0.2}}}, Tensor2::Zero(), EvaluationKind::Trial, &r));
+  PetscCall(rve->Evaluate(
+    {
+      {{1, 0}, {0, -0.2}}
+  },
+    Tensor2::Zero(), EvaluationKind::Trial, &r));
   TG_CHECK(!r.ok, "an inverted F must fail");
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "7. inverted F: %s\n", r.reason.c_str()));
   {
@@ -268,7 +321,11 @@ static PetscErrorCode Failures()
     material.spec.max_it = 2;
     PetscCall(MakeRVE(material, &rve));
   }
-  PetscCall(rve->Evaluate({{{1.05, 0}, {0, 1}}}, Tensor2::Zero(), EvaluationKind::Trial, &r));
+  PetscCall(rve->Evaluate(
+    {
+      {{1.05, 0}, {0, 1}}
+  },
+    Tensor2::Zero(), EvaluationKind::Trial, &r));
   TG_CHECK(!r.ok, "two Psi-tc iterations cannot converge from a cold start");
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "   -rve_max_it 2: %s\n", r.reason.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -281,21 +338,31 @@ static PetscErrorCode LargeShearPath()
 {
   std::unique_ptr<RVE> rve;
   MaterialResponse     r;
-  const Tensor2        Fe = {{{0.982305, -0.00986765}, {0.334984, 1.01572}}}, Fde = {{{0.205426, -0.000847104}, {-0.262493, -0.00539697}}};
-  const int            n  = 40;
-  PetscInt             its = 0, failed = 0;
+  const Tensor2        Fe =
+                  {
+                    {{0.982305, -0.00986765}, {0.334984, 1.01572}}
+  },
+                Fde = {{{0.205426, -0.000847104}, {-0.262493, -0.00539697}}};
+  const int n       = 40;
+  PetscInt  its = 0, failed = 0;
   PetscFunctionBeginUser;
   PetscCall(MakeRVE(&rve));
   for (int k = 0; k <= n; k++) {
     const PetscReal s = (PetscReal)k / n;
-    const Tensor2   F = {{{1 + s * (Fe(0, 0) - 1), s * Fe(0, 1)}, {s * Fe(1, 0), 1 + s * (Fe(1, 1) - 1)}}};
-    const Tensor2   Fd = {{{s * Fde(0, 0), s * Fde(0, 1)}, {s * Fde(1, 0), s * Fde(1, 1)}}};
+    const Tensor2   F = {
+        {{1 + s * (Fe(0, 0) - 1), s * Fe(0, 1)}, {s * Fe(1, 0), 1 + s * (Fe(1, 1) - 1)}}
+    };
+    const Tensor2 Fd = {
+      {{s * Fde(0, 0), s * Fde(0, 1)}, {s * Fde(1, 0), s * Fde(1, 1)}}
+    };
     PetscCall(rve->Evaluate(F, Fd, EvaluationKind::Trial, &r));
     if (!r.ok) failed++;
     else PetscCall(rve->Commit());
     its = PetscMax(its, r.iterations);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "8. large shear path: %" PetscInt_FMT " of %d points failed, at most %" PetscInt_FMT " iterations; final sigma12 = %.4g N/m\n", failed, n + 1, its, (double)r.sigma(0, 1)));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "8. large shear path: %" PetscInt_FMT " of %d points failed, at most %" PetscInt_FMT " iterations; final sigma12 = %.4g N/m\n", failed,
+                        n + 1, its, (double)r.sigma(0, 1)));
   TG_CHECK(failed == 0, "%" PetscInt_FMT " points of the shear path did not relax", failed);
   TG_CHECK(its <= 20, "warm increments should need few iterations (max %" PetscInt_FMT ")", its);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -21,8 +21,8 @@ static Tissue DisorderedPatch()
 
 static PetscErrorCode LinearField(PetscBool correction, PetscReal *err_grad, PetscReal *max_force)
 {
-  Tissue                 T = DisorderedPatch();
-  const PetscInt         n = T.particles.n;
+  Tissue                 T    = DisorderedPatch();
+  const PetscInt         n    = T.particles.n;
   const PetscReal        A[4] = {0.3, -0.7, 0.45, -0.1}, W[4] = {0, -0.8, 0.8, 0}; /* general and rigid rotation */
   std::vector<PetscReal> v(2 * n), f(2 * n), rho, gradv;
   PhysicsSpec            physics;
@@ -118,7 +118,8 @@ int main(int argc, char **argv)
   PetscCall(TurgorRegisterAll());
   PetscCall(LinearField(PETSC_TRUE, &err_on, &f_on));
   PetscCall(LinearField(PETSC_FALSE, &err_off, &f_off));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "grad(A x) error on a disordered patch: corrected %.2e, uncorrected %.2e (|A| ~ 0.7)\n", (double)err_on, (double)err_off));
+  PetscCall(
+    PetscPrintf(PETSC_COMM_SELF, "grad(A x) error on a disordered patch: corrected %.2e, uncorrected %.2e (|A| ~ 0.7)\n", (double)err_on, (double)err_off));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "largest viscous force under rigid rotation: corrected %.2e µN, uncorrected %.2e µN\n", (double)f_on, (double)f_off));
   TG_CHECK(err_on < 1e-12, "corrected gradient of a linear field is not exact: %.3e", (double)err_on);
   TG_CHECK(err_off > 1e-2, "the uncorrected gradient should be visibly wrong on a disordered patch (%.3e)", (double)err_off);
@@ -126,7 +127,8 @@ int main(int argc, char **argv)
 
   PetscCall(SpinningCell(PETSC_TRUE, &drift_on));
   PetscCall(SpinningCell(PETSC_FALSE, &drift_off));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "spinning cell, one revolution: |dL|/|L| corrected %.2e, uncorrected %.2e (ratio %.2e)\n", (double)drift_on, (double)drift_off, (double)(drift_off / drift_on)));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "spinning cell, one revolution: |dL|/|L| corrected %.2e, uncorrected %.2e (ratio %.2e)\n", (double)drift_on,
+                        (double)drift_off, (double)(drift_off / drift_on)));
   TG_CHECK(drift_on * 100 <= drift_off, "the correction must reduce the angular momentum drift at least 100x");
   TG_CHECK(drift_on < 1e-10, "corrected angular momentum drift %.3e is not round-off", (double)drift_on);
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_sph_correction: all checks passed\n"));

@@ -8,7 +8,7 @@ static const char help[] = "Undamped chain of wall springs with clamped ends:\n"
 
 using namespace turgor;
 
-static const PetscInt  N = 10;     /* free particles */
+static const PetscInt  N = 10; /* free particles */
 static const PetscReal k = 4000.0, m = 0.5, l0 = 12.5;
 
 struct ChainRecord {
@@ -92,21 +92,23 @@ int main(int argc, char **argv)
     ChainRecord rec;
     PetscCall(RunChain(type, T1 / 400, 4000, true, &rec)); /* ten periods */
     const PetscReal T = MeasuredPeriod(rec);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-16s first-mode period %.6f µs, analytic %.6f µs (relative error %.2e)\n", type, (double)T, (double)T1, (double)std::fabs(T - T1) / T1));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-16s first-mode period %.6f µs, analytic %.6f µs (relative error %.2e)\n", type, (double)T, (double)T1,
+                          (double)std::fabs(T - T1) / T1));
     TG_CHECK_CLOSE(T, T1, 1e-2, 0, "first-mode period");
   }
   {
     /* all modes excited, dt at half the Verlet stability limit 2/omega_max */
     ChainRecord rec;
     PetscCall(RunChain(TSBASICSYMPLECTIC, 1.0 / omega_max, 10000, false, &rec));
-    const PetscReal E0 = rec.E[0];
+    const PetscReal E0   = rec.E[0];
     PetscReal       emax = 0, mean_first = 0, mean_last = 0;
     const size_t    ns = rec.E.size(), w = 1000;
     for (size_t s = 0; s < ns; s++) emax = PetscMax(emax, std::fabs(rec.E[s] - E0) / E0);
     for (size_t s = 1; s <= w; s++) mean_first += rec.E[s] / w;
     for (size_t s = ns - w; s < ns; s++) mean_last += rec.E[s] / w;
     const PetscReal drift = std::fabs(mean_last - mean_first) / E0;
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "velocity Verlet, %zu steps at dt = 1/omega_max: max |E - E0|/E0 = %.3e, drift of the mean energy = %.3e\n", ns - 1, (double)emax, (double)drift));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "velocity Verlet, %zu steps at dt = 1/omega_max: max |E - E0|/E0 = %.3e, drift of the mean energy = %.3e\n", ns - 1,
+                          (double)emax, (double)drift));
     TG_CHECK(ns == 10001, "steps");
     /* Verlet conserves a modified energy; per mode the true energy then oscillates within a factor
        1 / (1 - (omega h / 2)^2), i.e. by at most 1/3 at omega h = 1, and does not drift. */

@@ -14,7 +14,8 @@ int main(int argc, char **argv)
     Tissue         T;
     PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &T));
     const ParticleSet &P = T.particles;
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "16x16: %" PetscInt_FMT " wall, %" PetscInt_FMT " fluid, %zu springs\n", P.Count(KIND_WALL), P.Count(KIND_FLUID), P.springs.size()));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "16x16: %" PetscInt_FMT " wall, %" PetscInt_FMT " fluid, %zu springs\n", P.Count(KIND_WALL), P.Count(KIND_FLUID),
+                          P.springs.size()));
     TG_CHECK(P.Count(KIND_WALL) == 833, "wall particles %" PetscInt_FMT, P.Count(KIND_WALL));
     TG_CHECK(P.Count(KIND_FLUID) == 4096, "fluid particles %" PetscInt_FMT, P.Count(KIND_FLUID));
     TG_CHECK(P.springs.size() == 1088, "springs %zu", P.springs.size());
@@ -31,7 +32,8 @@ int main(int argc, char **argv)
     for (PetscInt i = 0; i < P.n; i++) {
       if (P.kind[i] != KIND_FLUID) continue;
       const PetscInt cx = P.cell[i] % 16, cy = P.cell[i] / 16;
-      TG_CHECK(T.X[2 * i] > 25 * cx && T.X[2 * i] < 25 * (cx + 1) && T.X[2 * i + 1] > 25 * cy && T.X[2 * i + 1] < 25 * (cy + 1), "fluid particle %" PetscInt_FMT " outside its cell", i);
+      TG_CHECK(T.X[2 * i] > 25 * cx && T.X[2 * i] < 25 * (cx + 1) && T.X[2 * i + 1] > 25 * cy && T.X[2 * i + 1] < 25 * (cy + 1),
+               "fluid particle %" PetscInt_FMT " outside its cell", i);
     }
     /* left clamp: the 33 wall particles at x = 0; the tip is the wall particle at (400, 200) */
     PetscCall(T.Clamp(PETSC_COMM_SELF, {"left"}, "-fine_clamp"));

@@ -76,7 +76,8 @@ static PetscErrorCode LaplaceRatio(const Tissue &cell, PetscReal h, PetscReal *r
   }
   const PetscReal p = sph->sound_speed * sph->sound_speed * rsum / count;
   *ratio            = tension / (0.5 * p * side);
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "h = %.4g µm (h/dx = %.2f): wall tension %.6g µN, side %.6g µm, interior pressure %.6g N/m -> T / (p L/2) = %.4f\n", (double)h, (double)(h / 6.25), (double)tension, (double)side, (double)p, (double)*ratio));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "h = %.4g µm (h/dx = %.2f): wall tension %.6g µN, side %.6g µm, interior pressure %.6g N/m -> T / (p L/2) = %.4f\n",
+                        (double)h, (double)(h / 6.25), (double)tension, (double)side, (double)p, (double)*ratio));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -13,7 +13,9 @@
 #define TG_CHECK_CLOSE(a, b, tol, floor_, what) \
   do { \
     const double _a = (double)(a), _b = (double)(b), _s = std::fmax(std::fabs(_b), (double)(floor_)); \
-    if (!(std::fabs(_a - _b) <= (tol) * _s)) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_PLIB, "CHECK FAILED: %s: %.10g vs %.10g (relative difference %.3g > %.3g)", what, _a, _b, std::fabs(_a - _b) / _s, (double)(tol)); \
+    if (!(std::fabs(_a - _b) <= (tol)*_s)) \
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_PLIB, "CHECK FAILED: %s: %.10g vs %.10g (relative difference %.3g > %.3g)", what, _a, _b, std::fabs(_a - _b) / _s, \
+              (double)(tol)); \
   } while (0)
 
 namespace turgor_test {

@@ -23,7 +23,9 @@ static PetscErrorCode WarnUnusedOptions(void)
   char   **names, **values;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
-  for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: option -%s%s%s was not used (misspelled, or not for -mode?)\n", names[k], values[k] ? " " : "", values[k] ? values[k] : ""));
+  for (PetscInt k = 0; k < n; k++)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "WARNING: option -%s%s%s was not used (misspelled, or not for -mode?)\n", names[k], values[k] ? " " : "",
+                          values[k] ? values[k] : ""));
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

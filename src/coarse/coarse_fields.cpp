@@ -109,10 +109,10 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
 
 PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal time)
 {
-  DM                 dm = model.GetDM();
-  PetscSection       ls;
-  PetscInt           vs, ve;
-  const PetscScalar *u;
+  DM                     dm = model.GetDM();
+  PetscSection           ls;
+  PetscInt               vs, ve;
+  const PetscScalar     *u;
   std::vector<PetscReal> mine, all, stress;
   PetscFunctionBeginUser;
   PetscCall(model.GlobalToLocal(U, Uloc_));
@@ -169,13 +169,29 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
   const long long NV = n_vertices_, NC = n_cells_;
   const char     *h5 = h5name_.c_str();
   PetscCall(PetscFOpen(comm_, xmfpath_.c_str(), "w", &fp));
-  PetscCall(PetscFPrintf(comm_, fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"coarse\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
+  PetscCall(PetscFPrintf(comm_, fp,
+                         "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"coarse\" "
+                         "GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
   for (size_t k = 0; k < times_.size(); k++) {
     PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"coarse_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", k, (double)times_[k]));
-    PetscCall(PetscFPrintf(comm_, fp, "    <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 4\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/mesh/cells</DataItem>\n    </Topology>\n", NC, NC, (int)sizeof(PetscInt), h5));
-    PetscCall(PetscFPrintf(comm_, fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n", NV, h5));
-    for (const char *f : {"displacement", "velocity"}) PetscCall(PetscFPrintf(comm_, fp, "    <Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n", f, NV, h5, k, f));
-    for (const char *f : {"stress_xx", "stress_yy", "stress_xy"}) PetscCall(PetscFPrintf(comm_, fp, "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n", f, NC, h5, k, f));
+    PetscCall(PetscFPrintf(comm_, fp,
+                           "    <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 4\" NumberType=\"Int\" "
+                           "Precision=\"%d\" Format=\"HDF\">%s:/mesh/cells</DataItem>\n    </Topology>\n",
+                           NC, NC, (int)sizeof(PetscInt), h5));
+    PetscCall(PetscFPrintf(comm_, fp,
+                           "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" "
+                           "Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n",
+                           NV, h5));
+    for (const char *f : {"displacement", "velocity"})
+      PetscCall(PetscFPrintf(comm_, fp,
+                             "    <Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" "
+                             "Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n",
+                             f, NV, h5, k, f));
+    for (const char *f : {"stress_xx", "stress_yy", "stress_xy"})
+      PetscCall(PetscFPrintf(comm_, fp,
+                             "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" "
+                             "Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n",
+                             f, NC, h5, k, f));
     PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
   }
   PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n </Domain>\n</Xdmf>\n"));

@@ -23,12 +23,13 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
 {
   char      label[64];
   PetscInt  values[8], n = 8;
-  PetscBool set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool set, lumped  = lumped_mass ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
   PetscOptionsBegin(comm, "coarse_", "Coarse FE^2 model (TW 562 §3.3); the mesh: -coarse_dm_plex_* (DMSetFromOptions)", "turgor");
   PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseSpec", label, label, sizeof label, NULL));
-  PetscCall(PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
+  PetscCall(
+    PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
   PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
   PetscOptionsEnd();
   dirichlet_label = label;
@@ -71,12 +72,16 @@ PetscErrorCode CoarseModel::CreateMesh()
     }
     PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_filename", &file));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_simplex", &simplex));
-    PetscCheck(!box || simplex || file, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_box_*: PETSc's box mesh is made of triangles unless -coarse_dm_plex_simplex 0 is given, and the coarse model needs quadrilaterals (the default mesh is -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 4,4 -coarse_dm_plex_box_upper 400,400)");
+    PetscCheck(!box || simplex || file, comm_, PETSC_ERR_ARG_WRONG,
+               "Options -coarse_dm_plex_box_*: PETSc's box mesh is made of triangles unless -coarse_dm_plex_simplex 0 is given, and the coarse model needs "
+               "quadrilaterals (the default mesh is -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 4,4 -coarse_dm_plex_box_upper 400,400)");
     {
       PetscInt  faces[3] = {1, 1, 1}, n = 3;
       PetscBool set;
       PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-coarse_dm_plex_box_faces", faces, &n, &set));
-      PetscCheck(!set || (n == 2 && faces[0] >= 1 && faces[1] >= 1), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -coarse_dm_plex_box_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": needs two numbers of elements, each >= 1", faces[0], n > 1 ? faces[1] : 0);
+      PetscCheck(!set || (n == 2 && faces[0] >= 1 && faces[1] >= 1), comm_, PETSC_ERR_ARG_OUTOFRANGE,
+                 "Option -coarse_dm_plex_box_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": needs two numbers of elements, each >= 1", faces[0],
+                 n > 1 ? faces[1] : 0);
     }
     if (box || simplex || file) { /* DMSetFromOptions builds it */
       PetscCall(DMCreate(comm_, &dm_));
@@ -98,7 +103,9 @@ PetscErrorCode CoarseModel::CreateMesh()
   for (PetscInt c = c_start_; c < c_end_; c++) {
     DMPolytopeType ct;
     PetscCall(DMPlexGetCellType(dm_, c, &ct));
-    PetscCheck(ct == DM_POLYTOPE_QUADRILATERAL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_*: cell %" PetscInt_FMT " is a %s; the coarse model needs quadrilaterals (-coarse_dm_plex_simplex 0 for a box)", c, DMPolytopeTypes[ct]);
+    PetscCheck(ct == DM_POLYTOPE_QUADRILATERAL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+               "Options -coarse_dm_plex_*: cell %" PetscInt_FMT " is a %s; the coarse model needs quadrilaterals (-coarse_dm_plex_simplex 0 for a box)", c,
+               DMPolytopeTypes[ct]);
   }
   PetscCall(DMPlexGetDepthStratum(dm_, 0, &v_start_, &v_end_));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -121,8 +128,8 @@ PetscErrorCode CoarseModel::BoundaryValues(PetscInt dim, PetscReal time, const P
    out of the global vectors and matrices, and DMPlexInsertBoundaryValues fills them in local ones. */
 PetscErrorCode CoarseModel::CreateSection()
 {
-  DMLabel  label;
-  PetscFE  fe;
+  DMLabel label;
+  PetscFE fe;
   PetscFunctionBeginUser;
   PetscCall(DMGetLabel(dm_, spec_.dirichlet_label.c_str(), &label));
   PetscCheck(label, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_label = %s: the mesh has no such label", spec_.dirichlet_label.c_str());
@@ -131,7 +138,8 @@ PetscErrorCode CoarseModel::CreateSection()
   PetscCall(DMSetField(dm_, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
   PetscCall(DMCreateDS(dm_));
-  PetscCall(DMAddBoundary(dm_, DM_BC_ESSENTIAL, "clamp", label, (PetscInt)spec_.dirichlet_values.size(), spec_.dirichlet_values.data(), 0, 0, NULL, (void (*)(void))BoundaryValues, NULL, this, NULL));
+  PetscCall(DMAddBoundary(dm_, DM_BC_ESSENTIAL, "clamp", label, (PetscInt)spec_.dirichlet_values.size(), spec_.dirichlet_values.data(), 0, 0, NULL,
+                          (void (*)(void))BoundaryValues, NULL, this, NULL));
   PetscSection ls, gs;
   PetscInt     storage, free_storage, nc;
   PetscCall(DMGetLocalSection(dm_, &ls));
@@ -139,7 +147,9 @@ PetscErrorCode CoarseModel::CreateSection()
   PetscCall(PetscSectionGetConstrainedStorageSize(ls, &free_storage));
   nc = storage - free_storage;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, comm_));
-  PetscCheck(nc > 0, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dirichlet_label %s / -coarse_dirichlet_values: no vertex is clamped; the problem would be singular", spec_.dirichlet_label.c_str());
+  PetscCheck(nc > 0, comm_, PETSC_ERR_ARG_WRONG,
+             "Options -coarse_dirichlet_label %s / -coarse_dirichlet_values: no vertex is clamped; the problem would be singular",
+             spec_.dirichlet_label.c_str());
   PetscCall(DMCreateLocalVector(dm_, &Uloc_));
   PetscCall(VecDuplicate(Uloc_, &Floc_));
   PetscCall(InsertBoundaryValues(Uloc_));
@@ -186,8 +196,8 @@ PetscErrorCode CoarseModel::PrecomputeElements()
   dN_.resize(nc * q1::kPoints * 8);
   wdet_.resize(nc * q1::kPoints);
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    PetscScalar *x = NULL;
-    PetscInt     n = 0;
+    PetscScalar   *x = NULL;
+    PetscInt       n = 0;
     const PetscInt k = c - c_start_;
     PetscCall(DMPlexVecGetClosure(dm_, cs, coords, c, &n, &x));
     PetscCheck(n == 8, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %" PetscInt_FMT ": expected 4 vertices", c);
@@ -195,9 +205,10 @@ PetscErrorCode CoarseModel::PrecomputeElements()
     PetscCall(DMPlexVecRestoreClosure(dm_, cs, coords, c, &n, &x));
     const PetscReal(*X)[2] = (const PetscReal(*)[2]) & Xref_[8 * k];
     for (int q = 0; q < q1::kPoints; q++) {
-      PetscReal dN[4][2];
+      PetscReal       dN[4][2];
       const PetscReal det = q1::Gradients(X, q1::kPointXi[q][0], q1::kPointXi[q][1], dN);
-      PetscCheck(det > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Coarse mesh: cell %" PetscInt_FMT " is inverted or degenerate (det J = %g at a quadrature point)", c, (double)det);
+      PetscCheck(det > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+                 "Coarse mesh: cell %" PetscInt_FMT " is inverted or degenerate (det J = %g at a quadrature point)", c, (double)det);
       for (int a = 0; a < 4; a++)
         for (int i = 0; i < 2; i++) dN_[(k * q1::kPoints + q) * 8 + 2 * a + i] = dN[a][i];
       wdet_[k * q1::kPoints + q] = q1::kPointW[q] * det;
@@ -241,13 +252,13 @@ PetscErrorCode CoarseModel::AssembleMass()
   const PetscInt nc = c_end_ - c_start_;
   f_ext_.assign(8 * nc, 0);
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt k = c - c_start_;
-    const PetscReal(*X)[2] = (const PetscReal(*)[2]) & Xref_[8 * k];
+    const PetscInt k        = c - c_start_;
+    const PetscReal(*X)[2]  = (const PetscReal(*)[2]) & Xref_[8 * k];
     PetscScalar me[16 * 16] = {0};
     PetscReal   m[4][4]     = {{0}};
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) {
-        PetscReal N[4], dN[4][2];
+        PetscReal       N[4], dN[4][2];
         const PetscReal det = q1::Gradients(X, q1::kG3[i], q1::kG3[j], dN);
         q1::Shape(q1::kG3[i], q1::kG3[j], N);
         const PetscReal w = q1::kW3[i] * q1::kW3[j] * det * rho0_;
@@ -297,7 +308,7 @@ PetscErrorCode CoarseModel::SetUp()
   tangent_.resize(np);
   cell_stress_.assign(3 * (c_end_ - c_start_), 0);
   /* the reference density from the material at rest (an RVE: its mass over its area) */
-  PetscBool ok;
+  PetscBool   ok;
   std::string why;
   {
     Vec U0;
@@ -338,7 +349,8 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscCall(GlobalToLocal(U, Uloc_));
   PetscCall(VecGetLocalSize(Uloc_, &n));
   PetscCall(VecGetArrayRead(Uloc_, &u));
-  int same = cached_valid_ && (PetscInt)cached_U_.size() == n && !std::memcmp(cached_U_.data(), u, n * sizeof(PetscScalar)) && (cached_tangents_ || !tangents), all_same;
+  int same = cached_valid_ && (PetscInt)cached_U_.size() == n && !std::memcmp(cached_U_.data(), u, n * sizeof(PetscScalar)) && (cached_tangents_ || !tangents),
+      all_same;
   PetscCallMPI(MPI_Allreduce(&same, &all_same, 1, MPI_INT, MPI_MIN, comm_));
   if (!all_same) cached_U_.assign(u, u + n);
   PetscCall(VecRestoreArrayRead(Uloc_, &u));
@@ -348,7 +360,7 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    PetscScalar   *x = NULL;
+    PetscScalar   *x  = NULL;
     PetscInt       nx = 0;
     const PetscInt k  = c - c_start_;
     PetscCall(DMPlexVecGetClosure(dm_, NULL, Uloc_, c, &nx, &x));
@@ -372,7 +384,8 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   int local_ok = 1, global_ok;
   for (size_t k = 0; k < response_.size(); k++)
     if (!response_[k].ok) {
-      if (local_ok && why) *why = "material point " + std::to_string(k) + " of element " + std::to_string(k / q1::kPoints) + " (local numbering): " + response_[k].reason;
+      if (local_ok && why)
+        *why = "material point " + std::to_string(k) + " of element " + std::to_string(k / q1::kPoints) + " (local numbering): " + response_[k].reason;
       local_ok = 0;
     }
   PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
@@ -381,9 +394,9 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
     counters_.failures++;
     if (!local_ok) PetscCall(PetscInfo(dm_, "material evaluation failed: %s\n", why ? why->c_str() : ""));
   }
-  *ok             = global_ok ? PETSC_TRUE : PETSC_FALSE;
-  cached_valid_   = true;
-  cached_ok_      = global_ok;
+  *ok              = global_ok ? PETSC_TRUE : PETSC_FALSE;
+  cached_valid_    = true;
+  cached_ok_       = global_ok;
   cached_tangents_ = tangents;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -396,10 +409,10 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(Floc));
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt k  = c - c_start_;
-    PetscScalar    fe[16] = {0};
-    const Tensor2 &sc = response_[k * q1::kPoints + q1::kCentre].sigma;
-    const PetscReal p = 0.5 * sc.Trace();
+    const PetscInt  k       = c - c_start_;
+    PetscScalar     fe[16]  = {0};
+    const Tensor2  &sc      = response_[k * q1::kPoints + q1::kCentre].sigma;
+    const PetscReal p       = 0.5 * sc.Trace();
     PetscReal       mean[3] = {0, 0, 0};
     for (int q = 0; q < q1::kPoints; q++) {
       const PetscInt   m  = k * q1::kPoints + q;
@@ -533,15 +546,15 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt k = c - c_start_;
+    const PetscInt k           = c - c_start_;
     PetscScalar    ke[16 * 16] = {0};
-    const Tensor2  sc = response_[k * q1::kPoints + q1::kCentre].sigma.Sym();
+    const Tensor2  sc          = response_[k * q1::kPoints + q1::kCentre].sigma.Sym();
     for (int q = 0; q < q1::kPoints; q++) {
-      const PetscInt   m  = k * q1::kPoints + q;
-      const Tensor2   &F  = F_[m];
-      const Tensor2    Fi = F.Inverse();
-      const PetscReal  W  = wdet_[m] * F.Det();
-      const PetscReal *dN = &dN_[m * 8];
+      const PetscInt   m      = k * q1::kPoints + q;
+      const Tensor2   &F      = F_[m];
+      const Tensor2    Fi     = F.Inverse();
+      const PetscReal  W      = wdet_[m] * F.Det();
+      const PetscReal *dN     = &dN_[m * 8];
       const bool       centre = q == q1::kCentre;
       const Tensor2    sigma  = centre ? sc : response_[m].sigma.Sym();
       const Tensor2    s      = centre ? (0.5 * sc.Trace()) * Tensor2::Identity() : sigma - (0.5 * sigma.Trace()) * Tensor2::Identity();
@@ -555,9 +568,17 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
       for (int a = 0; a < 4; a++)
         for (int b = 0; b < 4; b++) {
           /* B_a^T D B_b with B = [[Nx, 0], [0, Ny], [Ny, Nx]] */
-          const PetscReal Ba[3][2] = {{g[a][0], 0}, {0, g[a][1]}, {g[a][1], g[a][0]}};
-          const PetscReal Bb[3][2] = {{g[b][0], 0}, {0, g[b][1]}, {g[b][1], g[b][0]}};
-          const PetscReal geo      = g[a][0] * (s(0, 0) * g[b][0] + s(0, 1) * g[b][1]) + g[a][1] * (s(1, 0) * g[b][0] + s(1, 1) * g[b][1]);
+          const PetscReal Ba[3][2] = {
+            {g[a][0], 0      },
+            {0,       g[a][1]},
+            {g[a][1], g[a][0]}
+          };
+          const PetscReal Bb[3][2] = {
+            {g[b][0], 0      },
+            {0,       g[b][1]},
+            {g[b][1], g[b][0]}
+          };
+          const PetscReal geo = g[a][0] * (s(0, 0) * g[b][0] + s(0, 1) * g[b][1]) + g[a][1] * (s(1, 0) * g[b][0] + s(1, 1) * g[b][1]);
           for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) {
               PetscReal kij = i == j ? geo : 0.0, cij = 0;

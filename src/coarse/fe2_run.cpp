@@ -5,7 +5,10 @@
 
 namespace turgor {
 
-FE2Run::~FE2Run() { PetscCallVoid(MatDestroy(&J_)); }
+FE2Run::~FE2Run()
+{
+  PetscCallVoid(MatDestroy(&J_));
+}
 
 PetscErrorCode FE2Run::SetTSDefaults()
 {
@@ -47,7 +50,10 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions());
   PetscOptionsBegin(comm_, "fe2_", "Coarse FE^2 run (-mode fe2)", "turgor");
-  PetscCall(PetscOptionsInt("-jacobian_max_age", "Reuse the material tangents (K, C) for this many accepted steps; 0: fresh at every Jacobian request; -1: 0 for radauiia (which decides itself), 10 otherwise", "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
+  PetscCall(PetscOptionsInt("-jacobian_max_age",
+                            "Reuse the material tangents (K, C) for this many accepted steps; 0: fresh at every Jacobian request; -1: 0 for radauiia (which "
+                            "decides itself), 10 otherwise",
+                            "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -104,10 +110,15 @@ PetscErrorCode FE2Run::Report()
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
-  PetscCall(PetscPrintf(comm_, "turgor fe2: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, selective reduced integration), %d MPI ranks in %" PetscInt_FMT " material-point groups\n", model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), size, model_.Pool().NumGroups()));
+  PetscCall(PetscPrintf(comm_,
+                        "turgor fe2: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT
+                        " material points (%s, selective reduced integration), %d MPI ranks in %" PetscInt_FMT " material-point groups\n",
+                        model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), size, model_.Pool().NumGroups()));
   PetscCall(model_.Pool().Model().View(PETSC_VIEWER_STDOUT_(comm_)));
-  PetscCall(PetscPrintf(comm_, "Reference density %.6g ng/µm^2, %s mass matrix\n", (double)model_.ReferenceDensity(), model_.LumpedMass() ? "lumped" : "consistent"));
-  PetscCall(PetscPrintf(comm_, "Time integration: %s (%s form) to t = %g µs, rtol = %g, atol = %g\n", type, explicit_ ? "explicit, Udot = Mt^-1 G(U)" : "implicit, F(U, Udot) = Mt Udot - G(U)", (double)t_final_, (double)rtol, (double)atol));
+  PetscCall(
+    PetscPrintf(comm_, "Reference density %.6g ng/µm^2, %s mass matrix\n", (double)model_.ReferenceDensity(), model_.LumpedMass() ? "lumped" : "consistent"));
+  PetscCall(PetscPrintf(comm_, "Time integration: %s (%s form) to t = %g µs, rtol = %g, atol = %g\n", type,
+                        explicit_ ? "explicit, Udot = Mt^-1 G(U)" : "implicit, F(U, Udot) = Mt Udot - G(U)", (double)t_final_, (double)rtol, (double)atol));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -252,7 +263,8 @@ PetscErrorCode FE2Run::DoneDetails(std::string *details)
   const CoarseCounters &cc = model_.Counters();
   PetscFunctionBeginUser;
   PetscCall(model_.Pool().GlobalCounters(&rc));
-  *details = std::to_string(cc.residuals) + " function and " + std::to_string(cc.tangent_evals) + " Jacobian evaluations, " + std::to_string(rc.solves) + " RVE solves (" + std::to_string(rc.tangent_solves) + " for tangents)";
+  *details = std::to_string(cc.residuals) + " function and " + std::to_string(cc.tangent_evals) + " Jacobian evaluations, " + std::to_string(rc.solves) +
+             " RVE solves (" + std::to_string(rc.tangent_solves) + " for tangents)";
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

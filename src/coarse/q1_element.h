@@ -8,7 +8,12 @@
 namespace turgor {
 namespace q1 {
 
-static const PetscReal kXi[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+static const PetscReal kXi[4][2] = {
+  {-1, -1},
+  {1,  -1},
+  {1,  1 },
+  {-1, 1 }
+};
 
 inline void Shape(PetscReal xi, PetscReal eta, PetscReal N[4])
 {
@@ -18,15 +23,21 @@ inline void Shape(PetscReal xi, PetscReal eta, PetscReal N[4])
 /* Gradients dN_a/dX at (xi, eta) for vertex coordinates X[4][2]; returns det(dX/dxi). */
 inline PetscReal Gradients(const PetscReal X[4][2], PetscReal xi, PetscReal eta, PetscReal dN[4][2])
 {
-  PetscReal dNr[4][2], J[2][2] = {{0, 0}, {0, 0}};
+  PetscReal dNr[4][2], J[2][2] = {
+                         {0, 0},
+                         {0, 0}
+  };
   for (int a = 0; a < 4; a++) {
     dNr[a][0] = 0.25 * kXi[a][0] * (1 + kXi[a][1] * eta);
     dNr[a][1] = 0.25 * kXi[a][1] * (1 + kXi[a][0] * xi);
     for (int i = 0; i < 2; i++)
       for (int j = 0; j < 2; j++) J[i][j] += X[a][i] * dNr[a][j]; /* J_ij = dX_i / dxi_j */
   }
-  const PetscReal det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-  const PetscReal Ji[2][2] = {{J[1][1] / det, -J[0][1] / det}, {-J[1][0] / det, J[0][0] / det}};
+  const PetscReal det      = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  const PetscReal Ji[2][2] = {
+    {J[1][1] / det,  -J[0][1] / det},
+    {-J[1][0] / det, J[0][0] / det }
+  };
   for (int a = 0; a < 4; a++)
     for (int i = 0; i < 2; i++) dN[a][i] = dNr[a][0] * Ji[0][i] + dNr[a][1] * Ji[1][i];
   return det;
@@ -35,9 +46,15 @@ inline PetscReal Gradients(const PetscReal X[4][2], PetscReal xi, PetscReal eta,
 /* The material points of an element: 2 x 2 Gauss points (deviatoric stress) and the centre
    (pressure), TW 562 §5's selective reduced integration. Weights on the reference square. */
 static const int       kPoints = 5, kCentre = 4;
-static const PetscReal kG      = 0.57735026918962576451; /* 1/sqrt(3) */
-static const PetscReal kPointXi[5][2] = {{-kG, -kG}, {kG, -kG}, {kG, kG}, {-kG, kG}, {0, 0}};
-static const PetscReal kPointW[5]     = {1, 1, 1, 1, 4};
+static const PetscReal kG             = 0.57735026918962576451; /* 1/sqrt(3) */
+static const PetscReal kPointXi[5][2] = {
+  {-kG, -kG},
+  {kG,  -kG},
+  {kG,  kG },
+  {-kG, kG },
+  {0,   0  }
+};
+static const PetscReal kPointW[5] = {1, 1, 1, 1, 4};
 
 /* 3 x 3 Gauss rule for the consistent mass matrix (exact for N_a N_b det J on any quad). */
 static const PetscReal kG3[3] = {-0.77459666924148337704, 0.0, 0.77459666924148337704};

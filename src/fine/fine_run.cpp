@@ -11,8 +11,10 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
-  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec", sides, &nsides, &set));
-  PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec", dt_safety, &dt_safety, NULL));
+  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec",
+                                    sides, &nsides, &set));
+  PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec",
+                             dt_safety, &dt_safety, NULL));
   PetscOptionsEnd();
   if (set) {
     clamp.clear();
@@ -203,7 +205,9 @@ PetscErrorCode FineRun::Report()
   PetscInt ncells = tissue_.NumCells(), nsprings = (PetscInt)tissue_.particles.springs.size();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsprings, 1, MPIU_INT, MPI_SUM, comm_));
-  PetscCall(PetscPrintf(comm_, "turgor fine: %" PetscInt_FMT " cells, %" PetscInt_FMT " wall + %" PetscInt_FMT " fluid particles, %" PetscInt_FMT " springs, clamp:", ncells, nw, nf, nsprings));
+  PetscCall(PetscPrintf(comm_,
+                        "turgor fine: %" PetscInt_FMT " cells, %" PetscInt_FMT " wall + %" PetscInt_FMT " fluid particles, %" PetscInt_FMT " springs, clamp:",
+                        ncells, nw, nf, nsprings));
   for (const std::string &c : spec_.clamp) PetscCall(PetscPrintf(comm_, " %s", c.c_str()));
   PetscCall(PetscPrintf(comm_, "\n"));
   PetscCall(model_.View(out));
@@ -213,7 +217,9 @@ PetscErrorCode FineRun::Report()
   PetscCall(TSGetTimeStep(ts_, &dt));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &fixed));
   PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, fixed ? "fixed" : "initial", (double)dt));
-  if (fixed && dt > dt_stable_) PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt, (double)dt_stable_));
+  if (fixed && dt > dt_stable_)
+    PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt,
+                          (double)dt_stable_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -297,7 +303,10 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
   PetscCall(VecGetArray(Vdot, &a));
   PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
   for (PetscInt k = 0; k < 2 * run->n_local_; k++)
-    PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Non-finite acceleration of particle %" PetscInt_FMT " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)", k / 2, (double)t);
+    PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
+               "Non-finite acceleration of particle %" PetscInt_FMT
+               " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)",
+               k / 2, (double)t);
   PetscCall(VecRestoreArray(Vdot, &a));
   PetscCall(VecRestoreArrayRead(X, &x));
   run->rhs_evals_++;

@@ -96,10 +96,22 @@ void JsonObject::SetRaw(const std::string &key, const std::string &json)
     }
   items_.emplace_back(key, json);
 }
-void JsonObject::Set(const std::string &key, const std::string &value) { SetRaw(key, JsonQuote(value)); }
-void JsonObject::Set(const std::string &key, PetscReal value) { SetRaw(key, JsonNumber(value)); }
-void JsonObject::Set(const std::string &key, PetscInt value) { SetRaw(key, std::to_string(value)); }
-void JsonObject::Set(const std::string &key, bool value) { SetRaw(key, value ? "true" : "false"); }
+void JsonObject::Set(const std::string &key, const std::string &value)
+{
+  SetRaw(key, JsonQuote(value));
+}
+void JsonObject::Set(const std::string &key, PetscReal value)
+{
+  SetRaw(key, JsonNumber(value));
+}
+void JsonObject::Set(const std::string &key, PetscInt value)
+{
+  SetRaw(key, std::to_string(value));
+}
+void JsonObject::Set(const std::string &key, bool value)
+{
+  SetRaw(key, value ? "true" : "false");
+}
 void JsonObject::Set(const std::string &key, const std::vector<std::string> &values)
 {
   std::string a = "[";

@@ -116,12 +116,27 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
   for (int grid = 0; grid < 2; grid++) {
     PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grid ? "walls" : "particles"));
     for (size_t k = 0; k < times_.size(); k++) {
-      PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grid ? "walls" : "particles", k, (double)times_[k]));
-      if (grid) PetscCall(PetscFPrintf(comm_, fp, "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/springs</DataItem>\n    </Topology>\n", S, S, (int)sizeof(PetscInt), h5));
+      PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grid ? "walls" : "particles", k,
+                             (double)times_[k]));
+      if (grid)
+        PetscCall(PetscFPrintf(comm_, fp,
+                               "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "
+                               "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/springs</DataItem>\n    </Topology>\n",
+                               S, S, (int)sizeof(PetscInt), h5));
       else PetscCall(PetscFPrintf(comm_, fp, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\"/>\n", N));
-      PetscCall(PetscFPrintf(comm_, fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/position</DataItem>\n    </Geometry>\n", N, h5, k));
-      PetscCall(PetscFPrintf(comm_, fp, "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n    </Attribute>\n", N, h5, k));
-      for (const char *a : {"kind", "cell", "fixed"}) PetscCall(PetscFPrintf(comm_, fp, "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/static/%s</DataItem>\n    </Attribute>\n", a, N, h5, a));
+      PetscCall(PetscFPrintf(comm_, fp,
+                             "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" "
+                             "Format=\"HDF\">%s:/snapshot_%04zu/position</DataItem>\n    </Geometry>\n",
+                             N, h5, k));
+      PetscCall(PetscFPrintf(comm_, fp,
+                             "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" "
+                             "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n    </Attribute>\n",
+                             N, h5, k));
+      for (const char *a : {"kind", "cell", "fixed"})
+        PetscCall(PetscFPrintf(comm_, fp,
+                               "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" "
+                               "Precision=\"8\" Format=\"HDF\">%s:/static/%s</DataItem>\n    </Attribute>\n",
+                               a, N, h5, a));
       PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
     }
     PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n"));

@@ -3,7 +3,10 @@
 
 namespace turgor {
 
-TimeSampler::~TimeSampler() { PetscCallVoid(VecDestroy(&work_)); }
+TimeSampler::~TimeSampler()
+{
+  PetscCallVoid(VecDestroy(&work_));
+}
 
 PetscLogDouble TimeSampler::Elapsed() const
 {
@@ -54,7 +57,9 @@ PetscErrorCode TimeSampler::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, co
     MPI_Comm        comm;
     PetscCall(TSGetStepRejections(ts, &rej));
     PetscCall(PetscObjectGetComm((PetscObject)ts, &comm));
-    PetscCall(PetscPrintf(comm, "  t = %.6g / %g µs (%5.1f%%)  step %" PetscInt_FMT " (%" PetscInt_FMT " rejected)  %.3g steps/s  %.3g evaluations/s  ETA %.0f s\n", (double)t, (double)T, 100.0 * frac, step, rej, step / el, evals / el, eta));
+    PetscCall(PetscPrintf(comm,
+                          "  t = %.6g / %g µs (%5.1f%%)  step %" PetscInt_FMT " (%" PetscInt_FMT " rejected)  %.3g steps/s  %.3g evaluations/s  ETA %.0f s\n",
+                          (double)t, (double)T, 100.0 * frac, step, rej, step / el, evals / el, eta));
     last_report_ = now;
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,14 +4,20 @@
 
 namespace turgor {
 
-PetscErrorCode MaterialModelRegister(const char name[], MaterialModelCreator create) { return Registry<MaterialModel>::Instance().Add(name, create); }
+PetscErrorCode MaterialModelRegister(const char name[], MaterialModelCreator create)
+{
+  return Registry<MaterialModel>::Instance().Add(name, create);
+}
 
 PetscErrorCode MaterialModelCreate(MPI_Comm comm, const std::string &name, std::unique_ptr<MaterialModel> *model)
 {
   return Registry<MaterialModel>::Instance().Create(comm, name, "-material", "material", model);
 }
 
-std::string MaterialModelNames() { return Registry<MaterialModel>::Instance().Names(); }
+std::string MaterialModelNames()
+{
+  return Registry<MaterialModel>::Instance().Names();
+}
 
 namespace {
 
@@ -70,14 +76,18 @@ PetscErrorCode MaterialPointPool::SetFromOptions()
   }
   PetscOptionsBegin(comm_, "material_", "Material-point groups and tangents", "turgor");
   PetscCall(PetscOptionsInt("-comm_size", "MPI ranks per material-point group (sub-communicator)", "MaterialPointPool", comm_size_, &comm_size_, NULL));
-  PetscCall(PetscOptionsEList("-tangent", "Finite differences of the tangents (eqs 46-53)", "MaterialPointPool", tangents, 2, tangents[tangent], &tangent, NULL));
-  PetscCall(PetscOptionsReal("-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ, &tangent_.Fdot_typ, NULL));
+  PetscCall(
+    PetscOptionsEList("-tangent", "Finite differences of the tangents (eqs 46-53)", "MaterialPointPool", tangents, 2, tangents[tangent], &tangent, NULL));
+  PetscCall(PetscOptionsReal("-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ,
+                             &tangent_.Fdot_typ, NULL));
   PetscOptionsEnd();
   tangent_.central = tangent == 1;
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  PetscCheck(comm_size_ >= 1 && size % comm_size_ == 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_comm_size = %" PetscInt_FMT ": must divide the number of MPI ranks (%d)", comm_size_, size);
-  PetscCheck(tangent_.Fdot_typ > 0 && std::isfinite(tangent_.Fdot_typ), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_tangent_fdot_typ = %g: must be > 0", (double)tangent_.Fdot_typ);
+  PetscCheck(comm_size_ >= 1 && size % comm_size_ == 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -material_comm_size = %" PetscInt_FMT ": must divide the number of MPI ranks (%d)", comm_size_, size);
+  PetscCheck(tangent_.Fdot_typ > 0 && std::isfinite(tangent_.Fdot_typ), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_tangent_fdot_typ = %g: must be > 0",
+             (double)tangent_.Fdot_typ);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -211,13 +221,15 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
   for (PetscInt k = 0; k < n_local_; k++) {
     const PointResult &s = res[k];
     out[k]               = MaterialResponse();
-    out[k].sigma         = {{{s.sigma[0], s.sigma[1]}, {s.sigma[2], s.sigma[3]}}};
-    out[k].rho           = s.rho;
-    out[k].ok            = s.ok != 0;
-    out[k].iterations    = (PetscInt)s.iterations;
-    out[k].snes_its      = (PetscInt)s.snes_its;
-    out[k].ksp_its       = (PetscInt)s.ksp_its;
-    out[k].residual      = s.residual;
+    out[k].sigma         = {
+              {{s.sigma[0], s.sigma[1]}, {s.sigma[2], s.sigma[3]}}
+    };
+    out[k].rho        = s.rho;
+    out[k].ok         = s.ok != 0;
+    out[k].iterations = (PetscInt)s.iterations;
+    out[k].snes_its   = (PetscInt)s.snes_its;
+    out[k].ksp_its    = (PetscInt)s.ksp_its;
+    out[k].residual   = s.residual;
     if (!out[k].ok) out[k].reason = why[k].text;
     if (D)
       for (int i = 0; i < 9; i++) {

@@ -30,8 +30,8 @@ PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, Evalu
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   const Tensor2 b = F * F.T(), l = Fdot * F.Inverse();
-  out->sigma      = (p.mu / J) * (b - Tensor2::Identity()) + (p.lambda * std::log(J) / J) * Tensor2::Identity() + p.viscosity * (l + l.T());
-  out->rho        = p.density / J;
+  out->sigma = (p.mu / J) * (b - Tensor2::Identity()) + (p.lambda * std::log(J) / J) * Tensor2::Identity() + p.viscosity * (l + l.T());
+  out->rho   = p.density / J;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -41,7 +41,7 @@ PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, Evalu
 void NeoHookean::AnalyticTangents(const Tensor2 &F, Tangents *D) const
 {
   const PetscReal J = F.Det(), m = (p.mu - p.lambda * std::log(J)) / J;
-  *D                = Tangents();
+  *D          = Tangents();
   D->De[0][0] = D->De[1][1] = p.lambda / J + 2 * m;
   D->De[0][1] = D->De[1][0] = p.lambda / J;
   D->De[2][2]               = m;
@@ -59,7 +59,8 @@ PetscErrorCode NeoHookeanMaterial::CreatePoint(MPI_Comm group, std::unique_ptr<M
 PetscErrorCode NeoHookeanMaterial::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "material neo_hookean: mu = %g, lambda = %g N/m, eta = %g ng/µs, rho0 = %g ng/µm^2\n", (double)spec.mu, (double)spec.lambda, (double)spec.viscosity, (double)spec.density));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "material neo_hookean: mu = %g, lambda = %g N/m, eta = %g ng/µs, rho0 = %g ng/µm^2\n", (double)spec.mu,
+                                   (double)spec.lambda, (double)spec.viscosity, (double)spec.density));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -9,7 +9,8 @@ PetscErrorCode StrainPathRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm_, "path_", "Strain path of one material point (-mode rve)", "turgor");
-  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)", "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
+  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)",
+                              "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
   PetscCall(PetscOptionsReal("-rate", "Strain rate r [1/µs] (angular velocity for rotation [rad/µs])", "StrainPathRun", rate_, &rate_, NULL));
   PetscCall(PetscOptionsReal("-t_final", "Duration of the path [µs]", "StrainPathRun", t_final_, &t_final_, NULL));
   PetscCall(PetscOptionsInt("-steps", "Material-point evaluations along the path (plus the initial one)", "StrainPathRun", steps_, &steps_, NULL));
@@ -44,8 +45,12 @@ void StrainPathRun::Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const
     break;
   case 3: { /* rigid rotation */
     const PetscReal c = std::cos(r * t), s = std::sin(r * t);
-    *F    = {{{c, -s}, {s, c}}};
-    *Fdot = {{{-r * s, -r * c}, {r * c, -r * s}}};
+    *F = {
+      {{c, -s}, {s, c}}
+    };
+    *Fdot = {
+      {{-r * s, -r * c}, {r * c, -r * s}}
+    };
   } break;
   default: /* hold */
     break;
@@ -87,16 +92,17 @@ PetscErrorCode StrainPathRun::Solve()
       failures_++;
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: evaluation failed: %s\n", (double)t, r.reason.c_str()));
     }
-    last_                 = r;
-    const Tensor2 &s      = r.sigma;
-    const PetscReal asym  = std::fabs(s(0, 1) - s(1, 0)) / PetscMax(s.Norm(), PETSC_SMALL);
-    max_asymmetry_        = PetscMax(max_asymmetry_, asym);
+    last_                      = r;
+    const Tensor2  &s          = r.sigma;
+    const PetscReal asym       = std::fabs(s(0, 1) - s(1, 0)) / PetscMax(s.Norm(), PETSC_SMALL);
+    max_asymmetry_             = PetscMax(max_asymmetry_, asym);
     std::vector<PetscReal> row = {t, F(0, 0), F(0, 1), F(1, 0), F(1, 1), Fd(0, 0), Fd(0, 1), Fd(1, 0), Fd(1, 1), s(0, 0), s(0, 1), s(1, 0), s(1, 1), r.rho};
     for (int i = 0; i < 9; i++) row.push_back(D.De[i / 3][i % 3]);
     for (int i = 0; i < 9; i++) row.push_back(D.Dv[i / 3][i % 3]);
     row.insert(row.end(), {(PetscReal)r.iterations, r.residual, r.ok ? 1.0 : 0.0});
     PetscCall(csv.Row(row));
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n", (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n",
+                          (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
   }
   PetscCall(PetscTime(&t1));
   wall_ = t1 - t0;
@@ -106,7 +112,7 @@ PetscErrorCode StrainPathRun::Solve()
 
 PetscErrorCode StrainPathRun::WriteSummary()
 {
-  JsonObject  js;
+  JsonObject       js;
   MaterialCounters c;
   PetscFunctionBeginUser;
   PetscCall(pool_.GlobalCounters(&c));
@@ -130,7 +136,10 @@ PetscErrorCode StrainPathRun::WriteSummary()
   js.Set("sigma_final", std::vector<PetscReal>{last_.sigma(0, 0), last_.sigma(0, 1), last_.sigma(1, 0), last_.sigma(1, 1)});
   js.Set("rho_final", last_.rho);
   PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
-  PetscCall(PetscPrintf(comm_, "Done: %" PetscInt_FMT " evaluations, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, %" PetscInt_FMT " failures, %.3f s; outputs in %s: rve.csv, summary.json\n", steps_ + 1, c.solves, c.iterations, failures_, wall_, output_dir_.c_str()));
+  PetscCall(PetscPrintf(comm_,
+                        "Done: %" PetscInt_FMT " evaluations, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, %" PetscInt_FMT
+                        " failures, %.3f s; outputs in %s: rve.csv, summary.json\n",
+                        steps_ + 1, c.solves, c.iterations, failures_, wall_, output_dir_.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -4,7 +4,11 @@
 namespace turgor {
 
 /* The three perturbation directions (k, l) and the Voigt row of a stress component. */
-static const int kPairs[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+static const int kPairs[3][2] = {
+  {0, 0},
+  {1, 1},
+  {0, 1}
+};
 
 static void StoreColumn(const Tensor2 &c, int col, PetscReal D[3][3])
 {
@@ -13,10 +17,11 @@ static void StoreColumn(const Tensor2 &c, int col, PetscReal D[3][3])
   D[2][col] = 0.5 * (c(0, 1) + c(1, 0));
 }
 
-PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D, MaterialResponse *status)
+PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D,
+                               MaterialResponse *status)
 {
-  const PetscReal  U = opt.U > 0 ? opt.U : mp.StressUncertainty();
-  const PetscReal  sq = std::sqrt(U);
+  const PetscReal  U     = opt.U > 0 ? opt.U : mp.StressUncertainty();
+  const PetscReal  sq    = std::sqrt(U);
   const Tensor2   &sigma = base.sigma;
   MaterialResponse rp, rm;
 

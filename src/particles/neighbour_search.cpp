@@ -4,8 +4,14 @@
 
 namespace turgor {
 
-void NeighbourSearch::RequestFluidPairs(PetscReal cutoff) { fluid_cutoff_ = std::max(fluid_cutoff_, cutoff); }
-void NeighbourSearch::RequestParticleSpringPairs(PetscReal cutoff) { spring_cutoff_ = std::max(spring_cutoff_, cutoff); }
+void NeighbourSearch::RequestFluidPairs(PetscReal cutoff)
+{
+  fluid_cutoff_ = std::max(fluid_cutoff_, cutoff);
+}
+void NeighbourSearch::RequestParticleSpringPairs(PetscReal cutoff)
+{
+  spring_cutoff_ = std::max(spring_cutoff_, cutoff);
+}
 
 void NeighbourSearch::Reset()
 {
@@ -22,7 +28,8 @@ PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x,
   if (!rebuild) {
     /* a lattice change moves every image shift by at most |da1| + |da2| */
     PetscReal da = 0;
-    if (images.periodic) da = std::hypot(images.a[0][0] - a_ref_[0][0], images.a[0][1] - a_ref_[0][1]) + std::hypot(images.a[1][0] - a_ref_[1][0], images.a[1][1] - a_ref_[1][1]);
+    if (images.periodic)
+      da = std::hypot(images.a[0][0] - a_ref_[0][0], images.a[0][1] - a_ref_[0][1]) + std::hypot(images.a[1][0] - a_ref_[1][0], images.a[1][1] - a_ref_[1][1]);
     const PetscReal lim = 0.5 * (skin_ - da), lim2 = lim * lim;
     rebuild = lim <= 0;
     for (PetscInt k = 0; k < P.n && !rebuild; k++) {
@@ -43,7 +50,9 @@ void NeighbourSearch::SortFluidPairs()
 {
   std::vector<size_t> order(fluid_pairs_.size());
   for (size_t t = 0; t < order.size(); t++) order[t] = t;
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b]; });
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b];
+  });
   PairList sorted;
   sorted.i.resize(order.size());
   sorted.j.resize(order.size());
@@ -102,7 +111,8 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
   x_ref_.assign(x, x + 2 * P.n);
   fluid_pairs_     = PairList();
   particle_spring_ = PointSegmentList();
-  for (PetscInt k = 0; k < 2 * P.n; k++) PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+  for (PetscInt k = 0; k < 2 * P.n; k++)
+    PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
 
   const PetscReal rf = fluid_cutoff_ + skin_, rs = spring_cutoff_ + skin_;
   BinParticles(P, x, std::max(WantsFluidPairs() ? rf : 0, WantsParticleSpringPairs() ? rs : 0));
@@ -166,7 +176,8 @@ PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscR
   x_ref_.assign(x, x + 2 * P.n);
   fluid_pairs_     = PairList();
   particle_spring_ = PointSegmentList();
-  for (PetscInt k = 0; k < 2 * P.n; k++) PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+  for (PetscInt k = 0; k < 2 * P.n; k++)
+    PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
   if (WantsFluidPairs()) {
     const PetscReal rf = fluid_cutoff_ + skin_, rf2 = rf * rf;
     for (PetscInt i = 0; i < P.n; i++) {
@@ -184,10 +195,10 @@ PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscR
   if (WantsParticleSpringPairs()) {
     const PetscReal rs = spring_cutoff_ + skin_, rs2 = rs * rs;
     for (size_t s = 0; s < P.springs.size(); s++) {
-      const Spring   &sp = P.springs[s];
+      const Spring    &sp = P.springs[s];
       const PetscReal *se = images.x[sp.image];
       for (int k = 0; k < 9; k++) {
-        const PetscReal *sk = images.x[k];
+        const PetscReal *sk    = images.x[k];
         const PetscReal  xa[2] = {x[2 * sp.i] + sk[0], x[2 * sp.i + 1] + sk[1]};
         const PetscReal  xb[2] = {x[2 * sp.j] + se[0] + sk[0], x[2 * sp.j + 1] + se[1] + sk[1]};
         for (PetscInt p = 0; p < P.n; p++) {

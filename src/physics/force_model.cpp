@@ -4,14 +4,20 @@
 
 namespace turgor {
 
-PetscErrorCode ForceTermRegister(const char name[], ForceTermCreator create) { return Registry<ForceTerm>::Instance().Add(name, create); }
+PetscErrorCode ForceTermRegister(const char name[], ForceTermCreator create)
+{
+  return Registry<ForceTerm>::Instance().Add(name, create);
+}
 
 PetscErrorCode ForceTermCreate(MPI_Comm comm, const std::string &name, const char *option, std::unique_ptr<ForceTerm> *term)
 {
   return Registry<ForceTerm>::Instance().Create(comm, name, option, "physics term", term);
 }
 
-std::string ForceTermNames() { return Registry<ForceTerm>::Instance().Names(); }
+std::string ForceTermNames()
+{
+  return Registry<ForceTerm>::Instance().Names();
+}
 
 PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm)
 {
@@ -19,27 +25,31 @@ PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm)
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "body_", "External loads", "turgor");
-  PetscCall(PetscOptionsRealArray("-force", "Body force: acceleration gx,gy of the tissue [µm/µs^2] (default 0,-0.2)", "LoadSpec", body_acceleration, &n, &set));
+  PetscCall(
+    PetscOptionsRealArray("-force", "Body force: acceleration gx,gy of the tissue [µm/µs^2] (default 0,-0.2)", "LoadSpec", body_acceleration, &n, &set));
   PetscOptionsEnd();
   PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %" PetscInt_FMT ")", n);
-  PetscCheck(std::isfinite(body_acceleration[0]) && std::isfinite(body_acceleration[1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -body_force = %g,%g: must be finite", (double)body_acceleration[0], (double)body_acceleration[1]);
+  PetscCheck(std::isfinite(body_acceleration[0]) && std::isfinite(body_acceleration[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -body_force = %g,%g: must be finite", (double)body_acceleration[0], (double)body_acceleration[1]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode PhysicsSpec::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
-  char      *list[16];
-  PetscInt   n = 16;
-  PetscBool  set;
+  char       *list[16];
+  PetscInt    n = 16;
+  PetscBool   set;
   std::string defaults;
   PetscFunctionBeginUser;
   for (const std::string &s : names) defaults += (defaults.empty() ? "" : ",") + s;
-  const std::string help = "Physics terms to simulate, comma-separated, in evaluation order, from " + ForceTermNames() + " (default " + defaults + "; none: no forces)";
+  const std::string help = "Physics terms to simulate, comma-separated, in evaluation order, from " + ForceTermNames() + " (default " + defaults +
+                           "; none: no forces)";
   PetscOptionsBegin(comm, NULL, "Fine-scale physics", "turgor");
   PetscCall(PetscOptionsStringArray("-physics", help.c_str(), "PhysicsSpec", list, &n, &set));
   PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet skin of the neighbour lists [µm]", "PhysicsSpec", neighbour_skin, &neighbour_skin, NULL));
   PetscOptionsEnd();
-  PetscCheck(neighbour_skin >= 0 && std::isfinite(neighbour_skin), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -neighbour_skin = %g: must be finite and >= 0", (double)neighbour_skin);
+  PetscCheck(neighbour_skin >= 0 && std::isfinite(neighbour_skin), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -neighbour_skin = %g: must be finite and >= 0",
+             (double)neighbour_skin);
   if (set) {
     names.clear();
     for (PetscInt k = 0; k < n; k++) {
@@ -83,7 +93,9 @@ PetscErrorCode ForceModel::SetUp(const PhysicsSpec &physics, const ParticleSet &
 {
   PetscFunctionBeginUser;
   P_ = &P;
-  for (PetscInt i = 0; i < P.n; i++) PetscCheck(P.mass[i] > 0 && std::isfinite(P.mass[i]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Particle %" PetscInt_FMT " has mass %g: every particle mass must be > 0", i, (double)P.mass[i]);
+  for (PetscInt i = 0; i < P.n; i++)
+    PetscCheck(P.mass[i] > 0 && std::isfinite(P.mass[i]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "Particle %" PetscInt_FMT " has mass %g: every particle mass must be > 0", i, (double)P.mass[i]);
   nb_.Reset();
   nb_.SetSkin(physics.neighbour_skin);
   terms_.clear();
@@ -192,7 +204,8 @@ PetscErrorCode ForceModel::View(PetscViewer viewer) const
   PetscCall(PetscViewerASCIIPrintf(viewer, "Physics terms (%zu):%s\n", terms_.size(), terms_.empty() ? " none" : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   for (const auto &t : terms_) PetscCall(t->View(viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "neighbour lists: skin %g µm%s%s\n", (double)nb_.Skin(), nb_.WantsFluidPairs() ? ", fluid pairs" : "", nb_.WantsParticleSpringPairs() ? ", particle-spring pairs" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "neighbour lists: skin %g µm%s%s\n", (double)nb_.Skin(), nb_.WantsFluidPairs() ? ", fluid pairs" : "",
+                                   nb_.WantsParticleSpringPairs() ? ", particle-spring pairs" : ""));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

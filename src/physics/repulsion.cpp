@@ -10,11 +10,16 @@ PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscOptionsBegin(comm, "repulsion_", "Particle-spring repulsion (TW 562 eq 17)", "turgor");
   PetscCall(PetscOptionsReal("-strength", "Strength lambda [µN µm^6]", "Repulsion", strength, &strength, NULL));
   PetscCall(PetscOptionsReal("-cutoff", "Cutoff distance x0 [µm]", "Repulsion", cutoff, &cutoff, NULL));
-  PetscCall(PetscOptionsBool("-angle_factor", "Scale by cos(alpha), alpha = angle between x - x^ and the spring normal", "Repulsion", angle_factor, &angle_factor, NULL));
+  PetscCall(PetscOptionsBool("-angle_factor", "Scale by cos(alpha), alpha = angle between x - x^ and the spring normal", "Repulsion", angle_factor,
+                             &angle_factor, NULL));
   PetscCall(PetscOptionsBool("-damping", "Critical damping term 2 sqrt(6 lambda m / r^7)", "Repulsion", damping, &damping, NULL));
-  PetscCall(PetscOptionsBool("-damping_taper", "Scale the damping by 1 - (r/x0)^6 so that it vanishes at the cutoff like the force (off: the seed's literal term, which jumps at r = x0)", "Repulsion", damping_taper, &damping_taper, NULL));
+  PetscCall(
+    PetscOptionsBool("-damping_taper",
+                     "Scale the damping by 1 - (r/x0)^6 so that it vanishes at the cutoff like the force (off: the seed's literal term, which jumps at r = x0)",
+                     "Repulsion", damping_taper, &damping_taper, NULL));
   PetscOptionsEnd();
-  PetscCheck(strength >= 0 && std::isfinite(strength), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_strength = %g: must be finite and >= 0", (double)strength);
+  PetscCheck(strength >= 0 && std::isfinite(strength), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_strength = %g: must be finite and >= 0",
+             (double)strength);
   PetscCheck(cutoff > 0 && std::isfinite(cutoff), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_cutoff = %g: must be finite and > 0", (double)cutoff);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -40,9 +45,9 @@ static inline SegmentContact Closest(const PetscReal *x, const PetscReal *x1, co
   c.tx               = x2[0] - x1[0];
   c.ty               = x2[1] - x1[1];
   const PetscReal wx = x[0] - x1[0], wy = x[1] - x1[1], L2 = c.tx * c.tx + c.ty * c.ty;
-  c.t                = L2 > 0 ? std::min((PetscReal)1, std::max((PetscReal)0, (wx * c.tx + wy * c.ty) / L2)) : 0;
-  c.dx               = wx - c.t * c.tx;
-  c.dy               = wy - c.t * c.ty;
+  c.t  = L2 > 0 ? std::min((PetscReal)1, std::max((PetscReal)0, (wx * c.tx + wy * c.ty) / L2)) : 0;
+  c.dx = wx - c.t * c.tx;
+  c.dy = wy - c.t * c.ty;
   return c;
 }
 
@@ -60,10 +65,10 @@ template <bool VIRIAL>
 PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const PetscReal        *x = in.x, *v = in.v;
-  const ParticleSet      &P = *in.P;
-  const PointSegmentList &L = in.nb->ParticleSpringPairs();
+  const ParticleSet      &P   = *in.P;
+  const PointSegmentList &L   = in.nb->ParticleSpringPairs();
   const PetscReal         x02 = cutoff * cutoff, ix06 = 1.0 / (x02 * x02 * x02);
-  PetscReal               w[4] = {0, 0, 0, 0};
+  PetscReal               w[4]   = {0, 0, 0, 0};
   PetscInt                active = 0;
 
   PetscFunctionBeginUser;
@@ -72,14 +77,14 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
     const PetscInt   i1 = P.springs[s].i, i2 = P.springs[s].j;
     const PetscReal *sx = in.images->x[P.springs[s].image], *sv = in.images->v[P.springs[s].image];
     const PetscReal  tx = x[2 * i2] + sx[0] - x[2 * i1], ty = x[2 * i2 + 1] + sx[1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
-    seg_[s]             = {tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, sv[0], sv[1]};
+    seg_[s] = {tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, sv[0], sv[1]};
   }
   for (size_t q = 0; q < L.size(); q++) {
     const PetscInt   p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
     const Segment   &sg = seg_[L.s[q]];
     const PetscReal *px = in.images->x[L.img[q]]; /* the spring's image near p */
     const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
-    const PetscReal  t = std::min((PetscReal)1, std::max((PetscReal)0, (wx * sg.tx + wy * sg.ty) * sg.inv_L2)); /* x^ = x1 + t (x2 - x1) */
+    const PetscReal  t  = std::min((PetscReal)1, std::max((PetscReal)0, (wx * sg.tx + wy * sg.ty) * sg.inv_L2)); /* x^ = x1 + t (x2 - x1) */
     const PetscReal  dx = wx - t * sg.tx, dy = wy - t * sg.ty, r2 = dx * dx + dy * dy;
     if (r2 >= x02) continue;
     active++;
@@ -147,8 +152,8 @@ PetscErrorCode Repulsion::Energy(const ForceInput &in, PetscReal *E, PetscBool *
    critical damping; an explicit step needs dt < 2 / (c/2 + sqrt(c^2/4 + w^2)). */
 PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
 {
-  const PointSegmentList &L = in.nb->ParticleSpringPairs();
-  const ParticleSet      &P = *in.P;
+  const PointSegmentList &L    = in.nb->ParticleSpringPairs();
+  const ParticleSet      &P    = *in.P;
   PetscReal               best = PETSC_MAX_REAL, rbest = 0;
 
   PetscFunctionBeginUser;
@@ -158,11 +163,14 @@ PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<Ti
     if (r >= cutoff || r <= 0) continue;
     /* reduced mass of the particle against an end point */
     const PetscInt  p = L.p[q], i1 = P.springs[L.s[q]].i;
-    const PetscReal m = P.mass[p] * P.mass[i1] / (P.mass[p] + P.mass[i1]);
+    const PetscReal m  = P.mass[p] * P.mass[i1] / (P.mass[p] + P.mass[i1]);
     const PetscReal k  = 6.0 * strength / std::pow(r, 7);
     const PetscReal w2 = k / m, cr = damping ? 2.0 * std::sqrt(k * P.mass[p]) / m : 0.0;
     const PetscReal dt = 2.0 / (0.5 * cr + std::sqrt(0.25 * cr * cr + w2));
-    if (dt < best) { best = dt; rbest = r; }
+    if (dt < best) {
+      best  = dt;
+      rbest = r;
+    }
   }
   if (best < PETSC_MAX_REAL) {
     char why[256];
@@ -175,7 +183,8 @@ PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<Ti
 PetscErrorCode Repulsion::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s\n", (double)strength, (double)cutoff, angle_factor ? "on" : "off", damping ? (damping_taper ? "on, tapered to 0 at x0" : "on, literal") : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s\n", (double)strength, (double)cutoff,
+                                   angle_factor ? "on" : "off", damping ? (damping_taper ? "on, tapered to 0 at x0" : "on, literal") : "off"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -10,12 +10,17 @@ PetscErrorCode SPHFluid::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscCall(PetscOptionsReal("-smoothing_length", "Smoothing length h [µm] (support 2h)", "SPHFluid", smoothing_length, &smoothing_length, NULL));
   PetscCall(PetscOptionsReal("-sound_speed", "Speed of sound c_s in p = c_s^2 rho [µm/µs = m/s]", "SPHFluid", sound_speed, &sound_speed, NULL));
   PetscCall(PetscOptionsReal("-viscosity", "2D dynamic viscosity mu x thickness [ng/µs]; 0 skips the viscous passes", "SPHFluid", viscosity, &viscosity, NULL));
-  PetscCall(PetscOptionsBool("-correction", "Bonet-Lok corrected kernel gradient in the velocity gradient (eqs 13-15)", "SPHFluid", correction, &correction, NULL));
-  PetscCall(PetscOptionsReal("-correction_guard", "Correction fades out where lambda_min/lambda_max of its inverse falls below 2 guard (zero below guard)", "SPHFluid", guard, &guard, NULL));
+  PetscCall(
+    PetscOptionsBool("-correction", "Bonet-Lok corrected kernel gradient in the velocity gradient (eqs 13-15)", "SPHFluid", correction, &correction, NULL));
+  PetscCall(PetscOptionsReal("-correction_guard", "Correction fades out where lambda_min/lambda_max of its inverse falls below 2 guard (zero below guard)",
+                             "SPHFluid", guard, &guard, NULL));
   PetscOptionsEnd();
-  PetscCheck(smoothing_length > 0 && std::isfinite(smoothing_length), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_smoothing_length = %g: must be finite and > 0", (double)smoothing_length);
-  PetscCheck(sound_speed >= 0 && std::isfinite(sound_speed), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_sound_speed = %g: must be finite and >= 0", (double)sound_speed);
-  PetscCheck(viscosity >= 0 && std::isfinite(viscosity), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_viscosity = %g: must be finite and >= 0", (double)viscosity);
+  PetscCheck(smoothing_length > 0 && std::isfinite(smoothing_length), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -sph_smoothing_length = %g: must be finite and > 0", (double)smoothing_length);
+  PetscCheck(sound_speed >= 0 && std::isfinite(sound_speed), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_sound_speed = %g: must be finite and >= 0",
+             (double)sound_speed);
+  PetscCheck(viscosity >= 0 && std::isfinite(viscosity), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_viscosity = %g: must be finite and >= 0",
+             (double)viscosity);
   PetscCheck(guard > 0 && guard <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -sph_correction_guard = %g: must be in (0, 1]", (double)guard);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -62,9 +67,9 @@ PetscReal SPHFluid::KernelDerivative(PetscReal r) const
    cached for the later passes (the neighbour list carries a skin, so some listed pairs are out). */
 PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
 {
-  const PetscReal  *x = in.x, *m = in.P->mass.data();
-  const PairList   &L = in.nb->FluidPairs();
-  const PetscReal   h = smoothing_length, ih = 1.0 / h, r2max = 4 * h * h, c = norm_, cd = norm_ * ih;
+  const PetscReal *x = in.x, *m = in.P->mass.data();
+  const PairList  &L = in.nb->FluidPairs();
+  const PetscReal  h = smoothing_length, ih = 1.0 / h, r2max = 4 * h * h, c = norm_, cd = norm_ * ih;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_density_, 0, 0, 0, 0));
@@ -182,7 +187,7 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in)
   for (PetscInt i : fluid_) {
     PetscReal L[3] = {1, 0, 1};
     if (correction) GuardedInverse(M[3 * i], M[3 * i + 1], M[3 * i + 2], guard, L);
-    const PetscReal *g  = &G[4 * i];
+    const PetscReal *g = &G[4 * i];
     /* grad v = G L (L symmetric) */
     const PetscReal gv0 = g[0] * L[0] + g[1] * L[1], gv1 = g[0] * L[1] + g[1] * L[2];
     const PetscReal gv2 = g[2] * L[0] + g[3] * L[1], gv3 = g[2] * L[1] + g[3] * L[2];
@@ -317,7 +322,8 @@ PetscErrorCode SPHFluid::AddTimeStepLimits(const ForceInput &in, std::vector<Tim
 PetscErrorCode SPHFluid::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "sph: h = %g µm, c_s = %g µm/µs, mu = %g ng/µs, Bonet-Lok correction %s (guard %g), %zu fluid particles\n", (double)smoothing_length, (double)sound_speed, (double)viscosity, correction ? "on" : "off", (double)guard, fluid_.size()));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "sph: h = %g µm, c_s = %g µm/µs, mu = %g ng/µs, Bonet-Lok correction %s (guard %g), %zu fluid particles\n",
+                                   (double)smoothing_length, (double)sound_speed, (double)viscosity, correction ? "on" : "off", (double)guard, fluid_.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -10,8 +10,10 @@ PetscErrorCode WallSprings::SetFromOptions(MPI_Comm comm, const TermContext &ctx
   PetscCall(PetscOptionsReal("-stiffness", "Spring stiffness k_w [µN/µm = N/m]", "WallSprings", stiffness, &stiffness, NULL));
   PetscCall(PetscOptionsReal("-damping_ratio", "Dashpot as a fraction of critical damping 2 sqrt(m k_w)", "WallSprings", damping_ratio, &damping_ratio, NULL));
   PetscOptionsEnd();
-  PetscCheck(stiffness >= 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -wall_stiffness = %g: a stiffness must be finite and >= 0", (double)stiffness);
-  PetscCheck(damping_ratio >= 0 && std::isfinite(damping_ratio), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -wall_damping_ratio = %g: must be finite and >= 0", (double)damping_ratio);
+  PetscCheck(stiffness >= 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -wall_stiffness = %g: a stiffness must be finite and >= 0",
+             (double)stiffness);
+  PetscCheck(damping_ratio >= 0 && std::isfinite(damping_ratio), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -wall_damping_ratio = %g: must be finite and >= 0",
+             (double)damping_ratio);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -21,7 +23,8 @@ PetscErrorCode WallSprings::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   gamma_.resize(P.springs.size());
   for (size_t s = 0; s < P.springs.size(); s++) {
     const Spring &b = P.springs[s];
-    PetscCheck(b.rest_length > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Spring %zu (%" PetscInt_FMT ", %" PetscInt_FMT ") has rest length %g: must be > 0", s, b.i, b.j, (double)b.rest_length);
+    PetscCheck(b.rest_length > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "Spring %zu (%" PetscInt_FMT ", %" PetscInt_FMT ") has rest length %g: must be > 0", s, b.i, b.j, (double)b.rest_length);
     /* The seed writes gamma_c = 2 sqrt(m_i k_w) with m_i the wall particle mass; for unequal end
        masses we use their mean. */
     const PetscReal m = 0.5 * (P.mass[b.i] + P.mass[b.j]);
@@ -36,8 +39,8 @@ template <bool VIRIAL>
 void WallSprings::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) const
 {
   const PetscReal *x = in.x, *v = in.v;
-  const auto      &S = in.P->springs;
-  const PetscReal  k = stiffness;
+  const auto      &S    = in.P->springs;
+  const PetscReal  k    = stiffness;
   PetscReal        w[4] = {0, 0, 0, 0};
   for (size_t s = 0; s < S.size(); s++) {
     const PetscInt   i = S[s].i, j = S[s].j;
@@ -45,9 +48,9 @@ void WallSprings::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) 
     const PetscReal  dx = x[2 * j] + sx[0] - x[2 * i], dy = x[2 * j + 1] + sx[1] - x[2 * i + 1];
     const PetscReal  r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
     const PetscReal  ex = dx * ir, ey = dy * ir;
-    const PetscReal  vr = (v[2 * j] + sv[0] - v[2 * i]) * ex + (v[2 * j + 1] + sv[1] - v[2 * i + 1]) * ey;
-    const PetscReal mag = k * (r - S[s].rest_length) + gamma_[s] * vr;
-    const PetscReal fx = mag * ex, fy = mag * ey;
+    const PetscReal  vr  = (v[2 * j] + sv[0] - v[2 * i]) * ex + (v[2 * j + 1] + sv[1] - v[2 * i + 1]) * ey;
+    const PetscReal  mag = k * (r - S[s].rest_length) + gamma_[s] * vr;
+    const PetscReal  fx = mag * ex, fy = mag * ey;
     f[2 * i] += fx;
     f[2 * i + 1] += fy;
     f[2 * j] -= fx;
@@ -79,7 +82,7 @@ PetscErrorCode WallSprings::Energy(const ForceInput &in, PetscReal *E, PetscBool
   for (const Spring &s : in.P->springs) {
     const PetscReal *sx = in.images->x[s.image];
     const PetscReal  dx = in.x[2 * s.j] + sx[0] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] + sx[1] - in.x[2 * s.i + 1];
-    const PetscReal e = std::sqrt(dx * dx + dy * dy) - s.rest_length;
+    const PetscReal  e = std::sqrt(dx * dx + dy * dy) - s.rest_length;
     *E += 0.5 * stiffness * e * e;
   }
   *has = PETSC_TRUE;
@@ -105,7 +108,11 @@ PetscErrorCode WallSprings::AddTimeStepLimits(const ForceInput &in, std::vector<
   PetscReal lam = 0, wmax = 0, cmax = 0;
   for (PetscInt i = 0; i < P.n; i++) {
     const PetscReal l = 0.5 * c[i] + std::sqrt(0.25 * c[i] * c[i] + w2[i]);
-    if (l > lam) { lam = l; wmax = std::sqrt(w2[i]); cmax = c[i]; }
+    if (l > lam) {
+      lam  = l;
+      wmax = std::sqrt(w2[i]);
+      cmax = c[i];
+    }
   }
   if (lam > 0) {
     char why[256];
@@ -118,7 +125,8 @@ PetscErrorCode WallSprings::AddTimeStepLimits(const ForceInput &in, std::vector<
 PetscErrorCode WallSprings::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "springs: k_w = %g µN/µm, damping ratio %g (gamma = %g ng/µs for the first spring)\n", (double)stiffness, (double)damping_ratio, gamma_.empty() ? 0.0 : (double)gamma_[0]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "springs: k_w = %g µN/µm, damping ratio %g (gamma = %g ng/µs for the first spring)\n", (double)stiffness,
+                                   (double)damping_ratio, gamma_.empty() ? 0.0 : (double)gamma_[0]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -3,14 +3,20 @@
 
 namespace turgor {
 
-PetscErrorCode SimulationRegister(const char name[], SimulationCreator create) { return Registry<Simulation>::Instance().Add(name, create); }
+PetscErrorCode SimulationRegister(const char name[], SimulationCreator create)
+{
+  return Registry<Simulation>::Instance().Add(name, create);
+}
 
 PetscErrorCode SimulationCreate(MPI_Comm comm, const std::string &mode, std::unique_ptr<Simulation> *sim)
 {
   return Registry<Simulation>::Instance().Create(comm, mode, "-mode", "mode", sim);
 }
 
-std::string SimulationNames() { return Registry<Simulation>::Instance().Names(); }
+std::string SimulationNames()
+{
+  return Registry<Simulation>::Instance().Names();
+}
 
 /* Default final time [µs]: the seed's bending bar (docs/model.md, "final time"), fine and FE^2 alike. */
 static const PetscReal kDefaultFinalTime = 300.0;
@@ -20,9 +26,11 @@ PetscErrorCode RunOutputSpec::SetFromOptions(MPI_Comm comm, const std::string &p
   PetscFunctionBeginUser;
   PetscCall(OutputDirectory(comm, &dir));
   PetscOptionsBegin(comm, prefix.c_str(), "Outputs of the run", "turgor");
-  PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "RunOutputSpec", samples, &samples, NULL));
+  PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "RunOutputSpec", samples,
+                            &samples, NULL));
   PetscCall(PetscOptionsInt("-snapshots", "Field snapshots (HDF5 + XDMF) over [0, ts_max_time]; 0 = none", "RunOutputSpec", snapshots, &snapshots, NULL));
-  PetscCall(PetscOptionsReal("-progress_interval", "Seconds of wall time between progress lines; 0 = none", "RunOutputSpec", progress_interval, &progress_interval, NULL));
+  PetscCall(PetscOptionsReal("-progress_interval", "Seconds of wall time between progress lines; 0 = none", "RunOutputSpec", progress_interval,
+                             &progress_interval, NULL));
   PetscOptionsEnd();
   PetscCheck(samples >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%stip_samples = %" PetscInt_FMT ": must be >= 1", prefix.c_str(), samples);
   PetscCheck(snapshots >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%ssnapshots = %" PetscInt_FMT ": must be >= 0", prefix.c_str(), snapshots);
@@ -99,7 +107,8 @@ PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
   PetscCall(run->sampler_.Monitor(
-    ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); }, run->FunctionEvaluations()));
+    ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
+    run->FunctionEvaluations()));
   PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -114,7 +123,8 @@ PetscErrorCode TimeRun::Solve()
   wall_ = sampler_.Elapsed();
   PetscCall(TSGetConvergedReason(ts_, &reason));
   PetscCall(TSGetSolveTime(ts_, &t));
-  PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "The %s run failed at t = %g µs (%s): %s", mode_.c_str(), (double)t, TSConvergedReasons[reason], FailureAdvice());
+  PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "The %s run failed at t = %g µs (%s): %s", mode_.c_str(), (double)t, TSConvergedReasons[reason],
+             FailureAdvice());
   PetscCall(AfterSolve());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -164,7 +174,11 @@ PetscErrorCode TimeRun::WriteSummary()
   PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
   std::string details;
   PetscCall(DoneDetails(&details));
-  PetscCall(PetscPrintf(comm_, "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(), out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
+  PetscCall(PetscPrintf(comm_,
+                        "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT
+                        " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n",
+                        (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(),
+                        out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -118,7 +118,7 @@ PetscErrorCode RVERelaxation::BuildJacobianPattern()
   PetscCall(MatDestroy(&factor_));
   PetscCall(MatDestroy(&J_));
   PetscCall(MatDestroy(&K_));
-  have_K_ = false;
+  have_K_                 = false;
   const PetscInt        n = eq_->Rank() == 0 ? eq_->Cell().NumUnknowns() : 0;
   std::vector<PetscInt> nnz(n);
   for (PetscInt r = 0; r < n; r++) nnz[r] = 2 * (PetscInt)cols[r / 2].size();
@@ -268,8 +268,11 @@ PetscErrorCode RVERelaxation::Cold(Vec W, MaterialResponse *out)
   if (reason == TS_CONVERGED_USER && std::isfinite(res)) PetscFunctionReturn(PETSC_SUCCESS);
   out->ok = false;
   char msg[256];
-  if (reason == TS_CONVERGED_ITS) PetscCall(PetscSNPrintf(msg, sizeof msg, "Psi-tc did not converge in %" PetscInt_FMT " iterations (-rve_max_it): ||G|| = %.3e", steps, (double)res));
-  else PetscCall(PetscSNPrintf(msg, sizeof msg, "Psi-tc failed after %" PetscInt_FMT " iterations (%s), ||G|| = %.3e", steps, TSConvergedReasons[reason], (double)res));
+  if (reason == TS_CONVERGED_ITS)
+    PetscCall(PetscSNPrintf(msg, sizeof msg, "Psi-tc did not converge in %" PetscInt_FMT " iterations (-rve_max_it): ||G|| = %.3e", steps, (double)res));
+  else
+    PetscCall(
+      PetscSNPrintf(msg, sizeof msg, "Psi-tc failed after %" PetscInt_FMT " iterations (%s), ||G|| = %.3e", steps, TSConvergedReasons[reason], (double)res));
   out->reason = msg;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

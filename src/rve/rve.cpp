@@ -10,7 +10,8 @@ PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm)
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "rve_", "RVE material point (TW 562 §3.2)", "turgor");
   PetscCall(PetscOptionsInt("-cells", "Cells per side of the periodic RVE", "RVESpec", cells, &cells, NULL));
-  PetscCall(PetscOptionsEList("-relax", "Fine structure: relaxed (eq 27), cauchy_born (u1 = 0) or frozen (u1 of the last committed state)", "RVESpec", modes, 3, modes[m], &m, NULL));
+  PetscCall(PetscOptionsEList("-relax", "Fine structure: relaxed (eq 27), cauchy_born (u1 = 0) or frozen (u1 of the last committed state)", "RVESpec", modes, 3,
+                              modes[m], &m, NULL));
   PetscCall(PetscOptionsInt("-max_it", "Psi-tc iterations before an evaluation fails", "RVESpec", max_it, &max_it, NULL));
   PetscCall(PetscOptionsReal("-psi_dt0", "Initial pseudo time step delta_0 (scaled units)", "RVESpec", psi_dt0, &psi_dt0, NULL));
   PetscCall(PetscOptionsReal("-psi_increment", "delta <- increment x delta after every pseudo step", "RVESpec", psi_increment, &psi_increment, NULL));
@@ -22,12 +23,17 @@ PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm)
   relax = (RelaxationMode)m;
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_cells = %" PetscInt_FMT ": must be >= 1", cells);
   PetscCheck(max_it >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_max_it = %" PetscInt_FMT ": must be >= 1", max_it);
-  PetscCheck(psi_dt0 > 0 && warm_dt0 > 0 && psi_increment >= 1 && psi_dt_max > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_psi_dt0, -rve_warm_dt0, -rve_psi_dt_max must be > 0 and -rve_psi_increment >= 1");
-  PetscCheck(psi_atol > 0 && psi_steptol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_psi_atol = %g, -rve_psi_steptol = %g: must be > 0", (double)psi_atol, (double)psi_steptol);
+  PetscCheck(psi_dt0 > 0 && warm_dt0 > 0 && psi_increment >= 1 && psi_dt_max > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Options -rve_psi_dt0, -rve_warm_dt0, -rve_psi_dt_max must be > 0 and -rve_psi_increment >= 1");
+  PetscCheck(psi_atol > 0 && psi_steptol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Options -rve_psi_atol = %g, -rve_psi_steptol = %g: must be > 0",
+             (double)psi_atol, (double)psi_steptol);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-RVE::~RVE() { PetscCallVoid(VecDestroy(&W_)); }
+RVE::~RVE()
+{
+  PetscCallVoid(VecDestroy(&W_));
+}
 
 PetscErrorCode RVE::SetUp(const PeriodicCell &cell, const PhysicsSpec &physics, PetscReal fluid_density)
 {
@@ -104,13 +110,17 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   buf[4] = out->ok ? 1 : 0;
   buf[5] = out->residual;
   PetscCallMPI(MPI_Bcast(buf, 6, MPIU_REAL, 0, comm_));
-  out->sigma = {{{buf[0], buf[1]}, {buf[2], buf[3]}}};
-  out->rho   = cell_.Mass() / area;
+  out->sigma = {
+    {{buf[0], buf[1]}, {buf[2], buf[3]}}
+  };
+  out->rho = cell_.Mass() / area;
   if (!std::isfinite(out->sigma.Norm()) && out->ok) {
     out->ok     = false;
     out->reason = "non-finite stress";
   }
-  if (!out->ok) PetscCall(PetscInfo(NULL, "RVE evaluation failed at F = [%g %g; %g %g], Fdot = [%g %g; %g %g]: %s\n", (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)Fdot(0, 0), (double)Fdot(0, 1), (double)Fdot(1, 0), (double)Fdot(1, 1), out->reason.c_str()));
+  if (!out->ok)
+    PetscCall(PetscInfo(NULL, "RVE evaluation failed at F = [%g %g; %g %g], Fdot = [%g %g; %g %g]: %s\n", (double)F(0, 0), (double)F(0, 1), (double)F(1, 0),
+                        (double)F(1, 1), (double)Fdot(0, 0), (double)Fdot(0, 1), (double)Fdot(1, 0), (double)Fdot(1, 1), out->reason.c_str()));
   counters_.iterations += out->iterations;
   counters_.snes_its += out->snes_its;
   counters_.ksp_its += out->ksp_its;
@@ -193,7 +203,11 @@ PetscErrorCode RVEMaterial::View(PetscViewer viewer) const
   PetscInt          wall, fluid;
   PetscFunctionBeginUser;
   ParticlesPerPoint(&wall, &fluid);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "material rve: %" PetscInt_FMT " x %" PetscInt_FMT " periodic cells of %g µm (%" PetscInt_FMT " wall + %" PetscInt_FMT " fluid particles), %s, Psi-tc atol %g, steptol %g, at most %" PetscInt_FMT " iterations\n", spec.cells, spec.cells, (double)cell.cell_size, wall, fluid, modes[(int)spec.relax], (double)spec.psi_atol, (double)spec.psi_steptol, spec.max_it));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "material rve: %" PetscInt_FMT " x %" PetscInt_FMT " periodic cells of %g µm (%" PetscInt_FMT " wall + %" PetscInt_FMT
+                                   " fluid particles), %s, Psi-tc atol %g, steptol %g, at most %" PetscInt_FMT " iterations\n",
+                                   spec.cells, spec.cells, (double)cell.cell_size, wall, fluid, modes[(int)spec.relax], (double)spec.psi_atol,
+                                   (double)spec.psi_steptol, spec.max_it));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -16,12 +16,13 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spe
   const PetscReal mf = spec.FluidParticleMass();
 
   PetscFunctionBeginUser;
-  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)", (double)mf);
-  *tissue = Tissue();
+  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)",
+             (double)mf);
+  *tissue                 = Tissue();
   Tissue               &T = *tissue;
   std::vector<PetscInt> id((size_t)ax * ay, -1);
-  auto wall = [&](PetscInt a, PetscInt b) { id[b * ax + a] = T.AddParticle(a * dl, b * dl, spec.wall_mass, KIND_WALL); };
-  auto spring = [&](PetscInt a, PetscInt b, PetscInt a2, PetscInt b2) { T.particles.springs.push_back({id[b * ax + a], id[b2 * ax + a2], dl}); };
+  auto                  wall = [&](PetscInt a, PetscInt b) { id[b * ax + a] = T.AddParticle(a * dl, b * dl, spec.wall_mass, KIND_WALL); };
+  auto spring                = [&](PetscInt a, PetscInt b, PetscInt a2, PetscInt b2) { T.particles.springs.push_back({id[b * ax + a], id[b2 * ax + a2], dl}); };
 
   /* Particles and springs are numbered cell by cell (each cell owns the wall points of its bottom and
      left edges, then its fluid), so that neighbours in space are close in memory; the top row and
@@ -72,8 +73,9 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridS
   const PetscReal mf = spec.FluidParticleMass();
 
   PetscFunctionBeginUser;
-  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)", (double)mf);
-  *tissue = Tissue();
+  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)",
+             (double)mf);
+  *tissue                 = Tissue();
   Tissue               &T = *tissue;
   std::vector<PetscInt> id((size_t)ax * ay, -1);
   for (PetscInt cy = 0; cy < ny; cy++)
@@ -99,7 +101,7 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridS
     }
   for (PetscInt cy = 0; cy < ny; cy++)
     for (PetscInt cx = 0; cx < nx; cx++) {
-      const PetscInt        a0 = cx * s, b0 = cy * s;
+      const PetscInt a0 = cx * s, b0 = cy * s;
       /* lattice points of the ring, counter-clockwise; points past the period are images */
       std::vector<PetscInt> ring;
       std::vector<int>      img;
@@ -115,8 +117,8 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridS
       T.cell_walls.push_back(ring);
     }
   T.Finalize();
-  T.period[0]           = nx * spec.cell_size;
-  T.period[1]           = ny * spec.cell_size;
+  T.period[0]          = nx * spec.cell_size;
+  T.period[1]          = ny * spec.cell_size;
   T.particles.fixed[0] = 1; /* the corner at the origin: the four RVE corners are one particle */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -134,7 +136,8 @@ PetscErrorCode SquareGridSpec::SetFromOptions(MPI_Comm comm, bool layout)
   PetscCall(PetscOptionsInt("-fluid_per_cell", "SPH particles per cell (a square number k^2)", "SquareGridSpec", fluid_per_cell, &fluid_per_cell, NULL));
   PetscCall(PetscOptionsReal("-wall_particle_mass", "Wall (DEM) particle mass m_DEM [ng]", "SquareGridSpec", wall_mass, &wall_mass, NULL));
   PetscCall(PetscOptionsReal("-fluid_density", "2D fluid density = 3D density x thickness [ng/µm^2]", "SquareGridSpec", fluid_density, &fluid_density, NULL));
-  PetscCall(PetscOptionsReal("-fluid_particle_mass", "SPH particle mass m_SPH [ng]; 0: fluid_density x cell area / fluid_per_cell", "SquareGridSpec", fluid_mass, &fluid_mass, NULL));
+  PetscCall(PetscOptionsReal("-fluid_particle_mass", "SPH particle mass m_SPH [ng]; 0: fluid_density x cell area / fluid_per_cell", "SquareGridSpec",
+                             fluid_mass, &fluid_mass, NULL));
   PetscOptionsEnd();
 
   PetscCheck(cells_x >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cells_x = %" PetscInt_FMT ": must be >= 1", cells_x);
@@ -142,10 +145,12 @@ PetscErrorCode SquareGridSpec::SetFromOptions(MPI_Comm comm, bool layout)
   PetscCheck(cell_size > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cell_size = %g: must be > 0", (double)cell_size);
   PetscCheck(springs_per_side >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_springs_per_side = %" PetscInt_FMT ": must be >= 1", springs_per_side);
   PetscInt k = (PetscInt)std::lround(std::sqrt((double)fluid_per_cell));
-  PetscCheck(fluid_per_cell >= 0 && k * k == fluid_per_cell, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_per_cell = %" PetscInt_FMT ": must be a square number (k x k lattice per cell)", fluid_per_cell);
+  PetscCheck(fluid_per_cell >= 0 && k * k == fluid_per_cell, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -tissue_fluid_per_cell = %" PetscInt_FMT ": must be a square number (k x k lattice per cell)", fluid_per_cell);
   PetscCheck(wall_mass > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_wall_particle_mass = %g: a particle mass must be > 0", (double)wall_mass);
   PetscCheck(fluid_density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_density = %g: must be > 0", (double)fluid_density);
-  PetscCheck(std::isfinite(fluid_mass) && fluid_mass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass = %g: a particle mass must be > 0 (or 0 to derive it from -tissue_fluid_density)", (double)fluid_mass);
+  PetscCheck(std::isfinite(fluid_mass) && fluid_mass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -tissue_fluid_particle_mass = %g: a particle mass must be > 0 (or 0 to derive it from -tissue_fluid_density)", (double)fluid_mass);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -159,7 +164,10 @@ PetscReal SquareGridSpec::FluidParticleMass() const
 PetscErrorCode SquareGridGenerator::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue square_grid: %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g µm, %" PetscInt_FMT " springs per side, %" PetscInt_FMT " fluid particles per cell\n", spec.cells_x, spec.cells_y, (double)spec.cell_size, spec.springs_per_side, spec.fluid_per_cell));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "tissue square_grid: %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g µm, %" PetscInt_FMT
+                                   " springs per side, %" PetscInt_FMT " fluid particles per cell\n",
+                                   spec.cells_x, spec.cells_y, (double)spec.cell_size, spec.springs_per_side, spec.fluid_per_cell));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

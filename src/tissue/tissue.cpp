@@ -45,7 +45,10 @@ PetscInt Tissue::ClosestWallParticle(PetscReal px, PetscReal py) const
   for (PetscInt i = 0; i < particles.n; i++) {
     if (particles.kind[i] != KIND_WALL) continue;
     const PetscReal dx = X[2 * i] - px, dy = X[2 * i + 1] - py, r2 = dx * dx + dy * dy;
-    if (r2 < d2) { d2 = r2; best = i; }
+    if (r2 < d2) {
+      d2   = r2;
+      best = i;
+    }
   }
   return best;
 }
@@ -56,11 +59,13 @@ PetscErrorCode Tissue::Clamp(MPI_Comm comm, const std::vector<std::string> &side
   const PetscReal tol = 1e-9 * (hi[0] - lo[0] + hi[1] - lo[1]);
   for (const std::string &side : sides) {
     if (side == "none") continue;
-    PetscCheck(side == "left" || side == "right" || side == "bottom" || side == "top", comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option %s: unknown side '%s' (known: left, right, bottom, top, none)", option, side.c_str());
+    PetscCheck(side == "left" || side == "right" || side == "bottom" || side == "top", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+               "Option %s: unknown side '%s' (known: left, right, bottom, top, none)", option, side.c_str());
     for (PetscInt i = 0; i < particles.n; i++) {
       if (particles.kind[i] != KIND_WALL) continue;
       const PetscReal x = X[2 * i], y = X[2 * i + 1];
-      const bool      hit = (side == "left" && x < lo[0] + tol) || (side == "right" && x > hi[0] - tol) || (side == "bottom" && y < lo[1] + tol) || (side == "top" && y > hi[1] - tol);
+      const bool      hit = (side == "left" && x < lo[0] + tol) || (side == "right" && x > hi[0] - tol) || (side == "bottom" && y < lo[1] + tol) ||
+                       (side == "top" && y > hi[1] - tol);
       if (hit) particles.fixed[i] = 1;
     }
   }

@@ -2,7 +2,10 @@
 
 namespace turgor {
 
-PetscErrorCode TissueGeneratorRegister(const char name[], TissueGeneratorCreator create) { return Registry<TissueGenerator>::Instance().Add(name, create); }
+PetscErrorCode TissueGeneratorRegister(const char name[], TissueGeneratorCreator create)
+{
+  return Registry<TissueGenerator>::Instance().Add(name, create);
+}
 
 PetscErrorCode TissueGeneratorCreate(MPI_Comm comm, const std::string &name, std::unique_ptr<TissueGenerator> *generator)
 {

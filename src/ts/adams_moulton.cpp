@@ -38,12 +38,12 @@ constexpr PetscInt kErrFailsLowerOrder = 3;
 /* The accepted Nordsieck array's description. Everything needed to continue from it, so that
    TSRollBack() can return to it. */
 struct History {
-  PetscReal t = 0, h = 0; /* z[0] is U(t); z is scaled with h */
-  PetscInt  q = 1;        /* degree of the polynomial: z[0..q] */
-  PetscInt  q_next = 1;   /* order for the next step (a pending order change) */
-  PetscInt  qwait = 2;    /* accepted steps before an order change is considered again */
+  PetscReal t = 0, h = 0;             /* z[0] is U(t); z is scaled with h */
+  PetscInt  q                  = 1;   /* degree of the polynomial: z[0..q] */
+  PetscInt  q_next             = 1;   /* order for the next step (a pending order change) */
+  PetscInt  qwait              = 2;   /* accepted steps before an order change is considered again */
   PetscReal tau[kMaxOrder + 2] = {0}; /* tau[1], tau[2], ...: the last accepted step sizes, newest first */
-  PetscInt  ntau = 0;
+  PetscInt  ntau               = 0;
   /* Delta of the step before, kept when the next step may consider order q+1 */
   PetscBool have_prev = PETSC_FALSE;
   PetscInt  prev_q    = 0;
@@ -68,12 +68,12 @@ struct AM {
   PetscReal conv_coef        = 0.1;
   PetscReal conv_fail_factor = 0.25;
   PetscBool fixed_order      = PETSC_FALSE;
-  PetscBool auto_h0          = PETSC_FALSE, auto_h0_set = PETSC_FALSE, dt_option = PETSC_FALSE;
+  PetscBool auto_h0 = PETSC_FALSE, auto_h0_set = PETSC_FALSE, dt_option = PETSC_FALSE;
 
   /* two Nordsieck arrays: zb[cur] is the accepted one, the other receives the attempt */
-  Vec *zb[2] = {NULL, NULL};
-  int  cur   = 0;
-  Vec  delta = NULL, work = NULL, diff = NULL, y = NULL, fval = NULL, ewt = NULL, scratch = NULL, prev_delta = NULL;
+  Vec     *zb[2] = {NULL, NULL};
+  int      cur   = 0;
+  Vec      delta = NULL, work = NULL, diff = NULL, y = NULL, fval = NULL, ewt = NULL, scratch = NULL, prev_delta = NULL;
   PetscInt N = 0;
 
   History   acc, acc_saved; /* acc_saved: the state the last step started from (TSRollBack) */
@@ -81,9 +81,9 @@ struct AM {
 
   /* the attempt in progress */
   PetscReal    t0 = 0, h = 0;
-  PetscInt     q  = 1;
+  PetscInt     q = 1;
   Coefficients co;
-  PetscReal    acnrm = 0; /* WRMS norm of Delta */
+  PetscReal    acnrm      = 0; /* WRMS norm of Delta */
   PetscBool    wlte_valid = PETSC_FALSE;
   NormType     wlte_type  = NORM_2;
   PetscReal    wlte       = -1;
@@ -93,7 +93,11 @@ struct AM {
   PetscInt steps_at[kMaxOrder + 1] = {0};
 };
 
-enum class FixedPoint { converged, failed, nonfinite };
+enum class FixedPoint {
+  converged,
+  failed,
+  nonfinite
+};
 
 /* ---------------------------------------------------------------------------------------------
    Coefficients. P_k(s) = prod_{j=1..k} (1 + s/xi_j) (normalised, P(0) = 1: the xi grow with k and
@@ -187,7 +191,8 @@ PetscErrorCode AMWeights(TS ts, AM *am, Vec U)
   if (vatol) PetscCall(VecAXPY(am->ewt, 1.0, vatol));
   else PetscCall(VecShift(am->ewt, atol));
   PetscCall(VecMin(am->ewt, NULL, &wmin));
-  PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TS am: the error weights atol + rtol |U| must be positive (at t = %g a component is 0 with atol = 0; set -ts_atol > 0)", (double)ts->ptime);
+  PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TS am: the error weights atol + rtol |U| must be positive (at t = %g a component is 0 with atol = 0; set -ts_atol > 0)", (double)ts->ptime);
   PetscCall(VecReciprocal(am->ewt));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -337,16 +342,17 @@ PetscErrorCode AMStart(TS ts, AM *am)
     if (ts->max_time > ts->ptime && ts->max_time < PETSC_MAX_REAL) h = PetscMin(h, ts->max_time - ts->ptime);
     PetscCall(PetscInfo(ts, "Automatic initial step %g\n", (double)h));
   }
-  PetscCheck(h > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TS am: the time step must be positive (got %g); backward integration is not supported", (double)h);
+  PetscCheck(h > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TS am: the time step must be positive (got %g); backward integration is not supported", (double)h);
   PetscCall(VecCopy(ts->vec_sol, z[0]));
   PetscCall(VecCopy(am->fval, z[1]));
   PetscCall(VecScale(z[1], h));
-  am->acc        = History();
-  am->acc.t      = ts->ptime;
-  am->acc.h      = h;
-  am->acc.q      = 1;
-  am->acc.q_next = 1;
-  am->acc.qwait  = 2; /* q + 1 */
+  am->acc          = History();
+  am->acc.t        = ts->ptime;
+  am->acc.h        = h;
+  am->acc.q        = 1;
+  am->acc.q_next   = 1;
+  am->acc.qwait    = 2; /* q + 1 */
   am->can_rollback = PETSC_FALSE;
   ts->time_step    = h;
   am->started      = PETSC_TRUE;
@@ -462,7 +468,7 @@ PetscErrorCode AMChooseOrder(AM *am, Vec *zn, PetscInt *q_new, PetscReal *ratio)
 
 PetscErrorCode TSStep_AM(TS ts)
 {
-  AM       *am = (AM *)ts->data;
+  AM       *am     = (AM *)ts->data;
   PetscInt  n_conv = 0, n_reject = 0;
   PetscBool accept = PETSC_TRUE, rejected = PETSC_FALSE, isnone;
   PetscReal next_h = ts->time_step;
@@ -481,7 +487,8 @@ PetscErrorCode TSStep_AM(TS ts)
     FixedPoint fp;
     PetscBool  stage_ok = PETSC_TRUE;
 
-    if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP && am->t0 + ts->time_step > ts->max_time && ts->max_time > am->t0) ts->time_step = ts->max_time - am->t0;
+    if (ts->exact_final_time == TS_EXACTFINALTIME_MATCHSTEP && am->t0 + ts->time_step > ts->max_time && ts->max_time > am->t0)
+      ts->time_step = ts->max_time - am->t0;
     am->h = ts->time_step;
     if (!(am->h > 0) || am->t0 + am->h == am->t0) {
       PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g: step size %g too small\n", ts->steps, (double)am->t0, (double)am->h));
@@ -500,12 +507,14 @@ PetscErrorCode TSStep_AM(TS ts)
       am->n_fp_fail++;
       ts->num_snes_failures++; /* reported by TSGetSNESFailures(); limited by -ts_am_max_conv_fails */
       ts->time_step = am->h * am->conv_fail_factor;
-      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g h=%g order %" PetscInt_FMT ": fixed point %s, retrying with h=%g\n", ts->steps, (double)am->t0, (double)am->h, am->q, fp == FixedPoint::failed ? "did not converge" : "produced a non-finite value", (double)ts->time_step));
+      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g h=%g order %" PetscInt_FMT ": fixed point %s, retrying with h=%g\n", ts->steps, (double)am->t0,
+                          (double)am->h, am->q, fp == FixedPoint::failed ? "did not converge" : "produced a non-finite value", (double)ts->time_step));
       ts->reject++;
       accept   = PETSC_FALSE;
       rejected = PETSC_TRUE;
       if (++n_conv >= am->max_conv_fails) {
-        PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT ": %" PetscInt_FMT " fixed-point failures, -ts_am_max_conv_fails allows %" PetscInt_FMT "\n", ts->steps, n_conv, am->max_conv_fails));
+        PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT ": %" PetscInt_FMT " fixed-point failures, -ts_am_max_conv_fails allows %" PetscInt_FMT "\n", ts->steps,
+                            n_conv, am->max_conv_fails));
         ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
       }
       continue;
@@ -549,10 +558,10 @@ PetscErrorCode TSStep_AM(TS ts)
     /* accepted: correct the whole array, z_n = z(0) + l Delta */
     for (PetscInt j = 0; j <= am->q; j++) PetscCall(VecAXPY(zn[j], am->co.l[j], am->delta));
     {
-      History        &H = am->acc;
-      const PetscInt  q = am->q;
-      PetscInt        q_new = q;
-      PetscReal       ratio = 1;
+      History       &H     = am->acc;
+      const PetscInt q     = am->q;
+      PetscInt       q_new = q;
+      PetscReal      ratio = 1;
       for (PetscInt i = PetscMin(H.ntau + 1, kMaxOrder + 1); i >= 2; i--) H.tau[i] = H.tau[i - 1];
       H.tau[1] = am->h;
       H.ntau   = PetscMin(H.ntau + 1, kMaxOrder + 1);
@@ -696,7 +705,8 @@ PetscErrorCode TSAMGetCounters_AM(TS ts, PetscInt *its, PetscInt *fails, PetscIn
 PetscErrorCode TSAMSetMaxOrder_AM(TS ts, PetscInt max_order)
 {
   PetscFunctionBeginUser;
-  PetscCheck(max_order >= 1 && max_order <= kMaxOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxOrder(): max_order = %" PetscInt_FMT " must be in 1..%" PetscInt_FMT, max_order, kMaxOrder);
+  PetscCheck(max_order >= 1 && max_order <= kMaxOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TSAMSetMaxOrder(): max_order = %" PetscInt_FMT " must be in 1..%" PetscInt_FMT, max_order, kMaxOrder);
   ((AM *)ts->data)->max_order = max_order;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -725,7 +735,8 @@ PetscErrorCode TSAMGetFixedOrder_AM(TS ts, PetscBool *fixed)
 PetscErrorCode TSAMSetMaxIterations_AM(TS ts, PetscInt max_it)
 {
   PetscFunctionBeginUser;
-  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1", max_it);
+  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1",
+             max_it);
   ((AM *)ts->data)->max_it = max_it;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -740,7 +751,8 @@ PetscErrorCode TSAMGetMaxIterations_AM(TS ts, PetscInt *max_it)
 PetscErrorCode TSAMSetMaxConvergenceFailures_AM(TS ts, PetscInt max_fails)
 {
   PetscFunctionBeginUser;
-  PetscCheck(max_fails >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSAMSetMaxConvergenceFailures(): max_fails = %" PetscInt_FMT " must be >= 1", max_fails);
+  PetscCheck(max_fails >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TSAMSetMaxConvergenceFailures(): max_fails = %" PetscInt_FMT " must be >= 1", max_fails);
   ((AM *)ts->data)->max_conv_fails = max_fails;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -754,9 +766,15 @@ PetscErrorCode TSAMGetMaxConvergenceFailures_AM(TS ts, PetscInt *max_fails)
 
 /* every function TSCreate_AM() composes (listed in adams_moulton.h), removed again on destroy so
    that a TS changed to another type no longer answers to them */
-const char *const kComposedNames[] = {"TSAMGetCounters_C",      "TSAMSetMaxOrder_C",      "TSAMGetMaxOrder_C",
-                                      "TSAMSetFixedOrder_C",    "TSAMGetFixedOrder_C",    "TSAMSetMaxIterations_C",
-                                      "TSAMGetMaxIterations_C", "TSAMSetMaxConvergenceFailures_C", "TSAMGetMaxConvergenceFailures_C"};
+const char *const kComposedNames[] = {"TSAMGetCounters_C",
+                                      "TSAMSetMaxOrder_C",
+                                      "TSAMGetMaxOrder_C",
+                                      "TSAMSetFixedOrder_C",
+                                      "TSAMGetFixedOrder_C",
+                                      "TSAMSetMaxIterations_C",
+                                      "TSAMGetMaxIterations_C",
+                                      "TSAMSetMaxConvergenceFailures_C",
+                                      "TSAMGetMaxConvergenceFailures_C"};
 
 PetscErrorCode TSDestroy_AM(TS ts)
 {
@@ -777,7 +795,8 @@ PetscErrorCode TSSetUp_AM(TS ts)
   PetscFunctionBeginUser;
   PetscCall(TSGetIFunction(ts, NULL, &ifunction, NULL));
   PetscCheck(!ifunction, PetscObjectComm((PetscObject)ts), PETSC_ERR_SUP,
-             "TS am integrates U' = f(t, U) given with TSSetRHSFunction(); an IFunction F(t, U, U') = 0 (TSSetIFunction()) is not supported: functional iteration evaluates f and has no Jacobian or mass matrix to solve F with");
+             "TS am integrates U' = f(t, U) given with TSSetRHSFunction(); an IFunction F(t, U, U') = 0 (TSSetIFunction()) is not supported: functional "
+             "iteration evaluates f and has no Jacobian or mass matrix to solve F with");
   PetscCall(TSGetRHSFunction(ts, NULL, &rhs, NULL));
   PetscCheck(rhs, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS am needs the right-hand side: call TSSetRHSFunction()");
   PetscCall(TSGetAdapt(ts, &ts->adapt));
@@ -798,20 +817,35 @@ PetscErrorCode TSSetFromOptions_AM(TS ts, PetscOptionItems *PetscOptionsObject)
   PetscFunctionBeginUser;
   PetscOptionsHeadBegin(PetscOptionsObject, "Adams-Moulton with functional iteration (am) options");
   PetscCall(PetscOptionsInt("-ts_am_max_order", "Highest order used (1..12)", "TSAM", am->max_order, &am->max_order, NULL));
-  PetscCall(PetscOptionsBool("-ts_am_fixed_order", "Raise the order to -ts_am_max_order as the start-up allows, then keep it (no order selection)", "TSAM", am->fixed_order, &am->fixed_order, NULL));
-  PetscCall(PetscOptionsInt("-ts_am_max_iterations", "Fixed-point iterations (f evaluations) per step attempt (CVODE's maxcor)", "TSAM", am->max_it, &am->max_it, NULL));
-  PetscCall(PetscOptionsReal("-ts_am_convergence_coefficient", "The fixed point has converged when the error it leaves in the local error estimate is below this fraction of the tolerance (CVODE's nlscoef)", "TSAM", am->conv_coef, &am->conv_coef, NULL));
-  PetscCall(PetscOptionsReal("-ts_am_conv_fail_factor", "Step size factor after a fixed-point failure (CVODE's eta_cf)", "TSAM", am->conv_fail_factor, &am->conv_fail_factor, NULL));
-  PetscCall(PetscOptionsInt("-ts_am_max_conv_fails", "Fixed-point failures in one step before the solve stops with DIVERGED_NONLINEAR_SOLVE (CVODE's maxncf)", "TSAM", am->max_conv_fails, &am->max_conv_fails, NULL));
-  PetscCall(PetscOptionsBool("-ts_am_initial_step_auto", "Choose the first step automatically (Hairer's estimate); default: when the time step is PETSc's default 0.1 and -ts_dt is not given", "TSAM", am->auto_h0, &am->auto_h0, &flg));
+  PetscCall(PetscOptionsBool("-ts_am_fixed_order", "Raise the order to -ts_am_max_order as the start-up allows, then keep it (no order selection)", "TSAM",
+                             am->fixed_order, &am->fixed_order, NULL));
+  PetscCall(PetscOptionsInt("-ts_am_max_iterations", "Fixed-point iterations (f evaluations) per step attempt (CVODE's maxcor)", "TSAM", am->max_it,
+                            &am->max_it, NULL));
+  PetscCall(PetscOptionsReal("-ts_am_convergence_coefficient",
+                             "The fixed point has converged when the error it leaves in the local error estimate is below this fraction of the tolerance "
+                             "(CVODE's nlscoef)",
+                             "TSAM", am->conv_coef, &am->conv_coef, NULL));
+  PetscCall(PetscOptionsReal("-ts_am_conv_fail_factor", "Step size factor after a fixed-point failure (CVODE's eta_cf)", "TSAM", am->conv_fail_factor,
+                             &am->conv_fail_factor, NULL));
+  PetscCall(PetscOptionsInt("-ts_am_max_conv_fails", "Fixed-point failures in one step before the solve stops with DIVERGED_NONLINEAR_SOLVE (CVODE's maxncf)",
+                            "TSAM", am->max_conv_fails, &am->max_conv_fails, NULL));
+  PetscCall(
+    PetscOptionsBool("-ts_am_initial_step_auto",
+                     "Choose the first step automatically (Hairer's estimate); default: when the time step is PETSc's default 0.1 and -ts_dt is not given",
+                     "TSAM", am->auto_h0, &am->auto_h0, &flg));
   if (flg) am->auto_h0_set = PETSC_TRUE;
   PetscOptionsHeadEnd();
   PetscCall(PetscOptionsHasName(((PetscObject)ts)->options, ((PetscObject)ts)->prefix, "-ts_dt", &am->dt_option));
-  PetscCheck(am->max_order >= 1 && am->max_order <= kMaxOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_max_order = %" PetscInt_FMT ": must be in 1..%" PetscInt_FMT, am->max_order, kMaxOrder);
-  PetscCheck(am->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_max_iterations = %" PetscInt_FMT ": must be >= 1", am->max_it);
-  PetscCheck(am->conv_coef > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_convergence_coefficient = %g: must be > 0", (double)am->conv_coef);
-  PetscCheck(am->conv_fail_factor > 0 && am->conv_fail_factor < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_conv_fail_factor = %g: must be in (0, 1)", (double)am->conv_fail_factor);
-  PetscCheck(am->max_conv_fails >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_max_conv_fails = %" PetscInt_FMT ": must be >= 1", am->max_conv_fails);
+  PetscCheck(am->max_order >= 1 && am->max_order <= kMaxOrder, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_am_max_order = %" PetscInt_FMT ": must be in 1..%" PetscInt_FMT, am->max_order, kMaxOrder);
+  PetscCheck(am->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_max_iterations = %" PetscInt_FMT ": must be >= 1",
+             am->max_it);
+  PetscCheck(am->conv_coef > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_am_convergence_coefficient = %g: must be > 0",
+             (double)am->conv_coef);
+  PetscCheck(am->conv_fail_factor > 0 && am->conv_fail_factor < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_am_conv_fail_factor = %g: must be in (0, 1)", (double)am->conv_fail_factor);
+  PetscCheck(am->max_conv_fails >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_am_max_conv_fails = %" PetscInt_FMT ": must be >= 1", am->max_conv_fails);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -823,10 +857,20 @@ PetscErrorCode TSView_AM(TS ts, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  Adams-Moulton predictor-corrector (Nordsieck array, variable coefficients), orders 1..%" PetscInt_FMT "%s\n", am->max_order, am->fixed_order ? " (order fixed at the maximum after start-up)" : ""));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  functional iteration: at most %" PetscInt_FMT " iterations, convergence coefficient %g; a failure cuts h by %g, %" PetscInt_FMT " in one step stop the solve\n", am->max_it, (double)am->conv_coef, (double)am->conv_fail_factor, am->max_conv_fails));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  f evaluations %" PetscInt_FMT ", fixed-point iterations %" PetscInt_FMT ", order raised %" PetscInt_FMT " times, lowered %" PetscInt_FMT " times, next order %" PetscInt_FMT "\n", am->n_rhs, am->n_fp_its, am->n_up, am->n_down, am->started ? am->acc.q_next : 1));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  rejected attempts: fixed point not converging %" PetscInt_FMT ", domain errors %" PetscInt_FMT ", error test %" PetscInt_FMT "\n", am->n_fp_fail, am->n_domain, am->n_err_fail));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  Adams-Moulton predictor-corrector (Nordsieck array, variable coefficients), orders 1..%" PetscInt_FMT "%s\n",
+                                   am->max_order, am->fixed_order ? " (order fixed at the maximum after start-up)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  functional iteration: at most %" PetscInt_FMT
+                                   " iterations, convergence coefficient %g; a failure cuts h by %g, %" PetscInt_FMT " in one step stop the solve\n",
+                                   am->max_it, (double)am->conv_coef, (double)am->conv_fail_factor, am->max_conv_fails));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  f evaluations %" PetscInt_FMT ", fixed-point iterations %" PetscInt_FMT ", order raised %" PetscInt_FMT
+                                   " times, lowered %" PetscInt_FMT " times, next order %" PetscInt_FMT "\n",
+                                   am->n_rhs, am->n_fp_its, am->n_up, am->n_down, am->started ? am->acc.q_next : 1));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  rejected attempts: fixed point not converging %" PetscInt_FMT ", domain errors %" PetscInt_FMT
+                                   ", error test %" PetscInt_FMT "\n",
+                                   am->n_fp_fail, am->n_domain, am->n_err_fail));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  accepted steps per order:"));
   for (PetscInt k = 1; k <= am->max_order; k++) PetscCall(PetscViewerASCIIPrintf(viewer, " %" PetscInt_FMT ":%" PetscInt_FMT, k, am->steps_at[k]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));

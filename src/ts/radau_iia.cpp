@@ -29,26 +29,26 @@ void Invert3(const Mat3 a, Mat3 inv)
 {
   const PetscReal c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1], c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2], c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
   const PetscReal det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
-  inv[0][0] = c00 / det;
-  inv[1][0] = c01 / det;
-  inv[2][0] = c02 / det;
-  inv[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det;
-  inv[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
-  inv[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det;
-  inv[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det;
-  inv[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
-  inv[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
+  inv[0][0]           = c00 / det;
+  inv[1][0]           = c01 / det;
+  inv[2][0]           = c02 / det;
+  inv[0][1]           = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det;
+  inv[1][1]           = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
+  inv[2][1]           = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det;
+  inv[0][2]           = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det;
+  inv[1][2]           = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
+  inv[2][2]           = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
 }
 
 /* The method's constants, derived numerically from A so that no transcribed digits are trusted:
    the unit test checks them against independent derivations. */
 void ComputeTableau(TSRadauIIATableau *t)
 {
-  const PetscReal s6 = std::sqrt(6.0);
+  const PetscReal s6      = std::sqrt(6.0);
   const PetscReal A[3][3] = {
-    {(88 - 7 * s6) / 360,    (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225},
-    {(296 + 169 * s6) / 1800, (88 + 7 * s6) / 360,    (-2 - 3 * s6) / 225},
-    {(16 - s6) / 36,          (16 + s6) / 36,          1.0 / 9           }
+    {(88 - 7 * s6) / 360,     (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225},
+    {(296 + 169 * s6) / 1800, (88 + 7 * s6) / 360,     (-2 - 3 * s6) / 225},
+    {(16 - s6) / 36,          (16 + s6) / 36,          1.0 / 9            }
   };
   t->c[0] = (4 - s6) / 10;
   t->c[1] = (4 + s6) / 10;
@@ -64,8 +64,9 @@ void ComputeTableau(TSRadauIIATableau *t)
      root (Newton converges: the polynomial is monotone here) and a complex pair */
   const PetscReal tr  = B[0][0] + B[1][1] + B[2][2];
   const PetscReal m2  = B[0][0] * B[1][1] - B[0][1] * B[1][0] + B[0][0] * B[2][2] - B[0][2] * B[2][0] + B[1][1] * B[2][2] - B[1][2] * B[2][1];
-  const PetscReal det = B[0][0] * (B[1][1] * B[2][2] - B[1][2] * B[2][1]) - B[0][1] * (B[1][0] * B[2][2] - B[1][2] * B[2][0]) + B[0][2] * (B[1][0] * B[2][1] - B[1][1] * B[2][0]);
-  PetscReal       z   = tr / 3;
+  const PetscReal det = B[0][0] * (B[1][1] * B[2][2] - B[1][2] * B[2][1]) - B[0][1] * (B[1][0] * B[2][2] - B[1][2] * B[2][0]) +
+                        B[0][2] * (B[1][0] * B[2][1] - B[1][1] * B[2][0]);
+  PetscReal z = tr / 3;
   for (int it = 0; it < 100; it++) {
     const PetscReal p = ((z - tr) * z + m2) * z - det, dp = (3 * z - 2 * tr) * z + m2, dz = p / dp;
     z -= dz;
@@ -77,16 +78,16 @@ void ComputeTableau(TSRadauIIATableau *t)
   t->gamma0 = 1 / z;
 
   /* eigenvectors as the cross product of two rows of (Ainv - lambda I), scaled to a last entry 1 */
-  using C = std::complex<PetscReal>;
-  auto    null_vector = [&](C lambda, C v[3]) {
+  using C          = std::complex<PetscReal>;
+  auto null_vector = [&](C lambda, C v[3]) {
     C r0[3], r1[3];
     for (int j = 0; j < 3; j++) {
       r0[j] = B[0][j] - (j == 0 ? lambda : C(0));
       r1[j] = B[1][j] - (j == 1 ? lambda : C(0));
     }
-    v[0] = r0[1] * r1[2] - r0[2] * r1[1];
-    v[1] = r0[2] * r1[0] - r0[0] * r1[2];
-    v[2] = r0[0] * r1[1] - r0[1] * r1[0];
+    v[0]      = r0[1] * r1[2] - r0[2] * r1[1];
+    v[1]      = r0[2] * r1[0] - r0[0] * r1[2];
+    v[2]      = r0[0] * r1[1] - r0[1] * r1[0];
     const C s = v[2];
     for (int j = 0; j < 3; j++) v[j] /= s;
   };
@@ -126,18 +127,18 @@ struct RadauIIA {
   TSRadauIIATableau tab;
 
   /* options */
-  PetscInt  max_it        = 7;     /* Newton iterations per attempt */
-  PetscReal newton_tol    = 0.03;  /* kappa: Newton error allowed, in units of the error tolerance */
-  PetscReal reuse_theta   = 1e-3;  /* keep J for the next step while the contraction rate stays below */
-  PetscReal keep_step[2]  = {1.0, 1.2};
-  PetscBool extrapolate   = PETSC_TRUE;
+  PetscInt  max_it       = 7;    /* Newton iterations per attempt */
+  PetscReal newton_tol   = 0.03; /* kappa: Newton error allowed, in units of the error tolerance */
+  PetscReal reuse_theta  = 1e-3; /* keep J for the next step while the contraction rate stays below */
+  PetscReal keep_step[2] = {1.0, 1.2};
+  PetscBool extrapolate  = PETSC_TRUE;
 
   /* linear algebra: P = shiftP M - J from the last Jacobian evaluation, the mass matrix M, the
      real (Ar) and complex (Ac) Newton matrices for the step size h_fact */
   KSP              kspr = NULL, kspc = NULL;
   Mat              P = NULL, M = NULL, Ar = NULL, Ac = NULL;
   PetscReal        shiftP = 0, h_fact = 0;
-  PetscObjectState P_nzstate = 0;
+  PetscObjectState P_nzstate     = 0;
   PetscBool        pattern_dirty = PETSC_TRUE;
 
   /* vectors */
@@ -145,7 +146,7 @@ struct RadauIIA {
   Vec Z[3] = {NULL, NULL, NULL}, Y[3] = {NULL, NULL, NULL}, R[3] = {NULL, NULL, NULL}, dW[3] = {NULL, NULL, NULL}, D[3] = {NULL, NULL, NULL};
 
   /* state of the integration */
-  PetscReal t0 = 0, h = 0;          /* the attempt in progress */
+  PetscReal t0 = 0, h = 0;           /* the attempt in progress */
   PetscReal cont_t0 = 0, cont_h = 0; /* the last accepted step, whose polynomial D describes */
   PetscBool have_cont = PETSC_FALSE, started = PETSC_FALSE;
   PetscBool need_jac = PETSC_TRUE, jac_fresh = PETSC_FALSE, jac_fresh_prev = PETSC_FALSE;
@@ -159,9 +160,17 @@ struct RadauIIA {
   PetscInt n_jac = 0, n_newton = 0, n_solve = 0, n_decomp = 0, n_ifunc = 0, n_newton_fail = 0, n_domain = 0;
 };
 
-enum class NewtonOutcome { converged, diverged, slow, too_many, domain, linear_solve };
+enum class NewtonOutcome {
+  converged,
+  diverged,
+  slow,
+  too_many,
+  domain,
+  linear_solve
+};
 
-const char *const NewtonOutcomeNames[] = {"converged", "diverged (rate >= 0.99)", "predicted not to converge", "too many iterations", "domain error or non-finite residual", "linear solve failed"};
+const char *const NewtonOutcomeNames[] =
+  {"converged", "diverged (rate >= 0.99)", "predicted not to converge", "too many iterations", "domain error or non-finite residual", "linear solve failed"};
 
 PetscErrorCode RadauIIAEnsureKSPs(TS ts, RadauIIA *r)
 {
@@ -250,7 +259,8 @@ PetscErrorCode RadauIIAEvaluateJacobian(TS ts, RadauIIA *r)
     const PetscReal s1 = r->tab.gamma / r->h, s2 = r->tab.alpha / r->h;
     PetscCall(TSGetIJacobian(ts, &A, &B, NULL, NULL));
     if (!B) B = A;
-    PetscCheck(B, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS radauiia needs a Jacobian: call TSSetIJacobian() (or TSSetRHSJacobian() for U' = G(t, U))");
+    PetscCheck(B, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE,
+               "TS radauiia needs a Jacobian: call TSSetIJacobian() (or TSSetRHSJacobian() for U' = G(t, U))");
     PetscCall(TSComputeIJacobian(ts, r->t0, r->U0, r->Udot0, s1, A, B, PETSC_FALSE));
     r->n_jac++;
     PetscCall(RadauIIACopyJacobian(r, B));
@@ -339,7 +349,7 @@ PetscErrorCode RadauIIACreateMatrices(TS ts, RadauIIA *r)
 /* Ar = (gamma/h) M - J and Ac for step size h; the KSPs factor them at their next solve. */
 PetscErrorCode RadauIIAAssembleMatrices(TS ts, RadauIIA *r)
 {
-  const PetscReal        h = r->h;
+  const PetscReal        h  = r->h;
   const PetscReal        ar = r->tab.gamma / h - r->shiftP, a11 = r->tab.Lambda[1][1] / h - r->shiftP, a22 = r->tab.Lambda[2][2] / h - r->shiftP;
   const PetscReal        l12 = r->tab.Lambda[1][2] / h, l21 = r->tab.Lambda[2][1] / h;
   PetscInt               rs, re;
@@ -414,7 +424,8 @@ PetscErrorCode RadauIIAWeights(TS ts, RadauIIA *r)
   if (vatol) PetscCall(VecAXPY(r->scal, 1.0, vatol));
   else PetscCall(VecShift(r->scal, atol));
   PetscCall(VecMin(r->scal, NULL, &wmin));
-  PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TS radauiia: the error weights atol + rtol |U| must be positive (a component is 0 with atol = 0; set -ts_atol > 0)");
+  PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TS radauiia: the error weights atol + rtol |U| must be positive (a component is 0 with atol = 0; set -ts_atol > 0)");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -441,8 +452,8 @@ PetscErrorCode RadauIIABuildPolynomial(RadauIIA *r)
 /* X = sum of the polynomial's terms at s, without U_end (X = U(s) - U_end). */
 PetscErrorCode RadauIIAPolynomialIncrement(RadauIIA *r, PetscReal s, Vec X)
 {
-  const PetscReal *c = r->tab.c;
-  const PetscReal  w0 = s - 1, w1 = w0 * (s - c[1]), w2 = w1 * (s - c[0]);
+  const PetscReal  *c  = r->tab.c;
+  const PetscReal   w0 = s - 1, w1 = w0 * (s - c[1]), w2 = w1 * (s - c[0]);
   const PetscScalar a[3] = {w0, w1, w2};
 
   PetscFunctionBeginUser;
@@ -455,8 +466,8 @@ PetscErrorCode RadauIIAPolynomialIncrement(RadauIIA *r, PetscReal s, Vec X)
 PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscReal *hfac)
 {
   const TSRadauIIATableau &tab = r->tab;
-  PetscInt               N;
-  PetscReal              dynold = 1, thqold = 1;
+  PetscInt                 N;
+  PetscReal                dynold = 1, thqold = 1;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSize(r->U0, &N));
@@ -552,7 +563,7 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
 
 PetscErrorCode TSStep_RadauIIA(TS ts)
 {
-  RadauIIA   *r          = (RadauIIA *)ts->data;
+  RadauIIA *r          = (RadauIIA *)ts->data;
   PetscInt  rejections = 0;
   PetscBool accept     = PETSC_TRUE;
   PetscReal next_h     = ts->time_step;
@@ -575,8 +586,8 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
   PetscCall(RadauIIAWeights(ts, r));
 
   while (!ts->reason) {
-    NewtonOutcome outcome = NewtonOutcome::too_many;
-    PetscReal     hfac = 0.5;
+    NewtonOutcome outcome  = NewtonOutcome::too_many;
+    PetscReal     hfac     = 0.5;
     PetscBool     stage_ok = PETSC_TRUE;
 
     r->h          = ts->time_step;
@@ -597,7 +608,8 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
     }
     PetscCall(RadauIIANewton(ts, r, &outcome, &hfac));
     if (outcome != NewtonOutcome::converged) {
-      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g h=%g: Newton %s, retrying with h=%g\n", ts->steps, (double)r->t0, (double)r->h, NewtonOutcomeNames[(int)outcome], (double)(r->h * hfac)));
+      PetscCall(PetscInfo(ts, "Step %" PetscInt_FMT " t=%g h=%g: Newton %s, retrying with h=%g\n", ts->steps, (double)r->t0, (double)r->h,
+                          NewtonOutcomeNames[(int)outcome], (double)(r->h * hfac)));
       if (outcome == NewtonOutcome::domain) r->n_domain++;
       else {
         r->n_newton_fail++;
@@ -606,7 +618,8 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
       ts->time_step = r->h * hfac;
       /* a stale J may be why Newton failed to converge; a domain error or a singular matrix is not
          cured by a new J (the new h gives new factors anyway) */
-      if (!r->jac_fresh && (outcome == NewtonOutcome::diverged || outcome == NewtonOutcome::slow || outcome == NewtonOutcome::too_many)) r->need_jac = PETSC_TRUE;
+      if (!r->jac_fresh && (outcome == NewtonOutcome::diverged || outcome == NewtonOutcome::slow || outcome == NewtonOutcome::too_many))
+        r->need_jac = PETSC_TRUE;
       goto reject_step;
     }
     for (int i = 0; i < 3; i++) PetscCall(VecWAXPY(r->Y[i], 1.0, r->U0, r->Z[i]));
@@ -673,7 +686,7 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
    after a rejection a large estimate is filtered once more, with f evaluated at U0 + err. */
 PetscErrorCode TSEvaluateWLTE_RadauIIA(TS ts, NormType wnormtype, PetscInt *order, PetscReal *wlte)
 {
-  RadauIIA   *r = (RadauIIA *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
   PetscReal wa, wr;
   PetscBool bad, ok;
 
@@ -782,7 +795,8 @@ PetscErrorCode TSRadauIIASetJacobianReuse_RadauIIA(TS ts, PetscReal theta)
   RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(theta >= 0 && theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetJacobianReuse(): theta = %g must be in [0, 1)", (double)theta);
+  PetscCheck(theta >= 0 && theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetJacobianReuse(): theta = %g must be in [0, 1)",
+             (double)theta);
   r->reuse_theta = theta;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -799,7 +813,8 @@ PetscErrorCode TSRadauIIASetNewtonTolerance_RadauIIA(TS ts, PetscReal kappa)
   RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(kappa > 0 && kappa < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1)", (double)kappa);
+  PetscCheck(kappa > 0 && kappa < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1)",
+             (double)kappa);
   r->newton_tol = kappa;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -816,7 +831,8 @@ PetscErrorCode TSRadauIIASetNewtonMaxIterations_RadauIIA(TS ts, PetscInt max_it)
   RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1", max_it);
+  PetscCheck(max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TSRadauIIASetNewtonMaxIterations(): max_it = %" PetscInt_FMT " must be >= 1", max_it);
   r->max_it = max_it;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -830,8 +846,8 @@ PetscErrorCode TSRadauIIAGetNewtonMaxIterations_RadauIIA(TS ts, PetscInt *max_it
 
 /* every function TSCreate_RadauIIA() composes (listed in radau_iia.h), removed again on destroy so
    that a TS changed to another type no longer answers to them */
-const char *const kComposedNames[] = {"TSRadauIIAGetCounters_C",         "TSRadauIIASetJacobianReuse_C",     "TSRadauIIAGetJacobianReuse_C",
-                                      "TSRadauIIASetNewtonTolerance_C",  "TSRadauIIAGetNewtonTolerance_C",   "TSRadauIIASetNewtonMaxIterations_C",
+const char *const kComposedNames[] = {"TSRadauIIAGetCounters_C",           "TSRadauIIASetJacobianReuse_C",   "TSRadauIIAGetJacobianReuse_C",
+                                      "TSRadauIIASetNewtonTolerance_C",    "TSRadauIIAGetNewtonTolerance_C", "TSRadauIIASetNewtonMaxIterations_C",
                                       "TSRadauIIAGetNewtonMaxIterations_C"};
 
 PetscErrorCode TSDestroy_RadauIIA(TS ts)
@@ -846,8 +862,8 @@ PetscErrorCode TSDestroy_RadauIIA(TS ts)
 
 PetscErrorCode TSSetUp_RadauIIA(TS ts)
 {
-  RadauIIA  *r = (RadauIIA *)ts->data;
-  PetscInt n;
+  RadauIIA *r = (RadauIIA *)ts->data;
+  PetscInt  n;
 
   PetscFunctionBeginUser;
   PetscCall(TSGetAdapt(ts, &ts->adapt));
@@ -876,33 +892,49 @@ PetscErrorCode TSSetFromOptions_RadauIIA(TS ts, PetscOptionItems *PetscOptionsOb
   PetscFunctionBeginUser;
   PetscOptionsHeadBegin(PetscOptionsObject, "Radau IIA order 5 (radauiia) options; linear solvers: -ts_radauiia_ksp_*, -ts_radauiia_pc_*");
   PetscCall(PetscOptionsInt("-ts_radauiia_newton_max_it", "Simplified Newton iterations per step attempt", "TSRADAUIIA", r->max_it, &r->max_it, NULL));
-  PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol", "Newton stops when its estimated error is below this fraction of the error tolerance", "TSRADAUIIA", r->newton_tol, &r->newton_tol, NULL));
-  PetscCall(PetscOptionsReal("-ts_radauiia_jacobian_reuse", "Keep the Jacobian for the next step while the Newton contraction rate is below this", "TSRADAUIIA", r->reuse_theta, &r->reuse_theta, NULL));
-  PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_min", "Keep h (and the factorisations) if TSAdapt proposes between min x h ...", "TSRADAUIIA", r->keep_step[0], &r->keep_step[0], NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol", "Newton stops when its estimated error is below this fraction of the error tolerance", "TSRADAUIIA",
+                             r->newton_tol, &r->newton_tol, NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_jacobian_reuse", "Keep the Jacobian for the next step while the Newton contraction rate is below this", "TSRADAUIIA",
+                             r->reuse_theta, &r->reuse_theta, NULL));
+  PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_min", "Keep h (and the factorisations) if TSAdapt proposes between min x h ...", "TSRADAUIIA",
+                             r->keep_step[0], &r->keep_step[0], NULL));
   PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_max", "... and max x h", "TSRADAUIIA", r->keep_step[1], &r->keep_step[1], NULL));
-  PetscCall(PetscOptionsBool("-ts_radauiia_extrapolate", "Start Newton from the previous step's collocation polynomial (else from zero)", "TSRADAUIIA", r->extrapolate, &r->extrapolate, NULL));
+  PetscCall(PetscOptionsBool("-ts_radauiia_extrapolate", "Start Newton from the previous step's collocation polynomial (else from zero)", "TSRADAUIIA",
+                             r->extrapolate, &r->extrapolate, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(r->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_max_it = %" PetscInt_FMT ": must be >= 1", r->max_it);
-  PetscCheck(r->newton_tol > 0 && r->newton_tol < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_tol = %g: must be in (0, 1)", (double)r->newton_tol);
-  PetscCheck(r->reuse_theta >= 0 && r->reuse_theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_jacobian_reuse = %g: must be in [0, 1)", (double)r->reuse_theta);
-  PetscCheck(r->keep_step[0] <= r->keep_step[1], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Options -ts_radauiia_keep_step_min = %g > -ts_radauiia_keep_step_max = %g", (double)r->keep_step[0], (double)r->keep_step[1]);
+  PetscCheck(r->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_max_it = %" PetscInt_FMT ": must be >= 1",
+             r->max_it);
+  PetscCheck(r->newton_tol > 0 && r->newton_tol < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_radauiia_newton_tol = %g: must be in (0, 1)", (double)r->newton_tol);
+  PetscCheck(r->reuse_theta >= 0 && r->reuse_theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_radauiia_jacobian_reuse = %g: must be in [0, 1)", (double)r->reuse_theta);
+  PetscCheck(r->keep_step[0] <= r->keep_step[1], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Options -ts_radauiia_keep_step_min = %g > -ts_radauiia_keep_step_max = %g", (double)r->keep_step[0], (double)r->keep_step[1]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode TSView_RadauIIA(TS ts, PetscViewer viewer)
 {
-  RadauIIA   *r = (RadauIIA *)ts->data;
+  RadauIIA *r = (RadauIIA *)ts->data;
   PetscBool ascii;
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Radau IIA, 3 stages, order 5 (stage order 3); error estimate O(h^4) (order 3)\n"));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  simplified Newton: at most %" PetscInt_FMT " iterations, tolerance %g, Jacobian kept while rate <= %g, h kept for ratios in [%g, %g], start values %s\n", r->max_it, (double)r->newton_tol, (double)r->reuse_theta,
-                                   (double)r->keep_step[0], (double)r->keep_step[1], r->extrapolate ? "extrapolated" : "zero"));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  Jacobian evaluations %" PetscInt_FMT ", factorisations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT ", linear solves %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT "\n", r->n_jac, r->n_decomp, r->n_newton,
-                                   r->n_solve, r->n_ifunc));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  rejected attempts: Newton not converging %" PetscInt_FMT ", domain errors %" PetscInt_FMT ", error test %" PetscInt_FMT "\n", r->n_newton_fail, r->n_domain, ts->reject - r->n_newton_fail - r->n_domain));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  simplified Newton: at most %" PetscInt_FMT
+                                   " iterations, tolerance %g, Jacobian kept while rate <= %g, h kept for ratios in [%g, %g], start values %s\n",
+                                   r->max_it, (double)r->newton_tol, (double)r->reuse_theta, (double)r->keep_step[0], (double)r->keep_step[1],
+                                   r->extrapolate ? "extrapolated" : "zero"));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  Jacobian evaluations %" PetscInt_FMT ", factorisations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT
+                                   ", linear solves %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT "\n",
+                                   r->n_jac, r->n_decomp, r->n_newton, r->n_solve, r->n_ifunc));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "  rejected attempts: Newton not converging %" PetscInt_FMT ", domain errors %" PetscInt_FMT ", error test %" PetscInt_FMT
+                                   "\n",
+                                   r->n_newton_fail, r->n_domain, ts->reject - r->n_newton_fail - r->n_domain));
   if (r->kspr) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  real system (gamma/h M - J):\n"));
     PetscCall(PetscViewerASCIIPushTab(viewer));
@@ -925,18 +957,18 @@ PetscErrorCode TSCreate_RadauIIA(TS ts)
 
   PetscFunctionBeginUser;
   ComputeTableau(&r->tab);
-  ts->data                 = r;
-  ts->ops->setup           = TSSetUp_RadauIIA;
-  ts->ops->step            = TSStep_RadauIIA;
-  ts->ops->interpolate     = TSInterpolate_RadauIIA;
-  ts->ops->evaluatewlte    = TSEvaluateWLTE_RadauIIA;
-  ts->ops->rollback        = TSRollBack_RadauIIA;
-  ts->ops->setfromoptions  = TSSetFromOptions_RadauIIA;
-  ts->ops->view            = TSView_RadauIIA;
-  ts->ops->reset           = TSReset_RadauIIA;
-  ts->ops->destroy         = TSDestroy_RadauIIA;
-  ts->usessnes             = PETSC_FALSE; /* Newton is done here, on the transformed stage system */
-  ts->default_adapt_type   = TSADAPTBASIC;
+  ts->data                = r;
+  ts->ops->setup          = TSSetUp_RadauIIA;
+  ts->ops->step           = TSStep_RadauIIA;
+  ts->ops->interpolate    = TSInterpolate_RadauIIA;
+  ts->ops->evaluatewlte   = TSEvaluateWLTE_RadauIIA;
+  ts->ops->rollback       = TSRollBack_RadauIIA;
+  ts->ops->setfromoptions = TSSetFromOptions_RadauIIA;
+  ts->ops->view           = TSView_RadauIIA;
+  ts->ops->reset          = TSReset_RadauIIA;
+  ts->ops->destroy        = TSDestroy_RadauIIA;
+  ts->usessnes            = PETSC_FALSE; /* Newton is done here, on the transformed stage system */
+  ts->default_adapt_type  = TSADAPTBASIC;
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", TSRadauIIAGetCounters_RadauIIA));
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIASetJacobianReuse_C", TSRadauIIASetJacobianReuse_RadauIIA));
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetJacobianReuse_C", TSRadauIIAGetJacobianReuse_RadauIIA));

@@ -23,8 +23,8 @@ private:
   PetscErrorCode WriteXdmf();
   PetscErrorCode WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs);
 
-  MPI_Comm               comm_ = MPI_COMM_NULL;
-  PetscMPIInt            rank_ = 0;
+  MPI_Comm               comm_   = MPI_COMM_NULL;
+  PetscMPIInt            rank_   = 0;
   PetscViewer            viewer_ = nullptr;
   std::string            h5name_, xmfpath_;
   PetscInt               n_vertices_ = 0, n_cells_ = 0;

@@ -47,7 +47,7 @@ public:
      DMSetFromOptions at SetUp) and the pool's. */
   PetscErrorCode SetFromOptions();
   /* The scene's loads (the body force); before SetUp. */
-  void           SetLoad(const LoadSpec &load)
+  void SetLoad(const LoadSpec &load)
   {
     for (int d = 0; d < 2; d++) g_[d] = load.body_acceleration[d];
   }
@@ -65,66 +65,66 @@ public:
      changes. */
   PetscErrorCode IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh = true);
   /* Jacobians assembled from the same K, C since they were last computed. */
-  PetscInt       TangentAge() const { return tangent_age_; }
+  PetscInt TangentAge() const { return tangent_age_; }
   /* Udot = Mt^{-1} G(U) (explicit integrators). */
   PetscErrorCode RHSFunction(Vec U, Vec G, PetscBool *ok);
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
   PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
   PetscErrorCode CommitMaterials() { return pool_.Commit(); }
 
-  DM                 GetDM() const { return dm_; }
-  Mat                MassMatrix() const { return Mt_; }
-  MaterialPointPool &Pool() { return pool_; }
+  DM                    GetDM() const { return dm_; }
+  Mat                   MassMatrix() const { return Mt_; }
+  MaterialPointPool    &Pool() { return pool_; }
   const CoarseCounters &Counters() const { return counters_; }
-  PetscInt           NumElements() const { return n_elements_; } /* global */
-  PetscInt           NumMaterialPoints() const { return pool_.NumGlobal(); }
-  PetscReal          ReferenceDensity() const { return rho0_; }
-  bool               LumpedMass() const { return spec_.lumped_mass; }
-  CoarseSpec        &Spec() { return spec_; }
+  PetscInt              NumElements() const { return n_elements_; } /* global */
+  PetscInt              NumMaterialPoints() const { return pool_.NumGlobal(); }
+  PetscReal             ReferenceDensity() const { return rho0_; }
+  bool                  LumpedMass() const { return spec_.lumped_mass; }
+  CoarseSpec           &Spec() { return spec_; }
   /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
-  PetscErrorCode     TipDisplacement(Vec U, PetscReal *uy);
+  PetscErrorCode TipDisplacement(Vec U, PetscReal *uy);
   /* Per local cell: the mean Cauchy stress of its Gauss points with the centre pressure
      [s11, s22, s12] of the last material evaluation. */
   const std::vector<PetscReal> &CellStress() const { return cell_stress_; }
-  PetscErrorCode     CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
+  PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
   /* Global vector with the boundary values inserted into the local constrained dofs. */
-  PetscErrorCode     GlobalToLocal(Vec U, Vec Uloc);
+  PetscErrorCode GlobalToLocal(Vec U, Vec Uloc);
   /* The boundary values (u = g(X), v = 0) into the constrained dofs of a local vector. */
-  PetscErrorCode     InsertBoundaryValues(Vec Uloc);
+  PetscErrorCode InsertBoundaryValues(Vec Uloc);
 
 private:
   static PetscErrorCode BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx);
-  PetscErrorCode CreateMesh();
-  PetscErrorCode CreateSection();
-  PetscErrorCode PrecomputeElements();
-  PetscErrorCode AssembleMass();
-  PetscErrorCode InternalForce(Vec Floc); /* local [0; f_int - f_ext] from the cached materials */
-  PetscErrorCode FillNaN(Vec F);
+  PetscErrorCode        CreateMesh();
+  PetscErrorCode        CreateSection();
+  PetscErrorCode        PrecomputeElements();
+  PetscErrorCode        AssembleMass();
+  PetscErrorCode        InternalForce(Vec Floc); /* local [0; f_int - f_ext] from the cached materials */
+  PetscErrorCode        FillNaN(Vec F);
 
   MPI_Comm          comm_;
   DM                dm_ = nullptr;
   MaterialPointPool pool_;
-  Mat               Mt_ = nullptr; /* diag(I, M) */
-  Mat               KC_ = nullptr; /* [[0, -I], [K, C]] of the last fresh Jacobian */
+  Mat               Mt_          = nullptr; /* diag(I, M) */
+  Mat               KC_          = nullptr; /* [[0, -I], [K, C]] of the last fresh Jacobian */
   PetscInt          tangent_age_ = 0;
-  KSP               mass_ksp_ = nullptr;
+  KSP               mass_ksp_    = nullptr;
   Vec               Uloc_ = nullptr, Floc_ = nullptr;
   Vec               rhs_r_ = nullptr, rhs_z_ = nullptr; /* RHSFunction work vectors */
 
   /* options */
-  CoarseSpec spec_;
-  PetscReal g_[2] = {0.0, -0.2};
+  CoarseSpec                                                spec_;
+  PetscReal                                                 g_[2] = {0.0, -0.2};
   std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
 
   /* per local cell: reference vertex coordinates, gradients and weights at the 5 points */
   PetscInt               c_start_ = 0, c_end_ = 0;
-  std::vector<PetscReal> Xref_;    /* [cell][4][2] */
-  std::vector<PetscReal> dN_;      /* [cell][point][4][2] */
-  std::vector<PetscReal> wdet_;    /* [cell][point]: weight x det(dX/dxi) */
-  std::vector<PetscReal> f_ext_;   /* [cell][4][2] */
-  std::vector<PetscInt>  free_rows_;   /* global row of ux of each owned, unclamped vertex */
+  std::vector<PetscReal> Xref_;      /* [cell][4][2] */
+  std::vector<PetscReal> dN_;        /* [cell][point][4][2] */
+  std::vector<PetscReal> wdet_;      /* [cell][point]: weight x det(dX/dxi) */
+  std::vector<PetscReal> f_ext_;     /* [cell][4][2] */
+  std::vector<PetscInt>  free_rows_; /* global row of ux of each owned, unclamped vertex */
   PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
-  PetscReal              rho0_ = 0;
+  PetscReal              rho0_       = 0;
   PetscInt               n_elements_ = 0;
 
   /* material cache */

@@ -37,7 +37,8 @@ protected:
   PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
   {
-    return "steps were rejected repeatedly (more than -ts_max_reject in a row); see the material-point failures above (-info for all of them), or lower -ts_dt / tighten -ts_rtol";
+    return "steps were rejected repeatedly (more than -ts_max_reject in a row); see the material-point failures above (-info for all of them), or lower -ts_dt "
+           "/ tighten -ts_rtol";
   }
 
 private:
@@ -47,9 +48,9 @@ private:
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   static PetscErrorCode PostStep(TS ts);
 
-  LoadSpec           load_;
-  CoarseModel        model_;
-  Mat                J_ = nullptr;
+  LoadSpec    load_;
+  CoarseModel model_;
+  Mat         J_ = nullptr;
   /* material tangents are recomputed when the Jacobian is older than this many accepted steps, or
      after a step rejection; 0: at every Jacobian request (each Newton iteration) */
   PetscInt           jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;

@@ -6,11 +6,24 @@
 namespace turgor {
 
 struct Tensor2 {
-  PetscReal a[2][2] = {{0, 0}, {0, 0}};
+  PetscReal a[2][2] = {
+    {0, 0},
+    {0, 0}
+  };
 
-  static Tensor2 Identity() { return {{{1, 0}, {0, 1}}}; }
+  static Tensor2 Identity()
+  {
+    return {
+      {{1, 0}, {0, 1}}
+    };
+  }
   static Tensor2 Zero() { return {}; }
-  static Tensor2 Rotation(PetscReal theta) { return {{{std::cos(theta), -std::sin(theta)}, {std::sin(theta), std::cos(theta)}}}; }
+  static Tensor2 Rotation(PetscReal theta)
+  {
+    return {
+      {{std::cos(theta), -std::sin(theta)}, {std::sin(theta), std::cos(theta)}}
+    };
+  }
   static Tensor2 Unit(int k, int l) /* e_k (x) e_l */
   {
     Tensor2 E;
@@ -22,14 +35,26 @@ struct Tensor2 {
   PetscReal        Det() const { return a[0][0] * a[1][1] - a[0][1] * a[1][0]; }
   PetscReal        Trace() const { return a[0][0] + a[1][1]; }
   PetscReal        Norm() const { return std::sqrt(a[0][0] * a[0][0] + a[0][1] * a[0][1] + a[1][0] * a[1][0] + a[1][1] * a[1][1]); }
-  Tensor2          T() const { return {{{a[0][0], a[1][0]}, {a[0][1], a[1][1]}}}; }
-  Tensor2          Inverse() const
+  Tensor2          T() const
+  {
+    return {
+      {{a[0][0], a[1][0]}, {a[0][1], a[1][1]}}
+    };
+  }
+  Tensor2 Inverse() const
   {
     const PetscReal d = Det();
-    return {{{a[1][1] / d, -a[0][1] / d}, {-a[1][0] / d, a[0][0] / d}}};
+    return {
+      {{a[1][1] / d, -a[0][1] / d}, {-a[1][0] / d, a[0][0] / d}}
+    };
   }
-  Tensor2 Sym() const { return {{{a[0][0], 0.5 * (a[0][1] + a[1][0])}, {0.5 * (a[0][1] + a[1][0]), a[1][1]}}}; }
-  void    Apply(const PetscReal x[2], PetscReal y[2]) const /* y = A x */
+  Tensor2 Sym() const
+  {
+    return {
+      {{a[0][0], 0.5 * (a[0][1] + a[1][0])}, {0.5 * (a[0][1] + a[1][0]), a[1][1]}}
+    };
+  }
+  void Apply(const PetscReal x[2], PetscReal y[2]) const /* y = A x */
   {
     y[0] = a[0][0] * x[0] + a[0][1] * x[1];
     y[1] = a[1][0] * x[0] + a[1][1] * x[1];

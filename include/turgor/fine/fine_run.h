@@ -36,7 +36,7 @@ public:
   TissueSpec  &Tissues() { return tissues_; }
   /* Use this tissue instead of generating one from the -tissue_ options (tests, custom scenes);
      call between SetFromOptions() and SetUp(). Clamps from -fine_clamp are still applied. */
-  void         SetTissue(const Tissue &tissue)
+  void SetTissue(const Tissue &tissue)
   {
     tissue_      = tissue;
     have_tissue_ = true;
@@ -77,22 +77,22 @@ private:
   PetscErrorCode SyncSwarm(Vec U);
   PetscErrorCode ChooseTimeStep();
 
-  FineRunSpec            spec_;
-  LoadSpec               load_;
-  PhysicsSpec            physics_;
-  TissueSpec             tissues_;
-  Tissue                 tissue_;
-  bool                   have_tissue_ = false;
-  ForceModel             model_;
-  DM                     swarm_ = nullptr;
-  IS                     is_x_ = nullptr, is_v_ = nullptr;
-  PetscInt               n_local_ = 0;
-  std::vector<PetscReal> v_stale_; /* velocities seen by the last position update (Verlet) */
+  FineRunSpec                spec_;
+  LoadSpec                   load_;
+  PhysicsSpec                physics_;
+  TissueSpec                 tissues_;
+  Tissue                     tissue_;
+  bool                       have_tissue_ = false;
+  ForceModel                 model_;
+  DM                         swarm_ = nullptr;
+  IS                         is_x_ = nullptr, is_v_ = nullptr;
+  PetscInt                   n_local_ = 0;
+  std::vector<PetscReal>     v_stale_; /* velocities seen by the last position update (Verlet) */
   std::vector<TimeStepLimit> limits_;
-  PetscReal              dt_stable_ = 0, dt_initial_ = 0;
+  PetscReal                  dt_stable_ = 0, dt_initial_ = 0;
 
   /* observation */
-  PetscInt               tip_ = -1; /* local index of the tip particle on rank 0 */
+  PetscInt               tip_    = -1; /* local index of the tip particle on rank 0 */
   PetscReal              tip_y0_ = 0;
   ParticleSnapshotWriter snapshots_writer_;
   PetscInt               rhs_evals_ = 0;

@@ -38,8 +38,8 @@ public:
   void Set(const std::string &key, const std::vector<std::string> &values);
   void Set(const std::string &key, const std::vector<PetscReal> &values);
   /* Insert an already formatted JSON value (object, array). */
-  void        SetRaw(const std::string &key, const std::string &json);
-  std::string Str(int indent = 2) const;
+  void           SetRaw(const std::string &key, const std::string &json);
+  std::string    Str(int indent = 2) const;
   PetscErrorCode Write(MPI_Comm comm, const std::string &path) const;
 
 private:

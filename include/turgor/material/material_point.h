@@ -22,13 +22,13 @@
 namespace turgor {
 
 struct MaterialResponse {
-  Tensor2     sigma;          /* Cauchy stress, 2D [N/m] */
-  PetscReal   rho = 0;        /* current 2D density [ng/µm^2] */
+  Tensor2     sigma;   /* Cauchy stress, 2D [N/m] */
+  PetscReal   rho = 0; /* current 2D density [ng/µm^2] */
   bool        ok  = true;
   std::string reason;         /* why not ok */
   PetscInt    iterations = 0; /* Psi-tc iterations (RVE) */
   PetscInt    snes_its = 0, ksp_its = 0;
-  PetscReal   residual = 0;   /* final scaled residual norm (RVE) */
+  PetscReal   residual = 0; /* final scaled residual norm (RVE) */
 };
 
 /* Work done by material points (summed over points and ranks by the pool). */
@@ -40,11 +40,14 @@ struct MaterialCounters {
 /* Trial: the evaluation becomes the material point's current state (later evaluations start from
    it). Perturbed: a tangent perturbation (or an evaluation for output); starts from the current
    state and leaves it unchanged. */
-enum class EvaluationKind { Trial, Perturbed };
+enum class EvaluationKind {
+  Trial,
+  Perturbed
+};
 
 class MaterialPoint {
 public:
-  virtual ~MaterialPoint() = default;
+  virtual ~MaterialPoint()                                                                                           = default;
   virtual PetscErrorCode Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out) = 0;
   /* Accept the current state (after a coarse step is accepted) / return to the last accepted one. */
   virtual PetscErrorCode Commit() { return PETSC_SUCCESS; }
@@ -56,7 +59,7 @@ public:
 
 class MaterialModel {
 public:
-  virtual ~MaterialModel() = default;
+  virtual ~MaterialModel()         = default;
   virtual const char *Name() const = 0;
   /* The accuracy a caller needs of a stress evaluation, as a default before SetFromOptions (the
      material's own options still win); materials without an iterative solve ignore it. */
@@ -90,6 +93,7 @@ struct TangentOptions {
 /* Eqs 46-53: perturb F by eps (e_k (x) e_l) F for (kl) = (11), (22), (12) and Fdot likewise, and
    difference the stress with the Truesdell-rate correction of eq 48. `base` is the response at
    (F, Fdot), already computed. On failure of a perturbed evaluation, *status says why. */
-PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D, MaterialResponse *status);
+PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D,
+                               MaterialResponse *status);
 
 } // namespace turgor

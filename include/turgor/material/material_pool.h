@@ -24,9 +24,9 @@ public:
   MaterialPointPool &operator=(const MaterialPointPool &) = delete;
 
   /* API defaults, before SetFromOptions (options still win). */
-  void            SetMaterialType(const std::string &name) { type_ = name; }
+  void SetMaterialType(const std::string &name) { type_ = name; }
   /* A configured material (tests, programs): -material is then not read. */
-  void            SetMaterial(std::unique_ptr<MaterialModel> model) { model_ = std::move(model); }
+  void SetMaterial(std::unique_ptr<MaterialModel> model) { model_ = std::move(model); }
   /* The accuracy the caller needs of a stress evaluation (MaterialModel::SetDefaultTolerance). */
   void            SetDefaultTolerance(PetscReal tol) { default_tol_ = tol; }
   TangentOptions &Tangent() { return tangent_; }
@@ -50,9 +50,9 @@ public:
      overhead on millions of small RVE solves would distort the timings being broken down. */
   PetscErrorCode GlobalTimes(PetscReal *trial_s, PetscReal *tangent_s) const;
   /* Bytes that cross between ranks in one evaluation, summed over all ranks (inputs + results). */
-  PetscInt       RemoteBytesPerEvaluation() const { return remote_bytes_; }
-  PetscInt       NumGlobal() const { return n_global_; }
-  PetscInt       NumGroups() const { return n_groups_; }
+  PetscInt             RemoteBytesPerEvaluation() const { return remote_bytes_; }
+  PetscInt             NumGlobal() const { return n_global_; }
+  PetscInt             NumGroups() const { return n_groups_; }
   const MaterialModel &Model() const { return *model_; }
   const char          *MaterialName() const { return model_ ? model_->Name() : type_.c_str(); }
   /* The material points this rank's group evaluates (for inspection, tests). */
@@ -65,7 +65,7 @@ private:
   std::string                                 type_ = "rve";
   std::unique_ptr<MaterialModel>              model_; /* before points_: they are destroyed first */
   PetscReal                                   default_tol_ = 0;
-  PetscSubcomm                                subcomm_ = nullptr;
+  PetscSubcomm                                subcomm_     = nullptr;
   PetscInt                                    comm_size_ = 1, n_local_ = 0, n_global_ = 0, n_groups_ = 1, begin_ = 0, end_ = 0;
   PetscMPIInt                                 group_rank_ = 0;
   std::vector<std::unique_ptr<MaterialPoint>> points_; /* [begin_, end_) of this group */

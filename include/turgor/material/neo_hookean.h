@@ -21,7 +21,7 @@ public:
   PetscErrorCode Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out) override;
   PetscReal      StressUncertainty() const override { return 1e-16; }
   /* Analytic D^e (Truesdell rate, Fdot = 0) and D^v in the order (11, 22, 12). */
-  void           AnalyticTangents(const Tensor2 &F, Tangents *D) const;
+  void AnalyticTangents(const Tensor2 &F, Tangents *D) const;
 
   NeoHookeanSpec p;
 };

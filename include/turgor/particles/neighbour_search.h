@@ -26,8 +26,8 @@ public:
   /* Ask for fluid–fluid pairs of the same cell closer than `cutoff`. */
   void RequestFluidPairs(PetscReal cutoff);
   /* Ask for (particle, spring) pairs closer than `cutoff` (point-to-segment distance). */
-  void RequestParticleSpringPairs(PetscReal cutoff);
-  void SetSkin(PetscReal skin) { skin_ = skin; }
+  void      RequestParticleSpringPairs(PetscReal cutoff);
+  void      SetSkin(PetscReal skin) { skin_ = skin; }
   PetscReal Skin() const { return skin_; }
   void      Reset();
 
@@ -56,9 +56,9 @@ private:
   PairList               fluid_pairs_;
   PointSegmentList       particle_spring_;
   /* bin grid (counting sort) */
-  PetscReal              x0_ = 0, y0_ = 0, bin_ = 1;
-  PetscInt               nbx_ = 0, nby_ = 0;
-  std::vector<PetscInt>  bin_start_, bin_items_, bin_of_;
+  PetscReal             x0_ = 0, y0_ = 0, bin_ = 1;
+  PetscInt              nbx_ = 0, nby_ = 0;
+  std::vector<PetscInt> bin_start_, bin_items_, bin_of_;
 };
 
 } // namespace turgor

@@ -10,17 +10,20 @@
 
 namespace turgor {
 
-enum ParticleKind : PetscInt { KIND_WALL = 0, KIND_FLUID = 1 };
+enum ParticleKind : PetscInt {
+  KIND_WALL  = 0,
+  KIND_FLUID = 1
+};
 
 /* Periodic images (RVEs): image k = 3 (n1 + 1) + (n2 + 1) of a particle sits at x + n1 a1 + n2 a2
    and moves with v + n1 a1' + n2 a2', where a1, a2 are the lattice vectors of the periodic cell and
    a' their rates (F A and Fdot A for an RVE). Image kSelf is the particle itself; a system that is
    not periodic has all shifts zero and uses kSelf everywhere. */
 struct PeriodicImages {
-  static constexpr int kSelf = 4;
+  static constexpr int kSelf   = 4;
   PetscReal            x[9][2] = {}, v[9][2] = {};
   bool                 periodic = false;
-  PetscReal            a[2][2] = {}; /* lattice vectors a1, a2 (rows) */
+  PetscReal            a[2][2]  = {}; /* lattice vectors a1, a2 (rows) */
 
   static int Index(int n1, int n2) { return 3 * (n1 + 1) + (n2 + 1); }
   void       Set(const PetscReal a1[2], const PetscReal a2[2], const PetscReal va1[2], const PetscReal va2[2])
@@ -52,11 +55,11 @@ struct Spring {
 struct ParticleSet {
   PetscInt               n       = 0; /* local particles (owned + halo) */
   PetscInt               n_owned = 0;
-  std::vector<PetscReal> mass;        /* [n] */
-  std::vector<PetscInt>  kind;        /* [n] ParticleKind */
-  std::vector<PetscInt>  cell;        /* [n] cell id for fluid particles, -1 for walls */
-  std::vector<PetscInt>  gid;         /* [n] global id */
-  std::vector<char>      fixed;       /* [n] 1 if clamped (position and velocity held) */
+  std::vector<PetscReal> mass;  /* [n] */
+  std::vector<PetscInt>  kind;  /* [n] ParticleKind */
+  std::vector<PetscInt>  cell;  /* [n] cell id for fluid particles, -1 for walls */
+  std::vector<PetscInt>  gid;   /* [n] global id */
+  std::vector<char>      fixed; /* [n] 1 if clamped (position and velocity held) */
   std::vector<Spring>    springs;
 
   PetscInt Count(ParticleKind k) const

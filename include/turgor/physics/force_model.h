@@ -15,17 +15,17 @@ class PhysicsSpec {
 public:
   /* API defaults, overridden by -physics (comma-separated, in evaluation order; "none": no forces)
      and -neighbour_skin. */
-  std::vector<std::string> names = {"springs", "repulsion", "sph", "body_force"};
+  std::vector<std::string> names          = {"springs", "repulsion", "sph", "body_force"};
   PetscReal                neighbour_skin = 1.0; /* Verlet skin [µm] */
   /* false for a material (an RVE): terms that are loads (IsLoad) are accepted in the list but left
      out -- the coarse model applies the loads. */
-  bool                     with_loads = true;
+  bool with_loads = true;
 
   /* Read -physics and -neighbour_skin, then create and configure every listed term. */
   PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx);
   /* Add a configured term (tests, custom physics) after the listed ones; it stays when
      SetFromOptions is called later. */
-  void           Add(std::unique_ptr<ForceTerm> term)
+  void Add(std::unique_ptr<ForceTerm> term)
   {
     added_.push_back(term->Clone());
     terms_.push_back(std::move(term));
@@ -33,7 +33,7 @@ public:
   const std::vector<std::unique_ptr<ForceTerm>> &Terms() const { return terms_; }
   std::vector<std::string>                       ActiveTerms() const;
   /* A typical force of a cell (the first term that defines one; 0 if none does). */
-  PetscReal                                      CharacteristicForce(PetscReal length, PetscReal density) const;
+  PetscReal CharacteristicForce(PetscReal length, PetscReal density) const;
 
 private:
   std::vector<std::unique_ptr<ForceTerm>> terms_, added_;
@@ -58,10 +58,10 @@ public:
   NeighbourSearch         &Neighbours() { return nb_; }
   const NeighbourSearch   &Neighbours() const { return nb_; }
   /* Periodic lattice for RVEs (positions and rates of the image shifts); default: not periodic. */
-  void                     SetPeriodicImages(const PeriodicImages &images) { images_ = images; }
-  const PeriodicImages    &Images() const { return images_; }
-  PetscInt                 Evaluations() const { return evaluations_; }
-  PetscErrorCode           View(PetscViewer viewer) const;
+  void                  SetPeriodicImages(const PeriodicImages &images) { images_ = images; }
+  const PeriodicImages &Images() const { return images_; }
+  PetscInt              Evaluations() const { return evaluations_; }
+  PetscErrorCode        View(PetscViewer viewer) const;
 
 private:
   const ParticleSet                      *P_ = nullptr;

@@ -19,7 +19,7 @@ struct ForceInput {
   const ParticleSet     *P;
   const PetscReal       *x, *v;
   const NeighbourSearch *nb;
-  const PeriodicImages  *images; /* never NULL; all zero shifts unless periodic */
+  const PeriodicImages  *images;      /* never NULL; all zero shifts unless periodic */
   const PetscReal       *a = nullptr; /* accelerations of all terms together, where a criterion needs them */
 };
 
@@ -36,7 +36,7 @@ struct TermContext {
 
 class ForceTerm {
 public:
-  virtual ~ForceTerm() = default;
+  virtual ~ForceTerm()             = default;
   virtual const char *Name() const = 0;
   /* A configured term that has not been set up: every force model (each RVE has one) takes a copy. */
   virtual std::unique_ptr<ForceTerm> Clone() const = 0;

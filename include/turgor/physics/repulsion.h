@@ -20,10 +20,10 @@ public:
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   PetscErrorCode View(PetscViewer viewer) const override;
 
-  PetscReal strength     = 5e5; /* lambda [µN µm^6] */
-  PetscReal cutoff       = 5.0; /* x0 [µm] */
-  PetscBool angle_factor = PETSC_TRUE;
-  PetscBool damping      = PETSC_TRUE;
+  PetscReal strength      = 5e5; /* lambda [µN µm^6] */
+  PetscReal cutoff        = 5.0; /* x0 [µm] */
+  PetscBool angle_factor  = PETSC_TRUE;
+  PetscBool damping       = PETSC_TRUE;
   PetscBool damping_taper = PETSC_TRUE; /* damping x (1 - (r/x0)^6): zero at the cutoff */
 
 private:

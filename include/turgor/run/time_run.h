@@ -43,7 +43,7 @@ public:
   Vec            GetState() const { return U_; }
   RunOutputSpec &Output() { return out_; }
   /* The observable (the tip displacement) at the last sample. */
-  PetscReal      TipDisplacement() const { return observed_; }
+  PetscReal TipDisplacement() const { return observed_; }
 
 protected:
   TimeRun(MPI_Comm comm, const char *mode) : comm_(comm), mode_(mode) { }
@@ -62,23 +62,23 @@ protected:
   /* tip.csv: the columns after "time"; the first is the tip displacement. */
   virtual std::vector<std::string> ObservedColumns() const = 0;
   /* Collective; row gets one value per column (all ranks). */
-  virtual PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) = 0;
-  virtual PetscErrorCode           OpenSnapshots()                   = 0;
-  virtual PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) = 0;
-  virtual PetscInt                 SnapshotCount() const             = 0;
-  virtual const char              *SnapshotFiles() const             = 0; /* for the final report */
+  virtual PetscErrorCode Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) = 0;
+  virtual PetscErrorCode OpenSnapshots()                                          = 0;
+  virtual PetscErrorCode WriteSnapshot(PetscReal t, Vec U)                        = 0;
+  virtual PetscInt       SnapshotCount() const                                    = 0;
+  virtual const char    *SnapshotFiles() const                                    = 0; /* for the final report */
   /* The right-hand-side / residual evaluations so far (this rank). */
-  virtual PetscInt                 FunctionEvaluations() const = 0;
+  virtual PetscInt FunctionEvaluations() const = 0;
   /* After a successful TSSolve (e.g. the particle record brought up to date). */
-  virtual PetscErrorCode           AfterSolve() { return PETSC_SUCCESS; }
+  virtual PetscErrorCode AfterSolve() { return PETSC_SUCCESS; }
   /* The mode's summary keys (collective), and the details of the final report line. */
-  virtual PetscErrorCode           AddSummary(JsonObject &js)  = 0;
-  virtual PetscErrorCode           DoneDetails(std::string *details) = 0; /* collective */
+  virtual PetscErrorCode AddSummary(JsonObject &js)        = 0;
+  virtual PetscErrorCode DoneDetails(std::string *details) = 0; /* collective */
   /* What a user should try when the integration fails. */
-  virtual const char              *FailureAdvice() const = 0;
+  virtual const char *FailureAdvice() const = 0;
 
   /* Seconds of wall time in TSSolve. */
-  PetscReal     WallTime() const { return (PetscReal)wall_; }
+  PetscReal WallTime() const { return (PetscReal)wall_; }
 
   MPI_Comm      comm_;
   TS            ts_ = nullptr;
@@ -93,8 +93,8 @@ private:
   std::string    mode_;
   CsvWriter      tip_csv_;
   TimeSampler    sampler_;
-  PetscLogDouble wall_     = 0;
-  PetscReal      observed_ = 0;
+  PetscLogDouble wall_        = 0;
+  PetscReal      observed_    = 0;
   PetscLogStage  stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent  ev_output_ = 0;
 };

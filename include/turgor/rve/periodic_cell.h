@@ -24,12 +24,12 @@ public:
   /* The periodic images of the lattice under (F, Fdot). */
   PeriodicImages Lattice(const Tensor2 &F, const Tensor2 &Fdot) const;
   /* x = F X and v = Fdot X for every particle (u1 = 0). */
-  void           Deform(const Tensor2 &F, const Tensor2 &Fdot, PetscReal *x, PetscReal *v) const;
+  void Deform(const Tensor2 &F, const Tensor2 &Fdot, PetscReal *x, PetscReal *v) const;
   /* x = F X + L w for the free particles (the others keep their x). */
-  void           Place(const Tensor2 &F, const PetscScalar *w, PetscReal *x) const;
+  void Place(const Tensor2 &F, const PetscScalar *w, PetscReal *x) const;
   /* Every fluid particle inside its own deformed cell polygon (a relaxation may converge to a state
      with fluid pushed through a wall after a violent trial deformation: one the tissue cannot reach). */
-  bool           FluidInsideCells(const PetscReal *x, const PeriodicImages &images) const;
+  bool FluidInsideCells(const PetscReal *x, const PeriodicImages &images) const;
 
 private:
   Tissue                tissue_;

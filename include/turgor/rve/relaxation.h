@@ -37,28 +37,28 @@ private:
   static PetscErrorCode PreStep(TS ts);
   static PetscErrorCode PostStep(TS ts);
 
-  PetscErrorCode BuildJacobianPattern();
-  PetscErrorCode PatternStale(PetscBool *stale);
-  PetscErrorCode Refresh(Vec W); /* K = G'(W) by colouring */
-  PetscErrorCode Factor(bool *ok); /* J's LU factors, up to date */
+  PetscErrorCode        BuildJacobianPattern();
+  PetscErrorCode        PatternStale(PetscBool *stale);
+  PetscErrorCode        Refresh(Vec W);   /* K = G'(W) by colouring */
+  PetscErrorCode        Factor(bool *ok); /* J's LU factors, up to date */
   static PetscErrorCode FactorSetUp(PC pc);
   static PetscErrorCode FactorApply(PC pc, Vec x, Vec y);
 
-  MPI_Comm       comm_ = MPI_COMM_NULL;
-  PetscMPIInt    size_ = 1;
-  RVEEquations  *eq_   = nullptr;
-  const RVESpec *spec_ = nullptr;
-  TS             ts_ = nullptr;
-  Vec            Wprev_ = nullptr, R_ = nullptr, D_ = nullptr;
-  Mat            J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
-  MatFDColoring  coloring_ = nullptr;
-  Mat            factor_ = nullptr;          /* LU of J, for the pseudo steps and the warm solves */
-  PetscObjectState factor_state_ = -1;       /* J's state when factor_ was computed */
-  PetscInt       pattern_rebuilds_ = -1;
-  std::vector<std::vector<PetscInt>> pattern_cols_; /* columns of each unknown pair in J_ */
-  bool           have_K_    = false;               /* K_ holds G' of a recent state */
-  PetscInt       jacobians_ = 0;
-  PetscLogEvent  ev_jacobian_ = 0;
+  MPI_Comm                           comm_  = MPI_COMM_NULL;
+  PetscMPIInt                        size_  = 1;
+  RVEEquations                      *eq_    = nullptr;
+  const RVESpec                     *spec_  = nullptr;
+  TS                                 ts_    = nullptr;
+  Vec                                Wprev_ = nullptr, R_ = nullptr, D_ = nullptr;
+  Mat                                J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
+  MatFDColoring                      coloring_         = nullptr;
+  Mat                                factor_           = nullptr; /* LU of J, for the pseudo steps and the warm solves */
+  PetscObjectState                   factor_state_     = -1;      /* J's state when factor_ was computed */
+  PetscInt                           pattern_rebuilds_ = -1;
+  std::vector<std::vector<PetscInt>> pattern_cols_;        /* columns of each unknown pair in J_ */
+  bool                               have_K_      = false; /* K_ holds G' of a recent state */
+  PetscInt                           jacobians_   = 0;
+  PetscLogEvent                      ev_jacobian_ = 0;
 };
 
 } // namespace turgor

@@ -17,7 +17,7 @@ class RVEEquations {
 public:
   PetscErrorCode SetUp(MPI_Comm comm, const PeriodicCell &cell, const PhysicsSpec &physics, PetscReal fluid_density);
   /* x = F X, v = Fdot X, the lattice a_i = F A_i; invalidates the kept evaluation. */
-  void           SetDeformation(const Tensor2 &F, const Tensor2 &Fdot);
+  void SetDeformation(const Tensor2 &F, const Tensor2 &Fdot);
   /* R = G(W) (R may be NULL). */
   PetscErrorCode Residual(Vec W, Vec R);
   /* ||G(W)||_2 with G(W) left in R (collective). */
@@ -40,19 +40,19 @@ public:
 private:
   PetscErrorCode Compute(Vec W); /* forces and virial at W unless kept */
 
-  const PeriodicCell    *cell_ = nullptr;
-  PetscMPIInt            rank_ = 0;
-  ForceModel             model_;
-  Tensor2                F_, Fdot_;
-  std::vector<PetscReal> x_, v_, f_;
+  const PeriodicCell      *cell_ = nullptr;
+  PetscMPIInt              rank_ = 0;
+  ForceModel               model_;
+  Tensor2                  F_, Fdot_;
+  std::vector<PetscReal>   x_, v_, f_;
   std::vector<PetscScalar> r_; /* G of the kept evaluation */
-  PetscReal              virial_[4] = {0, 0, 0, 0};
-  PetscReal              force_scale_ = 1;
+  PetscReal                virial_[4]   = {0, 0, 0, 0};
+  PetscReal                force_scale_ = 1;
   /* what the kept evaluation was computed from */
-  PetscObjectId          kept_id_ = 0;
-  PetscObjectState       kept_state_ = -1;
-  PetscInt               version_ = 0, kept_version_ = -1;
-  PetscInt               force_evals_ = 0;
+  PetscObjectId    kept_id_    = 0;
+  PetscObjectState kept_state_ = -1;
+  PetscInt         version_ = 0, kept_version_ = -1;
+  PetscInt         force_evals_ = 0;
 };
 
 } // namespace turgor

@@ -8,15 +8,19 @@ namespace turgor {
 
 /* relaxed: solve eq 27; cauchy_born: u1 = 0 (the seed's Taylor-Voigt / Cauchy-Born approximation);
    frozen: u1 held at the last committed state (Cauchy-Born about a relaxed reference). */
-enum class RelaxationMode { Relaxed, CauchyBorn, Frozen };
+enum class RelaxationMode {
+  Relaxed,
+  CauchyBorn,
+  Frozen
+};
 
 struct RVESpec {
-  PetscInt       cells = 1;   /* cells per side of the periodic RVE */
-  RelaxationMode relax = RelaxationMode::Relaxed;
-  PetscInt       max_it = 50; /* Psi-tc iterations before an evaluation fails */
+  PetscInt       cells   = 1; /* cells per side of the periodic RVE */
+  RelaxationMode relax   = RelaxationMode::Relaxed;
+  PetscInt       max_it  = 50; /* Psi-tc iterations before an evaluation fails */
   PetscReal      psi_dt0 = 1e-2, psi_increment = 10, psi_dt_max = 1e12;
   PetscReal      psi_atol = 1e-12, psi_steptol = 1e-12; /* stop at ||G|| < atol or ||step|| < steptol */
-  PetscReal      warm_dt0 = 1e4;                         /* pseudo step of warm (modified Newton) solves */
+  PetscReal      warm_dt0 = 1e4;                        /* pseudo step of warm (modified Newton) solves */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };

@@ -10,10 +10,10 @@ namespace turgor {
 /* A generated tissue: reference positions X, constant particle data, and per-cell wall polygons. */
 struct Tissue {
   ParticleSet                        particles;
-  std::vector<PetscReal>             X;          /* [2n] reference positions */
-  std::vector<PetscReal>             V;          /* [2n] initial velocities; empty means at rest */
-  std::vector<std::vector<PetscInt>> cell_walls; /* wall particles of each cell, counter-clockwise */
-  std::vector<std::vector<int>>      cell_wall_images; /* periodic tissues: the image of each ring point */
+  std::vector<PetscReal>             X;                              /* [2n] reference positions */
+  std::vector<PetscReal>             V;                              /* [2n] initial velocities; empty means at rest */
+  std::vector<std::vector<PetscInt>> cell_walls;                     /* wall particles of each cell, counter-clockwise */
+  std::vector<std::vector<int>>      cell_wall_images;               /* periodic tissues: the image of each ring point */
   PetscReal                          lo[2] = {0, 0}, hi[2] = {0, 0}; /* bounding box of X */
   PetscReal                          period[2] = {0, 0};             /* periodic cell [0,Lx) x [0,Ly); 0: not periodic */
 

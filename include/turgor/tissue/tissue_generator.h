@@ -12,11 +12,11 @@ namespace turgor {
 
 class TissueGenerator {
 public:
-  virtual ~TissueGenerator() = default;
-  virtual const char    *Name() const = 0;
-  virtual PetscErrorCode SetFromOptions(MPI_Comm comm) = 0;
+  virtual ~TissueGenerator()                                           = default;
+  virtual const char    *Name() const                                  = 0;
+  virtual PetscErrorCode SetFromOptions(MPI_Comm comm)                 = 0;
   virtual PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const = 0;
-  virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  virtual PetscErrorCode View(PetscViewer viewer) const                = 0;
 };
 
 using TissueGeneratorCreator = Registry<TissueGenerator>::Creator;
