@@ -157,6 +157,8 @@ class Study:
                "error_vs_reference": float, "error_vs_fine": float}
         with open(path) as f:
             for r in csv.DictReader(f):
+                if r.get("integrator") == "radau5":  # the TS type's name before it became radauiia
+                    r["integrator"] = "radauiia"
                 self.rows.append({k: (num[k](v) if k in num and v != "" else (None if v == "" else v)) for k, v in r.items()})
 
     def modelling(self):
