@@ -26,7 +26,7 @@ INTEGRATORS = {
 
 def run(cmd, out):
     t0 = time.time()
-    subprocess.run(cmd + ["-output_dir", out], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(cmd + ["-output_dir", out, "-output_overwrite"], check=True, stdout=subprocess.DEVNULL)
     s = json.load(open(f"{out}/summary.json"))
     s["elapsed"] = time.time() - t0
     return s

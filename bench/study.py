@@ -82,7 +82,7 @@ class Study:
         samples = max(100, int(round(t_final / SAMPLE_SPACING)))
         cmd = [self.a.turgor, "-options_file_yaml", self.a.scene, "-ts_max_time", f"{t_final:g}",
                "-fe2_tip_samples", str(samples), "-fe2_snapshots", "0", "-fe2_progress_interval", "0",
-               "-output_dir", d] + extra
+               "-output_dir", d, "-output_overwrite"] + extra
         with open(os.path.join(d, "command.txt"), "w") as f:
             f.write(" ".join(cmd) + "\n")
         t0 = time.time()
@@ -144,7 +144,7 @@ class Study:
             print("running the full fine-scale bending bar (DOPRI) ...", file=sys.stderr)
             subprocess.run([a.turgor, "-options_file_yaml", "config/bending_bar_fine.yaml", "-ts_max_time", f"{a.t_final:g}",
                             "-fine_tip_samples", str(max(100, int(round(a.t_final / SAMPLE_SPACING)))),
-                            "-fine_snapshots", "0", "-fine_progress_interval", "0", "-output_dir", a.fine],
+                            "-fine_snapshots", "0", "-fine_progress_interval", "0", "-output_dir", a.fine, "-output_overwrite"],
                            check=True, stdout=subprocess.DEVNULL)
         return read_tip(a.fine) if a.fine else None
 

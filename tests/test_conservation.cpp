@@ -54,6 +54,7 @@ static PetscErrorCode RunCase(const char *physics, TSType ts_type, const Tissue 
   run.Physics().names            = Split(physics);
   run.Output().dir               = "test_conservation_out";
   run.Output().samples           = 1;
+  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
   run.Output().snapshots         = 0;
   run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());

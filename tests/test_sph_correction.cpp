@@ -88,6 +88,7 @@ static PetscErrorCode SpinningCell(PetscBool correction, PetscReal *drift)
   run.Spec().dt                  = 1e-3;
   run.Output().dir               = "test_sph_correction_out";
   run.Output().samples           = 1;
+  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
   run.Output().snapshots         = 0;
   run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());

@@ -57,6 +57,7 @@ static PetscErrorCode RunChain(TSType ts_type, PetscReal dt, PetscInt steps, boo
   run.Spec().dt                  = dt;
   run.Output().dir               = "test_spring_chain_out";
   run.Output().samples           = 1;
+  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
   run.Output().snapshots         = 0;
   run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());

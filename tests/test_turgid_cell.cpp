@@ -22,6 +22,7 @@ static PetscErrorCode LaplaceRatio(const Tissue &cell, PetscReal h, PetscReal *r
   run.Spec().clamp               = {"none"};
   run.Output().dir               = "test_turgid_cell_out";
   run.Output().samples           = 1;
+  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
   run.Output().snapshots         = 0;
   run.Output().progress_interval = 0;
   PetscCall(run.SetFromOptions());

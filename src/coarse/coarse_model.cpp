@@ -1,5 +1,6 @@
 #include "q1_element.h"
 #include <turgor/coarse/coarse_model.h>
+#include <turgor/core/memory.h>
 #include <turgor/core/log.h>
 #include <petscsf.h>
 #include <cmath>
@@ -82,6 +83,12 @@ PetscErrorCode CoarseModel::CreateMesh()
       PetscCheck(!set || (n == 2 && faces[0] >= 1 && faces[1] >= 1), comm_, PETSC_ERR_ARG_OUTOFRANGE,
                  "Option -coarse_dm_plex_box_faces = %" PetscInt_FMT ",%" PetscInt_FMT ": needs two numbers of elements, each >= 1", faces[0],
                  n > 1 ? faces[1] : 0);
+      if (set) { /* before DMPlex builds it: a box too large for this machine is refused here */
+        PetscInt  refine = 0;
+        PetscBool rset;
+        PetscCall(PetscOptionsGetInt(NULL, NULL, "-coarse_dm_refine", &refine, &rset));
+        PetscCall(CheckSize((PetscReal)faces[0] * (PetscReal)faces[1] * std::pow(4.0, (PetscReal)refine)));
+      }
     }
     if (box || simplex || file) { /* DMSetFromOptions builds it */
       PetscCall(DMCreate(comm_, &dm_));
@@ -108,6 +115,20 @@ PetscErrorCode CoarseModel::CreateMesh()
                DMPolytopeTypes[ct]);
   }
   PetscCall(DMPlexGetDepthStratum(dm_, 0, &v_start_, &v_end_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Elements of about 3 kB (mesh, section, matrices) and five material points each, dealt evenly to
+   the ranks: refused before the points are created if the nodes cannot hold them. */
+PetscErrorCode CoarseModel::CheckSize(PetscReal elements)
+{
+  PetscMPIInt       size;
+  const PetscReal   points = q1::kPoints * elements;
+  const std::string what   = std::to_string((long long)elements) + " coarse elements with " + std::to_string((long long)points) + " material points (" + pool_.MaterialName() + ")";
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(CheckCount(comm_, 4 * points, what));
+  PetscCall(CheckMemory(comm_, 45e6 + (3e3 * elements + points * pool_.Model().BytesPerPoint()) / size, what));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -298,6 +319,11 @@ PetscErrorCode CoarseModel::SetUp()
   PetscCall(PetscLogEventRegister("TgCoarseResidual", PETSC_OBJECT_CLASSID, &ev_residual_));
   PetscCall(PetscLogEventRegister("TgCoarseJacobian", PETSC_OBJECT_CLASSID, &ev_jacobian_));
   PetscCall(CreateMesh());
+  {
+    PetscInt n = c_end_ - c_start_;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, comm_));
+    PetscCall(CheckSize((PetscReal)n));
+  }
   PetscCall(CreateSection());
   PetscCall(PrecomputeElements());
   const PetscInt np = (c_end_ - c_start_) * q1::kPoints;

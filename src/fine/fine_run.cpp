@@ -1,3 +1,4 @@
+#include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,11 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
   PetscCheck(dt_safety > 0 && dt_safety <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* Measured (max RSS of 16^2 .. 128^2-cell runs with DOPRI, docs/benchmarks.md): a process
+   with PETSc and MPI, and every particle's share (state and TS stages, neighbour lists, SPH work
+   arrays, swarm). */
+static const PetscReal kProcessBytes = 45e6, kBytesPerParticle = 1000;
 
 FineRun::~FineRun()
 {
@@ -120,7 +126,14 @@ PetscErrorCode FineRun::SetUpModel()
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  if (!have_tissue_) PetscCall(tissues_.Generate(comm_, &tissue_));
+  if (!have_tissue_) {
+    PetscReal particles, springs;
+    PetscCall(tissues_.Generator()->Estimate(&particles, &springs));
+    const std::string what = "the fine tissue (" + std::to_string((long long)particles) + " particles)";
+    PetscCall(CheckCount(comm_, 4 * particles, what + ", its state vector"));
+    PetscCall(CheckMemory(comm_, rank == 0 ? kProcessBytes + kBytesPerParticle * particles : kProcessBytes, what));
+    PetscCall(tissues_.Generate(comm_, &tissue_));
+  }
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
   /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
@@ -160,6 +173,19 @@ PetscErrorCode FineRun::SetUpModel()
   PetscCall(ChooseTimeStep());
   dt_initial_ = spec_.dt > 0 ? spec_.dt : spec_.dt_safety * dt_stable_;
   PetscCall(TSSetTimeStep(ts_, dt_initial_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Explicit integrators only: an implicit one would difference a Jacobian of every particle
+   interaction (dense, 4n unknowns), which never finishes on a tissue. */
+PetscErrorCode FineRun::CheckIntegrator()
+{
+  PetscBool explicit_type;
+  TSType    type;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, "am", ""));
+  PetscCall(TSGetType(ts_, &type));
+  PetscCheck(explicit_type, comm_, PETSC_ERR_SUP, "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, euler, ssp, basicsymplectic, am); an implicit one would need the Jacobian of every particle interaction", type);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

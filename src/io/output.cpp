@@ -2,29 +2,59 @@
 #include <cmath>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace turgor {
 
-PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir)
+/* The files turgor writes into an output directory (any mode): the only ones -output_overwrite
+   removes. */
+static const char *const kOutputFiles[] = {"summary.json", "tip.csv", "rve.csv", "particles.h5", "particles.xmf", "coarse.h5", "coarse.xmf"};
+
+PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite)
 {
   char        buf[PETSC_MAX_PATH_LEN];
+  PetscBool   replace = *overwrite ? PETSC_TRUE : PETSC_FALSE;
   PetscMPIInt rank;
-  int         err = 0;
+  /* 0: ready; 1: cannot create; 2: not empty and no -output_overwrite */
+  int         state = 0;
+  std::string found, kept;
 
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(buf, dir->empty() ? "./out" : dir->c_str(), sizeof buf));
   PetscOptionsBegin(comm, NULL, "Output", "turgor");
   PetscCall(PetscOptionsString("-output_dir", "Directory for all outputs of the run", "turgor", buf, buf, sizeof buf, NULL));
+  PetscCall(PetscOptionsBool("-output_overwrite", "Replace the outputs of an earlier run in -output_dir (otherwise a directory that is not empty is refused)", "turgor", replace, &replace, NULL));
   PetscOptionsEnd();
+  PetscCheck(buf[0], comm, PETSC_ERR_ARG_WRONG, "Option -output_dir: empty");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
+    namespace fs = std::filesystem;
     std::error_code ec;
-    std::filesystem::create_directories(buf, ec);
-    err = ec ? 1 : 0;
+    if (fs::exists(buf, ec) && !fs::is_directory(buf, ec)) state = 1;
+    else if (fs::exists(buf, ec)) {
+      std::vector<fs::path> ours;
+      for (const auto &entry : fs::directory_iterator(buf, ec)) {
+        const std::string name = entry.path().filename().string();
+        bool              own  = false;
+        for (const char *o : kOutputFiles) own = own || name == o;
+        if (own) ours.push_back(entry.path());
+        else kept += (kept.empty() ? "" : ", ") + name;
+        found += (found.empty() ? "" : ", ") + name;
+      }
+      if (!found.empty() && !replace) state = 2;
+      else
+        for (const auto &f : ours) fs::remove(f, ec);
+    } else {
+      fs::create_directories(buf, ec);
+      if (ec) state = 1;
+    }
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
-  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Option -output_dir = %s: cannot create the directory", buf);
-  *dir = buf;
+  PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, comm));
+  PetscCheck(state != 1, comm, PETSC_ERR_FILE_OPEN, "Option -output_dir = %s: cannot create the directory", buf);
+  PetscCheck(state != 2, comm, PETSC_ERR_FILE_OPEN, "Option -output_dir = %s: the directory is not empty (%s); -output_overwrite replaces turgor's outputs in it, or choose another directory", buf, found.size() > 200 ? (found.substr(0, 200) + ", ...").c_str() : found.c_str());
+  if (replace && !found.empty()) PetscCall(PetscPrintf(comm, "Output directory %s: the outputs of an earlier run are replaced%s%s\n", buf, kept.empty() ? "" : "; other files kept: ", kept.c_str()));
+  *dir       = buf;
+  *overwrite = replace;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -61,6 +91,18 @@ PetscErrorCode CsvWriter::Close()
   if (comm_ != MPI_COMM_NULL) PetscCall(PetscFClose(comm_, fp_));
   comm_ = MPI_COMM_NULL;
   fp_   = nullptr;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BroadcastString(MPI_Comm comm, std::string *s)
+{
+  int n = (int)s->size();
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, 0, comm));
+  std::vector<char> buf(s->begin(), s->end());
+  buf.resize(n);
+  PetscCallMPI(MPI_Bcast(buf.data(), n, MPI_CHAR, 0, comm));
+  s->assign(buf.begin(), buf.end());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

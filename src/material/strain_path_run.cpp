@@ -1,5 +1,6 @@
 #include <turgor/material/strain_path_run.h>
 #include <cmath>
+#include <fstream>
 
 namespace turgor {
 
@@ -8,19 +9,26 @@ static const char *const kPaths[] = {"uniaxial", "biaxial", "shear", "rotation",
 PetscErrorCode StrainPathRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
+  PetscOptionsBegin(comm_, NULL, "Renamed options of -mode rve", "turgor");
+  for (const char *o : {"type", "rate", "t_final", "steps", "tangents"}) {
+    const std::string old_name = std::string("-rve_") + (std::string(o) == "type" ? "path" : o), new_name = std::string("-path_") + o;
+    PetscCall(PetscOptionsDeprecated(old_name.c_str(), new_name.c_str(), "0.2", "-mode rve's strain path options are -path_*; -rve_* are the RVE material's"));
+  }
+  PetscOptionsEnd();
   PetscOptionsBegin(comm_, "path_", "Strain path of one material point (-mode rve)", "turgor");
-  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)",
-                              "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
+  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)", "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
   PetscCall(PetscOptionsReal("-rate", "Strain rate r [1/µs] (angular velocity for rotation [rad/µs])", "StrainPathRun", rate_, &rate_, NULL));
   PetscCall(PetscOptionsReal("-t_final", "Duration of the path [µs]", "StrainPathRun", t_final_, &t_final_, NULL));
   PetscCall(PetscOptionsInt("-steps", "Material-point evaluations along the path (plus the initial one)", "StrainPathRun", steps_, &steps_, NULL));
   PetscCall(PetscOptionsBool("-tangents", "Also compute D^e and D^v at every step", "StrainPathRun", tangents_, &tangents_, NULL));
+  PetscCall(PetscOptionsBool("-allow_failures", "A failed evaluation is recorded and the path goes on, and the run still ends 'completed' (default: it ends 'failed', exit status 1)", "StrainPathRun", allow_failures_, &allow_failures_, NULL));
   PetscOptionsEnd();
   PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_steps = %" PetscInt_FMT ": must be >= 1", steps_);
   PetscCheck(t_final_ > 0 && std::isfinite(t_final_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_t_final = %g: must be > 0 and finite", (double)t_final_);
   PetscCheck(std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_rate = %g: must be finite", (double)rate_);
   PetscCall(pool_.SetFromOptions());
-  PetscCall(OutputDirectory(comm_, &output_dir_));
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_));
+  have_dir_ = true;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -69,7 +77,6 @@ PetscErrorCode StrainPathRun::SetUp()
 PetscErrorCode StrainPathRun::Solve()
 {
   PetscMPIInt    rank;
-  CsvWriter      csv;
   PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
@@ -77,36 +84,63 @@ PetscErrorCode StrainPathRun::Solve()
   for (const char *m : {"De", "Dv"})
     for (const char *ij : {"11_11", "11_22", "11_12", "22_11", "22_22", "22_12", "12_11", "12_22", "12_12"}) cols.push_back(std::string(m) + ij);
   for (const char *c : {"iterations", "residual", "ok"}) cols.push_back(c);
-  if (rank == 0) PetscCall(csv.Open(PETSC_COMM_SELF, output_dir_ + "/rve.csv", cols));
+  if (rank == 0) PetscCall(csv_.Open(PETSC_COMM_SELF, output_dir_ + "/rve.csv", cols));
   PetscCall(PetscTime(&t0));
   for (PetscInt k = 0; k <= steps_; k++) {
     const PetscReal  t = t_final_ * k / steps_;
     Tensor2          F, Fd;
     MaterialResponse r;
     Tangents         D;
+    PetscInt         ok;
     Path(t, &F, &Fd);
     PetscCall(pool_.Evaluate(&F, &Fd, &r, tangents_ ? &D : NULL));
+    ok = rank == 0 ? (r.ok ? 1 : 0) : 0; /* rank 0 owns the point; every rank commits with it */
+    PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, comm_));
+    if (ok) PetscCall(pool_.Commit());
+    else failures_++;
     if (rank != 0) continue;
-    if (r.ok) PetscCall(pool_.Commit());
-    else {
-      failures_++;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: evaluation failed: %s\n", (double)t, r.reason.c_str()));
+    if (r.ok) {
+      last_   = r;
+      t_last_ = t;
+    } else {
+      if (first_failure_.empty()) first_failure_ = "at t = " + std::to_string(t) + " µs: " + r.reason;
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: evaluation failed: %s (F = [%g %g; %g %g])\n", (double)t, r.reason.c_str(), (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1)));
     }
-    last_                      = r;
     const Tensor2  &s          = r.sigma;
-    const PetscReal asym       = std::fabs(s(0, 1) - s(1, 0)) / PetscMax(s.Norm(), PETSC_SMALL);
+    const PetscReal asym       = r.ok ? std::fabs(s(0, 1) - s(1, 0)) / PetscMax(s.Norm(), PETSC_SMALL) : 0;
     max_asymmetry_             = PetscMax(max_asymmetry_, asym);
     std::vector<PetscReal> row = {t, F(0, 0), F(0, 1), F(1, 0), F(1, 1), Fd(0, 0), Fd(0, 1), Fd(1, 0), Fd(1, 1), s(0, 0), s(0, 1), s(1, 0), s(1, 1), r.rho};
     for (int i = 0; i < 9; i++) row.push_back(D.De[i / 3][i % 3]);
     for (int i = 0; i < 9; i++) row.push_back(D.Dv[i / 3][i % 3]);
     row.insert(row.end(), {(PetscReal)r.iterations, r.residual, r.ok ? 1.0 : 0.0});
-    PetscCall(csv.Row(row));
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n",
-                          (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
+    PetscCall(csv_.Row(row));
+    if (r.ok)
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n", (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
   }
   PetscCall(PetscTime(&t1));
   wall_ = t1 - t0;
-  if (rank == 0) PetscCall(csv.Close());
+  if (rank == 0) PetscCall(csv_.Close());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StrainPathRun::Summary(JsonObject &js, const char *status) const
+{
+  PetscFunctionBeginUser;
+  js.Set("mode", "rve");
+  js.Set("status", status);
+  js.Set("material", pool_.MaterialName());
+  js.Set("path", kPaths[path_]);
+  js.Set("rate", rate_);
+  js.Set("t_final", t_final_);
+  js.Set("steps", steps_);
+  js.Set("tangents", (bool)tangents_);
+  js.Set("failures", failures_);
+  js.Set("wall_time_s", wall_);
+  js.Set("max_stress_asymmetry", max_asymmetry_);
+  /* the last evaluation that succeeded: a failed one has no stress */
+  js.Set("sigma_final", std::vector<PetscReal>{last_.sigma(0, 0), last_.sigma(0, 1), last_.sigma(1, 0), last_.sigma(1, 1)});
+  js.Set("rho_final", last_.rho);
+  js.Set("t_sigma_final", t_last_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -114,32 +148,41 @@ PetscErrorCode StrainPathRun::WriteSummary()
 {
   JsonObject       js;
   MaterialCounters c;
+  PetscMPIInt      rank;
   PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCall(pool_.GlobalCounters(&c));
-  PetscCallMPI(MPI_Bcast(&failures_, 1, MPIU_INT, 0, comm_));
-  js.Set("mode", "rve");
-  js.Set("material", pool_.MaterialName());
-  js.Set("path", kPaths[path_]);
-  js.Set("rate", rate_);
-  js.Set("t_final", t_final_);
-  js.Set("steps", steps_);
-  js.Set("tangents", (bool)tangents_);
+  const bool failed = failures_ > 0 && !allow_failures_;
+  PetscCall(Summary(js, failed ? "failed" : "completed"));
+  if (failures_ > 0) {
+    std::string first = first_failure_;
+    PetscCall(BroadcastString(comm_, &first));
+    js.Set("reason", std::to_string(failures_) + " of " + std::to_string(steps_ + 1) + " evaluations failed (first " + first + ")" + (allow_failures_ ? ", allowed by -path_allow_failures" : ""));
+  }
   js.Set("rve_solves", c.solves);
   js.Set("psi_tc_iterations", c.iterations);
   js.Set("snes_its", c.snes_its);
   js.Set("ksp_its", c.ksp_its);
   js.Set("jacobian_evals", c.jacobians);
   js.Set("force_evals", c.force_evals);
-  js.Set("failures", failures_);
-  js.Set("wall_time_s", wall_);
-  js.Set("max_stress_asymmetry", max_asymmetry_);
-  js.Set("sigma_final", std::vector<PetscReal>{last_.sigma(0, 0), last_.sigma(0, 1), last_.sigma(1, 0), last_.sigma(1, 1)});
-  js.Set("rho_final", last_.rho);
   PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
-  PetscCall(PetscPrintf(comm_,
-                        "Done: %" PetscInt_FMT " evaluations, %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, %" PetscInt_FMT
-                        " failures, %.3f s; outputs in %s: rve.csv, summary.json\n",
-                        steps_ + 1, c.solves, c.iterations, failures_, wall_, output_dir_.c_str()));
+  PetscCall(PetscPrintf(comm_, "%s: %" PetscInt_FMT " evaluations (%" PetscInt_FMT " failed), %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, %.3f s; outputs in %s: rve.csv, summary.json\n", failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, output_dir_.c_str()));
+  PetscCheck(!failed, comm_, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " of %" PetscInt_FMT " material-point evaluations failed along the path (-path_allow_failures to accept that)", failures_, steps_ + 1);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StrainPathRun::WriteFailure(const std::string &reason)
+{
+  JsonObject  js;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (rank != 0 || !have_dir_) PetscFunctionReturn(PETSC_SUCCESS);
+  if (csv_.IsOpen()) PetscCall(csv_.Close());
+  if (std::ifstream(output_dir_ + "/summary.json").good()) PetscFunctionReturn(PETSC_SUCCESS); /* WriteSummary said it already */
+  PetscCall(Summary(js, "failed"));
+  js.Set("reason", reason);
+  PetscCall(js.Write(PETSC_COMM_SELF, output_dir_ + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,4 +1,6 @@
+#include <turgor/core/errors.h>
 #include <turgor/core/log.h>
+#include <cmath>
 #include <turgor/run/time_run.h>
 
 namespace turgor {
@@ -24,7 +26,8 @@ static const PetscReal kDefaultFinalTime = 300.0;
 PetscErrorCode RunOutputSpec::SetFromOptions(MPI_Comm comm, const std::string &prefix)
 {
   PetscFunctionBeginUser;
-  PetscCall(OutputDirectory(comm, &dir));
+  PetscCall(OutputDirectory(comm, &dir, &overwrite));
+  ready = true;
   PetscOptionsBegin(comm, prefix.c_str(), "Outputs of the run", "turgor");
   PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "RunOutputSpec", samples,
                             &samples, NULL));
@@ -34,6 +37,7 @@ PetscErrorCode RunOutputSpec::SetFromOptions(MPI_Comm comm, const std::string &p
   PetscOptionsEnd();
   PetscCheck(samples >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%stip_samples = %" PetscInt_FMT ": must be >= 1", prefix.c_str(), samples);
   PetscCheck(snapshots >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%ssnapshots = %" PetscInt_FMT ": must be >= 0", prefix.c_str(), snapshots);
+  PetscCheck(std::isfinite(progress_interval) && progress_interval >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%sprogress_interval = %g: must be finite and >= 0", prefix.c_str(), (double)progress_interval);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -74,8 +78,8 @@ PetscErrorCode TimeRun::SetUp()
   PetscCall(SetUpModel());
   PetscCall(TSMonitorSet(ts_, Monitor, this, NULL));
   PetscCall(TSSetFromOptions(ts_));
-  PetscCall(TSGetMaxTime(ts_, &t_final_));
-  PetscCheck(t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be > 0", (double)t_final_);
+  PetscCall(CheckIntegrator());
+  PetscCall(CheckTSOptions());
   PetscCall(AfterTSSetFromOptions());
   sampler_.Configure(t_final_, out_.samples, out_.snapshots, out_.progress_interval);
   PetscCall(Report());
@@ -87,6 +91,31 @@ PetscErrorCode TimeRun::SetUp()
   }
   if (out_.snapshots > 0) PetscCall(OpenSnapshots());
   PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Before any step: a step, a final time and tolerances that would hang the run, fill its outputs
+   with NaN or switch its error control off are refused, naming the option. */
+PetscErrorCode TimeRun::CheckTSOptions()
+{
+  PetscReal   dt, atol, rtol;
+  PetscInt    max_steps;
+  Vec         vatol, vrtol;
+  TSAdapt     adapt;
+  PetscBool   fixed;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetMaxTime(ts_, &t_final_));
+  PetscCheck(std::isfinite(t_final_) && t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be finite and > 0", (double)t_final_);
+  PetscCall(TSGetTimeStep(ts_, &dt));
+  PetscCheck(std::isfinite(dt) && dt > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_dt = %g: the time step must be finite and > 0", (double)dt);
+  PetscCall(TSGetMaxSteps(ts_, &max_steps));
+  PetscCheck(max_steps >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_steps = %" PetscInt_FMT ": must be >= 1", max_steps);
+  PetscCall(TSGetTolerances(ts_, &atol, &vatol, &rtol, &vrtol));
+  PetscCheck(std::isfinite(atol) && atol >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_atol = %g: must be finite and >= 0", (double)atol);
+  PetscCheck(std::isfinite(rtol) && rtol >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_rtol = %g: must be finite and >= 0", (double)rtol);
+  PetscCall(TSGetAdapt(ts_, &adapt));
+  PetscCall(PetscObjectTypeCompare((PetscObject)adapt, TSADAPTNONE, &fixed));
+  PetscCheck(fixed || vatol || vrtol || atol > 0 || rtol > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -ts_rtol = %g and -ts_atol = %g: an adaptive integrator with both tolerances 0 has no error control (its steps grow without bound); give a tolerance > 0, or a fixed step with -ts_adapt_type none", (double)rtol, (double)atol);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -103,8 +132,15 @@ PetscErrorCode TimeRun::Sample(PetscReal t, Vec U)
 
 PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
-  TimeRun *run = (TimeRun *)ctx;
+  TimeRun  *run = (TimeRun *)ctx;
+  PetscBool stop;
   PetscFunctionBeginUser;
+  PetscCall(InterruptRequestedAll(run->comm_, &stop));
+  if (stop && !run->interrupted_) { /* after this step: the outputs hold every sample up to here */
+    run->interrupted_ = true;
+    PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+    PetscCall(PetscPrintf(run->comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT "): stopping after this step\n", (double)t, step));
+  }
   PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
   PetscCall(run->sampler_.Monitor(
     ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
@@ -119,6 +155,7 @@ PetscErrorCode TimeRun::Solve()
   PetscReal         t;
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(stage_solve_));
+  solving_ = true;
   PetscCall(TSSolve(ts_, U_));
   wall_ = sampler_.Elapsed();
   PetscCall(TSGetConvergedReason(ts_, &reason));
@@ -130,55 +167,93 @@ PetscErrorCode TimeRun::Solve()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TimeRun::WriteSummary()
+/* The keys every time-dependent run reports, completed or not; not collective (rank-local counts). */
+PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
 {
-  JsonObject  js;
   TSType      type;
-  PetscReal   rtol, atol, t;
-  PetscInt    steps, rej, evals = FunctionEvaluations();
+  PetscReal   rtol = 0, atol = 0, t = 0;
+  PetscInt    steps = 0, rej = 0;
   PetscMPIInt size;
   PetscBool   is_rk, is_arkimex;
   PetscFunctionBeginUser;
-  PetscCall(TSGetType(ts_, &type));
-  std::string ts_type = type;
-  PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSRK, &is_rk));
-  PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSARKIMEX, &is_arkimex));
-  if (is_rk) {
-    TSRKType rk;
-    PetscCall(TSRKGetType(ts_, &rk));
-    ts_type += std::string(" ") + rk;
-  } else if (is_arkimex) {
-    TSARKIMEXType ark;
-    PetscCall(TSARKIMEXGetType(ts_, &ark));
-    ts_type += std::string(" ") + ark;
-  }
-  PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
-  PetscCall(TSGetSolveTime(ts_, &t));
-  PetscCall(TSGetStepNumber(ts_, &steps));
-  PetscCall(TSGetStepRejections(ts_, &rej));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_));
-  PetscCallMPI(MPI_Comm_size(comm_, &size));
   js.Set("mode", mode_);
-  js.Set("ts_type", ts_type);
+  js.Set("status", status);
+  if (ts_) {
+    PetscCall(TSGetType(ts_, &type));
+    std::string ts_type = type ? type : "";
+    PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSRK, &is_rk));
+    PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSARKIMEX, &is_arkimex));
+    if (is_rk) {
+      TSRKType rk;
+      PetscCall(TSRKGetType(ts_, &rk));
+      ts_type += std::string(" ") + rk;
+    } else if (is_arkimex) {
+      TSARKIMEXType ark;
+      PetscCall(TSARKIMEXGetType(ts_, &ark));
+      ts_type += std::string(" ") + ark;
+    }
+    PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
+    PetscCall(TSGetTime(ts_, &t));
+    PetscCall(TSGetStepNumber(ts_, &steps));
+    PetscCall(TSGetStepRejections(ts_, &rej));
+    js.Set("ts_type", ts_type);
+  }
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
   js.Set("rtol", rtol);
   js.Set("atol", atol);
   js.Set("t_final", t);
+  js.Set("t_requested", t_final_);
   js.Set("steps", steps);
   js.Set("rejected_steps", rej);
-  js.Set("rhs_evals", evals);
+  js.Set("rhs_evals", FunctionEvaluations());
   js.Set("wall_time_s", (PetscReal)wall_);
+  js.Set("mpi_ranks", (PetscInt)size);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TimeRun::WriteSummary()
+{
+  JsonObject js;
+  PetscInt   evals = FunctionEvaluations();
+  PetscReal  t;
+  PetscInt   steps, rej;
+  PetscFunctionBeginUser;
+  PetscCall(CommonSummary(js, interrupted_ ? "interrupted" : "completed"));
+  if (interrupted_) {
+    js.Set("reason", "interrupted (SIGINT/SIGTERM): the time series end at t_final, before t_requested");
+    js.Set("partial_outputs", std::vector<std::string>{"tip.csv", std::string(SnapshotFiles())});
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_));
+  js.Set("rhs_evals", evals);
   PetscCall(AddSummary(js));
   js.Set("tip_displacement_final", observed_);
-  js.Set("mpi_ranks", (PetscInt)size);
   js.Set("snapshots", SnapshotCount());
   PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
+  PetscCall(TSGetSolveTime(ts_, &t));
+  PetscCall(TSGetStepNumber(ts_, &steps));
+  PetscCall(TSGetStepRejections(ts_, &rej));
   std::string details;
   PetscCall(DoneDetails(&details));
-  PetscCall(PetscPrintf(comm_,
-                        "Done: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT
-                        " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n",
-                        (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(),
-                        out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
+  PetscCall(PetscPrintf(comm_, "%s: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", interrupted_ ? "Interrupted" : "Done", (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(), out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
+{
+  JsonObject  js;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (rank != 0 || !out_.ready) PetscFunctionReturn(PETSC_SUCCESS);
+  if (solving_) wall_ = sampler_.Elapsed();
+  PetscCall(CommonSummary(js, "failed"));
+  js.Set("reason", reason);
+  if (solving_) {
+    js.Set("tip_displacement_last_sample", observed_);
+    js.Set("partial_outputs", std::vector<std::string>{"tip.csv", std::string(SnapshotFiles())});
+  }
+  PetscCall(tip_csv_.Close());
+  PetscCall(js.Write(PETSC_COMM_SELF, out_.dir + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

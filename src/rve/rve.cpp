@@ -1,3 +1,4 @@
+#include <turgor/core/memory.h>
 #include <turgor/rve/rve.h>
 #include <cmath>
 
@@ -178,6 +179,13 @@ PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm)
   PetscCall(spec.SetFromOptions(comm));
   physics.with_loads = false; /* the body force is a load on the coarse model, not part of the material */
   PetscCall(physics.SetFromOptions(comm, TermContext{}));
+  {
+    PetscReal particles, springs;
+    cell.Count((PetscReal)spec.cells, (PetscReal)spec.cells, true, &particles, &springs);
+    const std::string what = "one RVE of " + std::to_string((long long)spec.cells) + " x " + std::to_string((long long)spec.cells) + " cells (" + std::to_string((long long)particles) + " particles)";
+    PetscCall(CheckCount(comm, 2 * particles, what));
+    PetscCall(CheckMemory(comm, BytesPerRVE(particles), what));
+  }
   PetscCall(prototype_.SetUp(comm, cell, spec.cells));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

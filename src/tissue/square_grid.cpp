@@ -161,6 +161,22 @@ PetscReal SquareGridSpec::FluidParticleMass() const
   return fluid_density * cell_size * cell_size / (PetscReal)fluid_per_cell;
 }
 
+void SquareGridSpec::Count(PetscReal nx, PetscReal ny, bool periodic, PetscReal *particles, PetscReal *springs) const
+{
+  const PetscReal s = (PetscReal)springs_per_side, ax = nx * s, ay = ny * s;
+  /* lattice points on cell boundaries: every point of the (ax+1) x (ay+1) lattice on a grid line */
+  const PetscReal walls = periodic ? nx * ny * (2 * s - 1) : (ax + 1) * (ny + 1) + (ay + 1) * (nx + 1) - (nx + 1) * (ny + 1);
+  *particles            = walls + nx * ny * (PetscReal)fluid_per_cell;
+  *springs              = periodic ? 2 * s * nx * ny : ax * (ny + 1) + ay * (nx + 1);
+}
+
+PetscErrorCode SquareGridGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
+{
+  PetscFunctionBeginUser;
+  spec.Count((PetscReal)spec.cells_x, (PetscReal)spec.cells_y, false, particles, springs);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SquareGridGenerator::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;

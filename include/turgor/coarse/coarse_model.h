@@ -95,6 +95,7 @@ public:
 private:
   static PetscErrorCode BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx);
   PetscErrorCode        CreateMesh();
+  PetscErrorCode        CheckSize(PetscReal elements); /* memory and PetscInt range of the material points */
   PetscErrorCode        CreateSection();
   PetscErrorCode        PrecomputeElements();
   PetscErrorCode        AssembleMass();

@@ -51,6 +51,7 @@ protected:
   PetscErrorCode           ModeSetFromOptions() override;
   PetscErrorCode           SetUpModel() override;
   PetscErrorCode           AfterTSSetFromOptions() override;
+  PetscErrorCode           CheckIntegrator() override;
   PetscErrorCode           Report() override;
   std::vector<std::string> ObservedColumns() const override { return {"tip_displacement_y", "kinetic_energy"}; }
   PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) override;

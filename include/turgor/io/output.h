@@ -9,8 +9,11 @@
 
 namespace turgor {
 
-/* Read -output_dir (default: *dir, or ./out if empty), create it on rank 0, return its path. */
-PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir);
+/* Read -output_dir (default: *dir, or ./out if empty) and -output_overwrite (default *overwrite),
+   and make the directory ready on rank 0: created if missing; if it is not empty it is refused
+   unless overwrite, which removes the files turgor writes (summary.json, tip.csv, ...) and keeps
+   any others. A run then writes only files it owns. */
+PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite);
 
 /* A CSV file with a header row; numbers are written with full precision. */
 class CsvWriter {
@@ -47,5 +50,8 @@ private:
 };
 
 std::string JsonQuote(const std::string &s);
+
+/* Rank 0's string on every rank (collective). */
+PetscErrorCode BroadcastString(MPI_Comm comm, std::string *s);
 
 } // namespace turgor

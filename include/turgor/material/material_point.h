@@ -70,6 +70,8 @@ public:
   /* For summaries: the physics inside a point, and its particles (0 for closed forms). */
   virtual std::vector<std::string> Physics() const = 0;
   virtual void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const { *wall = *fluid = 0; }
+  /* Memory of one material point (estimates before the points are created). */
+  virtual PetscReal                BytesPerPoint() const { return 256; }
   virtual PetscErrorCode           View(PetscViewer viewer) const = 0;
 };
 

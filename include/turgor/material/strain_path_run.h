@@ -15,6 +15,7 @@ public:
   PetscErrorCode SetUp() override;
   PetscErrorCode Solve() override;
   PetscErrorCode WriteSummary() override;
+  PetscErrorCode WriteFailure(const std::string &reason) override;
 
   /* The imposed deformation at time t. */
   void Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const;
@@ -26,10 +27,16 @@ private:
   PetscInt          path_ = 0, steps_ = 20;
   PetscReal         rate_ = 1e-3, t_final_ = 50.0; /* [1/µs], [µs] */
   PetscBool         tangents_ = PETSC_TRUE;
+  PetscBool         allow_failures_ = PETSC_FALSE;
+  bool              overwrite_ = false, have_dir_ = false;
   /* results */
-  PetscInt         failures_ = 0;
-  MaterialResponse last_;
-  PetscReal        max_asymmetry_ = 0, wall_ = 0;
+  CsvWriter         csv_;
+  PetscInt          failures_ = 0;
+  MaterialResponse  last_; /* the last evaluation that succeeded */
+  PetscReal         t_last_ = 0, max_asymmetry_ = 0, wall_ = 0;
+  std::string       first_failure_;
+
+  PetscErrorCode Summary(JsonObject &js, const char *status) const;
 };
 
 } // namespace turgor

@@ -24,6 +24,8 @@ struct RunOutputSpec {
   PetscInt    samples           = 1000; /* samples of the observable over [0, ts_max_time] */
   PetscInt    snapshots         = 20;   /* field snapshots over [0, ts_max_time]; 0 = none */
   PetscReal   progress_interval = 10;   /* seconds of wall time between progress lines; 0 = none */
+  bool        overwrite         = false; /* -output_overwrite: replace an earlier run's outputs */
+  bool        ready             = false; /* the directory is this run's (set by SetFromOptions) */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, const std::string &prefix);
 };
@@ -38,6 +40,8 @@ public:
   PetscErrorCode SetUp() final;
   PetscErrorCode Solve() final;
   PetscErrorCode WriteSummary() final;
+  PetscErrorCode WriteFailure(const std::string &reason) final;
+  bool           Interrupted() const final { return interrupted_; }
 
   TS             GetTS() const { return ts_; }
   Vec            GetState() const { return U_; }
@@ -76,6 +80,8 @@ protected:
   virtual PetscErrorCode DoneDetails(std::string *details) = 0; /* collective */
   /* What a user should try when the integration fails. */
   virtual const char *FailureAdvice() const = 0;
+  /* Refuse integrators the mode cannot use (after TSSetFromOptions; the message says why). */
+  virtual PetscErrorCode CheckIntegrator() { return PETSC_SUCCESS; }
 
   /* Seconds of wall time in TSSolve. */
   PetscReal WallTime() const { return (PetscReal)wall_; }
@@ -89,6 +95,8 @@ protected:
 private:
   static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
   PetscErrorCode        Sample(PetscReal t, Vec U);
+  PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
+  PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
 
   std::string    mode_;
   CsvWriter      tip_csv_;
@@ -96,7 +104,8 @@ private:
   PetscLogDouble wall_        = 0;
   PetscReal      observed_    = 0;
   PetscLogStage  stage_setup_ = 0, stage_solve_ = 0;
-  PetscLogEvent  ev_output_ = 0;
+  PetscLogEvent  ev_output_   = 0;
+  bool           interrupted_ = false, solving_ = false;
 };
 
 } // namespace turgor

@@ -20,6 +20,8 @@ struct SquareGridSpec {
      cells, -rve_cells, and leaves those unread so that a stray one is reported as unused). */
   PetscErrorCode SetFromOptions(MPI_Comm comm, bool layout);
   PetscReal      FluidParticleMass() const;
+  /* Particles and springs of nx x ny cells, in floating point (a periodic grid has fewer walls). */
+  void           Count(PetscReal nx, PetscReal ny, bool periodic, PetscReal *particles, PetscReal *springs) const;
 };
 
 PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue);
@@ -34,6 +36,7 @@ public:
   const char    *Name() const override { return "square_grid"; }
   PetscErrorCode SetFromOptions(MPI_Comm comm) override { return spec.SetFromOptions(comm, true); }
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateSquareGridTissue(comm, spec, tissue); }
+  PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   PetscErrorCode View(PetscViewer viewer) const override;
 
   SquareGridSpec spec;

@@ -16,6 +16,9 @@ public:
   virtual const char    *Name() const                                  = 0;
   virtual PetscErrorCode SetFromOptions(MPI_Comm comm)                 = 0;
   virtual PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const = 0;
+  /* Particles and springs the tissue will have, computed in floating point before anything is
+     allocated (memory estimates; counts beyond PetscInt). */
+  virtual PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const = 0;
   virtual PetscErrorCode View(PetscViewer viewer) const                = 0;
 };
 

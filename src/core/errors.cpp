@@ -1,0 +1,87 @@
+#include <turgor/core/errors.h>
+#include <csignal>
+#include <cstring>
+#include <string>
+
+namespace turgor {
+
+namespace {
+
+/* The option(s) whose value is `value`, as "-name" (PetscOptionsGetAll gives "-a 1 -b abc ..."). */
+std::string OptionsWithValue(const std::string &value)
+{
+  char       *all = nullptr;
+  std::string names;
+  if (PetscOptionsGetAll(NULL, &all) || !all) return names;
+  std::string prev, tok;
+  for (const char *c = all;; c++) {
+    if (*c == ' ' || *c == '\0') {
+      if (!tok.empty()) {
+        if (tok == value && prev.size() > 1 && prev[0] == '-') names += (names.empty() ? "" : ", ") + prev;
+        prev = tok;
+        tok.clear();
+      }
+      if (*c == '\0') break;
+    } else tok += *c;
+  }
+  (void)PetscFree(all); /* in an error handler: nothing more can be reported */
+  return names;
+}
+
+PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  static const char *const patterns[][2] = {
+    {"Input string ",          " has no"  }, /* PetscOptionsStringToReal/Int */
+    {"Unknown logical value: ", nullptr},     /* PetscOptionsStringToBool */
+  };
+  if (p == PETSC_ERROR_INITIAL && mess) {
+    for (const auto &pat : patterns) {
+      const size_t lead = std::strlen(pat[0]);
+      if (std::strncmp(mess, pat[0], lead) != 0) continue;
+      const char       *end   = pat[1] ? std::strstr(mess + lead, pat[1]) : nullptr;
+      const std::string value = end ? std::string(mess + lead, end) : std::string(mess + lead);
+      const std::string names = OptionsWithValue(value);
+      if (names.empty()) break;
+      const std::string better = "Option " + names + " = " + value + ": not a valid value (" + mess + ")";
+      return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, better.c_str(), ctx);
+    }
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+volatile std::sig_atomic_t interrupted = 0; /* written by the signal handler only */
+
+extern "C" void OnInterrupt(int) { interrupted = 1; }
+
+} // namespace
+
+PetscErrorCode PushOptionValueErrorHandler(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(OptionValueErrorHandler, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode InstallInterruptHandler(void)
+{
+  PetscFunctionBeginUser;
+  std::signal(SIGINT, OnInterrupt);
+  std::signal(SIGTERM, OnInterrupt);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool InterruptRequested(void) { return interrupted != 0; }
+
+PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *all)
+{
+  int mine = interrupted ? 1 : 0, any;
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) any = mine;
+  else PetscCallMPI(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm));
+  *all = any ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
