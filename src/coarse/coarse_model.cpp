@@ -27,6 +27,14 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   PetscBool set, lumped  = lumped_mass ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
+  for (const char *o : {"-coarse_faces", "-coarse_lower", "-coarse_upper"}) {
+    PetscBool gone;
+    PetscCall(PetscOptionsHasName(NULL, NULL, o, &gone));
+    PetscCheck(!gone, comm, PETSC_ERR_ARG_WRONG, "Option %s was replaced by PETSc's mesh options: -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces nx,ny -coarse_dm_plex_box_lower x0,y0 -coarse_dm_plex_box_upper x1,y1", o);
+  }
+  PetscOptionsBegin(comm, NULL, "Renamed options of the coarse model", "turgor");
+  PetscCall(PetscOptionsDeprecated("-coarse_mesh_file", "-coarse_dm_plex_filename", "0.2", "the mesh is read by DMSetFromOptions"));
+  PetscOptionsEnd();
   PetscOptionsBegin(comm, "coarse_", "Coarse FE^2 model (TW 562 §3.3); the mesh: -coarse_dm_plex_* (DMSetFromOptions)", "turgor");
   PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseSpec", label, label, sizeof label, NULL));
   PetscCall(

@@ -74,6 +74,11 @@ PetscErrorCode MaterialPointPool::SetFromOptions()
     if (default_tol_ > 0) model_->SetDefaultTolerance(default_tol_);
     PetscCall(model_->SetFromOptions(comm_));
   }
+  PetscOptionsBegin(comm_, NULL, "Renamed options of the material-point pool", "turgor");
+  PetscCall(PetscOptionsDeprecated("-rve_comm_size", "-material_comm_size", "0.2", NULL));
+  PetscCall(PetscOptionsDeprecated("-rve_tangent", "-material_tangent", "0.2", NULL));
+  PetscCall(PetscOptionsDeprecated("-rve_tangent_fdot_typ", "-material_tangent_fdot_typ", "0.2", NULL));
+  PetscOptionsEnd();
   PetscOptionsBegin(comm_, "material_", "Material-point groups and tangents", "turgor");
   PetscCall(PetscOptionsInt("-comm_size", "MPI ranks per material-point group (sub-communicator)", "MaterialPointPool", comm_size_, &comm_size_, NULL));
   PetscCall(
