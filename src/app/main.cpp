@@ -14,7 +14,7 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
                            "  rve    one material point (RVE or closed form) along a strain path: stress, density, tangents\n"
                            "  fe2    (default) coarse Q1 model on DMPlex whose stress comes from RVEs at the quadrature points\n\n";
 
-#include <turgor/turgor.h>
+#include <turgor/turgor.hpp>
 
 /* A misspelled option in a scene must not pass unnoticed. */
 static PetscErrorCode WarnUnusedOptions(void)
