@@ -3,7 +3,7 @@ static const char help[] = "Fine-scale force evaluation benchmark: RHS evaluatio
                            "cost of each physics subset on the seed's 16 x 16 tissue.\n\n"
                            "  bench_fine_rhs [-sizes 16,64,256] [-min_time 2] [-repeats 3]\n";
 
-#include <turgor/turgor.h>
+#include <turgor/turgor.hpp>
 #include <algorithm>
 #include <cmath>
 

@@ -4,7 +4,7 @@ static const char help[] = "A tissue with an intercellular air space, built with
                            "options (-tissue_*, -physics, -ts_*, -output_dir) and prints the tip displacement.\n\n"
                            "  make -C examples && ./examples/air_space -tissue_cells_x 6 -tissue_cells_y 4 -empty_cells 8,9,14,15\n";
 
-#include <turgor/turgor.h>
+#include <turgor/turgor.hpp>
 #include <algorithm>
 
 /* Copy `in` without the fluid particles of the cells in `empty`. */

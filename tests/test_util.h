@@ -1,7 +1,7 @@
 #pragma once
 /* Minimal checks for turgor's test programs: each test is a PETSc program that prints what it
    measured and returns non-zero (through PETSc's error handling) when a check fails. */
-#include <turgor/turgor.h>
+#include <turgor/turgor.hpp>
 #include <cmath>
 
 #define TG_CHECK(cond, ...) \

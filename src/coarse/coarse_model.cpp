@@ -30,7 +30,10 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   for (const char *o : {"-coarse_faces", "-coarse_lower", "-coarse_upper"}) {
     PetscBool gone;
     PetscCall(PetscOptionsHasName(NULL, NULL, o, &gone));
-    PetscCheck(!gone, comm, PETSC_ERR_ARG_WRONG, "Option %s was replaced by PETSc's mesh options: -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces nx,ny -coarse_dm_plex_box_lower x0,y0 -coarse_dm_plex_box_upper x1,y1", o);
+    PetscCheck(!gone, comm, PETSC_ERR_ARG_WRONG,
+               "Option %s was replaced by PETSc's mesh options: -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces nx,ny -coarse_dm_plex_box_lower x0,y0 "
+               "-coarse_dm_plex_box_upper x1,y1",
+               o);
   }
   PetscOptionsBegin(comm, NULL, "Renamed options of the coarse model", "turgor");
   PetscCall(PetscOptionsDeprecated("-coarse_mesh_file", "-coarse_dm_plex_filename", "0.2", "the mesh is read by DMSetFromOptions"));
@@ -132,7 +135,8 @@ PetscErrorCode CoarseModel::CheckSize(PetscReal elements)
 {
   PetscMPIInt       size;
   const PetscReal   points = q1::kPoints * elements;
-  const std::string what   = std::to_string((long long)elements) + " coarse elements with " + std::to_string((long long)points) + " material points (" + pool_.MaterialName() + ")";
+  const std::string what   = std::to_string((long long)elements) + " coarse elements with " + std::to_string((long long)points) + " material points (" +
+                           pool_.MaterialName() + ")";
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   PetscCall(CheckCount(comm_, 4 * points, what));

@@ -28,11 +28,12 @@ std::string OptionsWithValue(const std::string &value)
   return names;
 }
 
-PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess,
+                                       void *ctx)
 {
   static const char *const patterns[][2] = {
-    {"Input string ",          " has no"  }, /* PetscOptionsStringToReal/Int */
-    {"Unknown logical value: ", nullptr},     /* PetscOptionsStringToBool */
+    {"Input string ",           " has no"}, /* PetscOptionsStringToReal/Int */
+    {"Unknown logical value: ", nullptr  }, /* PetscOptionsStringToBool */
   };
   if (p == PETSC_ERROR_INITIAL && mess) {
     for (const auto &pat : patterns) {
@@ -51,7 +52,10 @@ PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun,
 
 volatile std::sig_atomic_t interrupted = 0; /* written by the signal handler only */
 
-extern "C" void OnInterrupt(int) { interrupted = 1; }
+extern "C" void OnInterrupt(int)
+{
+  interrupted = 1;
+}
 
 } // namespace
 
@@ -70,11 +74,14 @@ PetscErrorCode InstallInterruptHandler(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-bool InterruptRequested(void) { return interrupted != 0; }
+bool InterruptRequested(void)
+{
+  return interrupted != 0;
+}
 
 PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *all)
 {
-  int mine = interrupted ? 1 : 0, any;
+  int         mine = interrupted ? 1 : 0, any;
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));

@@ -37,7 +37,8 @@ std::string FormatBytes(PetscReal b)
 PetscErrorCode CheckCount(MPI_Comm comm, PetscReal count, const std::string &what)
 {
   PetscFunctionBeginUser;
-  PetscCheck(std::isfinite(count) && count <= (PetscReal)PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: %.3g is more than this build's PetscInt can count (%d)", what.c_str(), (double)count, PETSC_MAX_INT);
+  PetscCheck(std::isfinite(count) && count <= (PetscReal)PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "%s: %.3g is more than this build's PetscInt can count (%d)", what.c_str(), (double)count, PETSC_MAX_INT);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -49,7 +50,8 @@ PetscErrorCode CheckMemory(MPI_Comm comm, PetscReal bytes, const std::string &wh
   PetscBool   check = PETSC_TRUE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Memory", "turgor");
-  PetscCall(PetscOptionsBool("-memory_check", "Refuse a run whose memory estimate exceeds the node's available memory (false: warn only)", "CheckMemory", check, &check, NULL));
+  PetscCall(PetscOptionsBool("-memory_check", "Refuse a run whose memory estimate exceeds the node's available memory (false: warn only)", "CheckMemory", check,
+                             &check, NULL));
   PetscOptionsEnd();
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node));
@@ -67,7 +69,10 @@ PetscErrorCode CheckMemory(MPI_Comm comm, PetscReal bytes, const std::string &wh
   const std::string need = FormatBytes(worst[1]), have = FormatBytes(worst[1] / worst[0]);
   PetscCall(PetscPrintf(comm, "Memory estimate: %s for %s (on the fullest node, %s available)\n", need.c_str(), what.c_str(), have.c_str()));
   if (!(worst[0] <= 1)) {
-    PetscCheck(!check, comm, PETSC_ERR_MEM, "%s needs about %s of memory, more than the %s this node has available: make the problem smaller or use more nodes (-memory_check false to try anyway)", what.c_str(), need.c_str(), have.c_str());
+    PetscCheck(!check, comm, PETSC_ERR_MEM,
+               "%s needs about %s of memory, more than the %s this node has available: make the problem smaller or use more nodes (-memory_check false to try "
+               "anyway)",
+               what.c_str(), need.c_str(), have.c_str());
     PetscCall(PetscPrintf(comm, "WARNING: the estimate exceeds the available memory (-memory_check false)\n"));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

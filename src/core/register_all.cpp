@@ -12,6 +12,7 @@
 #include <turgor/rve/rve.h>
 #include <turgor/tissue/square_grid.h>
 #include <turgor/ts/ts_register.h>
+#include <turgor/core/errors.h>
 
 namespace {
 PetscBool registered = PETSC_FALSE; /* PETSc-style registration flag, cleared at PetscFinalize() */
@@ -21,9 +22,8 @@ PetscErrorCode Unregister(void)
   registered = PETSC_FALSE;
   return PETSC_SUCCESS;
 }
-} // namespace
 
-PetscErrorCode TurgorRegisterAll(void)
+PetscErrorCode RegisterAll(void)
 {
   using namespace turgor;
   PetscFunctionBeginUser;
@@ -45,5 +45,14 @@ PetscErrorCode TurgorRegisterAll(void)
   PetscCall(SimulationRegister("fe2", CreateInstance<Simulation, FE2Run>));
   PetscCall(PetscRegisterFinalize(Unregister));
   registered = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+} // namespace
+
+/* C linkage (called from C): the registries' std::vector/std::string may throw std::bad_alloc */
+PetscErrorCode TurgorRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(turgor::CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, RegisterAll));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -17,8 +17,8 @@ static bool CheckOne(const char *path)
   yaml_parser_set_input_file(&parser, fp);
   while (!done) {
     if (!yaml_parser_parse(&parser, &event)) {
-      std::fprintf(stderr, "%s:%lu:%lu: YAML error: %s%s%s\n", path, (unsigned long)parser.problem_mark.line + 1, (unsigned long)parser.problem_mark.column + 1, parser.problem ? parser.problem : "cannot parse", parser.context ? " " : "",
-                   parser.context ? parser.context : "");
+      std::fprintf(stderr, "%s:%lu:%lu: YAML error: %s%s%s\n", path, (unsigned long)parser.problem_mark.line + 1, (unsigned long)parser.problem_mark.column + 1,
+                   parser.problem ? parser.problem : "cannot parse", parser.context ? " " : "", parser.context ? parser.context : "");
       ok = false;
       break;
     }

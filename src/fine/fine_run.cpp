@@ -185,7 +185,10 @@ PetscErrorCode FineRun::CheckIntegrator()
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, "am", ""));
   PetscCall(TSGetType(ts_, &type));
-  PetscCheck(explicit_type, comm_, PETSC_ERR_SUP, "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, euler, ssp, basicsymplectic, am); an implicit one would need the Jacobian of every particle interaction", type);
+  PetscCheck(explicit_type, comm_, PETSC_ERR_SUP,
+             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, euler, ssp, basicsymplectic, am); an implicit one would need the Jacobian "
+             "of every particle interaction",
+             type);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

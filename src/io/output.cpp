@@ -23,7 +23,8 @@ PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite)
   PetscCall(PetscStrncpy(buf, dir->empty() ? "./out" : dir->c_str(), sizeof buf));
   PetscOptionsBegin(comm, NULL, "Output", "turgor");
   PetscCall(PetscOptionsString("-output_dir", "Directory for all outputs of the run", "turgor", buf, buf, sizeof buf, NULL));
-  PetscCall(PetscOptionsBool("-output_overwrite", "Replace the outputs of an earlier run in -output_dir (otherwise a directory that is not empty is refused)", "turgor", replace, &replace, NULL));
+  PetscCall(PetscOptionsBool("-output_overwrite", "Replace the outputs of an earlier run in -output_dir (otherwise a directory that is not empty is refused)",
+                             "turgor", replace, &replace, NULL));
   PetscOptionsEnd();
   PetscCheck(buf[0], comm, PETSC_ERR_ARG_WRONG, "Option -output_dir: empty");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -51,8 +52,12 @@ PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite)
   }
   PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, comm));
   PetscCheck(state != 1, comm, PETSC_ERR_FILE_OPEN, "Option -output_dir = %s: cannot create the directory", buf);
-  PetscCheck(state != 2, comm, PETSC_ERR_FILE_OPEN, "Option -output_dir = %s: the directory is not empty (%s); -output_overwrite replaces turgor's outputs in it, or choose another directory", buf, found.size() > 200 ? (found.substr(0, 200) + ", ...").c_str() : found.c_str());
-  if (replace && !found.empty()) PetscCall(PetscPrintf(comm, "Output directory %s: the outputs of an earlier run are replaced%s%s\n", buf, kept.empty() ? "" : "; other files kept: ", kept.c_str()));
+  PetscCheck(state != 2, comm, PETSC_ERR_FILE_OPEN,
+             "Option -output_dir = %s: the directory is not empty (%s); -output_overwrite replaces turgor's outputs in it, or choose another directory", buf,
+             found.size() > 200 ? (found.substr(0, 200) + ", ...").c_str() : found.c_str());
+  if (replace && !found.empty())
+    PetscCall(PetscPrintf(comm, "Output directory %s: the outputs of an earlier run are replaced%s%s\n", buf,
+                          kept.empty() ? "" : "; other files kept: ", kept.c_str()));
   *dir       = buf;
   *overwrite = replace;
   PetscFunctionReturn(PETSC_SUCCESS);

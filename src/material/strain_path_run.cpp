@@ -16,12 +16,16 @@ PetscErrorCode StrainPathRun::SetFromOptions()
   }
   PetscOptionsEnd();
   PetscOptionsBegin(comm_, "path_", "Strain path of one material point (-mode rve)", "turgor");
-  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)", "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
+  PetscCall(PetscOptionsEList("-type", "Strain path: uniaxial (F11 = 1 + r t), biaxial, shear (F12 = r t), rotation (F = R(r t)), hold (F = I)",
+                              "StrainPathRun", kPaths, 5, kPaths[path_], &path_, NULL));
   PetscCall(PetscOptionsReal("-rate", "Strain rate r [1/µs] (angular velocity for rotation [rad/µs])", "StrainPathRun", rate_, &rate_, NULL));
   PetscCall(PetscOptionsReal("-t_final", "Duration of the path [µs]", "StrainPathRun", t_final_, &t_final_, NULL));
   PetscCall(PetscOptionsInt("-steps", "Material-point evaluations along the path (plus the initial one)", "StrainPathRun", steps_, &steps_, NULL));
   PetscCall(PetscOptionsBool("-tangents", "Also compute D^e and D^v at every step", "StrainPathRun", tangents_, &tangents_, NULL));
-  PetscCall(PetscOptionsBool("-allow_failures", "A failed evaluation is recorded and the path goes on, and the run still ends 'completed' (default: it ends 'failed', exit status 1)", "StrainPathRun", allow_failures_, &allow_failures_, NULL));
+  PetscCall(
+    PetscOptionsBool("-allow_failures",
+                     "A failed evaluation is recorded and the path goes on, and the run still ends 'completed' (default: it ends 'failed', exit status 1)",
+                     "StrainPathRun", allow_failures_, &allow_failures_, NULL));
   PetscOptionsEnd();
   PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_steps = %" PetscInt_FMT ": must be >= 1", steps_);
   PetscCheck(t_final_ > 0 && std::isfinite(t_final_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_t_final = %g: must be > 0 and finite", (double)t_final_);
@@ -104,7 +108,8 @@ PetscErrorCode StrainPathRun::Solve()
       t_last_ = t;
     } else {
       if (first_failure_.empty()) first_failure_ = "at t = " + std::to_string(t) + " µs: " + r.reason;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: evaluation failed: %s (F = [%g %g; %g %g])\n", (double)t, r.reason.c_str(), (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1)));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: evaluation failed: %s (F = [%g %g; %g %g])\n", (double)t, r.reason.c_str(), (double)F(0, 0),
+                            (double)F(0, 1), (double)F(1, 0), (double)F(1, 1)));
     }
     const Tensor2  &s          = r.sigma;
     const PetscReal asym       = r.ok ? std::fabs(s(0, 1) - s(1, 0)) / PetscMax(s.Norm(), PETSC_SMALL) : 0;
@@ -115,7 +120,8 @@ PetscErrorCode StrainPathRun::Solve()
     row.insert(row.end(), {(PetscReal)r.iterations, r.residual, r.ok ? 1.0 : 0.0});
     PetscCall(csv_.Row(row));
     if (r.ok)
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n", (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n",
+                            (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
   }
   PetscCall(PetscTime(&t1));
   wall_ = t1 - t0;
@@ -157,7 +163,8 @@ PetscErrorCode StrainPathRun::WriteSummary()
   if (failures_ > 0) {
     std::string first = first_failure_;
     PetscCall(BroadcastString(comm_, &first));
-    js.Set("reason", std::to_string(failures_) + " of " + std::to_string(steps_ + 1) + " evaluations failed (first " + first + ")" + (allow_failures_ ? ", allowed by -path_allow_failures" : ""));
+    js.Set("reason", std::to_string(failures_) + " of " + std::to_string(steps_ + 1) + " evaluations failed (first " + first + ")" +
+                       (allow_failures_ ? ", allowed by -path_allow_failures" : ""));
   }
   js.Set("rve_solves", c.solves);
   js.Set("psi_tc_iterations", c.iterations);
@@ -166,8 +173,13 @@ PetscErrorCode StrainPathRun::WriteSummary()
   js.Set("jacobian_evals", c.jacobians);
   js.Set("force_evals", c.force_evals);
   PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
-  PetscCall(PetscPrintf(comm_, "%s: %" PetscInt_FMT " evaluations (%" PetscInt_FMT " failed), %" PetscInt_FMT " RVE solves, %" PetscInt_FMT " Psi-tc iterations, %.3f s; outputs in %s: rve.csv, summary.json\n", failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, output_dir_.c_str()));
-  PetscCheck(!failed, comm_, PETSC_ERR_NOT_CONVERGED, "%" PetscInt_FMT " of %" PetscInt_FMT " material-point evaluations failed along the path (-path_allow_failures to accept that)", failures_, steps_ + 1);
+  PetscCall(PetscPrintf(comm_,
+                        "%s: %" PetscInt_FMT " evaluations (%" PetscInt_FMT " failed), %" PetscInt_FMT " RVE solves, %" PetscInt_FMT
+                        " Psi-tc iterations, %.3f s; outputs in %s: rve.csv, summary.json\n",
+                        failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, output_dir_.c_str()));
+  PetscCheck(!failed, comm_, PETSC_ERR_NOT_CONVERGED,
+             "%" PetscInt_FMT " of %" PetscInt_FMT " material-point evaluations failed along the path (-path_allow_failures to accept that)", failures_,
+             steps_ + 1);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -37,7 +37,8 @@ PetscErrorCode RunOutputSpec::SetFromOptions(MPI_Comm comm, const std::string &p
   PetscOptionsEnd();
   PetscCheck(samples >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%stip_samples = %" PetscInt_FMT ": must be >= 1", prefix.c_str(), samples);
   PetscCheck(snapshots >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%ssnapshots = %" PetscInt_FMT ": must be >= 0", prefix.c_str(), snapshots);
-  PetscCheck(std::isfinite(progress_interval) && progress_interval >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -%sprogress_interval = %g: must be finite and >= 0", prefix.c_str(), (double)progress_interval);
+  PetscCheck(std::isfinite(progress_interval) && progress_interval >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -%sprogress_interval = %g: must be finite and >= 0", prefix.c_str(), (double)progress_interval);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -98,11 +99,11 @@ PetscErrorCode TimeRun::SetUp()
    with NaN or switch its error control off are refused, naming the option. */
 PetscErrorCode TimeRun::CheckTSOptions()
 {
-  PetscReal   dt, atol, rtol;
-  PetscInt    max_steps;
-  Vec         vatol, vrtol;
-  TSAdapt     adapt;
-  PetscBool   fixed;
+  PetscReal dt, atol, rtol;
+  PetscInt  max_steps;
+  Vec       vatol, vrtol;
+  TSAdapt   adapt;
+  PetscBool fixed;
   PetscFunctionBeginUser;
   PetscCall(TSGetMaxTime(ts_, &t_final_));
   PetscCheck(std::isfinite(t_final_) && t_final_ > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_max_time = %g: must be finite and > 0", (double)t_final_);
@@ -115,7 +116,10 @@ PetscErrorCode TimeRun::CheckTSOptions()
   PetscCheck(std::isfinite(rtol) && rtol >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_rtol = %g: must be finite and >= 0", (double)rtol);
   PetscCall(TSGetAdapt(ts_, &adapt));
   PetscCall(PetscObjectTypeCompare((PetscObject)adapt, TSADAPTNONE, &fixed));
-  PetscCheck(fixed || vatol || vrtol || atol > 0 || rtol > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Options -ts_rtol = %g and -ts_atol = %g: an adaptive integrator with both tolerances 0 has no error control (its steps grow without bound); give a tolerance > 0, or a fixed step with -ts_adapt_type none", (double)rtol, (double)atol);
+  PetscCheck(fixed || vatol || vrtol || atol > 0 || rtol > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
+             "Options -ts_rtol = %g and -ts_atol = %g: an adaptive integrator with both tolerances 0 has no error control (its steps grow without bound); give "
+             "a tolerance > 0, or a fixed step with -ts_adapt_type none",
+             (double)rtol, (double)atol);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -234,7 +238,11 @@ PetscErrorCode TimeRun::WriteSummary()
   PetscCall(TSGetStepRejections(ts_, &rej));
   std::string details;
   PetscCall(DoneDetails(&details));
-  PetscCall(PetscPrintf(comm_, "%s: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n", interrupted_ ? "Interrupted" : "Done", (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(), out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
+  PetscCall(PetscPrintf(comm_,
+                        "%s: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT
+                        " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n",
+                        interrupted_ ? "Interrupted" : "Done", (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(),
+                        out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,34 +1,63 @@
 #pragma once
 /* Turning every failure into a clear PETSc error, and stopping cleanly.
 
-   - TURGOR_CATCH: ends a try block in every function PETSc calls back (TS, SNES, PC, DM callbacks)
-     and in the C entry points: std::bad_alloc and any other C++ exception become a PETSc error with
-     a message instead of unwinding through PETSc's C frames (std::terminate).
+   - CatchExceptions(): around the C entry points and the functions PETSc calls back (TS, SNES,
+     PC, DM callbacks): std::bad_alloc and any other C++ exception become a PETSc error with a
+     message instead of unwinding through PETSc's C frames.
    - PushOptionValueErrorHandler(): PETSc's message for an option value that does not parse ("Input
      string abc has no numeric value") does not say which option; this error handler names it.
    - Interrupts: SIGINT/SIGTERM set a flag that a time-dependent run checks at every step, so it
      stops after the step, writes summary.json with status "interrupted" and exits non-zero. */
 #include <turgor/core/petsc_compat.h>
+#include <exception>
 #include <new>
-#include <stdexcept>
-
-#define TURGOR_CATCH \
-  catch (const std::bad_alloc &) \
-  { \
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_MEM, "Out of memory (std::bad_alloc): the problem is larger than this machine; see the memory estimate printed at start"); \
-  } \
-  catch (const std::exception &e) \
-  { \
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "C++ exception: %s", e.what()); \
-  }
+#include <string>
 
 namespace turgor {
+
+/* body() (a callable returning PetscErrorCode), or the PETSc error that an exception escaping it
+   becomes, raised at func/line/file: PETSC_ERR_MEM for std::bad_alloc, PETSC_ERR_LIB with what()
+   for another std::exception, PETSC_ERR_LIB for anything else. */
+template <class Body>
+PetscErrorCode CatchExceptions(const char func[], int line, const char file[], Body &&body)
+{
+#if defined(PETSC_USE_DEBUG)
+  /* an exception skips the PetscFunctionReturn()s between it and here: drop their stack frames */
+  const int stack_depth = petscstack.currentsize;
+  #define TurgorRestoreStack() (void)(petscstack.currentsize = stack_depth)
+#else
+  #define TurgorRestoreStack() (void)0
+#endif
+  try {
+    return body();
+  } catch (const std::bad_alloc &) {
+    TurgorRestoreStack();
+    return PetscError(PETSC_COMM_SELF, line, func, file, PETSC_ERR_MEM, PETSC_ERROR_INITIAL,
+                      "%s(): out of memory (C++ std::bad_alloc): see the memory estimate printed at start", func);
+  } catch (const std::exception &e) {
+    TurgorRestoreStack();
+    return PetscError(PETSC_COMM_SELF, line, func, file, PETSC_ERR_LIB, PETSC_ERROR_INITIAL, "%s(): C++ exception: %s", func, e.what());
+  } catch (...) {
+    TurgorRestoreStack();
+    return PetscError(PETSC_COMM_SELF, line, func, file, PETSC_ERR_LIB, PETSC_ERROR_INITIAL, "%s(): unknown C++ exception", func);
+  }
+#undef TurgorRestoreStack
+}
+
+/* The body of a function PETSc calls (a callback) or a C entry point, guarded by CatchExceptions. */
+#define TURGOR_GUARDED(...) turgor::CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, [&]() -> PetscErrorCode __VA_ARGS__)
+
+/* Runs one mode as the turgor executable does: -mode (default `mode`, NULL: fe2), -strict, set-up,
+   the unused-option check, solve, summary; after a failure in any phase it leaves summary.json
+   with status "failed". *status: 0 completed, 130 interrupted (SIGINT/SIGTERM); a failure is
+   returned as the error. */
+PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status);
 
 PetscErrorCode PushOptionValueErrorHandler(void);
 /* Install the SIGINT/SIGTERM handler (after PetscInitialize). */
 PetscErrorCode InstallInterruptHandler(void);
 /* True once SIGINT or SIGTERM arrived on this rank. */
-bool           InterruptRequested(void);
+bool InterruptRequested(void);
 /* Collective: true on every rank if it is true on one. */
 PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *interrupted);
 

@@ -71,8 +71,8 @@ public:
   virtual std::vector<std::string> Physics() const = 0;
   virtual void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const { *wall = *fluid = 0; }
   /* Memory of one material point (estimates before the points are created). */
-  virtual PetscReal                BytesPerPoint() const { return 256; }
-  virtual PetscErrorCode           View(PetscViewer viewer) const = 0;
+  virtual PetscReal      BytesPerPoint() const { return 256; }
+  virtual PetscErrorCode View(PetscViewer viewer) const = 0;
 };
 
 using MaterialModelCreator = Registry<MaterialModel>::Creator;

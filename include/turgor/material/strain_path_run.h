@@ -26,15 +26,15 @@ private:
   std::string       output_dir_;
   PetscInt          path_ = 0, steps_ = 20;
   PetscReal         rate_ = 1e-3, t_final_ = 50.0; /* [1/µs], [µs] */
-  PetscBool         tangents_ = PETSC_TRUE;
+  PetscBool         tangents_       = PETSC_TRUE;
   PetscBool         allow_failures_ = PETSC_FALSE;
   bool              overwrite_ = false, have_dir_ = false;
   /* results */
-  CsvWriter         csv_;
-  PetscInt          failures_ = 0;
-  MaterialResponse  last_; /* the last evaluation that succeeded */
-  PetscReal         t_last_ = 0, max_asymmetry_ = 0, wall_ = 0;
-  std::string       first_failure_;
+  CsvWriter        csv_;
+  PetscInt         failures_ = 0;
+  MaterialResponse last_; /* the last evaluation that succeeded */
+  PetscReal        t_last_ = 0, max_asymmetry_ = 0, wall_ = 0;
+  std::string      first_failure_;
 
   PetscErrorCode Summary(JsonObject &js, const char *status) const;
 };

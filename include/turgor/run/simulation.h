@@ -23,7 +23,7 @@ public:
      rank's): rank 0 writes what it knows. */
   virtual PetscErrorCode WriteFailure(const std::string &reason) { return PETSC_SUCCESS; }
   /* The run stopped early on SIGINT/SIGTERM (its summary says "interrupted"). */
-  virtual bool           Interrupted() const { return false; }
+  virtual bool Interrupted() const { return false; }
 };
 
 using SimulationCreator = Registry<Simulation>::Creator;

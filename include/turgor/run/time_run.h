@@ -21,9 +21,9 @@ namespace turgor {
    -<mode>_snapshots, -<mode>_progress_interval. */
 struct RunOutputSpec {
   std::string dir               = "./out";
-  PetscInt    samples           = 1000; /* samples of the observable over [0, ts_max_time] */
-  PetscInt    snapshots         = 20;   /* field snapshots over [0, ts_max_time]; 0 = none */
-  PetscReal   progress_interval = 10;   /* seconds of wall time between progress lines; 0 = none */
+  PetscInt    samples           = 1000;  /* samples of the observable over [0, ts_max_time] */
+  PetscInt    snapshots         = 20;    /* field snapshots over [0, ts_max_time]; 0 = none */
+  PetscReal   progress_interval = 10;    /* seconds of wall time between progress lines; 0 = none */
   bool        overwrite         = false; /* -output_overwrite: replace an earlier run's outputs */
   bool        ready             = false; /* the directory is this run's (set by SetFromOptions) */
 

@@ -60,9 +60,9 @@ public:
   PetscReal                BytesPerPoint() const override { return BytesPerRVE((PetscReal)prototype_.GetTissue().particles.n); }
   /* Measured max RSS per RVE of 1, 2^2 and 4^2 cells (19, 76, 304 particles): its TSPSEUDO, the
      Jacobian pattern, colouring and LU factors grow with the particles. */
-  static PetscReal         BytesPerRVE(PetscReal particles) { return 250e3 + 19.5e3 * PetscMax(particles - 19, 0); }
-  PetscErrorCode           View(PetscViewer viewer) const override;
-  const PeriodicCell      &Cell() const { return prototype_; }
+  static PetscReal    BytesPerRVE(PetscReal particles) { return 250e3 + 19.5e3 * PetscMax(particles - 19, 0); }
+  PetscErrorCode      View(PetscViewer viewer) const override;
+  const PeriodicCell &Cell() const { return prototype_; }
 
   RVESpec        spec;
   SquareGridSpec cell;

@@ -21,7 +21,7 @@ struct SquareGridSpec {
   PetscErrorCode SetFromOptions(MPI_Comm comm, bool layout);
   PetscReal      FluidParticleMass() const;
   /* Particles and springs of nx x ny cells, in floating point (a periodic grid has fewer walls). */
-  void           Count(PetscReal nx, PetscReal ny, bool periodic, PetscReal *particles, PetscReal *springs) const;
+  void Count(PetscReal nx, PetscReal ny, bool periodic, PetscReal *particles, PetscReal *springs) const;
 };
 
 PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue);

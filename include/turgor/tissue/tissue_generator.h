@@ -19,7 +19,7 @@ public:
   /* Particles and springs the tissue will have, computed in floating point before anything is
      allocated (memory estimates; counts beyond PetscInt). */
   virtual PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const = 0;
-  virtual PetscErrorCode View(PetscViewer viewer) const                = 0;
+  virtual PetscErrorCode View(PetscViewer viewer) const                           = 0;
 };
 
 using TissueGeneratorCreator = Registry<TissueGenerator>::Creator;

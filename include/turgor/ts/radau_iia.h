@@ -6,7 +6,9 @@
 
    The type is not called "radau5": that is PETSc's TSRADAU5 (the wrapper of Hairer's code).
    TurgorTSRegisterAll() registers "radau5" as an alias only where PETSc lacks its own; code should
-   use TSRADAUIIA. */
+   use TSRADAUIIA.
+
+   A C header: the functions have C linkage (PETSC_EXTERN), callable from C and C++. */
 #include <turgor/core/petsc_compat.h>
 #include <petscts.h>
 
@@ -17,7 +19,7 @@
 /* Work done by a radauiia TS since the first step of its current TSSolve(): IJacobian (or
    RHSJacobian) calls, simplified Newton iterations, KSPSolve() calls. NULL pointers are skipped;
    errors if ts is not of type radauiia. */
-PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *newton_its, PetscInt *linear_solves);
+PETSC_EXTERN PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *newton_its, PetscInt *linear_solves);
 
 /* Defaults set through the API, PETSc style: call them after TSSetType() and before
    TSSetFromOptions(), so that the command-line options (named beside each) still override them.
@@ -27,17 +29,17 @@ PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_evals, PetscInt *
    Jacobian reuse theta in [0, 1) (-ts_radauiia_jacobian_reuse, default 0.001): after an accepted
    step J is kept for the next one while the simplified Newton contraction rate stays <= theta.
    RADAU5 advises 0.1 when Jacobians are expensive. */
-PetscErrorCode TSRadauIIASetJacobianReuse(TS ts, PetscReal theta);
-PetscErrorCode TSRadauIIAGetJacobianReuse(TS ts, PetscReal *theta);
+PETSC_EXTERN PetscErrorCode TSRadauIIASetJacobianReuse(TS ts, PetscReal theta);
+PETSC_EXTERN PetscErrorCode TSRadauIIAGetJacobianReuse(TS ts, PetscReal *theta);
 
 /* Newton tolerance kappa in (0, 1) (-ts_radauiia_newton_tol, default 0.03): Newton stops when its
    estimated error is below kappa times the error tolerance. */
-PetscErrorCode TSRadauIIASetNewtonTolerance(TS ts, PetscReal kappa);
-PetscErrorCode TSRadauIIAGetNewtonTolerance(TS ts, PetscReal *kappa);
+PETSC_EXTERN PetscErrorCode TSRadauIIASetNewtonTolerance(TS ts, PetscReal kappa);
+PETSC_EXTERN PetscErrorCode TSRadauIIAGetNewtonTolerance(TS ts, PetscReal *kappa);
 
 /* Simplified Newton iterations per step attempt, >= 1 (-ts_radauiia_newton_max_it, default 7). */
-PetscErrorCode TSRadauIIASetNewtonMaxIterations(TS ts, PetscInt max_it);
-PetscErrorCode TSRadauIIAGetNewtonMaxIterations(TS ts, PetscInt *max_it);
+PETSC_EXTERN PetscErrorCode TSRadauIIASetNewtonMaxIterations(TS ts, PetscInt max_it);
+PETSC_EXTERN PetscErrorCode TSRadauIIAGetNewtonMaxIterations(TS ts, PetscInt *max_it);
 
 /* Functions composed on a TS of type radauiia (PetscObjectComposeFunction), removed when its type
    changes. Code that must work whichever TS type it gets can ask for one with
@@ -59,4 +61,4 @@ typedef struct {
   PetscReal e[3];
 } TSRadauIIATableau;
 
-PetscErrorCode TSRadauIIAGetTableau(TSRadauIIATableau *tableau);
+PETSC_EXTERN PetscErrorCode TSRadauIIAGetTableau(TSRadauIIATableau *tableau);

@@ -1,6 +1,6 @@
 #pragma once
 /* Registration of turgor's own PETSc TS types: radauiia (include/turgor/ts/radau_iia.h) and am
-   (include/turgor/ts/adams_moulton.h). */
+   (include/turgor/ts/adams_moulton.h). A C header (PETSC_EXTERN). */
 #include <turgor/core/petsc_compat.h>
 #include <petscts.h>
 
@@ -8,4 +8,4 @@
    "radauiia" only when PETSc was built without its own TSRADAU5 (PETSC_HAVE_RADAU5 undefined), so
    that PETSc's type of that name is never replaced. Call once after PetscInitialize(); calling it
    again is harmless. Registers TS types only. */
-PetscErrorCode TurgorTSRegisterAll(void);
+PETSC_EXTERN PetscErrorCode TurgorTSRegisterAll(void);

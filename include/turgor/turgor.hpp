@@ -1,0 +1,12 @@
+#pragma once
+/* turgor: PETSc-native simulation of plant tissue mechanics.
+   C++ umbrella header for C++ programs that link libturgor (see makefile.inc): the C API of
+   <turgor/turgor.h> plus turgor's C++ classes. */
+#include <turgor/turgor.h>
+#include <turgor/physics/force_model.h>
+#include <turgor/fine/fine_run.h>
+#include <turgor/io/output.h>
+#include <turgor/particles/neighbour_search.h>
+#include <turgor/particles/particles.h>
+#include <turgor/run/simulation.h>
+#include <turgor/tissue/square_grid.h>

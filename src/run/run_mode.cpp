@@ -1,0 +1,78 @@
+/* turgor::RunMode(): one mode, start to end, as the turgor executable and TurgorRunMode() run it. */
+#include <turgor/core/errors.h>
+#include <turgor/run/simulation.h>
+#include <cstring>
+
+namespace turgor {
+
+namespace {
+
+/* Options nobody read are reported before any work (misspelled, or not for this -mode): an error
+   with -strict, a warning otherwise. */
+PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool strict)
+{
+  PetscInt    n;
+  char      **names, **values;
+  std::string list;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt k = 0; k < n; k++) list += std::string(list.empty() ? "" : ", ") + "-" + names[k] + (values[k] ? std::string(" ") + values[k] : std::string());
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  if (list.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(!strict, comm, PETSC_ERR_ARG_WRONG, "Options not used by this -mode (misspelled, or for another mode): %s", list.c_str());
+  PetscCall(PetscPrintf(comm, "WARNING: options not used by this -mode (misspelled, or for another mode; -strict makes this an error): %s\n", list.c_str()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Configure, set up, and (unless -help: every object is then configured, so all options are
+   listed, but nothing is solved) solve and summarise the chosen mode. */
+PetscErrorCode Run(MPI_Comm comm, const char default_mode[], std::unique_ptr<Simulation> &sim)
+{
+  char      mode[64] = "fe2"; /* the executable's default scene: the seed's bending bar with FE^2 */
+  PetscBool help, strict = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (default_mode) {
+    PetscCheck(std::strlen(default_mode) < sizeof mode, comm, PETSC_ERR_ARG_OUTOFRANGE, "RunMode(): mode '%s' is too long", default_mode);
+    PetscCall(PetscStrncpy(mode, default_mode, sizeof mode));
+  }
+  const std::string modes = "What to run: " + SimulationNames();
+  PetscOptionsBegin(comm, NULL, "turgor", "turgor");
+  PetscCall(PetscOptionsString("-mode", modes.c_str(), "turgor", mode, mode, sizeof mode, NULL));
+  PetscCall(PetscOptionsBool("-strict", "Unused (misspelled) options are an error, not a warning", "turgor", strict, &strict, NULL));
+  PetscOptionsEnd();
+  PetscCheck(mode[0], comm, PETSC_ERR_ARG_WRONG, "Option -mode: empty (known: %s)", SimulationNames().c_str());
+  PetscCall(SimulationCreate(comm, mode, &sim));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  PetscCall(sim->SetFromOptions());
+  PetscCall(sim->SetUp());
+  if (help) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CheckUnusedOptions(comm, strict));
+  PetscCall(sim->Solve());
+  PetscCall(sim->WriteSummary());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status)
+{
+  std::unique_ptr<Simulation> sim;
+  PetscErrorCode              ierr;
+  PetscFunctionBeginUser;
+  *status = 0;
+  ierr    = CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, [&] { return Run(comm, mode, sim); });
+  if (ierr) {
+    /* the error and its trace are printed already: leave a summary.json that says so */
+    const char *text     = NULL;
+    char       *specific = NULL;
+    if (!PetscErrorMessage(ierr, &text, &specific) && sim) {
+      const std::string reason = specific && specific[0] ? specific : (text ? text : "error");
+      (void)CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, [&] { return sim->WriteFailure(reason); }); /* best effort, after the failure */
+    }
+    return ierr; /* PETSc's error, reported already (not raised again) */
+  }
+  if (sim && sim->Interrupted()) *status = 130;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
