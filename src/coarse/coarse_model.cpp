@@ -1,3 +1,4 @@
+#include <turgor/core/errors.h>
 #include "q1_element.h"
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/core/memory.h>
@@ -147,13 +148,15 @@ PetscErrorCode CoarseModel::CheckSize(PetscReal elements)
 /* Essential condition (DMAddBoundary): u = g(X) and v = 0 on the clamped vertices. */
 PetscErrorCode CoarseModel::BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx)
 {
-  const CoarseModel *model = (const CoarseModel *)ctx;
-  PetscReal          g[2]  = {0, 0};
-  if (model->boundary_) model->boundary_(X, g);
-  u[0] = g[0];
-  u[1] = g[1];
-  u[2] = u[3] = 0;
-  return PETSC_SUCCESS;
+  return TURGOR_GUARDED({
+    const CoarseModel *model = (const CoarseModel *)ctx;
+    PetscReal          g[2]  = {0, 0};
+    if (model->boundary_) model->boundary_(X, g);
+    u[0] = g[0];
+    u[1] = g[1];
+    u[2] = u[3] = 0;
+    return PETSC_SUCCESS;
+  });
 }
 
 /* Four dofs per vertex [ux, uy, vx, vy]: a Q1 Lagrange field of 4 components (PetscFE) gives the

@@ -1,3 +1,4 @@
+#include <turgor/core/errors.h>
 #include <turgor/coarse/fe2_run.h>
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/radau_iia.h>
@@ -124,45 +125,51 @@ PetscErrorCode FE2Run::Report()
 
 PetscErrorCode FE2Run::IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx)
 {
-  FE2Run   *run = (FE2Run *)ctx;
-  PetscBool ok;
-  PetscFunctionBeginUser;
-  PetscCall(run->model_.IFunction(U, Udot, F, &ok));
-  if (!ok) { /* reject: the nonlinear solve fails and TS retries with a smaller step */
-    SNES snes;
-    PetscCall(TSGetSNES(ts, &snes));
-    PetscCall(SNESSetFunctionDomainError(snes));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FE2Run   *run = (FE2Run *)ctx;
+    PetscBool ok;
+    PetscFunctionBeginUser;
+    PetscCall(run->model_.IFunction(U, Udot, F, &ok));
+    if (!ok) { /* reject: the nonlinear solve fails and TS retries with a smaller step */
+      SNES snes;
+      PetscCall(TSGetSNES(ts, &snes));
+      PetscCall(SNESSetFunctionDomainError(snes));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode FE2Run::IJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shift, Mat A, Mat B, void *ctx)
 {
-  FE2Run   *run = (FE2Run *)ctx;
-  PetscBool ok;
-  PetscInt  rej;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetStepRejections(ts, &rej));
-  const bool refresh = run->jacobian_max_age_ <= 0 || run->steps_since_refresh_ >= run->jacobian_max_age_ || rej != run->rejections_at_refresh_;
-  if (refresh) {
-    run->steps_since_refresh_   = 0;
-    run->rejections_at_refresh_ = rej;
-  }
-  PetscCall(run->model_.IJacobian(U, shift, B, &ok, refresh));
-  if (A != B) {
-    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FE2Run   *run = (FE2Run *)ctx;
+    PetscBool ok;
+    PetscInt  rej;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetStepRejections(ts, &rej));
+    const bool refresh = run->jacobian_max_age_ <= 0 || run->steps_since_refresh_ >= run->jacobian_max_age_ || rej != run->rejections_at_refresh_;
+    if (refresh) {
+      run->steps_since_refresh_   = 0;
+      run->rejections_at_refresh_ = rej;
+    }
+    PetscCall(run->model_.IJacobian(U, shift, B, &ok, refresh));
+    if (A != B) {
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode FE2Run::RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx)
 {
-  FE2Run   *run = (FE2Run *)ctx;
-  PetscBool ok;
-  PetscFunctionBeginUser;
-  PetscCall(run->model_.RHSFunction(U, G, &ok));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FE2Run   *run = (FE2Run *)ctx;
+    PetscBool ok;
+    PetscFunctionBeginUser;
+    PetscCall(run->model_.RHSFunction(U, G, &ok));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 /* Called by TS on every stage before it is used: evaluating the materials here (cached for the
@@ -170,23 +177,27 @@ PetscErrorCode FE2Run::RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx)
    material point fail. Implicit integrators learn it from the nonlinear solve (domain error). */
 PetscErrorCode FE2Run::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
 {
-  FE2Run *run;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &run));
-  *accept = PETSC_TRUE;
-  if (!run->explicit_) PetscFunctionReturn(PETSC_SUCCESS); /* implicit: the nonlinear solve rejects */
-  PetscCall(run->model_.EvaluateMaterials(U, false, accept, NULL));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FE2Run *run;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetApplicationContext(ts, &run));
+    *accept = PETSC_TRUE;
+    if (!run->explicit_) PetscFunctionReturn(PETSC_SUCCESS); /* implicit: the nonlinear solve rejects */
+    PetscCall(run->model_.EvaluateMaterials(U, false, accept, NULL));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode FE2Run::PostStep(TS ts)
 {
-  FE2Run *run;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &run));
-  PetscCall(run->model_.CommitMaterials());
-  run->steps_since_refresh_++;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FE2Run *run;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetApplicationContext(ts, &run));
+    PetscCall(run->model_.CommitMaterials());
+    run->steps_since_refresh_++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode FE2Run::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)

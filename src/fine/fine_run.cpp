@@ -1,3 +1,4 @@
+#include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
 #include <algorithm>
@@ -286,70 +287,78 @@ PetscErrorCode FineRun::ChooseTimeStep()
 
 PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
 {
-  FineRun           *run = (FineRun *)ctx;
-  const PetscInt     n2  = 2 * run->n_local_;
-  const PetscScalar *u;
-  PetscScalar       *f;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(VecGetArray(F, &f));
-  const std::vector<char> &fixed = run->tissue_.particles.fixed;
-  for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
-  PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
-  PetscCall(VecRestoreArray(F, &f));
-  PetscCall(VecRestoreArrayRead(U, &u));
-  run->rhs_evals_++;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FineRun           *run = (FineRun *)ctx;
+    const PetscInt     n2  = 2 * run->n_local_;
+    const PetscScalar *u;
+    PetscScalar       *f;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(U, &u));
+    PetscCall(VecGetArray(F, &f));
+    const std::vector<char> &fixed = run->tissue_.particles.fixed;
+    for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
+    PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
+    PetscCall(VecRestoreArray(F, &f));
+    PetscCall(VecRestoreArrayRead(U, &u));
+    run->rhs_evals_++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 /* Velocity Verlet (TSBASICSYMPLECTIC) evaluates dx/dt = v and dv/dt = a(x) separately. The dashpot
    and viscous forces also need v: they use the velocity of the preceding position update. */
 PetscErrorCode FineRun::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx)
 {
-  FineRun           *run = (FineRun *)ctx;
-  const PetscScalar *v;
-  PetscScalar       *xd;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(V, &v));
-  PetscCall(VecGetArray(Xdot, &xd));
-  const std::vector<char> &fixed = run->tissue_.particles.fixed;
-  for (PetscInt k = 0; k < 2 * run->n_local_; k++) {
-    xd[k]            = fixed[k / 2] ? 0 : v[k];
-    run->v_stale_[k] = v[k];
-  }
-  PetscCall(VecRestoreArray(Xdot, &xd));
-  PetscCall(VecRestoreArrayRead(V, &v));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FineRun           *run = (FineRun *)ctx;
+    const PetscScalar *v;
+    PetscScalar       *xd;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(V, &v));
+    PetscCall(VecGetArray(Xdot, &xd));
+    const std::vector<char> &fixed = run->tissue_.particles.fixed;
+    for (PetscInt k = 0; k < 2 * run->n_local_; k++) {
+      xd[k]            = fixed[k / 2] ? 0 : v[k];
+      run->v_stale_[k] = v[k];
+    }
+    PetscCall(VecRestoreArray(Xdot, &xd));
+    PetscCall(VecRestoreArrayRead(V, &v));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx)
 {
-  FineRun           *run = (FineRun *)ctx;
-  const PetscScalar *x;
-  PetscScalar       *a;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(VecGetArray(Vdot, &a));
-  PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
-  for (PetscInt k = 0; k < 2 * run->n_local_; k++)
-    PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
-               "Non-finite acceleration of particle %" PetscInt_FMT
-               " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)",
-               k / 2, (double)t);
-  PetscCall(VecRestoreArray(Vdot, &a));
-  PetscCall(VecRestoreArrayRead(X, &x));
-  run->rhs_evals_++;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    FineRun           *run = (FineRun *)ctx;
+    const PetscScalar *x;
+    PetscScalar       *a;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(VecGetArray(Vdot, &a));
+    PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
+    for (PetscInt k = 0; k < 2 * run->n_local_; k++)
+      PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
+                 "Non-finite acceleration of particle %" PetscInt_FMT
+                 " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)",
+                 k / 2, (double)t);
+    PetscCall(VecRestoreArray(Vdot, &a));
+    PetscCall(VecRestoreArrayRead(X, &x));
+    run->rhs_evals_++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 /* A stage with non-finite values is rejected, so an adaptive integrator retries with a smaller step. */
 PetscErrorCode FineRun::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
 {
-  PetscReal nrm;
-  PetscFunctionBeginUser;
-  PetscCall(VecNorm(U, NORM_INFINITY, &nrm));
-  *accept = std::isfinite(nrm) ? PETSC_TRUE : PETSC_FALSE;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    PetscReal nrm;
+    PetscFunctionBeginUser;
+    PetscCall(VecNorm(U, NORM_INFINITY, &nrm));
+    *accept = std::isfinite(nrm) ? PETSC_TRUE : PETSC_FALSE;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)

@@ -136,21 +136,23 @@ PetscErrorCode TimeRun::Sample(PetscReal t, Vec U)
 
 PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
-  TimeRun  *run = (TimeRun *)ctx;
-  PetscBool stop;
-  PetscFunctionBeginUser;
-  PetscCall(InterruptRequestedAll(run->comm_, &stop));
-  if (stop && !run->interrupted_) { /* after this step: the outputs hold every sample up to here */
-    run->interrupted_ = true;
-    PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
-    PetscCall(PetscPrintf(run->comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT "): stopping after this step\n", (double)t, step));
-  }
-  PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
-  PetscCall(run->sampler_.Monitor(
-    ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
-    run->FunctionEvaluations()));
-  PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    TimeRun  *run = (TimeRun *)ctx;
+    PetscBool stop;
+    PetscFunctionBeginUser;
+    PetscCall(InterruptRequestedAll(run->comm_, &stop));
+    if (stop && !run->interrupted_) { /* after this step: the outputs hold every sample up to here */
+      run->interrupted_ = true;
+      PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+      PetscCall(PetscPrintf(run->comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT "): stopping after this step\n", (double)t, step));
+    }
+    PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
+    PetscCall(run->sampler_.Monitor(
+      ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
+      run->FunctionEvaluations()));
+    PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode TimeRun::Solve()

@@ -1,3 +1,4 @@
+#include <turgor/core/errors.h>
 #include <turgor/rve/relaxation.h>
 #include <algorithm>
 #include <cmath>
@@ -64,23 +65,27 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
 /* TSPSEUDO's F(W, Wdot) = Wdot + G(W); a non-finite force (a crossed wall) is outside the domain. */
 PetscErrorCode RVERelaxation::IFunction(TS ts, PetscReal t, Vec W, Vec Wdot, Vec F, void *ctx)
 {
-  RVERelaxation *rx = (RVERelaxation *)ctx;
-  PetscReal      nrm;
-  SNES           snes;
-  PetscFunctionBeginUser;
-  PetscCall(rx->eq_->Residual(W, F));
-  PetscCall(VecAXPY(F, 1.0, Wdot));
-  PetscCall(VecNorm(F, NORM_INFINITY, &nrm));
-  PetscCall(TSGetSNES(ts, &snes));
-  if (!std::isfinite(nrm)) PetscCall(SNESSetFunctionDomainError(snes));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation *rx = (RVERelaxation *)ctx;
+    PetscReal      nrm;
+    SNES           snes;
+    PetscFunctionBeginUser;
+    PetscCall(rx->eq_->Residual(W, F));
+    PetscCall(VecAXPY(F, 1.0, Wdot));
+    PetscCall(VecNorm(F, NORM_INFINITY, &nrm));
+    PetscCall(TSGetSNES(ts, &snes));
+    if (!std::isfinite(nrm)) PetscCall(SNESSetFunctionDomainError(snes));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode RVERelaxation::ColoringResidual(void *unused, Vec W, Vec R, void *ctx)
 {
-  PetscFunctionBeginUser;
-  PetscCall(((RVERelaxation *)ctx)->eq_->Residual(W, R));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    PetscFunctionBeginUser;
+    PetscCall(((RVERelaxation *)ctx)->eq_->Residual(W, R));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode RVERelaxation::Refresh(Vec W)
@@ -97,16 +102,18 @@ PetscErrorCode RVERelaxation::Refresh(Vec W)
 /* G' by MatFDColoring (one residual per colour), then the pseudo-time shift 1/delta (eq 28). */
 PetscErrorCode RVERelaxation::IJacobian(TS ts, PetscReal t, Vec W, Vec Wdot, PetscReal shift, Mat A, Mat B, void *ctx)
 {
-  RVERelaxation *rx = (RVERelaxation *)ctx;
-  PetscFunctionBeginUser;
-  PetscCall(rx->Refresh(W));
-  PetscCall(MatCopy(rx->K_, B, SAME_NONZERO_PATTERN));
-  PetscCall(MatShift(B, shift));
-  if (A != B) {
-    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation *rx = (RVERelaxation *)ctx;
+    PetscFunctionBeginUser;
+    PetscCall(rx->Refresh(W));
+    PetscCall(MatCopy(rx->K_, B, SAME_NONZERO_PATTERN));
+    PetscCall(MatShift(B, shift));
+    if (A != B) {
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode RVERelaxation::BuildJacobianPattern()
@@ -183,28 +190,32 @@ PetscErrorCode RVERelaxation::PatternStale(PetscBool *stale)
 /* The seed's schedule: delta_0, then delta <- increment x delta (capped). */
 PetscErrorCode RVERelaxation::PseudoStep(TS ts, PetscReal *dt, void *ctx)
 {
-  RVERelaxation *rx = (RVERelaxation *)ctx;
-  PetscInt       step;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetStepNumber(ts, &step));
-  PetscCall(TSGetTimeStep(ts, dt));
-  if (step > 0) *dt = PetscMin(rx->spec_->psi_increment * *dt, rx->spec_->psi_dt_max);
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation *rx = (RVERelaxation *)ctx;
+    PetscInt       step;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetStepNumber(ts, &step));
+    PetscCall(TSGetTimeStep(ts, dt));
+    if (step > 0) *dt = PetscMin(rx->spec_->psi_increment * *dt, rx->spec_->psi_dt_max);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode RVERelaxation::PreStep(TS ts)
 {
-  RVERelaxation *rx;
-  Vec            W;
-  PetscBool      stale;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &rx));
-  PetscCall(TSGetSolution(ts, &W));
-  PetscCall(VecCopy(W, rx->Wprev_));
-  /* new neighbours since the pattern was built: rebuild it (rare: particles moved > skin/2) */
-  PetscCall(rx->PatternStale(&stale));
-  if (stale) PetscCall(rx->BuildJacobianPattern());
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation *rx;
+    Vec            W;
+    PetscBool      stale;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetApplicationContext(ts, &rx));
+    PetscCall(TSGetSolution(ts, &W));
+    PetscCall(VecCopy(W, rx->Wprev_));
+    /* new neighbours since the pattern was built: rebuild it (rare: particles moved > skin/2) */
+    PetscCall(rx->PatternStale(&stale));
+    if (stale) PetscCall(rx->BuildJacobianPattern());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 /* The seed's stopping test: ||step|| < steptol or ||G|| < atol (2-norms, scaled units). This test
@@ -213,26 +224,28 @@ PetscErrorCode RVERelaxation::PreStep(TS ts)
    stop they signal is taken back unless the seed's test holds. */
 PetscErrorCode RVERelaxation::PostStep(TS ts)
 {
-  RVERelaxation    *rx;
-  Vec               W;
-  PetscReal         step, res;
-  PetscInt          steps, max_steps;
-  TSConvergedReason reason;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &rx));
-  PetscCall(TSGetSolution(ts, &W));
-  PetscCall(rx->eq_->ResidualNorm(W, rx->R_, &res));
-  PetscCall(VecAXPY(rx->Wprev_, -1.0, W));
-  PetscCall(VecNorm(rx->Wprev_, NORM_2, &step));
-  PetscCall(TSGetConvergedReason(ts, &reason));
-  if (!std::isfinite(res) || !std::isfinite(step)) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
-  else if (step < rx->spec_->psi_steptol || res < rx->spec_->psi_atol) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
-  else if (reason == TS_CONVERGED_PSEUDO_FATOL || reason == TS_CONVERGED_PSEUDO_FRTOL) {
-    PetscCall(TSGetStepNumber(ts, &steps));
-    PetscCall(TSGetMaxSteps(ts, &max_steps));
-    PetscCall(TSSetConvergedReason(ts, steps >= max_steps ? TS_CONVERGED_ITS : TS_CONVERGED_ITERATING));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation    *rx;
+    Vec               W;
+    PetscReal         step, res;
+    PetscInt          steps, max_steps;
+    TSConvergedReason reason;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetApplicationContext(ts, &rx));
+    PetscCall(TSGetSolution(ts, &W));
+    PetscCall(rx->eq_->ResidualNorm(W, rx->R_, &res));
+    PetscCall(VecAXPY(rx->Wprev_, -1.0, W));
+    PetscCall(VecNorm(rx->Wprev_, NORM_2, &step));
+    PetscCall(TSGetConvergedReason(ts, &reason));
+    if (!std::isfinite(res) || !std::isfinite(step)) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
+    else if (step < rx->spec_->psi_steptol || res < rx->spec_->psi_atol) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+    else if (reason == TS_CONVERGED_PSEUDO_FATOL || reason == TS_CONVERGED_PSEUDO_FRTOL) {
+      PetscCall(TSGetStepNumber(ts, &steps));
+      PetscCall(TSGetMaxSteps(ts, &max_steps));
+      PetscCall(TSSetConvergedReason(ts, steps >= max_steps ? TS_CONVERGED_ITS : TS_CONVERGED_ITERATING));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode RVERelaxation::Cold(Vec W, MaterialResponse *out)
@@ -320,22 +333,26 @@ PetscErrorCode RVERelaxation::Factor(bool *ok)
 
 PetscErrorCode RVERelaxation::FactorSetUp(PC pc)
 {
-  RVERelaxation *rx;
-  bool           ok;
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &rx));
-  PetscCall(rx->Factor(&ok));
-  if (!ok) PetscCall(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation *rx;
+    bool           ok;
+    PetscFunctionBeginUser;
+    PetscCall(PCShellGetContext(pc, &rx));
+    PetscCall(rx->Factor(&ok));
+    if (!ok) PetscCall(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 PetscErrorCode RVERelaxation::FactorApply(PC pc, Vec x, Vec y)
 {
-  RVERelaxation *rx;
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &rx));
-  PetscCall(MatSolve(rx->factor_, x, y));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return TURGOR_GUARDED({
+    RVERelaxation *rx;
+    PetscFunctionBeginUser;
+    PetscCall(PCShellGetContext(pc, &rx));
+    PetscCall(MatSolve(rx->factor_, x, y));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 /* Written as a plain loop rather than through TSPSEUDO: a warm solve is a handful of residuals,
