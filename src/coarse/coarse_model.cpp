@@ -127,6 +127,16 @@ PetscErrorCode CoarseModel::CreateMesh()
                DMPolytopeTypes[ct]);
   }
   PetscCall(DMPlexGetDepthStratum(dm_, 0, &v_start_, &v_end_));
+  {
+    IS              cells;
+    const PetscInt *g;
+    PetscCall(DMPlexGetCellNumbering(dm_, &cells));
+    PetscCall(ISGetIndices(cells, &g));
+    cell_gid_.resize(c_end_ - c_start_);
+    for (PetscInt c = c_start_; c < c_end_; c++) cell_gid_[c - c_start_] = g[c - c_start_] >= 0 ? g[c - c_start_] : -(g[c - c_start_] + 1);
+    PetscCall(ISRestoreIndices(cells, &g));
+  }
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -380,6 +390,23 @@ PetscErrorCode CoarseModel::GlobalToLocal(Vec U, Vec Uloc)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Where a material point is and what it was asked: global element, which of its five points, F,
+   Fdot, the reason and the last residual. */
+PetscErrorCode CoarseModel::DescribePoint(PetscInt m, std::string *text) const
+{
+  static const char *const where[q1::kPoints] = {"Gauss point 1", "Gauss point 2", "Gauss point 3", "Gauss point 4", "centre"};
+  const Tensor2           &F = F_[m], &Fd = Fdot_[m];
+  char                     buf[512];
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(buf, sizeof buf,
+                          "element %" PetscInt_FMT " (%s), F = [%.6g %.6g; %.6g %.6g] (det %.4g), Fdot = [%.4g %.4g; %.4g %.4g] /µs, residual %.3g: %s",
+                          cell_gid_[m / q1::kPoints], where[m % q1::kPoints], (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1),
+                          (double)F.Det(), (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)response_[m].residual,
+                          response_[m].reason.c_str()));
+  *text = buf;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* F = I + sum_a u_a (x) grad_X N_a and Fdot = sum_a v_a (x) grad_X N_a at every material point;
    the pool answers (from the cache when U is unchanged). */
 PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why)
@@ -422,18 +449,24 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscCall(pool_.Evaluate(F_.data(), Fdot_.data(), response_.data(), tangents ? tangent_.data() : NULL));
   counters_.material_evals++;
   if (tangents) counters_.tangent_evals++;
-  int local_ok = 1, global_ok;
+  int         local_ok = 1, global_ok;
+  PetscInt    nfailed  = 0;
+  std::string first;
   for (size_t k = 0; k < response_.size(); k++)
     if (!response_[k].ok) {
-      if (local_ok && why)
-        *why = "material point " + std::to_string(k) + " of element " + std::to_string(k / q1::kPoints) + " (local numbering): " + response_[k].reason;
+      if (!nfailed) PetscCall(DescribePoint((PetscInt)k, &first));
+      nfailed++;
       local_ok = 0;
     }
   PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
-  if (global_ok && !local_ok && why) *why = "on another rank";
+  if (why) *why = local_ok ? (global_ok ? "" : "on another rank") : first;
   if (!global_ok) {
+    /* every failure is reported where it happened, without -info: the cause of a rejected step */
     counters_.failures++;
-    if (!local_ok) PetscCall(PetscInfo(dm_, "material evaluation failed: %s\n", why ? why->c_str() : ""));
+    if (nfailed)
+      PetscCall(PetscSynchronizedPrintf(comm_, "[%d] material points failed at t = %g µs%s: %" PetscInt_FMT " of %zu on this rank; the first: %s\n", rank_,
+                                        (double)eval_time_, tangents ? " (with tangents)" : "", nfailed, response_.size(), first.c_str()));
+    PetscCall(PetscSynchronizedFlush(comm_, PETSC_STDOUT));
   }
   *ok              = global_ok ? PETSC_TRUE : PETSC_FALSE;
   cached_valid_    = true;

@@ -129,6 +129,7 @@ PetscErrorCode FE2Run::IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, voi
     FE2Run   *run = (FE2Run *)ctx;
     PetscBool ok;
     PetscFunctionBeginUser;
+    run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.IFunction(U, Udot, F, &ok));
     if (!ok) { /* reject: the nonlinear solve fails and TS retries with a smaller step */
       SNES snes;
@@ -152,6 +153,7 @@ PetscErrorCode FE2Run::IJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal 
       run->steps_since_refresh_   = 0;
       run->rejections_at_refresh_ = rej;
     }
+    run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.IJacobian(U, shift, B, &ok, refresh));
     if (A != B) {
       PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
@@ -167,6 +169,7 @@ PetscErrorCode FE2Run::RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx)
     FE2Run   *run = (FE2Run *)ctx;
     PetscBool ok;
     PetscFunctionBeginUser;
+    run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.RHSFunction(U, G, &ok));
     PetscFunctionReturn(PETSC_SUCCESS);
   });
@@ -183,6 +186,7 @@ PetscErrorCode FE2Run::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
     PetscCall(TSGetApplicationContext(ts, &run));
     *accept = PETSC_TRUE;
     if (!run->explicit_) PetscFunctionReturn(PETSC_SUCCESS); /* implicit: the nonlinear solve rejects */
+    run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.EvaluateMaterials(U, false, accept, NULL));
     PetscFunctionReturn(PETSC_SUCCESS);
   });

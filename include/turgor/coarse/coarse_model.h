@@ -71,6 +71,8 @@ public:
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
   PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
   PetscErrorCode CommitMaterials() { return pool_.Commit(); }
+  /* The time of the states evaluated next (failure reports say when). */
+  void SetEvaluationTime(PetscReal t) { eval_time_ = t; }
 
   DM                    GetDM() const { return dm_; }
   Mat                   MassMatrix() const { return Mt_; }
@@ -95,7 +97,8 @@ public:
 private:
   static PetscErrorCode BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx);
   PetscErrorCode        CreateMesh();
-  PetscErrorCode        CheckSize(PetscReal elements); /* memory and PetscInt range of the material points */
+  PetscErrorCode        DescribePoint(PetscInt m, std::string *text) const; /* for failure reports */
+  PetscErrorCode        CheckSize(PetscReal elements);                      /* memory and PetscInt range of the material points */
   PetscErrorCode        CreateSection();
   PetscErrorCode        PrecomputeElements();
   PetscErrorCode        AssembleMass();
@@ -127,6 +130,9 @@ private:
   PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
   PetscReal              rho0_       = 0;
   PetscInt               n_elements_ = 0;
+  std::vector<PetscInt>  cell_gid_; /* global element number of each local cell */
+  PetscMPIInt            rank_      = 0;
+  PetscReal              eval_time_ = 0; /* time of the state being evaluated (for reports) */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;

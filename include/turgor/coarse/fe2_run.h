@@ -37,8 +37,8 @@ protected:
   PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
   {
-    return "steps were rejected repeatedly (more than -ts_max_reject in a row); see the material-point failures above (-info for all of them), or lower -ts_dt "
-           "/ tighten -ts_rtol";
+    return "steps were rejected repeatedly (more than -ts_max_reject in a row): the material-point failures printed above say where and why; lower -ts_dt "
+           "or tighten -ts_rtol";
   }
 
 private:
