@@ -1,6 +1,7 @@
 #include <turgor/core/errors.h>
 #include "q1_element.h"
 #include <turgor/coarse/coarse_model.h>
+#include <turgor/coarse/gmsh_check.h>
 #include <turgor/core/memory.h>
 #include <turgor/core/log.h>
 #include <petscsf.h>
@@ -102,6 +103,13 @@ PetscErrorCode CoarseModel::CreateMesh()
         PetscCall(CheckSize((PetscReal)faces[0] * (PetscReal)faces[1] * std::pow(4.0, (PetscReal)refine)));
       }
     }
+    if (file) {
+      char      path[PETSC_MAX_PATH_LEN];
+      PetscBool msh;
+      PetscCall(PetscOptionsGetString(NULL, NULL, "-coarse_dm_plex_filename", path, sizeof path, NULL));
+      PetscCall(PetscStrendswith(path, ".msh", &msh));
+      if (msh) PetscCall(CheckGmshFile(comm_, "-coarse_dm_plex_filename", path));
+    }
     if (box || simplex || file) { /* DMSetFromOptions builds it */
       PetscCall(DMCreate(comm_, &dm_));
       PetscCall(DMSetType(dm_, DMPLEX));
@@ -119,12 +127,17 @@ PetscErrorCode CoarseModel::CreateMesh()
   PetscCall(DMGetDimension(dm_, &dim));
   PetscCheck(dim == 2, comm_, PETSC_ERR_ARG_WRONG, "Options -coarse_dm_plex_*: the coarse mesh must be 2D (got %" PetscInt_FMT "D)", dim);
   PetscCall(DMPlexGetHeightStratum(dm_, 0, &c_start_, &c_end_));
-  for (PetscInt c = c_start_; c < c_end_; c++) {
-    DMPolytopeType ct;
-    PetscCall(DMPlexGetCellType(dm_, c, &ct));
-    PetscCheck(ct == DM_POLYTOPE_QUADRILATERAL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
-               "Options -coarse_dm_plex_*: cell %" PetscInt_FMT " is a %s; the coarse model needs quadrilaterals (-coarse_dm_plex_simplex 0 for a box)", c,
-               DMPolytopeTypes[ct]);
+  {
+    std::string wrong; /* found on one rank, reported on all */
+    for (PetscInt c = c_start_; c < c_end_ && wrong.empty(); c++) {
+      DMPolytopeType ct;
+      PetscCall(DMPlexGetCellType(dm_, c, &ct));
+      if (ct != DM_POLYTOPE_QUADRILATERAL) wrong = std::string("a cell is a ") + DMPolytopeTypes[ct];
+    }
+    std::string msg;
+    PetscCall(FirstMessage(comm_, wrong, &msg));
+    PetscCheck(msg.empty(), comm_, PETSC_ERR_ARG_WRONG,
+               "Options -coarse_dm_plex_*: %s; the coarse model needs quadrilaterals (-coarse_dm_plex_simplex 0 for a box)", msg.c_str());
   }
   PetscCall(DMPlexGetDepthStratum(dm_, 0, &v_start_, &v_end_));
   {
@@ -241,6 +254,7 @@ PetscErrorCode CoarseModel::PrecomputeElements()
   Xref_.resize(8 * nc);
   dN_.resize(nc * q1::kPoints * 8);
   wdet_.resize(nc * q1::kPoints);
+  std::string bad; /* the first bad element of this rank */
   for (PetscInt c = c_start_; c < c_end_; c++) {
     PetscScalar   *x = NULL;
     PetscInt       n = 0;
@@ -250,16 +264,40 @@ PetscErrorCode CoarseModel::PrecomputeElements()
     for (int i = 0; i < 8; i++) Xref_[8 * k + i] = PetscRealPart(x[i]);
     PetscCall(DMPlexVecRestoreClosure(dm_, cs, coords, c, &n, &x));
     const PetscReal(*X)[2] = (const PetscReal(*)[2]) & Xref_[8 * k];
+    /* a bilinear quadrilateral maps one-to-one iff det J has one sign at its four corners (det J
+       is bilinear in xi, eta): two coincident vertices or a folded (non-convex) quadrilateral fail
+       there even where the quadrature points still see det J != 0. A consistently clockwise
+       element is fine: dN/dX = J^-T dN/dxi holds for either sign, and the weights take |det J|. */
+    if (bad.empty()) {
+      PetscReal size2 = 0, detc[4];
+      for (int a = 0; a < 4; a++) size2 = PetscMax(size2, PetscSqr(X[(a + 2) % 4][0] - X[a][0]) + PetscSqr(X[(a + 2) % 4][1] - X[a][1]));
+      for (int a = 0; a < 4; a++) {
+        PetscReal dNc[4][2];
+        detc[a] = q1::Gradients(X, q1::kXi[a][0], q1::kXi[a][1], dNc);
+      }
+      const PetscReal sign = detc[0] < 0 ? -1 : 1;
+      for (int a = 0; a < 4 && bad.empty(); a++)
+        if (!(sign * detc[a] > 1e-10 * size2)) {
+          char buf[512];
+          PetscCall(PetscSNPrintf(buf, sizeof buf,
+                                  "element %" PetscInt_FMT " with vertices (%g, %g) (%g, %g) (%g, %g) (%g, %g) is degenerate or folded: det J = %g at its "
+                                                           "vertex %d and %g at its vertex 1 (two vertices coincide, or the quadrilateral is not convex)",
+                                  cell_gid_[k], (double)X[0][0], (double)X[0][1], (double)X[1][0], (double)X[1][1], (double)X[2][0], (double)X[2][1],
+                                  (double)X[3][0], (double)X[3][1], (double)detc[a], a + 1, (double)detc[0]));
+          bad = buf;
+        }
+    }
     for (int q = 0; q < q1::kPoints; q++) {
       PetscReal       dN[4][2];
       const PetscReal det = q1::Gradients(X, q1::kPointXi[q][0], q1::kPointXi[q][1], dN);
-      PetscCheck(det > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
-                 "Coarse mesh: cell %" PetscInt_FMT " is inverted or degenerate (det J = %g at a quadrature point)", c, (double)det);
       for (int a = 0; a < 4; a++)
         for (int i = 0; i < 2; i++) dN_[(k * q1::kPoints + q) * 8 + 2 * a + i] = dN[a][i];
-      wdet_[k * q1::kPoints + q] = q1::kPointW[q] * det;
+      wdet_[k * q1::kPoints + q] = q1::kPointW[q] * PetscAbsReal(det);
     }
   }
+  std::string msg;
+  PetscCall(FirstMessage(comm_, bad, &msg));
+  PetscCheck(msg.empty(), comm_, PETSC_ERR_ARG_WRONG, "Coarse mesh: %s", msg.c_str());
   /* the tip: the vertex nearest to the middle of the right side of the mesh's bounding box */
   PetscReal lo[2], hi[2], best[2] = {PETSC_MAX_REAL, 0};
   PetscCall(DMGetBoundingBox(dm_, lo, hi));
@@ -307,7 +345,7 @@ PetscErrorCode CoarseModel::AssembleMass()
         PetscReal       N[4], dN[4][2];
         const PetscReal det = q1::Gradients(X, q1::kG3[i], q1::kG3[j], dN);
         q1::Shape(q1::kG3[i], q1::kG3[j], N);
-        const PetscReal w = q1::kW3[i] * q1::kW3[j] * det * rho0_;
+        const PetscReal w = q1::kW3[i] * q1::kW3[j] * PetscAbsReal(det) * rho0_;
         for (int a = 0; a < 4; a++) {
           for (int b = 0; b < 4; b++) m[a][b] += w * N[a] * N[b];
           for (int d = 0; d < 2; d++) f_ext_[8 * k + 2 * a + d] += w * N[a] * g_[d];

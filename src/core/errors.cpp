@@ -2,6 +2,7 @@
 #include <csignal>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace turgor {
 
@@ -58,6 +59,26 @@ extern "C" void OnInterrupt(int)
 }
 
 } // namespace
+
+PetscErrorCode FirstMessage(MPI_Comm comm, const std::string &mine, std::string *first)
+{
+  PetscMPIInt rank, size, root;
+  int         n;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  root = mine.empty() ? size : rank;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &root, 1, MPI_INT, MPI_MIN, comm));
+  first->clear();
+  if (root == size) PetscFunctionReturn(PETSC_SUCCESS);
+  n = rank == root ? (int)mine.size() : 0;
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, root, comm));
+  std::vector<char> buf(mine.begin(), mine.end());
+  buf.resize(n);
+  PetscCallMPI(MPI_Bcast(buf.data(), n, MPI_CHAR, root, comm));
+  first->assign(buf.begin(), buf.end());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode PushOptionValueErrorHandler(void)
 {

@@ -53,6 +53,10 @@ PetscErrorCode CatchExceptions(const char func[], int line, const char file[], B
    returned as the error. */
 PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status);
 
+/* The non-empty `mine` of the lowest rank that has one, on every rank ("" if none): a problem
+   found on one rank, reported by a collective error on all. */
+PetscErrorCode FirstMessage(MPI_Comm comm, const std::string &mine, std::string *first);
+
 PetscErrorCode PushOptionValueErrorHandler(void);
 /* Install the SIGINT/SIGTERM handler (after PetscInitialize). */
 PetscErrorCode InstallInterruptHandler(void);
