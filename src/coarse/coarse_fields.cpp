@@ -20,6 +20,20 @@ static PetscErrorCode GatherToZero(MPI_Comm comm, const std::vector<PetscReal> &
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Signed area of a quadrilateral (shoelace over its four vertices in cell order) at the points
+   x + u (x: 2 per vertex; u: 3 per vertex, or NULL). */
+static PetscReal QuadArea(const PetscInt *cell, const std::vector<PetscReal> &x, const PetscReal *u)
+{
+  PetscReal a = 0;
+  for (int k = 0; k < 4; k++) {
+    const PetscInt  i = cell[k], j = cell[(k + 1) % 4];
+    const PetscReal xi = x[2 * i] + (u ? u[3 * i] : 0), yi = x[2 * i + 1] + (u ? u[3 * i + 1] : 0);
+    const PetscReal xj = x[2 * j] + (u ? u[3 * j] : 0), yj = x[2 * j + 1] + (u ? u[3 * j + 1] : 0);
+    a += xi * yj - xj * yi;
+  }
+  return 0.5 * a;
+}
+
 PetscErrorCode CoarseFieldsWriter::WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs)
 {
   Vec v;
@@ -85,19 +99,22 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
   PetscCall(GatherToZero(comm_, conn, allconn));
   n_cells_ = (PetscInt)allconn.size() / 4;
   PetscCallMPI(MPI_Bcast(&n_cells_, 1, MPIU_INT, 0, comm_));
+  rho0_ = model.ReferenceDensity();
   if (rank_ == 0) {
-    std::vector<PetscReal> xy(2 * n_vertices_);
+    xy_.assign(2 * n_vertices_, 0);
     for (size_t k = 0; k + 3 <= all.size(); k += 3) {
       const PetscInt id = (PetscInt)all[k];
-      xy[2 * id]        = all[k + 1];
-      xy[2 * id + 1]    = all[k + 2];
+      xy_[2 * id]       = all[k + 1];
+      xy_[2 * id + 1]   = all[k + 2];
     }
+    cells_.assign(allconn.begin(), allconn.end());
+    area0_.resize(n_cells_);
+    for (PetscInt c = 0; c < n_cells_; c++) area0_[c] = QuadArea(&cells_[4 * c], xy_, NULL);
     PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, (dir + "/" + h5name_).c_str(), FILE_MODE_WRITE, &viewer_));
     PetscCall(PetscViewerHDF5PushGroup(viewer_, "/mesh"));
-    PetscCall(WriteArray("vertices", xy, 2));
-    std::vector<PetscInt> cells(allconn.begin(), allconn.end());
-    IS                    is;
-    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)cells.size(), cells.data(), PETSC_COPY_VALUES, &is));
+    PetscCall(WriteArray("vertices", xy_, 2));
+    IS is;
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)cells_.size(), cells_.data(), PETSC_COPY_VALUES, &is));
     PetscCall(ISSetBlockSize(is, 4));
     PetscCall(PetscObjectSetName((PetscObject)is, "cells"));
     PetscCall(ISView(is, viewer_));
@@ -130,27 +147,39 @@ PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal ti
   PetscCall(GatherToZero(comm_, mine, all));
   PetscCall(GatherToZero(comm_, model.CellStress(), stress));
   if (rank_ == 0) {
-    std::vector<PetscReal> disp(2 * n_vertices_), vel(2 * n_vertices_), sxx(n_cells_), syy(n_cells_), sxy(n_cells_);
+    /* vectors with z = 0 (ParaView's Xdmf3 readers keep 2-component vectors as such, and Warp By
+       Vector takes only 3); the stress as a 3 x 3 tensor (row-major, the z row and column 0: the
+       model is 2D) beside its three components; the density of the element, its mass over its
+       current area: rho0 A0 / A (rho dv = rho0 dV, as in the mass matrix) */
+    std::vector<PetscReal> disp(3 * n_vertices_, 0), vel(3 * n_vertices_, 0), sigma(9 * n_cells_, 0), sxx(n_cells_), syy(n_cells_), sxy(n_cells_),
+      rho(n_cells_);
     for (size_t k = 0; k + 4 < all.size(); k += 5) {
       const PetscInt id = (PetscInt)all[k];
       for (int d = 0; d < 2; d++) {
-        disp[2 * id + d] = all[k + 1 + d];
-        vel[2 * id + d]  = all[k + 3 + d];
+        disp[3 * id + d] = all[k + 1 + d];
+        vel[3 * id + d]  = all[k + 3 + d];
       }
     }
     for (PetscInt c = 0; c < n_cells_; c++) {
-      sxx[c] = stress[3 * c];
-      syy[c] = stress[3 * c + 1];
-      sxy[c] = stress[3 * c + 2];
+      sxx[c]           = stress[3 * c];
+      syy[c]           = stress[3 * c + 1];
+      sxy[c]           = stress[3 * c + 2];
+      sigma[9 * c]     = sxx[c];
+      sigma[9 * c + 1] = sxy[c];
+      sigma[9 * c + 3] = sxy[c];
+      sigma[9 * c + 4] = syy[c];
+      rho[c]           = rho0_ * area0_[c] / QuadArea(&cells_[4 * c], xy_, disp.data());
     }
     char group[64];
     PetscCall(PetscSNPrintf(group, sizeof group, "/snapshot_%04d", (int)times_.size()));
     PetscCall(PetscViewerHDF5PushGroup(viewer_, group));
-    PetscCall(WriteArray("displacement", disp, 2));
-    PetscCall(WriteArray("velocity", vel, 2));
+    PetscCall(WriteArray("displacement", disp, 3));
+    PetscCall(WriteArray("velocity", vel, 3));
+    PetscCall(WriteArray("stress", sigma, 9));
     PetscCall(WriteArray("stress_xx", sxx, 1));
     PetscCall(WriteArray("stress_yy", syy, 1));
     PetscCall(WriteArray("stress_xy", sxy, 1));
+    PetscCall(WriteArray("density", rho, 1));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
     PetscCall(PetscViewerHDF5PopGroup(viewer_));
     hid_t fid;
@@ -162,6 +191,12 @@ PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal ti
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The XDMF (2.0, read by ParaView's Xdmf3 readers and by its legacy XDMF reader): per snapshot the
+   quadrilaterals on the reference vertices with the vertex and element fields. Units are
+   <Information> elements: the unit system on the Domain, Name="unit" on the geometry and each
+   attribute. The stress is a 9-component Tensor, not a Tensor6: the two readers order a Tensor6's
+   six values differently (the legacy reader as xx xy xz yy yz zz, the Xdmf3 readers pass them on
+   as VTK's xx yy zz xy yz xz), a full tensor means the same to both. */
 PetscErrorCode CoarseFieldsWriter::WriteXdmf()
 {
   FILE *fp;
@@ -170,8 +205,9 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
   const char     *h5 = h5name_.c_str();
   PetscCall(PetscFOpen(comm_, xmfpath_.c_str(), "w", &fp));
   PetscCall(PetscFPrintf(comm_, fp,
-                         "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"coarse\" "
-                         "GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
+                         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+                         "  <Information Name=\"units\" Value=\"length µm, time µs, mass ng; velocity µm/µs, force µN, 2D stress N/m, 2D density ng/µm²\"/>\n"
+                         "  <Grid Name=\"coarse\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
   for (size_t k = 0; k < times_.size(); k++) {
     PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"coarse_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", k, (double)times_[k]));
     PetscCall(PetscFPrintf(comm_, fp,
@@ -179,19 +215,31 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
                            "Precision=\"%d\" Format=\"HDF\">%s:/mesh/cells</DataItem>\n    </Topology>\n",
                            NC, NC, (int)sizeof(PetscInt), h5));
     PetscCall(PetscFPrintf(comm_, fp,
-                           "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" "
-                           "Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n",
+                           "    <Geometry GeometryType=\"XY\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 2\" "
+                           "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n",
                            NV, h5));
-    for (const char *f : {"displacement", "velocity"})
+    const struct {
+      const char *name, *type, *center, *unit;
+      long long   n, ncomp;
+    } attrs[] = {
+      {"displacement", "Vector", "Node", "µm",      NV, 3},
+      {"velocity",     "Vector", "Node", "µm/µs",  NV, 3},
+      {"stress",       "Tensor", "Cell", "N/m",      NC, 9},
+      {"stress_xx",    "Scalar", "Cell", "N/m",      NC, 1},
+      {"stress_yy",    "Scalar", "Cell", "N/m",      NC, 1},
+      {"stress_xy",    "Scalar", "Cell", "N/m",      NC, 1},
+      {"density",      "Scalar", "Cell", "ng/µm²", NC, 1}
+    };
+    for (const auto &a : attrs) {
+      char dims[64];
+      if (a.ncomp > 1) PetscCall(PetscSNPrintf(dims, sizeof dims, "%lld %lld", a.n, a.ncomp));
+      else PetscCall(PetscSNPrintf(dims, sizeof dims, "%lld", a.n));
       PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Attribute Name=\"%s\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" "
-                             "Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n",
-                             f, NV, h5, k, f));
-    for (const char *f : {"stress_xx", "stress_yy", "stress_xy"})
-      PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" "
-                             "Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    </Attribute>\n",
-                             f, NC, h5, k, f));
+                             "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
+                             "     <DataItem Dimensions=\"%s\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    "
+                             "</Attribute>\n",
+                             a.name, a.type, a.center, a.unit, dims, h5, k, a.name));
+    }
     PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
   }
   PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n </Domain>\n</Xdmf>\n"));

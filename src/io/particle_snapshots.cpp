@@ -5,20 +5,19 @@
 
 namespace turgor {
 
-/* Copy an integer (or char) per-particle array into a named Vec and write it. */
+/* Write a per-particle integer (or char) array, or the global particle numbers when data is NULL,
+   as an HDF5 integer dataset (an IS: PetscInt, NumberType="Int" in the XDMF; ISView makes it n x 1). */
 template <typename T>
-static PetscErrorCode WriteIntegerField(MPI_Comm comm, PetscViewer viewer, const char *name, const T *data, PetscInt n)
+static PetscErrorCode WriteIntegerField(MPI_Comm comm, PetscViewer viewer, const char *name, const T *data, PetscInt n, PetscInt start)
 {
-  Vec          v;
-  PetscScalar *a;
+  IS                    is;
+  std::vector<PetscInt> a(n);
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(comm, n, PETSC_DETERMINE, &v));
-  PetscCall(PetscObjectSetName((PetscObject)v, name));
-  PetscCall(VecGetArray(v, &a));
-  for (PetscInt i = 0; i < n; i++) a[i] = (PetscScalar)data[i];
-  PetscCall(VecRestoreArray(v, &a));
-  PetscCall(VecView(v, viewer));
-  PetscCall(VecDestroy(&v));
+  for (PetscInt i = 0; i < n; i++) a[i] = data ? (PetscInt)data[i] : start + i;
+  PetscCall(ISCreateGeneral(comm, n, a.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(PetscObjectSetName((PetscObject)is, name));
+  PetscCall(ISView(is, viewer));
+  PetscCall(ISDestroy(&is));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -44,12 +43,14 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
     PetscInt     *kind, *cell, bs;
     PetscDataType type;
     PetscCall(DMSwarmGetField(swarm, "kind", &bs, &type, (void **)&kind));
-    PetscCall(WriteIntegerField(comm_, viewer_, "kind", kind, n));
+    PetscCall(WriteIntegerField(comm_, viewer_, "kind", kind, n, start));
     PetscCall(DMSwarmRestoreField(swarm, "kind", &bs, &type, (void **)&kind));
     PetscCall(DMSwarmGetField(swarm, "cell", &bs, &type, (void **)&cell));
-    PetscCall(WriteIntegerField(comm_, viewer_, "cell", cell, n));
+    PetscCall(WriteIntegerField(comm_, viewer_, "cell", cell, n, start));
     PetscCall(DMSwarmRestoreField(swarm, "cell", &bs, &type, (void **)&cell));
-    PetscCall(WriteIntegerField(comm_, viewer_, "fixed", P.fixed.data(), n));
+    PetscCall(WriteIntegerField(comm_, viewer_, "fixed", P.fixed.data(), n, start));
+    /* the Polyvertex connectivity: one vertex cell per particle (without it Xdmf3 builds no cells) */
+    PetscCall(WriteIntegerField<PetscInt>(comm_, viewer_, "vertices", NULL, n, start));
     /* spring connectivity in global particle numbering, as an (ns x 2) integer dataset */
     std::vector<PetscInt> conn(2 * ns);
     for (PetscInt s = 0; s < ns; s++) {
@@ -75,7 +76,9 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time)
   PetscCall(PetscSNPrintf(group, sizeof group, "/snapshot_%04d", (int)times_.size()));
   PetscCall(PetscViewerHDF5PushGroup(viewer_, group));
   /* Plain Vecs rather than DMSwarmCreateGlobalVectorFromField(): VecView of a swarm Vec forces its
-     own group and time-stepping layout, and we want one self-describing group per snapshot. */
+     own group and time-stepping layout, and we want one self-describing group per snapshot. The
+     positions stay (n x 2), an XY geometry; the velocity is written (n x 3) with z = 0, since
+     ParaView's Xdmf3 readers keep a 2-component vector as 2 components and no filter takes it. */
   for (const char *field : {"position", "velocity"}) {
     PetscInt      n, bs;
     PetscDataType type;
@@ -83,11 +86,13 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time)
     PetscScalar  *a;
     PetscCall(DMSwarmGetLocalSize(swarm, &n));
     PetscCall(DMSwarmGetField(swarm, field, &bs, &type, (void **)&data));
-    PetscCall(VecCreateMPI(comm_, bs * n, PETSC_DETERMINE, &v));
-    PetscCall(VecSetBlockSize(v, bs));
+    const PetscInt out = field[0] == 'v' ? 3 : bs;
+    PetscCall(VecCreateMPI(comm_, out * n, PETSC_DETERMINE, &v));
+    PetscCall(VecSetBlockSize(v, out));
     PetscCall(PetscObjectSetName((PetscObject)v, field));
     PetscCall(VecGetArray(v, &a));
-    for (PetscInt k = 0; k < bs * n; k++) a[k] = data[k];
+    for (PetscInt i = 0; i < n; i++)
+      for (PetscInt d = 0; d < out; d++) a[out * i + d] = d < bs ? data[bs * i + d] : 0.0;
     PetscCall(VecRestoreArray(v, &a));
     PetscCall(DMSwarmRestoreField(swarm, field, &bs, &type, (void **)&data));
     PetscCall(VecView(v, viewer_));
@@ -105,14 +110,21 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The XDMF (2.0, read by ParaView's Xdmf3 readers and by its legacy XDMF reader): per snapshot a
+   grid of the particles (a Polyvertex of one vertex cell per particle) and one of the wall springs
+   (a Polyline of two-point cells) through the same points. Units are <Information> elements: the
+   unit system on the Domain, Name="unit" on the geometry and each attribute. */
 PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
 {
   FILE *fp;
   PetscFunctionBeginUser;
   const long long N = n_global_, S = n_springs_;
+  const int       ip = (int)sizeof(PetscInt);
   const char     *h5 = h5name_.c_str();
   PetscCall(PetscFOpen(comm_, xmfpath_.c_str(), "w", &fp));
-  PetscCall(PetscFPrintf(comm_, fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"));
+  PetscCall(PetscFPrintf(comm_, fp,
+                         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+                         "  <Information Name=\"units\" Value=\"length µm, time µs, mass ng; velocity µm/µs, force µN\"/>\n"));
   for (int grid = 0; grid < 2; grid++) {
     PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grid ? "walls" : "particles"));
     for (size_t k = 0; k < times_.size(); k++) {
@@ -122,21 +134,33 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
         PetscCall(PetscFPrintf(comm_, fp,
                                "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "
                                "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/springs</DataItem>\n    </Topology>\n",
-                               S, S, (int)sizeof(PetscInt), h5));
-      else PetscCall(PetscFPrintf(comm_, fp, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\"/>\n", N));
+                               S, S, ip, h5));
+      else
+        PetscCall(
+          PetscFPrintf(comm_, fp,
+                       "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n     <DataItem Dimensions=\"%lld 1\" "
+                       "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/vertices</DataItem>\n    </Topology>\n",
+                       N, N, ip, h5));
       PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%lld 2\" NumberType=\"Float\" Precision=\"8\" "
-                             "Format=\"HDF\">%s:/snapshot_%04zu/position</DataItem>\n    </Geometry>\n",
+                             "    <Geometry GeometryType=\"XY\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 2\" "
+                             "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/position</DataItem>\n    </Geometry>\n",
                              N, h5, k));
       PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld 2\" "
-                             "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n    </Attribute>\n",
+                             "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <Information Name=\"unit\" Value=\"µm/µs\"/>\n"
+                             "     <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n"
+                             "    </Attribute>\n",
                              N, h5, k));
-      for (const char *a : {"kind", "cell", "fixed"})
-        PetscCall(PetscFPrintf(comm_, fp,
-                               "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" "
-                               "Precision=\"8\" Format=\"HDF\">%s:/static/%s</DataItem>\n    </Attribute>\n",
-                               a, N, h5, a));
+      const char *ints[3][2] = {
+        {"kind",  "0 wall, 1 fluid"                                        },
+        {"cell",  "tissue cell of a fluid particle, -1 for a wall particle"},
+        {"fixed", "1 clamped (position and velocity held), 0 free"         }
+      };
+      for (const auto &a : ints)
+        PetscCall(
+          PetscFPrintf(comm_, fp,
+                       "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n     <Information Name=\"values\" Value=\"%s\"/>\n"
+                       "     <DataItem Dimensions=\"%lld 1\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/%s</DataItem>\n    </Attribute>\n",
+                       a[0], a[1], N, ip, h5, a[0]));
       PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
     }
     PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n"));

@@ -1,8 +1,10 @@
 #pragma once
 /* Coarse fields for ParaView: one HDF5 file with the quadrilateral mesh (vertices, cells) and a
-   group per snapshot (displacement and velocity at the vertices, Cauchy stress per element), and an
-   XDMF file describing the temporal collection. The mesh is small: rank 0 gathers and writes
-   (PetscViewerHDF5 on PETSC_COMM_SELF); the XDMF is rewritten after every snapshot. */
+   group per snapshot (displacement and velocity at the vertices, 3 components with z = 0; per
+   element the Cauchy stress as a 3 x 3 tensor and as stress_xx, stress_yy, stress_xy, and the
+   density), and an XDMF file describing the temporal collection, with units. The mesh is small:
+   rank 0 gathers and writes (PetscViewerHDF5 on PETSC_COMM_SELF); the XDMF is rewritten after
+   every snapshot. */
 #include <turgor/coarse/coarse_model.h>
 #include <petscviewer.h>
 #include <string>
@@ -31,6 +33,9 @@ private:
   std::vector<PetscInt>  vertex_gid_; /* per local vertex: global number, < 0 if not owned */
   std::vector<PetscReal> times_;
   Vec                    Uloc_ = nullptr;
+  PetscReal              rho0_ = 0;   /* the model's reference density */
+  std::vector<PetscReal> xy_, area0_; /* rank 0: reference vertex coordinates, element areas */
+  std::vector<PetscInt>  cells_;      /* rank 0: the four vertices of each element */
 };
 
 } // namespace turgor

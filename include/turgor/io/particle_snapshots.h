@@ -1,8 +1,10 @@
 #pragma once
-/* Particle snapshots for ParaView: one HDF5 file (PetscViewerHDF5) with a group per snapshot and
-   an XDMF file describing a temporal collection of two grids, the particles (Polyvertex, with
-   velocity, kind, cell, fixed) and the wall springs (Polyline through the same positions).
-   The XDMF file is rewritten after every snapshot, so a run that stops early stays readable. */
+/* Particle snapshots for ParaView: one HDF5 file (PetscViewerHDF5) with a group per snapshot
+   (position n x 2, velocity n x 3 with z = 0) and /static (kind, cell, fixed as integers, the
+   vertex and spring connectivity), and an XDMF file describing a temporal collection of two grids,
+   the particles (Polyvertex, one vertex cell per particle, with velocity, kind, cell, fixed) and
+   the wall springs (Polyline through the same positions), with units. The XDMF file is rewritten
+   after every snapshot, so a run that stops early stays readable. */
 #include <turgor/particles/particles.h>
 #include <petscdm.h>
 #include <petscviewer.h>

@@ -1,0 +1,17 @@
+# ParaView as the client: open the fine run's particles.xmf and the FE^2 run's coarse.xmf with the
+# reader ParaView picks for .xmf (its Xdmf3 reader) and with the legacy XDMF reader, go to the last
+# time step, fetch the data and check cells, arrays (components, integer types) and the tip
+# displacement against summary.json (check_paraview.py; the FE^2 one through Warp By Vector).
+# No window is opened (nothing is rendered), so no X server is needed. Added only where pvpython is
+# found (Debian: apt-get install paraview python3-paraview python3-numpy); elsewhere nothing is added.
+find_program(TURGOR_PVPYTHON pvpython)
+if(NOT TURGOR_PVPYTHON)
+  message(STATUS "pvpython not found: the ParaView client tests (label paraview) are not added")
+  return()
+endif()
+message(STATUS "pvpython: ${TURGOR_PVPYTHON}: adding the ParaView client tests (label paraview)")
+set(PVCHECK ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py)
+turgor_add_test(paraview_fine COMMAND ${PVCHECK} fine small_rk LABELS paraview fine REQUIRES small_rk TIMEOUT 120)
+turgor_add_test(paraview_fine_legacy COMMAND ${PVCHECK} fine small_rk --reader XDMFReader LABELS paraview fine REQUIRES small_rk TIMEOUT 120)
+turgor_add_test(paraview_fe2 COMMAND ${PVCHECK} fe2 fe2_mpi2 LABELS paraview fe2 REQUIRES fe2_mpi2 TIMEOUT 120)
+turgor_add_test(paraview_fe2_legacy COMMAND ${PVCHECK} fe2 fe2_mpi2 --reader XDMFReader LABELS paraview fe2 REQUIRES fe2_mpi2 TIMEOUT 120)
