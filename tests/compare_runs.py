@@ -10,6 +10,7 @@
                                              (a rigid rotation must only rotate the stress)
   compare_runs.py numbers A B RELTOL         two files of whitespace-separated numbers agree
                                              (|a - b| <= RELTOL * max |b|, per line)
+  compare_runs.py identical A_DIR B_DIR KEY...  tip.csv byte for byte, and summary.json[KEY] equal
 """
 import csv, json, math, sys
 
@@ -82,6 +83,16 @@ def main(argv):
         print(f"{len(la)} lines, largest difference {worst:.3e} of the line's largest entry")
         if not worst <= float(argv[4]):
             sys.exit(f"FAIL: above {argv[4]}")
+    elif mode == "identical":
+        ta, tb = open(f"{argv[2]}/tip.csv", "rb").read(), open(f"{argv[3]}/tip.csv", "rb").read()
+        if ta != tb:
+            worst = max((abs(x[1] - y[1]) for x, y in zip(tip(argv[2]), tip(argv[3]))), default=math.inf)
+            sys.exit(f"FAIL: tip.csv differs (largest tip difference {worst:.3e} µm)")
+        sa, sb = json.load(open(f"{argv[2]}/summary.json")), json.load(open(f"{argv[3]}/summary.json"))
+        for k in argv[4:]:
+            if sa[k] != sb[k]:
+                sys.exit(f"FAIL: summary.json '{k}': {sa[k]} vs {sb[k]}")
+        print(f"tip.csv identical ({len(ta)} bytes); equal: {json.dumps({k: sa[k] for k in argv[4:]})}")
     else:
         sys.exit(__doc__)
 

@@ -34,8 +34,9 @@ PetscErrorCode FE2Run::SetTSDefaults()
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  if (size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  /* on more than one rank, every rank factors the whole matrix (PCREDUNDANT, PETSc's LU): the
+     result is then the same run to run, which MUMPS's dynamic scheduling does not give */
+  PetscCall(PCSetType(pc, size > 1 ? PCREDUNDANT : PCLU));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -189,8 +189,9 @@ PetscErrorCode RadauIIAEnsureKSPs(TS ts, RadauIIA *r)
     PetscCall(KSPAppendOptionsPrefix(*k, "ts_radauiia_"));
     PetscCall(KSPSetType(*k, KSPPREONLY));
     PetscCall(KSPGetPC(*k, &pc));
-    PetscCall(PCSetType(pc, PCLU));
-    if (size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    /* on more than one rank, every rank factors the whole matrix (PCREDUNDANT, PETSc's LU): the
+       result is then the same run to run, which MUMPS's dynamic scheduling does not give */
+    PetscCall(PCSetType(pc, size > 1 ? PCREDUNDANT : PCLU));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
