@@ -82,7 +82,10 @@ PetscErrorCode TimeRun::SetUp()
   PetscCall(CheckIntegrator());
   PetscCall(CheckTSOptions());
   PetscCall(AfterTSSetFromOptions());
-  PetscCall(TSSetUp(ts_)); /* now, not at the first step: the integrator's own solvers read their options before the unused ones are reported */
+  /* set up now, not at the first step: the integrator's own solvers read their options before the
+     unused ones are reported */
+  PetscCall(TSSetSolution(ts_, U_));
+  PetscCall(TSSetUp(ts_));
   sampler_.Configure(t_final_, out_.samples, out_.snapshots, out_.progress_interval);
   PetscCall(Report());
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
