@@ -34,6 +34,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
   PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-empty_cells", empty, &nempty, NULL));
+  PetscCheck(nempty < 64, PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ, "Option -empty_cells: at most 63 cells"); /* a full buffer may have dropped some */
   {
     turgor::Tissue  tissue;
     turgor::FineRun run(PETSC_COMM_WORLD);

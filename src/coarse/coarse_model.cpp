@@ -1,3 +1,4 @@
+#include <turgor/core/options.h>
 #include <turgor/core/errors.h>
 #include "q1_element.h"
 #include <turgor/coarse/coarse_model.h>
@@ -46,6 +47,8 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
     PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
   PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
   PetscOptionsEnd();
+  PetscCheck(!set || n < 8, comm, PETSC_ERR_ARG_SIZ, "Option -coarse_dirichlet_values: more than 7 label values listed");
+  PetscCall(CheckNotEmpty(comm, "-coarse_dirichlet_values", "label values, e.g. 4 (the left side of a box)"));
   dirichlet_label = label;
   if (set) dirichlet_values.assign(values, values + n);
   lumped_mass = lumped;
@@ -281,7 +284,7 @@ PetscErrorCode CoarseModel::PrecomputeElements()
           char buf[512];
           PetscCall(PetscSNPrintf(buf, sizeof buf,
                                   "element %" PetscInt_FMT " with vertices (%g, %g) (%g, %g) (%g, %g) (%g, %g) is degenerate or folded: det J = %g at its "
-                                                           "vertex %d and %g at its vertex 1 (two vertices coincide, or the quadrilateral is not convex)",
+                                  "vertex %d and %g at its vertex 1 (two vertices coincide, or the quadrilateral is not convex)",
                                   cell_gid_[k], (double)X[0][0], (double)X[0][1], (double)X[1][0], (double)X[1][1], (double)X[2][0], (double)X[2][1],
                                   (double)X[3][0], (double)X[3][1], (double)detc[a], a + 1, (double)detc[0]));
           bad = buf;
@@ -447,43 +450,103 @@ PetscErrorCode CoarseModel::DescribePoint(PetscInt m, std::string *text) const
 
 /* F = I + sum_a u_a (x) grad_X N_a and Fdot = sum_a v_a (x) grad_X N_a at every material point;
    the pool answers (from the cache when U is unchanged). */
-PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why)
+PetscErrorCode CoarseModel::CacheHolds(Vec Uloc, bool tangents, bool *holds)
 {
   const PetscScalar *u;
   PetscInt           n;
   PetscFunctionBeginUser;
-  PetscCall(GlobalToLocal(U, Uloc_));
-  PetscCall(VecGetLocalSize(Uloc_, &n));
-  PetscCall(VecGetArrayRead(Uloc_, &u));
+  PetscCall(VecGetLocalSize(Uloc, &n));
+  PetscCall(VecGetArrayRead(Uloc, &u));
   int same = cached_valid_ && (PetscInt)cached_U_.size() == n && !std::memcmp(cached_U_.data(), u, n * sizeof(PetscScalar)) && (cached_tangents_ || !tangents),
       all_same;
+  PetscCall(VecRestoreArrayRead(Uloc, &u));
   PetscCallMPI(MPI_Allreduce(&same, &all_same, 1, MPI_INT, MPI_MIN, comm_));
-  if (!all_same) cached_U_.assign(u, u + n);
-  PetscCall(VecRestoreArrayRead(Uloc_, &u));
-  if (all_same) {
-    *ok = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
-    if (why) *why = cached_ok_ ? "" : "cached failure";
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
+  *holds = all_same;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std::vector<Tensor2> &Fdot)
+{
+  PetscFunctionBeginUser;
+  F.resize((c_end_ - c_start_) * q1::kPoints);
+  Fdot.resize(F.size());
   for (PetscInt c = c_start_; c < c_end_; c++) {
     PetscScalar   *x  = NULL;
     PetscInt       nx = 0;
     const PetscInt k  = c - c_start_;
-    PetscCall(DMPlexVecGetClosure(dm_, NULL, Uloc_, c, &nx, &x));
+    PetscCall(DMPlexVecGetClosure(dm_, NULL, Uloc, c, &nx, &x));
     for (int q = 0; q < q1::kPoints; q++) {
       const PetscReal *dN = &dN_[(k * q1::kPoints + q) * 8];
-      Tensor2          F  = Tensor2::Identity(), Fd;
+      Tensor2          Fq = Tensor2::Identity(), Fd;
       for (int a = 0; a < 4; a++)
         for (int i = 0; i < 2; i++)
           for (int j = 0; j < 2; j++) {
-            F(i, j) += PetscRealPart(x[4 * a + i]) * dN[2 * a + j];
+            Fq(i, j) += PetscRealPart(x[4 * a + i]) * dN[2 * a + j];
             Fd(i, j) += PetscRealPart(x[4 * a + 2 + i]) * dN[2 * a + j];
           }
-      F_[k * q1::kPoints + q]    = F;
-      Fdot_[k * q1::kPoints + q] = Fd;
+      F[k * q1::kPoints + q]    = Fq;
+      Fdot[k * q1::kPoints + q] = Fd;
     }
-    PetscCall(DMPlexVecRestoreClosure(dm_, NULL, Uloc_, c, &nx, &x));
+    PetscCall(DMPlexVecRestoreClosure(dm_, NULL, Uloc, c, &nx, &x));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::EvaluateCellStress(Vec U, PetscBool *ok)
+{
+  bool                                 holds;
+  const std::vector<MaterialResponse> *r = &response_;
+  PetscFunctionBeginUser;
+  PetscCall(GlobalToLocal(U, Uloc_));
+  PetscCall(CacheHolds(Uloc_, false, &holds));
+  if (!holds) {
+    PetscCall(DeformationAt(Uloc_, out_F_, out_Fdot_));
+    out_response_.resize(out_F_.size());
+    PetscCall(pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), NULL, EvaluationKind::Output));
+    r = &out_response_;
+  }
+  int local_ok = 1, global_ok;
+  for (const MaterialResponse &m : *r) local_ok = local_ok && m.ok;
+  PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
+  *ok = global_ok ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt k = 0; k < c_end_ - c_start_; k++) {
+    const Tensor2  &sc      = (*r)[k * q1::kPoints + q1::kCentre].sigma;
+    const PetscReal p       = 0.5 * sc.Trace();
+    PetscReal       mean[3] = {p, p, 0};
+    for (int q = 0; q < q1::kPoints; q++) {
+      if (q == q1::kCentre) continue;
+      const Tensor2 sg = (*r)[k * q1::kPoints + q].sigma.Sym(); /* its deviator, as InternalForce takes it */
+      mean[0] += 0.125 * (sg(0, 0) - sg(1, 1));
+      mean[1] += 0.125 * (sg(1, 1) - sg(0, 0));
+      mean[2] += 0.25 * sg(0, 1);
+    }
+    bool cell_ok = true;
+    for (int q = 0; q < q1::kPoints; q++) cell_ok = cell_ok && (*r)[k * q1::kPoints + q].ok;
+    for (int i = 0; i < 3; i++) cell_stress_[3 * k + i] = cell_ok ? mean[i] : NAN; /* not a failed point's stress */
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why)
+{
+  bool holds;
+  PetscFunctionBeginUser;
+  PetscCall(GlobalToLocal(U, Uloc_));
+  PetscCall(CacheHolds(Uloc_, tangents, &holds));
+  if (holds) {
+    *ok = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
+    if (why) *why = cached_ok_ ? "" : "cached failure";
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  {
+    const PetscScalar *u;
+    PetscInt           n;
+    PetscCall(VecGetLocalSize(Uloc_, &n));
+    PetscCall(VecGetArrayRead(Uloc_, &u));
+    cached_U_.assign(u, u + n);
+    PetscCall(VecRestoreArrayRead(Uloc_, &u));
+  }
+  PetscCall(DeformationAt(Uloc_, F_, Fdot_));
   PetscCall(pool_.Evaluate(F_.data(), Fdot_.data(), response_.data(), tangents ? tangent_.data() : NULL));
   counters_.material_evals++;
   if (tangents) counters_.tangent_evals++;
@@ -521,11 +584,10 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(Floc));
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt  k       = c - c_start_;
-    PetscScalar     fe[16]  = {0};
-    const Tensor2  &sc      = response_[k * q1::kPoints + q1::kCentre].sigma;
-    const PetscReal p       = 0.5 * sc.Trace();
-    PetscReal       mean[3] = {0, 0, 0};
+    const PetscInt  k      = c - c_start_;
+    PetscScalar     fe[16] = {0};
+    const Tensor2  &sc     = response_[k * q1::kPoints + q1::kCentre].sigma;
+    const PetscReal p      = 0.5 * sc.Trace();
     for (int q = 0; q < q1::kPoints; q++) {
       const PetscInt   m  = k * q1::kPoints + q;
       const Tensor2   &F  = F_[m];
@@ -537,9 +599,6 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
       else {
         const Tensor2 sg = response_[m].sigma.Sym();
         s                = sg - (0.5 * sg.Trace()) * Tensor2::Identity();
-        mean[0] += 0.25 * (s(0, 0) + p);
-        mean[1] += 0.25 * (s(1, 1) + p);
-        mean[2] += 0.25 * s(0, 1);
       }
       for (int a = 0; a < 4; a++) {
         const PetscReal gx = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1]; /* grad_x N = F^-T grad_X N */
@@ -550,7 +609,6 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
     }
     for (int a = 0; a < 4; a++)
       for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= f_ext_[8 * k + 2 * a + d];
-    for (int i = 0; i < 3; i++) cell_stress_[3 * k + i] = mean[i];
     PetscCall(DMPlexVecSetClosure(dm_, NULL, Floc, c, fe, ADD_VALUES));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -218,7 +218,7 @@ PetscErrorCode FE2Run::WriteSnapshot(PetscReal t, Vec U)
 {
   PetscBool ok;
   PetscFunctionBeginUser;
-  PetscCall(model_.EvaluateMaterials(U, false, &ok, NULL)); /* the stresses at U */
+  PetscCall(model_.EvaluateCellStress(U, &ok)); /* the stresses at U, without changing the run */
   PetscCall(fields_.Write(model_, U, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -253,6 +253,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("physics", model_.Pool().Model().Physics());
   js.Set("rve_solves", rc.solves);
   js.Set("rve_tangent_solves", rc.tangent_solves);
+  js.Set("rve_output_solves", rc.output_solves);
   js.Set("psi_tc_iterations", rc.iterations);
   js.Set("rve_failures", rc.failures);
   js.Set("material_evaluations", cc.material_evals);

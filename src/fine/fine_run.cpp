@@ -1,3 +1,4 @@
+#include <turgor/core/options.h>
 #include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
@@ -18,6 +19,8 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec",
                              dt_safety, &dt_safety, NULL));
   PetscOptionsEnd();
+  PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
+  PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
   if (set) {
     clamp.clear();
     for (PetscInt k = 0; k < nsides; k++) {

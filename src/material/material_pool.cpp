@@ -151,7 +151,7 @@ PetscErrorCode MaterialPointPool::SetUp(PetscInt n_local)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D)
+PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind)
 {
   const PetscInt           nblock = end_ - begin_;
   std::vector<PointInput>  in(n_local_), block(nblock);
@@ -179,7 +179,7 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
     Tangents         T;
     PetscLogDouble   t0, t1, t2;
     PetscCall(PetscTime(&t0));
-    PetscCall(mp.Evaluate(Fg, Fdg, EvaluationKind::Trial, &r));
+    PetscCall(mp.Evaluate(Fg, Fdg, kind, &r));
     PetscCall(PetscTime(&t1));
     time_trial_ += t1 - t0;
     if (r.ok && D) {
@@ -276,9 +276,9 @@ PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
   PetscFunctionBeginUser;
   if (group_rank_ == 0)
     for (const auto &p : points_) p->AddCounters(k);
-  PetscInt v[8] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 8, MPIU_INT, MPI_SUM, comm_));
-  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
+  PetscInt v[9] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves, k.output_solves};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 9, MPIU_INT, MPI_SUM, comm_));
+  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

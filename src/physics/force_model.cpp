@@ -1,3 +1,4 @@
+#include <turgor/core/options.h>
 #include <turgor/physics/force_model.h>
 #include <algorithm>
 #include <cmath>
@@ -21,14 +22,18 @@ std::string ForceTermNames()
 
 PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm)
 {
-  PetscInt  n = 2;
+  PetscReal g[3] = {body_acceleration[0], body_acceleration[1], 0}; /* one spare: PETSc drops values beyond the buffer silently */
+  PetscInt  n    = 3;
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "body_", "External loads", "turgor");
-  PetscCall(
-    PetscOptionsRealArray("-force", "Body force: acceleration gx,gy of the tissue [µm/µs^2] (default 0,-0.2)", "LoadSpec", body_acceleration, &n, &set));
+  PetscCall(PetscOptionsRealArray("-force", "Body force: acceleration gx,gy of the tissue [µm/µs^2] (default 0,-0.2)", "LoadSpec", g, &n, &set));
   PetscOptionsEnd();
-  PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %" PetscInt_FMT ")", n);
+  PetscCall(CheckNotEmpty(comm, "-body_force", "two components gx,gy [µm/µs^2]"));
+  PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %s%" PetscInt_FMT ")", n > 2 ? "more than " : "",
+             n > 2 ? (PetscInt)2 : n);
+  body_acceleration[0] = g[0];
+  body_acceleration[1] = g[1];
   PetscCheck(std::isfinite(body_acceleration[0]) && std::isfinite(body_acceleration[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -body_force = %g,%g: must be finite", (double)body_acceleration[0], (double)body_acceleration[1]);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -48,6 +53,8 @@ PetscErrorCode PhysicsSpec::SetFromOptions(MPI_Comm comm, const TermContext &ctx
   PetscCall(PetscOptionsStringArray("-physics", help.c_str(), "PhysicsSpec", list, &n, &set));
   PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet skin of the neighbour lists [µm]", "PhysicsSpec", neighbour_skin, &neighbour_skin, NULL));
   PetscOptionsEnd();
+  PetscCheck(!set || n < 16, comm, PETSC_ERR_ARG_SIZ, "Option -physics: more than 15 terms listed");
+  PetscCall(CheckNotEmpty(comm, "-physics", ("terms: " + ForceTermNames() + ", or none").c_str())); /* not "all terms" */
   PetscCheck(neighbour_skin >= 0 && std::isfinite(neighbour_skin), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -neighbour_skin = %g: must be finite and >= 0",
              (double)neighbour_skin);
   if (set) {

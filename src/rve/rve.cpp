@@ -55,13 +55,17 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_solve_, 0, 0, 0, 0));
   *out = MaterialResponse();
-  counters_.solves++;
-  if (kind == EvaluationKind::Perturbed) counters_.tangent_solves++;
+  /* an output evaluation is counted apart, in nothing else: the work counters are the run's */
+  MaterialCounters  output;
+  MaterialCounters &counters = kind == EvaluationKind::Output ? output : counters_;
+  if (kind == EvaluationKind::Output) counters_.output_solves++;
+  counters.solves++;
+  if (kind == EvaluationKind::Perturbed) counters.tangent_solves++;
   const PetscReal J = F.Det();
   if (!(J > 0) || !std::isfinite(J) || !std::isfinite(Fdot.Norm())) {
     out->ok     = false;
     out->reason = "inverted or invalid deformation (det F = " + std::to_string(J) + ")";
-    counters_.failures++;
+    counters.failures++;
     PetscCall(PetscLogEventEnd(ev_solve_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -122,10 +126,10 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   if (!out->ok)
     PetscCall(PetscInfo(NULL, "RVE evaluation failed at F = [%g %g; %g %g], Fdot = [%g %g; %g %g]: %s\n", (double)F(0, 0), (double)F(0, 1), (double)F(1, 0),
                         (double)F(1, 1), (double)Fdot(0, 0), (double)Fdot(0, 1), (double)Fdot(1, 0), (double)Fdot(1, 1), out->reason.c_str()));
-  counters_.iterations += out->iterations;
-  counters_.snes_its += out->snes_its;
-  counters_.ksp_its += out->ksp_its;
-  if (!out->ok) counters_.failures++;
+  counters.iterations += out->iterations;
+  counters.snes_its += out->snes_its;
+  counters.ksp_its += out->ksp_its;
+  if (!out->ok) counters.failures++;
   PetscCall(PetscLogEventEnd(ev_solve_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -152,6 +156,7 @@ void RVE::AddCounters(MaterialCounters &c) const
   c.jacobians += relax_.Jacobians();
   c.force_evals += eq_.ForceEvaluations();
   c.tangent_solves += counters_.tangent_solves;
+  c.output_solves += counters_.output_solves;
 }
 
 PetscErrorCode RVE::Commit()

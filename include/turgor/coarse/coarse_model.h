@@ -85,8 +85,10 @@ public:
   CoarseSpec           &Spec() { return spec_; }
   /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
   PetscErrorCode TipDisplacement(Vec U, PetscReal *uy);
-  /* Per local cell: the mean Cauchy stress of its Gauss points with the centre pressure
-     [s11, s22, s12] of the last material evaluation. */
+  /* Per local cell, [s11, s22, s12]: the mean Cauchy stress of its Gauss points with the centre
+     pressure, at U, into CellStress(). For output: the material points' states and the cache of
+     EvaluateMaterials stay as they are, so writing a snapshot does not change the run. */
+  PetscErrorCode                EvaluateCellStress(Vec U, PetscBool *ok);
   const std::vector<PetscReal> &CellStress() const { return cell_stress_; }
   PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
   /* Global vector with the boundary values inserted into the local constrained dofs. */
@@ -103,7 +105,11 @@ private:
   PetscErrorCode        PrecomputeElements();
   PetscErrorCode        AssembleMass();
   PetscErrorCode        InternalForce(Vec Floc); /* local [0; f_int - f_ext] from the cached materials */
-  PetscErrorCode        FillNaN(Vec F);
+  /* F and Fdot at the material points of this rank's cells, from the local state */
+  PetscErrorCode DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std::vector<Tensor2> &Fdot);
+  /* true when the cached evaluation is of this local state (collective) */
+  PetscErrorCode CacheHolds(Vec Uloc, bool tangents, bool *holds);
+  PetscErrorCode FillNaN(Vec F);
 
   MPI_Comm          comm_;
   DM                dm_ = nullptr;
@@ -141,6 +147,8 @@ private:
   std::vector<MaterialResponse> response_;
   std::vector<Tangents>         tangent_;
   std::vector<PetscReal>        cell_stress_;
+  std::vector<Tensor2>          out_F_, out_Fdot_; /* EvaluateCellStress's own, outside the cache */
+  std::vector<MaterialResponse> out_response_;
   CoarseCounters                counters_;
   PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0;
 };

@@ -35,14 +35,17 @@ struct MaterialResponse {
 struct MaterialCounters {
   PetscInt solves = 0, failures = 0, iterations = 0, snes_its = 0, ksp_its = 0, jacobians = 0, force_evals = 0;
   PetscInt tangent_solves = 0; /* perturbed solves (eqs 46-53), included in solves */
+  PetscInt output_solves  = 0; /* for snapshots, in no other counter */
 };
 
 /* Trial: the evaluation becomes the material point's current state (later evaluations start from
-   it). Perturbed: a tangent perturbation (or an evaluation for output); starts from the current
-   state and leaves it unchanged. */
+   it). Perturbed: a tangent perturbation; starts from the current state and leaves it unchanged.
+   Output: as Perturbed, for a snapshot: counted apart (output_solves), so that the work counters
+   of a run do not depend on how often it writes. */
 enum class EvaluationKind {
   Trial,
-  Perturbed
+  Perturbed,
+  Output
 };
 
 class MaterialPoint {

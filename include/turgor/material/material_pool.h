@@ -38,8 +38,9 @@ public:
   /* This rank owns n_local points. Creates the groups, the points of this rank's group and the
      communication pattern. */
   PetscErrorCode SetUp(PetscInt n_local);
-  /* Collective. F, Fdot, out: n_local each. With D != NULL also the tangents (eqs 46-53). */
-  PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D = NULL);
+  /* Collective. F, Fdot, out: n_local each. With D != NULL also the tangents (eqs 46-53).
+     kind Perturbed: an evaluation that leaves the points' current states as they are (output). */
+  PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D = NULL, EvaluationKind kind = EvaluationKind::Trial);
   PetscErrorCode Commit();
   PetscErrorCode Revert();
 
