@@ -127,9 +127,9 @@ struct RadauIIA {
   TSRadauIIATableau tab;
 
   /* options */
-  PetscInt  max_it       = 7;    /* Newton iterations per attempt */
-  PetscReal newton_tol   = 0.03; /* kappa: Newton error allowed, in units of the error tolerance */
-  PetscReal reuse_theta  = 1e-3; /* keep J for the next step while the contraction rate stays below */
+  PetscInt  max_it       = 7;             /* Newton iterations per attempt */
+  PetscReal newton_tol   = PETSC_DEFAULT; /* kappa set by option or setter, or PETSC_DEFAULT: RADAU5's rule (RadauIIANewtonTolerance) */
+  PetscReal reuse_theta  = 1e-3;          /* keep J for the next step while the contraction rate stays below */
   PetscReal keep_step[2] = {1.0, 1.2};
   PetscBool extrapolate  = PETSC_TRUE;
 
@@ -152,6 +152,7 @@ struct RadauIIA {
   PetscBool need_jac = PETSC_TRUE, jac_fresh = PETSC_FALSE, jac_fresh_prev = PETSC_FALSE;
   PetscBool first = PETSC_TRUE, last_rejected = PETSC_FALSE;
   PetscReal faccon = 1, theta = 0;
+  PetscReal kappa      = 0.03; /* the Newton tolerance of the current step, in units of the error weights */
   PetscBool wlte_valid = PETSC_FALSE;
   NormType  wlte_type  = NORM_2;
   PetscReal wlte       = -1;
@@ -409,6 +410,28 @@ PetscErrorCode RadauIIAAssembleMatrices(TS ts, RadauIIA *r)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* RADAU5's Newton tolerance (radau5.f, "FNEWT"; docs/radau_iia.md, "Newton tolerance"): with
+   RADAU5's transformed tolerance rtol' = 0.1 rtol^(2/3), kappa = max(10 u / rtol, min(0.03, rtol'^(1/2))).
+   kappa is relative to the error test's weights atol + rtol |U|, which are not transformed here; the
+   round-off term is therefore 10 u / rtol, which keeps the absolute Newton tolerance at or above
+   10 u |U| as RADAU5's 10 u / rtol' does relative to its transformed weights. The smallest rtol of a
+   vector tolerance is used (RADAU5 takes RTOL(1)); with rtol = 0, the smallest atol takes its place
+   in the rule and there is no round-off term. */
+PetscErrorCode RadauIIANewtonTolerance(TS ts, PetscReal *kappa)
+{
+  PetscReal atol, rtol, tol;
+  Vec       vatol, vrtol;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetTolerances(ts, &atol, &vatol, &rtol, &vrtol));
+  if (vrtol) PetscCall(VecMin(vrtol, NULL, &rtol));
+  if (vatol) PetscCall(VecMin(vatol, NULL, &atol));
+  tol    = rtol > 0 ? rtol : atol;
+  *kappa = PetscMin(0.03, PetscSqrtReal(0.1 * PetscPowReal(PetscMax(tol, 0), 2.0 / 3)));
+  if (rtol > 0) *kappa = PetscMax(*kappa, 10 * PETSC_MACHINE_EPSILON / rtol);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Error weights atol + rtol |U0| for the Newton increments. */
 PetscErrorCode RadauIIAWeights(TS ts, RadauIIA *r)
 {
@@ -462,7 +485,11 @@ PetscErrorCode RadauIIAPolynomialIncrement(RadauIIA *r, PetscReal s, Vec X)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Simplified Newton on the stage system for the attempt (t0, h), in the transformed variables. */
+/* Simplified Newton on the stage system for the attempt (t0, h), in the transformed variables.
+   Stopping and failure as in RADAU5 (radau5.f, RADCOR, "LOOP FOR THE SIMPLIFIED NEWTON ITERATION"),
+   with NEWT = k + 1 the number of iterations done and NIT = max_it: the rate theta is measured from
+   the second iteration on, but not at the last allowed one; eta = theta / (1 - theta) (at the first
+   iteration the previous step's, raised to the power 0.8); converged when eta ||dW|| <= kappa. */
 PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscReal *hfac)
 {
   const TSRadauIIATableau &tab = r->tab;
@@ -526,7 +553,7 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
       *outcome = NewtonOutcome::linear_solve;
       break;
     }
-    if (k >= 1) {
+    if (k >= 1 && k + 1 < r->max_it) {
       /* contraction rate; averaged over the last two iterations once available */
       const PetscReal thq = dyno / dynold;
       r->theta            = k == 1 ? thq : PetscSqrtReal(thq * thqold);
@@ -537,12 +564,13 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
       }
       r->faccon = r->theta / (1 - r->theta);
       {
-        /* the error left after the iterations still allowed, if the rate holds */
-        const PetscInt  remaining = r->max_it - 1 - k;
-        const PetscReal predicted = r->faccon * dyno * PetscPowReal(r->theta, (PetscReal)remaining) / r->newton_tol;
+        /* RADAU5's prediction of the error after the iterations still allowed, if the rate holds
+           (its exponent NIT - 1 - NEWT is one less than the iterations left: a safety margin) */
+        const PetscInt  margin    = r->max_it - 2 - k;
+        const PetscReal predicted = r->faccon * dyno * PetscPowReal(r->theta, (PetscReal)margin) / r->kappa;
         if (predicted >= 1) {
           const PetscReal q = PetscMax(1e-4, PetscMin(20.0, predicted));
-          *hfac             = 0.8 * PetscPowReal(q, -1.0 / (4 + remaining));
+          *hfac             = 0.8 * PetscPowReal(q, -1.0 / (4 + margin));
           *outcome          = NewtonOutcome::slow;
           break;
         }
@@ -553,7 +581,7 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
       const PetscScalar a[3] = {tab.T[i][0], tab.T[i][1], tab.T[i][2]};
       PetscCall(VecMAXPY(r->Z[i], 3, a, r->dW));
     }
-    if (r->faccon * dyno <= r->newton_tol) {
+    if (r->faccon * dyno <= r->kappa) {
       *outcome = NewtonOutcome::converged;
       break;
     }
@@ -584,6 +612,8 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
   r->t0 = ts->ptime;
   PetscCall(VecCopy(ts->vec_sol, r->U0));
   PetscCall(RadauIIAWeights(ts, r));
+  if (r->newton_tol > 0) r->kappa = r->newton_tol;
+  else PetscCall(RadauIIANewtonTolerance(ts, &r->kappa));
 
   while (!ts->reason) {
     NewtonOutcome outcome  = NewtonOutcome::too_many;
@@ -813,8 +843,8 @@ PetscErrorCode TSRadauIIASetNewtonTolerance_RadauIIA(TS ts, PetscReal kappa)
   RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(kappa > 0 && kappa < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1)",
-             (double)kappa);
+  PetscCheck(kappa == PETSC_DEFAULT || (kappa > 0 && kappa < 1), PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1), or PETSC_DEFAULT for RADAU5's rule", (double)kappa);
   r->newton_tol = kappa;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -823,6 +853,7 @@ PetscErrorCode TSRadauIIAGetNewtonTolerance_RadauIIA(TS ts, PetscReal *kappa)
 {
   PetscFunctionBeginUser;
   *kappa = ((RadauIIA *)ts->data)->newton_tol;
+  if (*kappa == PETSC_DEFAULT) PetscCall(RadauIIANewtonTolerance(ts, kappa));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -892,8 +923,17 @@ PetscErrorCode TSSetFromOptions_RadauIIA(TS ts, PetscOptionItems *PetscOptionsOb
   PetscFunctionBeginUser;
   PetscOptionsHeadBegin(PetscOptionsObject, "Radau IIA order 5 (radauiia) options; linear solvers: -ts_radauiia_ksp_*, -ts_radauiia_pc_*");
   PetscCall(PetscOptionsInt("-ts_radauiia_newton_max_it", "Simplified Newton iterations per step attempt", "TSRADAUIIA", r->max_it, &r->max_it, NULL));
-  PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol", "Newton stops when its estimated error is below this fraction of the error tolerance", "TSRADAUIIA",
-                             r->newton_tol, &r->newton_tol, NULL));
+  {
+    /* shown with the value in effect: RADAU5's rule for the TS's tolerances (read before this) unless set */
+    PetscReal kappa = r->newton_tol;
+    PetscBool set;
+    if (kappa == PETSC_DEFAULT) PetscCall(RadauIIANewtonTolerance(ts, &kappa));
+    PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol",
+                               "Newton stops when its estimated error is below this fraction of the error tolerance (default: RADAU5's rule "
+                               "max(10 u/rtol, min(0.03, sqrt(0.1 rtol^(2/3)))); 'default' restores it)",
+                               "TSRADAUIIA", kappa, &kappa, &set));
+    if (set) r->newton_tol = kappa;
+  }
   PetscCall(PetscOptionsReal("-ts_radauiia_jacobian_reuse", "Keep the Jacobian for the next step while the Newton contraction rate is below this", "TSRADAUIIA",
                              r->reuse_theta, &r->reuse_theta, NULL));
   PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_min", "Keep h (and the factorisations) if TSAdapt proposes between min x h ...", "TSRADAUIIA",
@@ -904,8 +944,8 @@ PetscErrorCode TSSetFromOptions_RadauIIA(TS ts, PetscOptionItems *PetscOptionsOb
   PetscOptionsHeadEnd();
   PetscCheck(r->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_max_it = %" PetscInt_FMT ": must be >= 1",
              r->max_it);
-  PetscCheck(r->newton_tol > 0 && r->newton_tol < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
-             "Option -ts_radauiia_newton_tol = %g: must be in (0, 1)", (double)r->newton_tol);
+  PetscCheck(r->newton_tol == PETSC_DEFAULT || (r->newton_tol > 0 && r->newton_tol < 1), PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_radauiia_newton_tol = %g: must be in (0, 1), or 'default' for RADAU5's rule", (double)r->newton_tol);
   PetscCheck(r->reuse_theta >= 0 && r->reuse_theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
              "Option -ts_radauiia_jacobian_reuse = %g: must be in [0, 1)", (double)r->reuse_theta);
   PetscCheck(r->keep_step[0] <= r->keep_step[1], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
@@ -922,11 +962,15 @@ PetscErrorCode TSView_RadauIIA(TS ts, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Radau IIA, 3 stages, order 5 (stage order 3); error estimate O(h^4) (order 3)\n"));
-  PetscCall(PetscViewerASCIIPrintf(viewer,
-                                   "  simplified Newton: at most %" PetscInt_FMT
-                                   " iterations, tolerance %g, Jacobian kept while rate <= %g, h kept for ratios in [%g, %g], start values %s\n",
-                                   r->max_it, (double)r->newton_tol, (double)r->reuse_theta, (double)r->keep_step[0], (double)r->keep_step[1],
-                                   r->extrapolate ? "extrapolated" : "zero"));
+  {
+    PetscReal kappa = r->newton_tol;
+    if (kappa == PETSC_DEFAULT) PetscCall(RadauIIANewtonTolerance(ts, &kappa));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "  simplified Newton: at most %" PetscInt_FMT
+                                     " iterations, tolerance %g (%s), Jacobian kept while rate <= %g, h kept for ratios in [%g, %g], start values %s\n",
+                                     r->max_it, (double)kappa, r->newton_tol == PETSC_DEFAULT ? "RADAU5's rule" : "set", (double)r->reuse_theta,
+                                     (double)r->keep_step[0], (double)r->keep_step[1], r->extrapolate ? "extrapolated" : "zero"));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "  Jacobian evaluations %" PetscInt_FMT ", factorisations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT
                                    ", linear solves %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT "\n",
