@@ -419,7 +419,7 @@ PetscErrorCode RadauIIAAssembleMatrices(TS ts, RadauIIA *r)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* RADAU5's Newton tolerance (radau5.f, "FNEWT"; docs/radau_iia.md, "Newton tolerance"): with
+/* RADAU5's Newton tolerance (radau5.f, "FNEWT"; docs/radau_iia.md, "... the rules and their sources"): with
    RADAU5's transformed tolerance rtol' = 0.1 rtol^(2/3), kappa = max(10 u / rtol, min(0.03, rtol'^(1/2))).
    kappa is relative to the error test's weights atol + rtol |U|, which are not transformed here; the
    round-off term is therefore 10 u / rtol, which keeps the absolute Newton tolerance at or above
@@ -649,7 +649,7 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
 
 /* With TSAdaptBasic (and -ts_radauiia_predictive, the default), RADAU5's step-size rules on top of
    TSAdapt's proposal next_h (radau5.f, RADCOR, "COMPUTATION OF HNEW" and "PREDICTIVE CONTROLLER OF
-   GUSTAFSSON"; Hairer & Wanner II, §IV.8, eq. (8.25)):
+   GUSTAFSSON"; Hairer & Wanner II, §IV.8):
    - the safety factor falls with the Newton iterations NEWT the step took: RADAU5's
      FAC = min(SAFE, SAFE (1 + 2 NIT) / (NEWT + 2 NIT)), i.e. next_h is scaled by FAC / SAFE;
    - after an accepted step, Gustafsson's predictive controller: the step may not exceed
