@@ -11,3 +11,9 @@ turgor_add_test(radau_iia_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:test_ra
 # it fails when its error against the literature reference exceeds 10x the tolerance.
 turgor_add_test(radau_iia_van_der_pol COMMAND sh -c "${EXAMPLES_MAKE} van_der_pol && ./van_der_pol"
   LABELS ts PASS_REGEX "van_der_pol: error within")
+
+# Accuracy against SciPy's Radau on HIRES and Van der Pol (figures measured by
+# bench/radau_vs_scipy.py and stored in the test), and the round-off floor of the tolerances.
+turgor_test_program(test_radau_iia_accuracy)
+turgor_add_test(radau_iia_accuracy COMMAND test_radau_iia_accuracy LABELS ts unit)
+target_compile_definitions(test_radau_iia_accuracy PRIVATE TURGOR_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data")

@@ -647,9 +647,20 @@ PetscErrorCode CheckSetters()
   PetscCall(TSRadauIIAGetJacobianReuse(ts, &theta));
   PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa));
   PetscCall(TSRadauIIAGetNewtonMaxIterations(ts, &max_it));
-  TG_CHECK(theta == 1e-3 && kappa == 0.03 && max_it == 7,
-           "defaults: Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.001, 0.03, 7)", (double)theta, (double)kappa,
-           max_it);
+  {
+    /* the Newton tolerance defaults to RADAU5's rule for the TS's tolerances (PETSc's default rtol = 1e-4 here):
+       max(10 u/rtol, min(0.03, sqrt(0.1 rtol^(2/3)))), and follows them */
+    PetscReal atol, rtol, kappa8;
+    PetscCall(TSGetTolerances(ts, &atol, NULL, &rtol, NULL));
+    const PetscReal rule = PetscMax(10 * PETSC_MACHINE_EPSILON / rtol, PetscMin(0.03, PetscSqrtReal(0.1 * PetscPowReal(rtol, 2.0 / 3))));
+    TG_CHECK(theta == 1e-3 && std::fabs(kappa - rule) <= 1e-15 * rule && max_it == 7,
+             "defaults: Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.001, %g (RADAU5's rule at rtol %g), 7)",
+             (double)theta, (double)kappa, max_it, (double)rule, (double)rtol);
+    PetscCall(TSSetTolerances(ts, 1e-8, NULL, 1e-8, NULL));
+    PetscCall(TSRadauIIAGetNewtonTolerance(ts, &kappa8));
+    TG_CHECK(std::fabs(kappa8 - PetscSqrtReal(0.1 * PetscPowReal(1e-8, 2.0 / 3))) < 1e-15, "RADAU5's rule at rtol = 1e-8 gives %g", (double)kappa8);
+    PetscCall(TSSetTolerances(ts, atol, NULL, rtol, NULL));
+  }
   PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
   PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.05));
   PetscCall(TSRadauIIASetNewtonMaxIterations(ts, 10));
@@ -660,6 +671,14 @@ PetscErrorCode CheckSetters()
   TG_CHECK(theta == 0.1 && kappa == 0.05 && max_it == 10,
            "set before TSSetFromOptions(): Jacobian reuse %g, Newton tolerance %g, Newton iterations %" PetscInt_FMT " (expected 0.1, 0.05, 10)", (double)theta,
            (double)kappa, max_it);
+  /* PETSC_DEFAULT returns to the rule */
+  PetscCall(TSRadauIIASetNewtonTolerance(ts, PETSC_DEFAULT));
+  {
+    PetscReal k2;
+    PetscCall(TSRadauIIAGetNewtonTolerance(ts, &k2));
+    TG_CHECK(k2 != 0.05 && k2 > 0 && k2 < 0.03 + 1e-16, "TSRadauIIASetNewtonTolerance(PETSC_DEFAULT) left %g", (double)k2);
+    PetscCall(TSRadauIIASetNewtonTolerance(ts, 0.05));
+  }
   /* an option given for the TS still wins over the value set in code */
   PetscCall(PetscOptionsSetValue(opts, "-ts_radauiia_jacobian_reuse", "0.2"));
   PetscCall(TSRadauIIASetJacobianReuse(ts, 0.1));
@@ -691,7 +710,8 @@ PetscErrorCode CheckSetters()
   PetscCall(TSDestroy(&ts));
   PetscCall(PetscOptionsDestroy(&opts));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "(h) TSRadauIIASetJacobianReuse/NewtonTolerance/NewtonMaxIterations before TSSetFromOptions(): the values are used "
-                                         "(0.1, 0.05, 10); -ts_radauiia_jacobian_reuse 0.2 overrides 0.1; 1.5 is rejected; no-op on rk\n"));
+                                         "(0.1, 0.05, 10); the Newton tolerance defaults to RADAU5's rule and PETSC_DEFAULT restores it; "
+                                         "-ts_radauiia_jacobian_reuse 0.2 overrides 0.1; 1.5 is rejected; no-op on rk\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

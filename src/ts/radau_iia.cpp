@@ -127,9 +127,11 @@ struct RadauIIA {
   TSRadauIIATableau tab;
 
   /* options */
-  PetscInt  max_it       = 7;    /* Newton iterations per attempt */
-  PetscReal newton_tol   = 0.03; /* kappa: Newton error allowed, in units of the error tolerance */
-  PetscReal reuse_theta  = 1e-3; /* keep J for the next step while the contraction rate stays below */
+  PetscInt  max_it       = 7;             /* Newton iterations per attempt */
+  PetscInt  min_it       = 2;             /* Newton iterations before convergence is accepted (RADAU5: 1, SciPy: 2) */
+  PetscBool predictive   = PETSC_TRUE;    /* with TSAdaptBasic: RADAU5's predictive controller and Newton-dependent safety */
+  PetscReal newton_tol   = PETSC_DEFAULT; /* kappa set by option or setter, or PETSC_DEFAULT: RADAU5's rule (RadauIIANewtonTolerance) */
+  PetscReal reuse_theta  = 1e-3;          /* keep J for the next step while the contraction rate stays below */
   PetscReal keep_step[2] = {1.0, 1.2};
   PetscBool extrapolate  = PETSC_TRUE;
 
@@ -152,6 +154,14 @@ struct RadauIIA {
   PetscBool need_jac = PETSC_TRUE, jac_fresh = PETSC_FALSE, jac_fresh_prev = PETSC_FALSE;
   PetscBool first = PETSC_TRUE, last_rejected = PETSC_FALSE;
   PetscReal faccon = 1, theta = 0;
+  PetscReal kappa = 0.03;         /* the Newton tolerance of the current step, in units of the error weights */
+  PetscInt  newt  = 0;            /* Newton iterations of the attempt that converged last */
+  PetscReal hacc = 0, erracc = 0; /* RADAU5's HACC, ERRACC: h and error norm of the last accepted step */
+  PetscBool have_acc        = PETSC_FALSE;
+  PetscReal rho             = 0;           /* round-off level of U0 in the error norm (RadauIIAWeights) */
+  PetscInt  n_floor         = 0;           /* consecutive Newton failures of this step with increments at the round-off level */
+  PetscBool newton_roundoff = PETSC_FALSE; /* the last Newton increment was at the round-off level */
+  char      floor_msg[1024];
   PetscBool wlte_valid = PETSC_FALSE;
   NormType  wlte_type  = NORM_2;
   PetscReal wlte       = -1;
@@ -410,13 +420,44 @@ PetscErrorCode RadauIIAAssembleMatrices(TS ts, RadauIIA *r)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Error weights atol + rtol |U0| for the Newton increments. */
-PetscErrorCode RadauIIAWeights(TS ts, RadauIIA *r)
+/* RADAU5's Newton tolerance (radau5.f, "FNEWT"; docs/radau_iia.md, "... the rules and their sources"): with
+   RADAU5's transformed tolerance rtol' = 0.1 rtol^(2/3), kappa = max(10 u / rtol, min(0.03, rtol'^(1/2))).
+   kappa is relative to the error test's weights atol + rtol |U|, which are not transformed here; the
+   round-off term is therefore 10 u / rtol, which keeps the absolute Newton tolerance at or above
+   10 u |U| as RADAU5's 10 u / rtol' does relative to its transformed weights. The smallest rtol of a
+   vector tolerance is used (RADAU5 takes RTOL(1)); with rtol = 0, the smallest atol takes its place
+   in the rule and there is no round-off term. */
+PetscErrorCode RadauIIANewtonTolerance(TS ts, PetscReal *kappa)
 {
-  PetscReal atol, rtol, wmin;
+  PetscReal atol, rtol, tol;
   Vec       vatol, vrtol;
 
   PetscFunctionBeginUser;
+  PetscCall(TSGetTolerances(ts, &atol, &vatol, &rtol, &vrtol));
+  if (vrtol) PetscCall(VecMin(vrtol, NULL, &rtol));
+  if (vatol) PetscCall(VecMin(vatol, NULL, &atol));
+  tol    = rtol > 0 ? rtol : atol;
+  *kappa = PetscMin(0.03, PetscSqrtReal(0.1 * PetscPowReal(PetscMax(tol, 0), 2.0 / 3)));
+  if (rtol > 0) *kappa = PetscMax(*kappa, 10 * PETSC_MACHINE_EPSILON / rtol);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The error weights W = atol + rtol |U0| of the Newton increments, and the round-off floor of the
+   tolerances: rho = || 10 u |U0| / W || in the norm of the error test (TSAdapt's, RMS by default) is
+   the round-off of the solution measured as the error test measures errors. With rho >= 1 the
+   tolerances ask for less than round-off can deliver: no error estimate, and no Newton increment,
+   can be certified below them, and the step size would shrink and grow without end. That is
+   reported instead (RadauIIAFloorFailure). RADAU5 has the same floor as an input check: it refuses
+   rtol <= 10 u. */
+PetscErrorCode RadauIIAWeights(TS ts, RadauIIA *r, PetscBool *below_floor)
+{
+  PetscReal atol, rtol, wmin, umax, worst;
+  Vec       vatol, vrtol;
+  PetscInt  N, iworst;
+  NormType  type = ts->adapt ? ts->adapt->wnormtype : NORM_2;
+
+  PetscFunctionBeginUser;
+  *below_floor = PETSC_FALSE;
   PetscCall(TSGetTolerances(ts, &atol, &vatol, &rtol, &vrtol));
   PetscCall(VecCopy(r->U0, r->scal));
   PetscCall(VecAbs(r->scal));
@@ -427,6 +468,40 @@ PetscErrorCode RadauIIAWeights(TS ts, RadauIIA *r)
   PetscCall(VecMin(r->scal, NULL, &wmin));
   PetscCheck(wmin > 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
              "TS radauiia: the error weights atol + rtol |U| must be positive (a component is 0 with atol = 0; set -ts_atol > 0)");
+
+  PetscCall(VecGetSize(r->U0, &N));
+  PetscCall(VecCopy(r->U0, r->work));
+  PetscCall(VecAbs(r->work));
+  PetscCall(VecPointwiseDivide(r->work, r->work, r->scal));
+  PetscCall(VecMax(r->work, &iworst, &worst));
+  if (type == NORM_INFINITY) r->rho = worst;
+  else {
+    PetscCall(VecNorm(r->work, NORM_2, &r->rho));
+    r->rho /= PetscSqrtReal((PetscReal)N);
+  }
+  r->rho *= 10 * PETSC_MACHINE_EPSILON;
+  if (r->rho >= 1) {
+    PetscCall(VecNorm(r->U0, NORM_INFINITY, &umax));
+    PetscCall(PetscSNPrintf(r->floor_msg, sizeof(r->floor_msg),
+                            "TS radauiia: at t = %g the tolerances -ts_rtol %g and -ts_atol %g are below the round-off floor of the solution: its round-off "
+                            "10 u |U| is %.3g x (atol + rtol |U|) in the error norm (%.3g x at component %" PetscInt_FMT
+                            "), so no error estimate can pass them reliably. Raise -ts_atol to at least %.2g (100 u max |U|) or -ts_rtol to at least %.2g "
+                            "(100 u)",
+                            (double)r->t0, (double)rtol, (double)atol, (double)r->rho, (double)(10 * PETSC_MACHINE_EPSILON * worst), iworst,
+                            (double)(100 * PETSC_MACHINE_EPSILON * umax), (double)(100 * PETSC_MACHINE_EPSILON)));
+    *below_floor = PETSC_TRUE;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A failure at the round-off floor, with the message in r->floor_msg: an error (PETSc's default
+   -ts_error_if_step_fails), else a failed TS (TS_DIVERGED_STEP_REJECTED) and the message in -info. */
+PetscErrorCode RadauIIAFloorFailure(TS ts, RadauIIA *r)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!ts->errorifstepfailed, PetscObjectComm((PetscObject)ts), PETSC_ERR_NOT_CONVERGED, "%s", r->floor_msg);
+  PetscCall(PetscInfo(ts, "%s\n", r->floor_msg));
+  ts->reason = TS_DIVERGED_STEP_REJECTED;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -463,12 +538,17 @@ PetscErrorCode RadauIIAPolynomialIncrement(RadauIIA *r, PetscReal s, Vec X)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Simplified Newton on the stage system for the attempt (t0, h), in the transformed variables. */
+/* Simplified Newton on the stage system for the attempt (t0, h), in the transformed variables.
+   Stopping and failure as in RADAU5 (radau5.f, RADCOR, "LOOP FOR THE SIMPLIFIED NEWTON ITERATION"),
+   with NEWT = k + 1 the number of iterations done and NIT = max_it: the rate theta is measured from
+   the second iteration on, but not at the last allowed one; eta = theta / (1 - theta) (at the first
+   iteration the previous step's, raised to the power 0.8); converged when eta ||dW|| <= kappa. */
 PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscReal *hfac)
 {
   const TSRadauIIATableau &tab = r->tab;
   PetscInt                 N;
   PetscReal                dynold = 1, thqold = 1;
+  PetscBool                at_roundoff = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSize(r->U0, &N));
@@ -527,7 +607,10 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
       *outcome = NewtonOutcome::linear_solve;
       break;
     }
-    if (k >= 1) {
+    /* an increment at the round-off level of the solution: the iterate cannot be improved, and the
+       ratio of such increments is noise, not a contraction rate */
+    at_roundoff = (PetscBool)(dyno <= 10 * r->rho);
+    if (k >= 1 && k + 1 < r->max_it && !at_roundoff) {
       /* contraction rate; averaged over the last two iterations once available */
       const PetscReal thq = dyno / dynold;
       r->theta            = k == 1 ? thq : PetscSqrtReal(thq * thqold);
@@ -538,12 +621,13 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
       }
       r->faccon = r->theta / (1 - r->theta);
       {
-        /* the error left after the iterations still allowed, if the rate holds */
-        const PetscInt  remaining = r->max_it - 1 - k;
-        const PetscReal predicted = r->faccon * dyno * PetscPowReal(r->theta, (PetscReal)remaining) / r->newton_tol;
+        /* RADAU5's prediction of the error after the iterations still allowed, if the rate holds
+           (its exponent NIT - 1 - NEWT is one less than the iterations left: a safety margin) */
+        const PetscInt  margin    = r->max_it - 2 - k;
+        const PetscReal predicted = r->faccon * dyno * PetscPowReal(r->theta, (PetscReal)margin) / r->kappa;
         if (predicted >= 1) {
           const PetscReal q = PetscMax(1e-4, PetscMin(20.0, predicted));
-          *hfac             = 0.8 * PetscPowReal(q, -1.0 / (4 + remaining));
+          *hfac             = 0.8 * PetscPowReal(q, -1.0 / (4 + margin));
           *outcome          = NewtonOutcome::slow;
           break;
         }
@@ -554,10 +638,43 @@ PetscErrorCode RadauIIANewton(TS ts, RadauIIA *r, NewtonOutcome *outcome, PetscR
       const PetscScalar a[3] = {tab.T[i][0], tab.T[i][1], tab.T[i][2]};
       PetscCall(VecMAXPY(r->Z[i], 3, a, r->dW));
     }
-    if (r->faccon * dyno <= r->newton_tol) {
+    if ((r->faccon * dyno <= r->kappa || (at_roundoff && dyno <= r->kappa)) && k + 1 >= r->min_it) {
+      r->newt  = k + 1;
       *outcome = NewtonOutcome::converged;
       break;
     }
+  }
+  r->newton_roundoff = at_roundoff;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* With TSAdaptBasic (and -ts_radauiia_predictive, the default), RADAU5's step-size rules on top of
+   TSAdapt's proposal next_h (radau5.f, RADCOR, "COMPUTATION OF HNEW" and "PREDICTIVE CONTROLLER OF
+   GUSTAFSSON"; Hairer & Wanner II, §IV.8):
+   - the safety factor falls with the Newton iterations NEWT the step took: RADAU5's
+     FAC = min(SAFE, SAFE (1 + 2 NIT) / (NEWT + 2 NIT)), i.e. next_h is scaled by FAC / SAFE;
+   - after an accepted step, Gustafsson's predictive controller: the step may not exceed
+     h SAFE / FACGUS with FACGUS = (h_acc / h) (err^2 / err_acc)^(1/4), clipped to [1/8, 5], where
+     h_acc and err_acc = max(0.01, err) are those of the previous accepted step.
+   Other adapters (dsp, none, ...) are left as they are. */
+PetscErrorCode RadauIIAStepControl(TS ts, RadauIIA *r, PetscBool accept, PetscReal *next_h)
+{
+  PetscBool basic;
+  PetscReal safety, reject_safety;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts->adapt, TSADAPTBASIC, &basic));
+  if (!r->predictive || !basic || !r->wlte_valid || r->wlte < 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(TSAdaptGetSafety(ts->adapt, &safety, &reject_safety));
+  *next_h *= PetscMin(1.0, (1.0 + 2 * r->max_it) / (PetscReal)(r->newt + 2 * r->max_it));
+  if (accept) {
+    if (r->have_acc) {
+      const PetscReal facgus = (r->hacc / r->h) * PetscPowReal(r->wlte * r->wlte / r->erracc, 0.25) / safety;
+      *next_h                = PetscMin(*next_h, r->h / PetscMax(0.125, PetscMin(5.0, facgus)));
+    }
+    r->hacc     = r->h;
+    r->erracc   = PetscMax(0.01, r->wlte);
+    r->have_acc = PETSC_TRUE;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -575,6 +692,7 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
     r->have_cont = PETSC_FALSE;
     r->need_jac  = PETSC_TRUE;
     r->first     = PETSC_TRUE;
+    r->have_acc  = PETSC_FALSE;
     r->faccon    = 1;
     r->h_fact    = 0;
     PetscCall(VecZeroEntries(r->Udot0));
@@ -584,7 +702,21 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
   } else if (!ts->steprollback) PetscCall(VecCopy(r->Udot1, r->Udot0)); /* U' at the new step's start */
   r->t0 = ts->ptime;
   PetscCall(VecCopy(ts->vec_sol, r->U0));
-  PetscCall(RadauIIAWeights(ts, r));
+  {
+    PetscBool below_floor;
+    PetscCall(RadauIIAWeights(ts, r, &below_floor));
+    if (below_floor) {
+      PetscCall(RadauIIAFloorFailure(ts, r));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
+  /* RADAU5's rule; its round-off term (absent with rtol = 0) is never below rho */
+  if (r->newton_tol > 0) r->kappa = r->newton_tol;
+  else {
+    PetscCall(RadauIIANewtonTolerance(ts, &r->kappa));
+    r->kappa = PetscMax(r->kappa, r->rho);
+  }
+  r->n_floor = 0;
 
   while (!ts->reason) {
     NewtonOutcome outcome  = NewtonOutcome::too_many;
@@ -621,6 +753,28 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
          cured by a new J (the new h gives new factors anyway) */
       if (!r->jac_fresh && (outcome == NewtonOutcome::diverged || outcome == NewtonOutcome::slow || outcome == NewtonOutcome::too_many))
         r->need_jac = PETSC_TRUE;
+      /* Newton's floor: its increments are at the round-off level of the solution and still above its
+         tolerance; a smaller h does not lower round-off, so a second such failure ends the solve */
+      if (outcome == NewtonOutcome::too_many && r->newton_roundoff && ++r->n_floor >= 2) {
+        if (r->newton_tol > 0)
+          PetscCall(PetscSNPrintf(r->floor_msg, sizeof(r->floor_msg),
+                                  "TS radauiia: at t = %g Newton cannot reduce its increments below its tolerance because of round-off: they stay at the "
+                                  "round-off level of the solution, 10 u |U| = %.3g x (atol + rtol |U|), above -ts_radauiia_newton_tol %g. That Newton "
+                                  "tolerance is below the round-off floor: raise it above %.2g, or leave it to RADAU5's rule",
+                                  (double)r->t0, (double)r->rho, (double)r->kappa, (double)(10 * r->rho)));
+        else {
+          PetscReal atol, rtol;
+          PetscCall(TSGetTolerances(ts, &atol, NULL, &rtol, NULL));
+          PetscCall(
+            PetscSNPrintf(r->floor_msg, sizeof(r->floor_msg),
+                          "TS radauiia: at t = %g Newton cannot reduce its increments below its tolerance %.3g x (atol + rtol |U|) because of "
+                          "round-off: they stay at the round-off level of the solution, 10 u |U| = %.3g x (atol + rtol |U|). The tolerances -ts_rtol %g "
+                          "and -ts_atol %g are below the round-off floor: raise them",
+                          (double)r->t0, (double)r->kappa, (double)r->rho, (double)rtol, (double)atol));
+        }
+        PetscCall(RadauIIAFloorFailure(ts, r));
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
       goto reject_step;
     }
     for (int i = 0; i < 3; i++) PetscCall(VecWAXPY(r->Y[i], 1.0, r->U0, r->Z[i]));
@@ -635,6 +789,7 @@ PetscErrorCode TSStep_RadauIIA(TS ts)
     PetscCall(TSAdaptCandidatesClear(ts->adapt));
     PetscCall(TSAdaptCandidateAdd(ts->adapt, "radauiia", 5, 3, 1.0, 1.0, PETSC_TRUE));
     PetscCall(TSAdaptChoose(ts->adapt, ts, r->h, NULL, &next_h, &accept));
+    PetscCall(RadauIIAStepControl(ts, r, accept, &next_h));
     if (!accept) {
       /* a first step that fails the error test is usually far too large (e.g. across an initial
          layer, where the error grows as h shrinks towards the fast time scale): RADAU5 cuts it by 10 */
@@ -814,8 +969,8 @@ PetscErrorCode TSRadauIIASetNewtonTolerance_RadauIIA(TS ts, PetscReal kappa)
   RadauIIA *r = (RadauIIA *)ts->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(kappa > 0 && kappa < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1)",
-             (double)kappa);
+  PetscCheck(kappa == PETSC_DEFAULT || (kappa > 0 && kappa < 1), PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "TSRadauIIASetNewtonTolerance(): kappa = %g must be in (0, 1), or PETSC_DEFAULT for RADAU5's rule", (double)kappa);
   r->newton_tol = kappa;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -824,6 +979,7 @@ PetscErrorCode TSRadauIIAGetNewtonTolerance_RadauIIA(TS ts, PetscReal *kappa)
 {
   PetscFunctionBeginUser;
   *kappa = ((RadauIIA *)ts->data)->newton_tol;
+  if (*kappa == PETSC_DEFAULT) PetscCall(RadauIIANewtonTolerance(ts, kappa));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -893,8 +1049,21 @@ PetscErrorCode TSSetFromOptions_RadauIIA(TS ts, PetscOptionItems *PetscOptionsOb
   PetscFunctionBeginUser;
   PetscOptionsHeadBegin(PetscOptionsObject, "Radau IIA order 5 (radauiia) options; linear solvers: -ts_radauiia_ksp_*, -ts_radauiia_pc_*");
   PetscCall(PetscOptionsInt("-ts_radauiia_newton_max_it", "Simplified Newton iterations per step attempt", "TSRADAUIIA", r->max_it, &r->max_it, NULL));
-  PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol", "Newton stops when its estimated error is below this fraction of the error tolerance", "TSRADAUIIA",
-                             r->newton_tol, &r->newton_tol, NULL));
+  PetscCall(PetscOptionsInt("-ts_radauiia_newton_min_it", "Newton iterations before convergence is accepted (1: RADAU5, 2: SciPy)", "TSRADAUIIA", r->min_it,
+                            &r->min_it, NULL));
+  PetscCall(PetscOptionsBool("-ts_radauiia_predictive", "With -ts_adapt_type basic: RADAU5's predictive controller and Newton-dependent safety factor",
+                             "TSRADAUIIA", r->predictive, &r->predictive, NULL));
+  {
+    /* shown with the value in effect: RADAU5's rule for the TS's tolerances (read before this) unless set */
+    PetscReal kappa = r->newton_tol;
+    PetscBool set;
+    if (kappa == PETSC_DEFAULT) PetscCall(RadauIIANewtonTolerance(ts, &kappa));
+    PetscCall(PetscOptionsReal("-ts_radauiia_newton_tol",
+                               "Newton stops when its estimated error is below this fraction of the error tolerance (default: RADAU5's rule "
+                               "max(10 u/rtol, min(0.03, sqrt(0.1 rtol^(2/3)))); 'default' restores it)",
+                               "TSRADAUIIA", kappa, &kappa, &set));
+    if (set) r->newton_tol = kappa;
+  }
   PetscCall(PetscOptionsReal("-ts_radauiia_jacobian_reuse", "Keep the Jacobian for the next step while the Newton contraction rate is below this", "TSRADAUIIA",
                              r->reuse_theta, &r->reuse_theta, NULL));
   PetscCall(PetscOptionsReal("-ts_radauiia_keep_step_min", "Keep h (and the factorisations) if TSAdapt proposes between min x h ...", "TSRADAUIIA",
@@ -905,8 +1074,10 @@ PetscErrorCode TSSetFromOptions_RadauIIA(TS ts, PetscOptionItems *PetscOptionsOb
   PetscOptionsHeadEnd();
   PetscCheck(r->max_it >= 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_radauiia_newton_max_it = %" PetscInt_FMT ": must be >= 1",
              r->max_it);
-  PetscCheck(r->newton_tol > 0 && r->newton_tol < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
-             "Option -ts_radauiia_newton_tol = %g: must be in (0, 1)", (double)r->newton_tol);
+  PetscCheck(r->min_it >= 1 && r->min_it <= r->max_it, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_radauiia_newton_min_it = %" PetscInt_FMT ": must be in [1, -ts_radauiia_newton_max_it = %" PetscInt_FMT "]", r->min_it, r->max_it);
+  PetscCheck(r->newton_tol == PETSC_DEFAULT || (r->newton_tol > 0 && r->newton_tol < 1), PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -ts_radauiia_newton_tol = %g: must be in (0, 1), or 'default' for RADAU5's rule", (double)r->newton_tol);
   PetscCheck(r->reuse_theta >= 0 && r->reuse_theta < 1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
              "Option -ts_radauiia_jacobian_reuse = %g: must be in [0, 1)", (double)r->reuse_theta);
   PetscCheck(r->keep_step[0] <= r->keep_step[1], PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE,
@@ -923,11 +1094,17 @@ PetscErrorCode TSView_RadauIIA(TS ts, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscViewerASCIIPrintf(viewer, "  Radau IIA, 3 stages, order 5 (stage order 3); error estimate O(h^4) (order 3)\n"));
-  PetscCall(PetscViewerASCIIPrintf(viewer,
-                                   "  simplified Newton: at most %" PetscInt_FMT
-                                   " iterations, tolerance %g, Jacobian kept while rate <= %g, h kept for ratios in [%g, %g], start values %s\n",
-                                   r->max_it, (double)r->newton_tol, (double)r->reuse_theta, (double)r->keep_step[0], (double)r->keep_step[1],
-                                   r->extrapolate ? "extrapolated" : "zero"));
+  {
+    PetscReal kappa = r->newton_tol;
+    if (kappa == PETSC_DEFAULT) PetscCall(RadauIIANewtonTolerance(ts, &kappa));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "  simplified Newton: %" PetscInt_FMT " to %" PetscInt_FMT
+                                     " iterations, tolerance %g (%s), Jacobian kept while rate <= %g, h kept for ratios in [%g, %g], start values %s\n",
+                                     r->min_it, r->max_it, (double)kappa, r->newton_tol == PETSC_DEFAULT ? "RADAU5's rule" : "set", (double)r->reuse_theta,
+                                     (double)r->keep_step[0], (double)r->keep_step[1], r->extrapolate ? "extrapolated" : "zero"));
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  step control: TSAdapt%s\n",
+                                   r->predictive ? ", with TSAdaptBasic completed by RADAU5's predictive controller and Newton-dependent safety" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "  Jacobian evaluations %" PetscInt_FMT ", factorisations %" PetscInt_FMT ", Newton iterations %" PetscInt_FMT
                                    ", linear solves %" PetscInt_FMT ", IFunction evaluations %" PetscInt_FMT "\n",

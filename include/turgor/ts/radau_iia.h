@@ -32,8 +32,11 @@ PETSC_EXTERN PetscErrorCode TSRadauIIAGetCounters(TS ts, PetscInt *jacobian_eval
 PETSC_EXTERN PetscErrorCode TSRadauIIASetJacobianReuse(TS ts, PetscReal theta);
 PETSC_EXTERN PetscErrorCode TSRadauIIAGetJacobianReuse(TS ts, PetscReal *theta);
 
-/* Newton tolerance kappa in (0, 1) (-ts_radauiia_newton_tol, default 0.03): Newton stops when its
-   estimated error is below kappa times the error tolerance. */
+/* Newton tolerance kappa in (0, 1) (-ts_radauiia_newton_tol): Newton stops when its estimated error
+   is below kappa times the error tolerance. Default (and PETSC_DEFAULT, or the option value
+   "default"): RADAU5's rule for the TS's tolerances, evaluated at every step,
+   kappa = max(10 u / rtol, min(0.03, sqrt(rtol'))) with rtol' = 0.1 rtol^(2/3) (docs/radau_iia.md);
+   e.g. 0.0147 at rtol = 1e-4, 6.8e-4 at rtol = 1e-8. The getter returns the value in effect. */
 PETSC_EXTERN PetscErrorCode TSRadauIIASetNewtonTolerance(TS ts, PetscReal kappa);
 PETSC_EXTERN PetscErrorCode TSRadauIIAGetNewtonTolerance(TS ts, PetscReal *kappa);
 
