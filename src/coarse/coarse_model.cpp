@@ -88,6 +88,12 @@ PetscErrorCode CoarseModel::CreateMesh()
       box = (PetscBool)(box || has);
     }
     PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_filename", &file));
+    {
+      PetscInt  dim = 2;
+      PetscBool dset;
+      PetscCall(PetscOptionsGetInt(NULL, NULL, "-coarse_dm_plex_dim", &dim, &dset));
+      PetscCheck(dim == 2, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -coarse_dm_plex_dim = %" PetscInt_FMT ": the coarse mesh must be 2D", dim);
+    }
     PetscCall(PetscOptionsHasName(NULL, NULL, "-coarse_dm_plex_simplex", &simplex));
     PetscCheck(!box || simplex || file, comm_, PETSC_ERR_ARG_WRONG,
                "Options -coarse_dm_plex_box_*: PETSc's box mesh is made of triangles unless -coarse_dm_plex_simplex 0 is given, and the coarse model needs "
@@ -162,8 +168,8 @@ PetscErrorCode CoarseModel::CheckSize(PetscReal elements)
 {
   PetscMPIInt       size;
   const PetscReal   points = q1::kPoints * elements;
-  const std::string what   = std::to_string((long long)elements) + " coarse elements with " + std::to_string((long long)points) + " material points (" +
-                           pool_.MaterialName() + ")";
+  const std::string what   = std::to_string((long long)elements) + " coarse elements (-coarse_dm_plex_box_faces, -coarse_dm_refine or the mesh file) with " +
+                           std::to_string((long long)points) + " material points (" + pool_.MaterialName() + ")";
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   PetscCall(CheckCount(comm_, 4 * points, what));

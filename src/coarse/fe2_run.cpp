@@ -57,6 +57,7 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
                             "decides itself), 10 otherwise",
                             "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
   PetscOptionsEnd();
+  PetscCheck(jacobian_max_age_ >= -1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_jacobian_max_age = %" PetscInt_FMT ": must be >= -1", jacobian_max_age_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -69,7 +69,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, PetscReal bytes, const std::string &wh
   const std::string need = FormatBytes(worst[1]), have = FormatBytes(worst[1] / worst[0]);
   PetscCall(PetscPrintf(comm, "Memory estimate: %s for %s (on the fullest node, %s available)\n", need.c_str(), what.c_str(), have.c_str()));
   if (!(worst[0] <= 1)) {
-    PetscCheck(!check, comm, PETSC_ERR_MEM,
+    PetscCheck(!check, comm, PETSC_ERR_ARG_OUTOFRANGE, /* a refusal, not an allocation that failed */
                "%s needs about %s of memory, more than the %s this node has available: make the problem smaller or use more nodes (-memory_check false to try "
                "anyway)",
                what.c_str(), need.c_str(), have.c_str());

@@ -133,7 +133,7 @@ PetscErrorCode FineRun::SetUpModel()
   if (!have_tissue_) {
     PetscReal particles, springs;
     PetscCall(tissues_.Generator()->Estimate(&particles, &springs));
-    const std::string what = "the fine tissue (" + std::to_string((long long)particles) + " particles)";
+    const std::string what = "the fine tissue (" + tissues_.Generator()->SizeOptions() + ": " + std::to_string((long long)particles) + " particles)";
     PetscCall(CheckCount(comm_, 4 * particles, what + ", its state vector"));
     PetscCall(CheckMemory(comm_, rank == 0 ? kProcessBytes + kBytesPerParticle * particles : kProcessBytes, what));
     PetscCall(tissues_.Generate(comm_, &tissue_));

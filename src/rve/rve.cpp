@@ -187,8 +187,8 @@ PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm)
   {
     PetscReal particles, springs;
     cell.Count((PetscReal)spec.cells, (PetscReal)spec.cells, true, &particles, &springs);
-    const std::string what = "one RVE of " + std::to_string((long long)spec.cells) + " x " + std::to_string((long long)spec.cells) + " cells (" +
-                             std::to_string((long long)particles) + " particles)";
+    const std::string what = "one RVE of -rve_cells " + std::to_string((long long)spec.cells) + " (" + std::to_string((long long)spec.cells) + " x " +
+                             std::to_string((long long)spec.cells) + " cells, " + std::to_string((long long)particles) + " particles)";
     PetscCall(CheckCount(comm, 2 * particles, what));
     PetscCall(CheckMemory(comm, BytesPerRVE(particles), what));
   }

@@ -177,6 +177,13 @@ PetscErrorCode SquareGridGenerator::Estimate(PetscReal *particles, PetscReal *sp
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+std::string SquareGridGenerator::SizeOptions() const
+{
+  return "-tissue_cells_x " + std::to_string((long long)spec.cells_x) + " -tissue_cells_y " + std::to_string((long long)spec.cells_y) +
+         " -tissue_springs_per_side " + std::to_string((long long)spec.springs_per_side) + " -tissue_fluid_per_cell " +
+         std::to_string((long long)spec.fluid_per_cell);
+}
+
 PetscErrorCode SquareGridGenerator::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;

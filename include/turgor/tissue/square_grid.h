@@ -37,6 +37,7 @@ public:
   PetscErrorCode SetFromOptions(MPI_Comm comm) override { return spec.SetFromOptions(comm, true); }
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateSquareGridTissue(comm, spec, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
+  std::string    SizeOptions() const override;
   PetscErrorCode View(PetscViewer viewer) const override;
 
   SquareGridSpec spec;

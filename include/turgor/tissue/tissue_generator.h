@@ -19,7 +19,9 @@ public:
   /* Particles and springs the tissue will have, computed in floating point before anything is
      allocated (memory estimates; counts beyond PetscInt). */
   virtual PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const = 0;
-  virtual PetscErrorCode View(PetscViewer viewer) const                           = 0;
+  /* The options and values that set the size, for messages ("-tissue_cells_x 4 ..."). */
+  virtual std::string    SizeOptions() const            = 0;
+  virtual PetscErrorCode View(PetscViewer viewer) const = 0;
 };
 
 using TissueGeneratorCreator = Registry<TissueGenerator>::Creator;
