@@ -11,6 +11,13 @@
   compare_runs.py numbers A B RELTOL         two files of whitespace-separated numbers agree
                                              (|a - b| <= RELTOL * max |b|, per line)
   compare_runs.py identical A_DIR B_DIR KEY...  tip.csv byte for byte, and summary.json[KEY] equal
+  compare_runs.py freefall DIR G TOL         the tip falls freely: |tip(t) + G t^2 / 2| <= TOL (µm)
+  compare_runs.py settling DIR RELTOL        a damped oscillation about a rest state: the tip's range
+                                             shrinks from third to third of the history, and the
+                                             thirds' means agree within RELTOL of their size
+  compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
+                                             CSV[ROW][NAME] (minus CSV[BASE_ROW][NAME]) is EXPECTED
+                                             within RELTOL (relative); ROW -1 is the last row
 """
 import csv, json, math, sys
 
@@ -93,6 +100,32 @@ def main(argv):
             if sa[k] != sb[k]:
                 sys.exit(f"FAIL: summary.json '{k}': {sa[k]} vs {sb[k]}")
         print(f"tip.csv identical ({len(ta)} bytes); equal: {json.dumps({k: sa[k] for k in argv[4:]})}")
+    elif mode == "freefall":
+        g, tol = float(argv[3]), float(argv[4])
+        err = max(abs(y + 0.5 * g * t * t) for t, y in tip(argv[2]))
+        print(f"max |tip + g t^2/2| = {err:.3e} µm (g = {g})")
+        if not err <= tol:
+            sys.exit(f"FAIL: not a free fall within {tol} µm")
+    elif mode == "settling":
+        y = [v for _, v in tip(argv[2])]
+        n = len(y) // 3
+        thirds = [y[:n], y[n : 2 * n], y[2 * n :]]
+        ranges = [max(p) - min(p) for p in thirds]
+        means = [sum(p) / len(p) for p in thirds]
+        spread = (max(means) - min(means)) / max(abs(m) for m in means)
+        print(f"range by thirds {['%.4g' % r for r in ranges]} µm, means {['%.6g' % m for m in means]} µm (spread {spread:.2e})")
+        if not (ranges[0] > ranges[1] > ranges[2]):
+            sys.exit("FAIL: the oscillation does not decay")
+        if not spread <= float(argv[3]):
+            sys.exit(f"FAIL: the mean moves by more than {argv[3]}")
+    elif mode == "column":
+        rows = list(csv.DictReader(open(argv[2])))
+        name, row, expected, tol = argv[3], int(argv[4]), float(argv[5]), float(argv[6])
+        value = float(rows[row][name]) - (float(rows[int(argv[7])][name]) if len(argv) > 7 else 0.0)
+        err = abs(value - expected) / abs(expected)
+        print(f"{argv[2]}: {name}[{row}]{' - ' + name + '[' + argv[7] + ']' if len(argv) > 7 else ''} = {value:.8g}, expected {expected:.8g} (relative error {err:.2e})")
+        if not err <= tol:
+            sys.exit(f"FAIL: above {tol}")
     else:
         sys.exit(__doc__)
 

@@ -41,7 +41,11 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   PetscOptionsBegin(comm, NULL, "Renamed options of the coarse model", "turgor");
   PetscCall(PetscOptionsDeprecated("-coarse_mesh_file", "-coarse_dm_plex_filename", "0.2", "the mesh is read by DMSetFromOptions"));
   PetscOptionsEnd();
-  PetscOptionsBegin(comm, "coarse_", "Coarse FE^2 model (TW 562 §3.3); the mesh: -coarse_dm_plex_* (DMSetFromOptions)", "turgor");
+  PetscOptionsBegin(comm, "coarse_",
+                    "Coarse FE^2 model (TW 562 §3.3). The mesh is PETSc's (DMSetFromOptions, -coarse_dm_plex_*): a box, -coarse_dm_plex_simplex 0 "
+                    "-coarse_dm_plex_box_faces nx,ny -coarse_dm_plex_box_lower x0,y0 -coarse_dm_plex_box_upper x1,y1 (default 4,4 and 0,0 to 400,400 µm), "
+                    "or a file, -coarse_dm_plex_filename mesh.msh; -coarse_dm_refine n refines it",
+                    "turgor");
   PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseSpec", label, label, sizeof label, NULL));
   PetscCall(
     PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));

@@ -10,7 +10,7 @@ namespace turgor {
    removes. */
 static const char *const kOutputFiles[] = {"summary.json", "tip.csv", "rve.csv", "particles.h5", "particles.xmf", "coarse.h5", "coarse.xmf"};
 
-PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite)
+PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite, bool *prepared)
 {
   char        buf[PETSC_MAX_PATH_LEN];
   PetscBool   replace = *overwrite ? PETSC_TRUE : PETSC_FALSE;
@@ -27,6 +27,16 @@ PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite)
                              "turgor", replace, &replace, NULL));
   PetscOptionsEnd();
   PetscCheck(buf[0], comm, PETSC_ERR_ARG_WRONG, "Option -output_dir: empty");
+  {
+    PetscBool help;
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    *prepared = !help;
+    if (help) { /* -help lists options: no directory is created, cleared or written */
+      *dir       = buf;
+      *overwrite = replace;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
     namespace fs = std::filesystem;

@@ -31,8 +31,7 @@ PetscErrorCode StrainPathRun::SetFromOptions()
   PetscCheck(t_final_ > 0 && std::isfinite(t_final_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_t_final = %g: must be > 0 and finite", (double)t_final_);
   PetscCheck(std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_rate = %g: must be finite", (double)rate_);
   PetscCall(pool_.SetFromOptions());
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_));
-  have_dir_ = true;
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -26,8 +26,7 @@ static const PetscReal kDefaultFinalTime = 300.0;
 PetscErrorCode RunOutputSpec::SetFromOptions(MPI_Comm comm, const std::string &prefix)
 {
   PetscFunctionBeginUser;
-  PetscCall(OutputDirectory(comm, &dir, &overwrite));
-  ready = true;
+  PetscCall(OutputDirectory(comm, &dir, &overwrite, &ready));
   PetscOptionsBegin(comm, prefix.c_str(), "Outputs of the run", "turgor");
   PetscCall(PetscOptionsInt("-tip_samples", "Samples of the tip displacement in tip.csv over [0, ts_max_time] (by TS interpolation)", "RunOutputSpec", samples,
                             &samples, NULL));
@@ -89,12 +88,12 @@ PetscErrorCode TimeRun::SetUp()
   sampler_.Configure(t_final_, out_.samples, out_.snapshots, out_.progress_interval);
   PetscCall(Report());
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  if (rank == 0) {
+  if (rank == 0 && out_.ready) {
     std::vector<std::string> columns = {"time"};
     for (const std::string &c : ObservedColumns()) columns.push_back(c);
     PetscCall(tip_csv_.Open(PETSC_COMM_SELF, out_.dir + "/tip.csv", columns));
   }
-  if (out_.snapshots > 0) PetscCall(OpenSnapshots());
+  if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

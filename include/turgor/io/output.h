@@ -12,8 +12,9 @@ namespace turgor {
 /* Read -output_dir (default: *dir, or ./out if empty) and -output_overwrite (default *overwrite),
    and make the directory ready on rank 0: created if missing; if it is not empty it is refused
    unless overwrite, which removes the files turgor writes (summary.json, tip.csv, ...) and keeps
-   any others. A run then writes only files it owns. */
-PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite);
+   any others. A run then writes only files it owns. Under -help nothing is touched on disk and
+   *prepared is false (the run only lists its options); otherwise true. */
+PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite, bool *prepared);
 
 /* A CSV file with a header row; numbers are written with full precision. */
 class CsvWriter {

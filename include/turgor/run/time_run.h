@@ -25,7 +25,7 @@ struct RunOutputSpec {
   PetscInt    snapshots         = 20;    /* field snapshots over [0, ts_max_time]; 0 = none */
   PetscReal   progress_interval = 10;    /* seconds of wall time between progress lines; 0 = none */
   bool        overwrite         = false; /* -output_overwrite: replace an earlier run's outputs */
-  bool        ready             = false; /* the directory is this run's (set by SetFromOptions) */
+  bool        ready             = false; /* the directory is this run's, and written (not under -help) */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, const std::string &prefix);
 };

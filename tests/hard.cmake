@@ -1,0 +1,103 @@
+# The hard-case suite (label hard): legal but demanding scenes from config/hard/, each with its
+# expected outcome (written in the scene's header too): it completes and its answer is checked
+# against a second method, an analytic value or a tighter run -- or it fails cleanly: exit status 1,
+# the reason named, summary.json "failed" (tests/expect_error.py). Cases marked np2 run on two
+# MPI ranks as well.
+set(HARD ${PROJECT_SOURCE_DIR}/config/hard)
+set(VERLET -ts_type basicsymplectic -fine_dt_safety 0.5)
+# a run of scene NAME (extra options after it) into hard/OUT, a fixture for the checks
+function(turgor_hard_run out scene)
+  turgor_add_test(hard_${out} COMMAND turgor_app -options_file_yaml ${HARD}/${scene}.yaml -output_dir hard/${out} -output_overwrite ${ARGN}
+    LABELS hard SETUP hard_${out} TIMEOUT 300)
+endfunction()
+function(turgor_hard_run_np2 out scene)
+  turgor_add_test(hard_${out} COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> -options_file_yaml ${HARD}/${scene}.yaml -output_dir hard/${out}
+    -output_overwrite ${ARGN} LABELS hard mpi SETUP hard_${out} TIMEOUT 300)
+endfunction()
+# a check on the fixtures it names
+function(turgor_hard_check name requires)
+  turgor_add_test(hard_${name} COMMAND ${ARGN} LABELS hard REQUIRES "${requires}")
+endfunction()
+# a scene that must fail cleanly with a message matching REGEX
+function(turgor_hard_fails name scene regex)
+  turgor_add_test(hard_${name} COMMAND ${BAD} "${regex}" $<TARGET_FILE:turgor_app> -options_file_yaml ${HARD}/${scene}.yaml -output_dir hard/${name}
+    -output_overwrite ${ARGN} LABELS hard TIMEOUT 300)
+endfunction()
+function(turgor_hard_fails_np2 name scene regex)
+  turgor_add_test(hard_${name} COMMAND ${BAD} "${regex}" ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> -options_file_yaml ${HARD}/${scene}.yaml -output_dir
+    hard/${name} -output_overwrite ${ARGN} LABELS hard mpi TIMEOUT 300)
+endfunction()
+set(HCHECK ${CMAKE_CURRENT_SOURCE_DIR}/compare_runs.py)
+
+# --- fine
+# 1000x stiffer walls: DOPRI and Verlet agree; so do 1 and 2 ranks (np2)
+turgor_hard_run(fine_stiff_walls fine_stiff_walls)
+turgor_hard_run(fine_stiff_walls_verlet fine_stiff_walls ${VERLET})
+turgor_hard_run_np2(fine_stiff_walls_np2 fine_stiff_walls)
+turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 1e-5)
+turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tip hard/fine_stiff_walls_np2 hard/fine_stiff_walls 1e-10)
+# 500x load: DOPRI and Verlet agree
+turgor_hard_run(fine_large_load fine_large_load)
+turgor_hard_run(fine_large_load_verlet fine_large_load ${VERLET})
+turgor_hard_check(fine_large_load_agree "hard_fine_large_load;hard_fine_large_load_verlet" ${HCHECK} tiprel hard/fine_large_load_verlet hard/fine_large_load 2e-3)
+# tolerances 1e-1 and 1e-9; Verlet at 0.1x and 1x its limit; 2x its limit fails cleanly
+turgor_hard_run(fine_loose_tolerance fine_loose_tolerance)
+turgor_hard_run(fine_tight_tolerance fine_tight_tolerance)
+turgor_hard_run(fine_verlet_tenth_limit fine_verlet_tenth_limit)
+turgor_hard_run(fine_verlet_at_limit fine_verlet_at_limit)
+turgor_hard_check(fine_loose_tolerance_bound "hard_fine_loose_tolerance;hard_fine_tight_tolerance" ${HCHECK} tiprel hard/fine_loose_tolerance hard/fine_tight_tolerance 1e-2)
+turgor_hard_check(fine_tight_tolerance_agrees "hard_fine_tight_tolerance;hard_fine_verlet_tenth_limit" ${HCHECK} tiprel hard/fine_verlet_tenth_limit hard/fine_tight_tolerance
+  5e-5)
+turgor_hard_check(fine_verlet_at_limit_agrees "hard_fine_tight_tolerance;hard_fine_verlet_at_limit" ${HCHECK} tiprel hard/fine_verlet_at_limit hard/fine_tight_tolerance
+  5e-4)
+turgor_hard_fails(fine_verlet_twice_limit fine_verlet_at_limit "Non-finite acceleration of particle [0-9]+ at t = .*the fixed step is above the stability limit"
+  -ts_dt 0.0027)
+# a long run: a damped oscillation about the static deflection
+turgor_hard_run(fine_long_time fine_long_time)
+turgor_hard_check(fine_long_time_settles hard_fine_long_time ${HCHECK} settling hard/fine_long_time 3e-3)
+# loss of turgor and flaccid cells: DOPRI's answer does not depend on its tolerance
+foreach(case loss_of_turgor flaccid)
+  turgor_hard_run(fine_${case} fine_${case})
+  turgor_hard_run(fine_${case}_tight fine_${case} -ts_rtol 1e-6 -ts_atol 1e-6)
+  turgor_hard_check(fine_${case}_converged "hard_fine_${case};hard_fine_${case}_tight" ${HCHECK} tiprel hard/fine_${case} hard/fine_${case}_tight 2e-4)
+endforeach()
+# walls without springs: the tip falls freely
+turgor_hard_run(fine_zero_stiffness_walls fine_zero_stiffness_walls)
+turgor_hard_check(fine_zero_stiffness_walls_fall hard_fine_zero_stiffness_walls ${HCHECK} freefall hard/fine_zero_stiffness_walls 0.2 1e-5)
+
+# --- rve
+# shear to 500%: a wall is crossed near F12 = 0.9 (named, failed summary), on 1 and 2 ranks
+turgor_hard_fails(rve_shear_500 rve_shear_500 "evaluation failed: .*(F = \\[1\\. 0\\.9; 0\\. 1\\.\\])")
+turgor_hard_fails_np2(rve_shear_500_np2 rve_shear_500 "evaluation failed: .*(F = \\[1\\. 0\\.9; 0\\. 1\\.\\])")
+# compression to 1%: relaxes down to 3%, fails cleanly at 1%
+turgor_hard_fails(rve_compression_99 rve_compression_99 "t = 100\\. µs: evaluation failed: Psi-tc did not converge")
+# 1000x stiffer walls: the stress and the tangent of the stretched walls, k_w eps / 2 and k_w / 2
+turgor_hard_run(rve_stiff_walls rve_stiff_walls)
+turgor_hard_check(rve_stiff_walls_stress hard_rve_stiff_walls ${HCHECK} column hard/rve_stiff_walls/rve.csv s11 -1 1e5 1e-3 0)
+turgor_hard_check(rve_stiff_walls_tangent hard_rve_stiff_walls ${HCHECK} column hard/rve_stiff_walls/rve.csv De11_11 -1 2e6 1e-3)
+
+# --- fe2
+# 100x load: the RVEs' walls are crossed; the run fails cleanly, naming where and why (np2 too)
+turgor_hard_fails(fe2_large_load fe2_large_load "material points failed at t = .*(fluid particles outside their cell|Psi-tc did not converge)")
+turgor_hard_fails_np2(fe2_large_load_np2 fe2_large_load "material points failed at t = .*(fluid particles outside their cell|Psi-tc did not converge)")
+# tolerances 1e-1 and 1e-9
+turgor_hard_run(fe2_loose_tolerance fe2_loose_tolerance)
+turgor_hard_run(fe2_tight_tolerance fe2_tight_tolerance)
+turgor_hard_check(fe2_loose_tolerance_bound "hard_fe2_loose_tolerance;hard_fe2_tight_tolerance" ${HCHECK} tiprel hard/fe2_loose_tolerance hard/fe2_tight_tolerance 5e-3)
+# 1000x stiffer walls: Radau IIA and DOPRI agree; 1 and 2 ranks agree
+turgor_hard_run(fe2_stiff_walls fe2_stiff_walls)
+turgor_hard_run(fe2_stiff_walls_rk fe2_stiff_walls -ts_type rk)
+turgor_hard_run_np2(fe2_stiff_walls_np2 fe2_stiff_walls)
+turgor_hard_check(fe2_stiff_walls_agree "hard_fe2_stiff_walls;hard_fe2_stiff_walls_rk" ${HCHECK} tiprel hard/fe2_stiff_walls_rk hard/fe2_stiff_walls 1e-3)
+turgor_hard_check(fe2_stiff_walls_ranks "hard_fe2_stiff_walls;hard_fe2_stiff_walls_np2" ${HCHECK} tiprel hard/fe2_stiff_walls_np2 hard/fe2_stiff_walls 1e-6)
+# a crushed neo-Hookean tissue: steps that invert an element are rejected; the answer converges
+turgor_hard_run(fe2_neo_hookean_crush fe2_neo_hookean_crush)
+turgor_hard_run(fe2_neo_hookean_crush_tight fe2_neo_hookean_crush -ts_rtol 1e-7 -ts_atol 1e-7)
+turgor_hard_check(fe2_neo_hookean_crush_rejects hard_fe2_neo_hookean_crush ${HCHECK} positive hard/fe2_neo_hookean_crush rejected_steps)
+turgor_hard_check(fe2_neo_hookean_crush_converged "hard_fe2_neo_hookean_crush;hard_fe2_neo_hookean_crush_tight" ${HCHECK} tiprel hard/fe2_neo_hookean_crush
+  hard/fe2_neo_hookean_crush_tight 1e-3)
+# inverted and collapsed elements in the mesh: refused before any work
+turgor_hard_fails(fe2_folded_element fe2_loose_tolerance "Coarse mesh: element [0-9]+ with vertices .* is degenerate or folded"
+  -coarse_dm_plex_filename ${CMAKE_CURRENT_SOURCE_DIR}/data/folded_quad.msh)
+turgor_hard_fails(fe2_collapsed_element fe2_loose_tolerance "Coarse mesh: element [0-9]+ with vertices .* is degenerate or folded: det J = 0"
+  -coarse_dm_plex_filename ${CMAKE_CURRENT_SOURCE_DIR}/data/collapsed_quad.msh)
