@@ -26,45 +26,82 @@ PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 
 PetscErrorCode Repulsion::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
+  const size_t ns = P.springs.size();
   PetscFunctionBeginUser;
   nb.RequestParticleSpringPairs(cutoff);
-  seg_.resize(P.springs.size());
+  seg_.resize(ns);
+  joint_.resize(2 * ns);
+  ties_.assign(ns, 0);
+  for (size_t s = 0; s < ns; s++)
+    for (int e = 0; e < 2; e++) {
+      const PetscInt code = 2 * (PetscInt)s + e, other = P.springs[s].joint[e];
+      PetscCheck(other < (PetscInt)(2 * ns) && (other < 0 || P.springs[other / 2].joint[other % 2] == code), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+                 "Spring %" PetscInt_FMT ": its joint at end %d is not mutual", (PetscInt)s, e);
+      joint_[code] = other;
+      /* a particle exactly on the bisector belongs to the end with the lower code (and always to an
+         end where the wall ends: g = 0 there) */
+      if (other < 0 || code < other) ties_[s] |= (unsigned char)(1 << e);
+    }
   damping_coefficient_.resize(P.n);
   for (PetscInt i = 0; i < P.n; i++) damping_coefficient_[i] = 2.0 * std::sqrt(6.0 * strength * P.mass[i]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Closest point of spring [x1, x2] to particle x: x^ = x1 + t (x2 - x1), t in [0, 1]
-   (the seed's c is 1 - t). Returns d = x - x^, t, and the spring vector. */
-struct SegmentContact {
-  PetscReal dx, dy, t, tx, ty;
-};
-static inline SegmentContact Closest(const PetscReal *x, const PetscReal *x1, const PetscReal *x2)
+/* Spring vectors and the bisectors of the straight joints, once per evaluation (a spring is near
+   ~7 particles in a tissue). At a joint of springs s (outward unit direction u from the joint) and
+   s' (u'), the bisector is the line through the joint point normal to g = u - u'; s takes the
+   particles with (p - x_joint) . g > 0 and s' those with < 0 (g' = -g exactly). */
+void Repulsion::Segments(const ForceInput &in)
 {
-  SegmentContact c;
-  c.tx               = x2[0] - x1[0];
-  c.ty               = x2[1] - x1[1];
-  const PetscReal wx = x[0] - x1[0], wy = x[1] - x1[1], L2 = c.tx * c.tx + c.ty * c.ty;
-  c.t  = L2 > 0 ? std::min((PetscReal)1, std::max((PetscReal)0, (wx * c.tx + wy * c.ty) / L2)) : 0;
-  c.dx = wx - c.t * c.tx;
-  c.dy = wy - c.t * c.ty;
-  return c;
+  const PetscReal   *x = in.x;
+  const ParticleSet &P = *in.P;
+  for (size_t s = 0; s < P.springs.size(); s++) {
+    const PetscInt   i1 = P.springs[s].i, i2 = P.springs[s].j;
+    const PetscReal *sx = in.images->x[P.springs[s].image], *sv = in.images->v[P.springs[s].image];
+    const PetscReal  tx = x[2 * i2] + sx[0] - x[2 * i1], ty = x[2 * i2 + 1] + sx[1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
+    seg_[s] = {
+      tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, sx[0], sx[1], sv[0], sv[1], {0, 0},
+                              {0, 0}
+    };
+  }
+  for (size_t s = 0; s < P.springs.size(); s++)
+    for (int e = 0; e < 2; e++) {
+      const PetscInt other = joint_[2 * s + e];
+      if (other < 0) continue;
+      const Segment  &a = seg_[s], &b = seg_[other / 2];
+      const PetscReal sa = e ? -a.inv_L : a.inv_L, sb = other % 2 ? -b.inv_L : b.inv_L; /* outward: +t at end i, -t at end j */
+      seg_[s].gx[e] = sa * a.tx - sb * b.tx;
+      seg_[s].gy[e] = sa * a.ty - sb * b.ty;
+    }
 }
 
-/* Closest point for pair q of the list, with the images of the spring and of its second end point. */
-static inline SegmentContact ClosestImage(const ForceInput &in, const PointSegmentList &L, size_t q)
+/* The closest point of pair q's spring image to its particle, and whether the pair counts: p must
+   be on this spring's side of the bisector at both ends. Both p - x1 and p - x2 are taken from the
+   positions directly, so that a particle on a joint's bisector is seen identically from both springs
+   (without periodic images: bitwise) and counted exactly once. */
+inline bool Repulsion::Pair(const ForceInput &in, const PointSegmentList &L, size_t q, PairGeometry &g) const
 {
+  const PetscReal *x  = in.x;
   const Spring    &sp = in.P->springs[L.s[q]];
-  const PetscReal *sk = in.images->x[L.img[q]], *se = in.images->x[sp.image];
-  const PetscReal  x1[2] = {in.x[2 * sp.i] + sk[0], in.x[2 * sp.i + 1] + sk[1]};
-  const PetscReal  x2[2] = {in.x[2 * sp.j] + se[0] + sk[0], in.x[2 * sp.j + 1] + se[1] + sk[1]};
-  return Closest(&in.x[2 * L.p[q]], x1, x2);
+  const Segment   &sg = seg_[L.s[q]];
+  const PetscInt   p = L.p[q], i1 = sp.i, i2 = sp.j;
+  const PetscReal *px = in.images->x[L.img[q]]; /* the spring's image near p */
+  const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
+  const PetscReal  ux = x[2 * p] - x[2 * i2] - sg.sx - px[0], uy = x[2 * p + 1] - x[2 * i2 + 1] - sg.sy - px[1];
+  const PetscReal  gi = wx * sg.gx[0] + wy * sg.gy[0], gj = ux * sg.gx[1] + uy * sg.gy[1];
+  const unsigned   tie = ties_[L.s[q]];
+  if (gi < 0 || (gi == 0 && !(tie & 1)) || gj < 0 || (gj == 0 && !(tie & 2))) return false; /* (a NaN position still gives a NaN force) */
+  g.t  = std::min((PetscReal)1, std::max((PetscReal)0, (wx * sg.tx + wy * sg.ty) * sg.inv_L2));
+  g.dx = wx - g.t * sg.tx;
+  g.dy = wy - g.t * sg.ty;
+  g.r2 = g.dx * g.dx + g.dy * g.dy;
+  return true;
 }
 
 template <bool VIRIAL>
 PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
-  const PetscReal        *x = in.x, *v = in.v;
+  const PetscReal        *v   = in.v;
   const ParticleSet      &P   = *in.P;
   const PointSegmentList &L   = in.nb->ParticleSpringPairs();
   const PetscReal         x02 = cutoff * cutoff, ix06 = 1.0 / (x02 * x02 * x02);
@@ -72,22 +109,14 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
   PetscInt                active = 0;
 
   PetscFunctionBeginUser;
-  /* spring vectors once per evaluation: a spring is near ~7 particles in a tissue */
-  for (size_t s = 0; s < P.springs.size(); s++) {
-    const PetscInt   i1 = P.springs[s].i, i2 = P.springs[s].j;
-    const PetscReal *sx = in.images->x[P.springs[s].image], *sv = in.images->v[P.springs[s].image];
-    const PetscReal  tx = x[2 * i2] + sx[0] - x[2 * i1], ty = x[2 * i2 + 1] + sx[1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
-    seg_[s] = {tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, sv[0], sv[1]};
-  }
+  Segments(in);
   for (size_t q = 0; q < L.size(); q++) {
-    const PetscInt   p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
-    const Segment   &sg = seg_[L.s[q]];
-    const PetscReal *px = in.images->x[L.img[q]]; /* the spring's image near p */
-    const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
-    const PetscReal  t  = std::min((PetscReal)1, std::max((PetscReal)0, (wx * sg.tx + wy * sg.ty) * sg.inv_L2)); /* x^ = x1 + t (x2 - x1) */
-    const PetscReal  dx = wx - t * sg.tx, dy = wy - t * sg.ty, r2 = dx * dx + dy * dy;
-    if (r2 >= x02) continue;
+    PairGeometry g;
+    if (!Pair(in, L, q, g) || g.r2 >= x02) continue;
     active++;
+    const PetscInt  p = L.p[q], i1 = P.springs[L.s[q]].i, i2 = P.springs[L.s[q]].j;
+    const Segment  &sg = seg_[L.s[q]];
+    const PetscReal t = g.t, dx = g.dx, dy = g.dy, r2 = g.r2;
     /* a particle exactly on a spring (r = 0) gets a NaN force: the caller rejects the state
        (a too large step or a crossed wall) instead of aborting */
     const PetscReal ir = 1.0 / std::sqrt(r2), ir2 = ir * ir, ir6 = ir2 * ir2 * ir2;
@@ -119,7 +148,7 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
   }
   if (VIRIAL)
     for (int k = 0; k < 4; k++) virial[k] += w[k];
-  PetscCall(PetscLogFlops(8.0 * P.springs.size() + 14.0 * L.size() + 50.0 * active));
+  PetscCall(PetscLogFlops(14.0 * P.springs.size() + 24.0 * L.size() + 50.0 * active));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -137,10 +166,12 @@ PetscErrorCode Repulsion::Energy(const ForceInput &in, PetscReal *E, PetscBool *
   const PetscReal         x05 = std::pow(cutoff, 5), x06 = x05 * cutoff;
 
   PetscFunctionBeginUser;
+  Segments(in);
   *E = 0;
   for (size_t q = 0; q < L.size(); q++) {
-    const SegmentContact c = ClosestImage(in, L, q);
-    const PetscReal      r = std::sqrt(c.dx * c.dx + c.dy * c.dy);
+    PairGeometry g;
+    if (!Pair(in, L, q, g)) continue;
+    const PetscReal r = std::sqrt(g.r2);
     if (r >= cutoff) continue;
     *E += strength * (1.0 / (5.0 * std::pow(r, 5)) + r / x06 - 6.0 / (5.0 * x05));
   }
@@ -157,9 +188,11 @@ PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<Ti
   PetscReal               best = PETSC_MAX_REAL, rbest = 0;
 
   PetscFunctionBeginUser;
+  Segments(in);
   for (size_t q = 0; q < L.size(); q++) {
-    const SegmentContact c = ClosestImage(in, L, q);
-    const PetscReal      r = std::sqrt(c.dx * c.dx + c.dy * c.dy);
+    PairGeometry g;
+    if (!Pair(in, L, q, g)) continue;
+    const PetscReal r = std::sqrt(g.r2);
     if (r >= cutoff || r <= 0) continue;
     /* reduced mass of the particle against an end point */
     const PetscInt  p = L.p[q], i1 = P.springs[L.s[q]].i;
@@ -183,8 +216,9 @@ PetscErrorCode Repulsion::AddTimeStepLimits(const ForceInput &in, std::vector<Ti
 PetscErrorCode Repulsion::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s\n", (double)strength, (double)cutoff,
-                                   angle_factor ? "on" : "off", damping ? (damping_taper ? "on, tapered to 0 at x0" : "on, literal") : "off"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "repulsion: lambda = %g µN µm^6, x0 = %g µm, angle factor %s, damping %s, each straight wall pushes once\n",
+                                   (double)strength, (double)cutoff, angle_factor ? "on" : "off",
+                                   damping ? (damping_taper ? "on, tapered to 0 at x0" : "on, literal") : "off"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -116,9 +116,9 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridS
       T.cell_wall_images.push_back(img);
       T.cell_walls.push_back(ring);
     }
+  T.period[0] = nx * spec.cell_size; /* before Finalize: the springs across the boundary join their images */
+  T.period[1] = ny * spec.cell_size;
   T.Finalize();
-  T.period[0]          = nx * spec.cell_size;
-  T.period[1]          = ny * spec.cell_size;
   T.particles.fixed[0] = 1; /* the corner at the origin: the four RVE corners are one particle */
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -43,11 +43,15 @@ struct PeriodicImages {
 };
 
 /* A wall spring (bonded pair) with its rest length; end point j is taken at the given image of
-   particle j (periodic RVEs bond across the cell boundary). */
+   particle j (periodic RVEs bond across the cell boundary). joint[e] names the spring end
+   (2 s' + e', e' = 0 for i, 1 for j) that continues this spring's wall straight through its end i
+   (e = 0) or j (e = 1), -1 where the wall ends or turns a corner there; Tissue::Finalize sets it
+   from the reference positions (the repulsion counts a straight wall once, docs/model.md). */
 struct Spring {
   PetscInt  i, j;
   PetscReal rest_length;
-  int       image = PeriodicImages::kSelf;
+  int       image    = PeriodicImages::kSelf;
+  PetscInt  joint[2] = {-1, -1};
 };
 
 /* Constant per-particle data. Layout is ready for distribution: the first n_owned particles are

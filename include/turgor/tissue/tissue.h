@@ -19,7 +19,8 @@ struct Tissue {
 
   PetscInt NumCells() const { return (PetscInt)cell_walls.size(); }
   /* Build a tissue by hand (tests, custom geometries): add particles and springs, then Finalize(),
-     which sets global ids, clears the clamps and computes the bounding box. */
+     which sets global ids, clears the clamps, computes the bounding box and finds the straight
+     joints of the walls (Spring::joint; a periodic tissue sets `period` first). */
   PetscInt AddParticle(PetscReal x, PetscReal y, PetscReal mass, ParticleKind kind, PetscInt cell = -1);
   void     AddSpring(PetscInt i, PetscInt j); /* rest length = current distance */
   void     Finalize();
