@@ -174,6 +174,7 @@ PetscErrorCode FineRun::SetUpModel()
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "position", NULL, RHSPosition, this));
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "momentum", NULL, RHSMomentum, this));
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
+  if (model_.HasInternalState()) PetscCall(TSSetPostStep(ts_, PostStep));
   PetscCall(ChooseTimeStep());
   dt_initial_ = spec_.dt > 0 ? spec_.dt : spec_.dt_safety * dt_stable_;
   PetscCall(TSSetTimeStep(ts_, dt_initial_));
@@ -348,6 +349,23 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     PetscCall(VecRestoreArray(Vdot, &a));
     PetscCall(VecRestoreArrayRead(X, &x));
     run->rhs_evals_++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+PetscErrorCode FineRun::PostStep(TS ts)
+{
+  return TURGOR_GUARDED({
+    TimeRun           *base;
+    Vec                U;
+    const PetscScalar *u;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetApplicationContext(ts, &base));
+    FineRun *run = static_cast<FineRun *>(base);
+    PetscCall(TSGetSolution(ts, &U));
+    PetscCall(VecGetArrayRead(U, &u));
+    PetscCall(run->model_.AcceptStep(u, u + 2 * run->n_local_));
+    PetscCall(VecRestoreArrayRead(U, &u));
     PetscFunctionReturn(PETSC_SUCCESS);
   });
 }

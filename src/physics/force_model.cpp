@@ -156,6 +156,22 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(nb_.Update(*P_, x, images_));
+  const ForceInput in = {P_, x, v, &nb_, &images_};
+  for (auto &t : terms_) PetscCall(t->AcceptStep(in));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool ForceModel::HasInternalState() const
+{
+  for (auto &t : terms_)
+    if (t->HasInternalState()) return true;
+  return false;
+}
+
 PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete)
 {
   PetscFunctionBeginUser;

@@ -54,6 +54,16 @@ struct Spring {
   PetscInt  joint[2] = {-1, -1};
 };
 
+/* A polygonal cell (node-file, Voronoi and polyline tissues; the L-hyphen model): its nodes in
+   order around it, counter-clockwise for a closed cell, and bars[k] the spring joining nodes[k] to
+   nodes[k + 1] (for a closed cell the last bar joins the last node to the first). An open cell (a
+   container, a wall, a beam) has one bar fewer than nodes, no pressure and no self-contact. */
+struct PolygonCell {
+  std::vector<PetscInt> nodes;
+  std::vector<PetscInt> bars;
+  bool                  open = false;
+};
+
 /* Constant per-particle data. Layout is ready for distribution: the first n_owned particles are
    owned by this rank, the rest (none yet) would be halo copies; gid is the global id. */
 struct ParticleSet {
@@ -65,6 +75,12 @@ struct ParticleSet {
   std::vector<PetscInt>  gid;   /* [n] global id */
   std::vector<char>      fixed; /* [n] 1 if clamped (position and velocity held) */
   std::vector<Spring>    springs;
+  /* Polygonal tissues only (empty for the square grid, whose walls are shared by two cells): the
+     cells, the cell of every node (-1 for a particle in none), and the bar radius (a node is a disk
+     and a bar a capsule of this radius; neighbouring polygons are a distance 2 r apart at rest). */
+  std::vector<PolygonCell> polygons;
+  std::vector<PetscInt>    node_polygon; /* [n] when polygons is not empty */
+  PetscReal                bar_radius = 0;
 
   PetscInt Count(ParticleKind k) const
   {

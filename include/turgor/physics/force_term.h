@@ -61,6 +61,11 @@ public:
      frequencies); in.a holds the accelerations if NeedsAccelerations(). */
   virtual PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) { return PETSC_SUCCESS; }
   virtual bool           NeedsAccelerations() const { return false; }
+  /* Internal state (plastic angles, contact history) is updated here, once per accepted step, at
+     the accepted state; AddForces reads only the last accepted state, so that a result does not
+     depend on how many stages an integrator evaluates. */
+  virtual bool           HasInternalState() const { return false; } /* true: AcceptStep must be called */
+  virtual PetscErrorCode AcceptStep(const ForceInput &in) { return PETSC_SUCCESS; }
   /* A typical force of a cell of size `length` and fluid density `density` (an RVE scales its
      equations by it); 0 if the term sets none. */
   virtual PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const { return 0; }
