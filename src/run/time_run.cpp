@@ -118,6 +118,21 @@ PetscErrorCode TimeRun::CheckTSOptions()
   PetscCheck(std::isfinite(atol) && atol >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_atol = %g: must be finite and >= 0", (double)atol);
   PetscCheck(std::isfinite(rtol) && rtol >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -ts_rtol = %g: must be finite and >= 0", (double)rtol);
   PetscCall(TSGetAdapt(ts_, &adapt));
+  {
+    /* the smallest step an adaptive integrator may take (default 1e-10 of the run): below it the
+       run fails instead of crawling on (or not advancing at all: a step below the round-off of t)
+       at a state it cannot pass -- e.g. an RVE that fails for every step size */
+    PetscReal   dt_min, dt_max;
+    PetscBool   set;
+    const char *prefix;
+    PetscCall(TSGetOptionsPrefix(ts_, &prefix));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_adapt_dt_min", &set));
+    PetscCall(TSAdaptGetStepLimits(adapt, &dt_min, &dt_max));
+    if (!set) PetscCall(TSAdaptSetStepLimits(adapt, kMinStepFraction * t_final_, dt_max));
+    PetscCall(TSAdaptGetStepLimits(adapt, &dt_min_, NULL));
+    PetscCheck(std::isfinite(dt_min_) && dt_min_ >= 0 && dt_min_ < t_final_, comm_, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -ts_adapt_dt_min = %g: must be >= 0 and below -ts_max_time = %g", (double)dt_min_, (double)t_final_);
+  }
   PetscCall(PetscObjectTypeCompare((PetscObject)adapt, TSADAPTNONE, &fixed));
   PetscCheck(fixed || vatol || vrtol || atol > 0 || rtol > 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
              "Options -ts_rtol = %g and -ts_atol = %g: an adaptive integrator with both tolerances 0 has no error control (its steps grow without bound); give "
@@ -143,6 +158,17 @@ PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *
     TimeRun  *run = (TimeRun *)ctx;
     PetscBool stop;
     PetscFunctionBeginUser;
+    /* an accepted step below -ts_adapt_dt_min, or one that does not advance the time at all (below
+       the round-off of t), before the final time: the integrator is cutting its step at a state
+       it cannot pass, and would crawl on (or repeat) forever */
+    const PetscReal h = t - run->t_last_;
+    if (step > 0 && step != run->step_last_ && t < run->t_final_ &&
+        !(h >= run->dt_min_ && h > 64 * PETSC_MACHINE_EPSILON * PetscMax(PetscAbsReal(t), run->t_final_))) {
+      run->stalled_ = t - run->t_last_;
+      PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+    }
+    run->t_last_    = t;
+    run->step_last_ = step; /* TSSolve monitors the last step again when it stops */
     PetscCall(InterruptRequestedAll(run->comm_, &stop));
     if (stop && !run->interrupted_) { /* after this step: the outputs hold every sample up to here */
       run->interrupted_ = true;
@@ -169,6 +195,10 @@ PetscErrorCode TimeRun::Solve()
   wall_ = sampler_.Elapsed();
   PetscCall(TSGetConvergedReason(ts_, &reason));
   PetscCall(TSGetSolveTime(ts_, &t));
+  PetscCheck(stalled_ < 0, comm_, PETSC_ERR_NOT_CONVERGED,
+             "The %s run failed at t = %g µs: the time step fell to %g µs, below -ts_adapt_dt_min = %g µs (default 1e-10 of -ts_max_time): the "
+             "integrator cannot pass this state with any step: %s",
+             mode_.c_str(), (double)t, (double)stalled_, (double)dt_min_, FailureAdvice());
   PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "The %s run failed at t = %g µs (%s): %s", mode_.c_str(), (double)t, TSConvergedReasons[reason],
              FailureAdvice());
   PetscCall(AfterSolve());

@@ -98,14 +98,17 @@ private:
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
 
-  std::string    mode_;
-  CsvWriter      tip_csv_;
-  TimeSampler    sampler_;
-  PetscLogDouble wall_        = 0;
-  PetscReal      observed_    = 0;
-  PetscLogStage  stage_setup_ = 0, stage_solve_ = 0;
-  PetscLogEvent  ev_output_   = 0;
-  bool           interrupted_ = false, solving_ = false;
+  std::string                mode_;
+  CsvWriter                  tip_csv_;
+  TimeSampler                sampler_;
+  PetscLogDouble             wall_        = 0;
+  PetscReal                  observed_    = 0;
+  PetscLogStage              stage_setup_ = 0, stage_solve_ = 0;
+  PetscLogEvent              ev_output_   = 0;
+  bool                       interrupted_ = false, solving_ = false;
+  PetscReal                  t_last_ = 0, stalled_ = -1, dt_min_ = 0; /* stalled_: the accepted step below dt_min_ (>= 0) */
+  PetscInt                   step_last_       = -1;
+  static constexpr PetscReal kMinStepFraction = 1e-10; /* default -ts_adapt_dt_min / -ts_max_time */
 };
 
 } // namespace turgor
