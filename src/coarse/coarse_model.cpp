@@ -596,9 +596,13 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   if (!global_ok) {
     /* every failure is reported where it happened, without -info: the cause of a rejected step */
     counters_.failures++;
-    if (nfailed)
-      PetscCall(PetscSynchronizedPrintf(comm_, "[%d] material points failed at t = %g µs%s: %" PetscInt_FMT " of %zu on this rank; the first: %s\n", rank_,
-                                        (double)eval_time_, tangents ? " (with tangents)" : "", nfailed, response_.size(), first.c_str()));
+    if (nfailed) {
+      char when[128];
+      if (eval_where_.empty()) PetscCall(PetscSNPrintf(when, sizeof when, "at t = %g µs", (double)eval_time_));
+      else PetscCall(PetscStrncpy(when, eval_where_.c_str(), sizeof when));
+      PetscCall(PetscSynchronizedPrintf(comm_, "[%d] material points failed %s%s: %" PetscInt_FMT " of %zu on this rank; the first: %s\n", rank_, when,
+                                        tangents ? " (with tangents)" : "", nfailed, response_.size(), first.c_str()));
+    }
     PetscCall(PetscSynchronizedFlush(comm_, PETSC_STDOUT));
   }
   *ok              = global_ok ? PETSC_TRUE : PETSC_FALSE;
@@ -622,7 +626,28 @@ static Tensor2 StressPart(q1::PointPart part, const Tensor2 &sg)
   }
 }
 
-/* Local [0; f_int - f_ext], f_int,a = sum_q w_q J_q s_q F_q^-T grad_X N_a(q) with s_q the part of
+PetscErrorCode CoarseModel::RevertMaterials()
+{
+  PetscFunctionBeginUser;
+  PetscCall(pool_.Revert());
+  cached_valid_ = false; /* the cached responses came from the states just dropped */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::CreateFreeIS(IS *displacement, IS *velocity) const
+{
+  std::vector<PetscInt> u, v;
+  PetscFunctionBeginUser;
+  for (PetscInt off : free_rows_) {
+    u.insert(u.end(), {off, off + 1});
+    v.insert(v.end(), {off + 2, off + 3});
+  }
+  PetscCall(ISCreateGeneral(comm_, (PetscInt)u.size(), u.data(), PETSC_COPY_VALUES, displacement));
+  PetscCall(ISCreateGeneral(comm_, (PetscInt)v.size(), v.data(), PETSC_COPY_VALUES, velocity));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Local [0; f_int - lambda f_ext], f_int,a = sum_q w_q J_q s_q F_q^-T grad_X N_a(q) with s_q the part of
    sigma_q the rule takes there: sri, the deviatoric stress at the 2 x 2 Gauss points and the
    pressure tr(sigma)/2 at the centre (selective reduced integration); full, the whole stress at
    the 2 x 2 Gauss points. */
@@ -648,7 +673,7 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
       }
     }
     for (int a = 0; a < 4; a++)
-      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= f_ext_[8 * k + 2 * a + d];
+      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= load_factor_ * f_ext_[8 * k + 2 * a + d];
     PetscCall(DMPlexVecSetClosure(dm_, NULL, Floc, c, fe, ADD_VALUES));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

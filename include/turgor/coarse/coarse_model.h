@@ -85,8 +85,23 @@ public:
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
   PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
   PetscErrorCode CommitMaterials() { return pool_.Commit(); }
+  /* Back to the material points' last committed states (a rejected load increment); the cache is
+     dropped. */
+  PetscErrorCode RevertMaterials();
   /* The time of the states evaluated next (failure reports say when). */
-  void SetEvaluationTime(PetscReal t) { eval_time_ = t; }
+  void SetEvaluationTime(PetscReal t)
+  {
+    eval_time_ = t;
+    eval_where_.clear();
+  }
+  /* Failure reports say this instead of a time (a static solve: "at load factor 0.5"). */
+  void SetEvaluationWhere(const std::string &where) { eval_where_ = where; }
+  /* f_ext = factor x the body force (load stepping; default 1). */
+  void      SetLoadFactor(PetscReal factor) { load_factor_ = factor; }
+  PetscReal LoadFactor() const { return load_factor_; }
+  /* The global rows of the displacement dofs (ux, uy) and of the velocity dofs (vx, vy; there
+     f_int - f_ext) of the owned, unclamped vertices, vertex by vertex in the same order. */
+  PetscErrorCode CreateFreeIS(IS *displacement, IS *velocity) const;
 
   DM                    GetDM() const { return dm_; }
   Mat                   MassMatrix() const { return Mt_; }
@@ -142,7 +157,8 @@ private:
 
   /* options */
   CoarseSpec                                                spec_;
-  PetscReal                                                 g_[2] = {0.0, -0.2};
+  PetscReal                                                 g_[2]        = {0.0, -0.2};
+  PetscReal                                                 load_factor_ = 1.0;
   std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
 
   /* the quadrature rule and its material points per element (from spec_ at SetUp) */
@@ -161,6 +177,7 @@ private:
   std::vector<PetscInt>  cell_gid_; /* global element number of each local cell */
   PetscMPIInt            rank_      = 0;
   PetscReal              eval_time_ = 0; /* time of the state being evaluated (for reports) */
+  std::string            eval_where_;    /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;
