@@ -56,10 +56,11 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
   /* the nonlinear solver, with defaults through the API (the user's -fe2_static_snes_* win at
      SNESSetFromOptions in SetUp): Newton with full steps, the load cut-back being its
      globalisation -- a line search on |R| (bt, PETSc's default) takes steps of 0.1 on a bending
-     cantilever, whose axial residuals grow along a good bending step (19 Newton iterations where
-     full steps take 4, docs/benchmarks.md); -fe2_static_snes_linesearch_type cp (a critical point
-     of the energy along the step) does large loads in one increment -- and a direct solve of the
-     stiffness as -mode fe2 does (PCREDUNDANT on several ranks: the same result run to run) */
+     cantilever, whose axial residuals grow along a good bending step (65 Newton iterations and a
+     cut-back where full steps take 4, docs/benchmarks.md); -fe2_static_snes_linesearch_type cp
+     (a critical point of the energy along the step) does large loads in fewer increments -- and a
+     direct solve of the stiffness as -mode fe2 does (PCREDUNDANT on several ranks: the same result
+     run to run) */
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   PetscCall(SNESCreate(comm_, &snes_));
   PetscCall(SNESSetOptionsPrefix(snes_, "fe2_static_"));
