@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Compare two turgor runs' outputs (stdlib only, so CI needs no extra packages).
 
-  compare_runs.py tip A_DIR B_DIR TOL        tip.csv histories agree within TOL (absolute, µm)
+  compare_runs.py tip A_DIR B_DIR TOL        tip.csv histories agree within TOL (absolute, µm; a static
+                                             run's rows are load factors instead of times)
   compare_runs.py tiprel A_DIR REF_DIR TOL   max |tip_a - tip_ref| <= TOL * max |tip_ref|
   compare_runs.py positive DIR KEY           summary.json[KEY] > 0
   compare_runs.py final A_DIR B_DIR RELTOL   final tip displacements agree within RELTOL (relative)
@@ -23,8 +24,9 @@ import csv, json, math, sys
 
 
 def tip(d):
+    """(time, tip) rows; a static run's tip.csv has the load factor where a time run has the time."""
     with open(f"{d}/tip.csv") as f:
-        return [(float(r["time"]), float(r["tip_displacement_y"])) for r in csv.DictReader(f)]
+        return [(float(r["time"] if "time" in r else r["load_factor"]), float(r["tip_displacement_y"])) for r in csv.DictReader(f)]
 
 
 def main(argv):

@@ -1,12 +1,13 @@
-static const char help[] = "Coarse FE^2 model (Q1, selective reduced integration) with the closed-form material:\n"
-                           " 1. patch test: a homogeneous deformation imposed on the boundary of a distorted mesh is\n"
-                           "    reproduced exactly (static solve);\n"
+static const char help[] = "Coarse FE^2 model (Q1; selective reduced and full 2 x 2 integration) with the closed-form material:\n"
+                           " 1. patch test, both rules: a homogeneous deformation imposed on the boundary of a distorted\n"
+                           "    mesh is reproduced exactly (static solve), and so is its uniform stress in every element;\n"
                            " 2. the assembled Jacobian (K with D^e, C with D^v, mass) against central differences of the\n"
-                           "    residual, for the closed-form material and for the RVE;\n"
+                           "    residual, for the closed-form material and for the RVE, both rules;\n"
                            " 3. a static cantilever under a small body load against Timoshenko beam theory, on 32 x 8\n"
                            "    elements, and the observed order of convergence under refinement.\n";
 #include "test_util.h"
 #include <turgor/coarse/coarse_model.h>
+#include <turgor/material/neo_hookean.h>
 #include <petscsnes.h>
 
 using namespace turgor;
@@ -109,8 +110,13 @@ static void SetBodyForce(CoarseModel &model, PetscReal gx, PetscReal gy)
   model.SetLoad(load);
 }
 
-/* 1. Patch test on a distorted 4 x 4 mesh. */
-static PetscErrorCode PatchTest()
+static const char *RuleName(CoarseQuadrature rule)
+{
+  return rule == CoarseQuadrature::SRI ? "sri" : "full";
+}
+
+/* 1. Patch test on a distorted 4 x 4 mesh: displacements and element stresses. */
+static PetscErrorCode PatchTest(CoarseQuadrature rule)
 {
   const PetscReal F0[2][2] = {
     {1.02,  0.03},
@@ -140,6 +146,7 @@ static PetscErrorCode PatchTest()
   }
   CoarseModel model(PETSC_COMM_WORLD);
   model.Spec().dirichlet_values = {1, 2, 3, 4}; /* the whole boundary */
+  model.Spec().quadrature       = rule;
   SetBodyForce(model, 0, 0);
   PetscCall(UseMaterial(model, "neo_hookean"));
   PetscCall(model.SetFromOptions());
@@ -183,21 +190,40 @@ static PetscErrorCode PatchTest()
   PetscCall(VecRestoreArrayRead(Ul, &u));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &umax, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  /* every element's stress (the output's cell mean) is the material's sigma(F0) */
+  PetscReal serr = 0, smax;
+  {
+    NeoHookean       nh; /* the default constants, as UseMaterial configures them without options */
+    MaterialResponse r;
+    PetscBool        ok;
+    Tensor2          F = Tensor2::Identity();
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) F(i, j) = F0[i][j];
+    PetscCall(nh.Evaluate(F, Tensor2::Zero(), EvaluationKind::Output, &r));
+    PetscCall(model.EvaluateCellStress(U, &ok));
+    TG_CHECK(ok, "material failed");
+    const PetscReal exact[3] = {r.sigma(0, 0), r.sigma(1, 1), 0.5 * (r.sigma(0, 1) + r.sigma(1, 0))};
+    smax                     = PetscMax(std::fabs(exact[0]), std::fabs(exact[1]));
+    for (size_t k = 0; k < model.CellStress().size(); k++) serr = PetscMax(serr, std::fabs(model.CellStress()[k] - exact[k % 3]));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &serr, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+  }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                        "1. patch test, distorted 4 x 4 mesh, F0 = [1.02 0.03; -0.01 0.97]: max |u - (F0 - I) X| = %.2e µm (|u| up to %.3g µm), %" PetscInt_FMT
-                        " Newton iterations\n",
-                        (double)err, (double)umax, its));
+                        "1. patch test (%s), distorted 4 x 4 mesh, F0 = [1.02 0.03; -0.01 0.97]: max |u - (F0 - I) X| = %.2e µm (|u| up to %.3g µm), max "
+                        "|sigma - sigma(F0)| = %.2e N/m (|sigma| up to %.3g N/m), %" PetscInt_FMT " Newton iterations\n",
+                        RuleName(rule), (double)err, (double)umax, (double)serr, (double)smax, its));
   TG_CHECK(err < 1e-10 * umax, "the patch test fails: %.3e", (double)err);
+  TG_CHECK(serr < 1e-10 * smax, "the patch test's stress is not uniform: %.3e", (double)serr);
   PetscCall(VecDestroy(&Ul));
   PetscCall(VecDestroy(&U));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* 2. J w against (F(U + h w) - F(U - h w)) / 2h at a random state; dF/dUdot = Mt separately. */
-static PetscErrorCode JacobianCheck(const char *material, PetscReal tol)
+static PetscErrorCode JacobianCheck(const char *material, CoarseQuadrature rule, PetscReal tol)
 {
   PetscFunctionBeginUser;
   CoarseModel model(PETSC_COMM_WORLD);
+  model.Spec().quadrature = rule;
   PetscCall(UseMaterial(model, material));
   PetscCall(model.SetFromOptions());
   PetscCall(UseBox(model, 2, 2, 400, 400));
@@ -247,8 +273,8 @@ static PetscErrorCode JacobianCheck(const char *material, PetscReal tol)
   PetscCall(VecNorm(Fp, NORM_2, &nfd));
   PetscCall(VecAXPY(Fp, -1.0, Jw));
   PetscCall(VecNorm(Fp, NORM_2, &ndiff));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "2. Jacobian (%s, 2 x 2 elements) against central differences of the residual: |J w - FD| / |FD| = %.2e\n", material,
-                        (double)(ndiff / nfd)));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "2. Jacobian (%s, %s, 2 x 2 elements) against central differences of the residual: |J w - FD| / |FD| = %.2e\n",
+                        material, RuleName(rule), (double)(ndiff / nfd)));
   TG_CHECK(ndiff <= tol * nfd, "the assembled Jacobian is not the derivative of the residual (%.3e)", (double)(ndiff / nfd));
   PetscCall(MatDestroy(&J));
   for (Vec *v : {&U, &Ud, &w, &Jw, &Fp, &Fm, &Up}) PetscCall(VecDestroy(v));
@@ -286,9 +312,11 @@ int main(int argc, char **argv)
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
-  PetscCall(PatchTest());
-  PetscCall(JacobianCheck("neo_hookean", 1e-6));
-  PetscCall(JacobianCheck("rve", 1e-4));
+  for (CoarseQuadrature rule : {CoarseQuadrature::SRI, CoarseQuadrature::Full}) {
+    PetscCall(PatchTest(rule));
+    PetscCall(JacobianCheck("neo_hookean", rule, 1e-6));
+    PetscCall(JacobianCheck("rve", rule, 1e-4));
+  }
   /* uniform refinement through the 32 x 8 mesh; the observed order from the three finest meshes,
      the model error (clamped edge vs beam theory) from their extrapolated limit */
   PetscReal      d[5], t = 0;

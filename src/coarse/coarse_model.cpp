@@ -25,11 +25,12 @@ CoarseModel::~CoarseModel()
 
 PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
 {
-  char      label[64];
+  char      label[64], rule[64];
   PetscInt  values[8], n = 8;
   PetscBool set, lumped  = lumped_mass ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
+  PetscCall(PetscStrncpy(rule, q1::kRules[(int)quadrature].name, sizeof rule));
   for (const char *o : {"-coarse_faces", "-coarse_lower", "-coarse_upper"}) {
     PetscBool gone;
     PetscCall(PetscOptionsHasName(NULL, NULL, o, &gone));
@@ -50,7 +51,20 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(
     PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
   PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
+  PetscCall(PetscOptionsString("-quadrature",
+                               "Material points of an element: sri (deviatoric stress at the 2 x 2 Gauss points, pressure at the centre: 5 points) or "
+                               "full (the whole stress at the 2 x 2 Gauss points: 4 points)",
+                               "CoarseSpec", rule, rule, sizeof rule, NULL));
   PetscOptionsEnd();
+  {
+    bool known = false;
+    for (int r = 0; r < 2; r++)
+      if (!std::strcmp(rule, q1::kRules[r].name)) {
+        quadrature = (CoarseQuadrature)r;
+        known      = true;
+      }
+    PetscCheck(known, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option -coarse_quadrature = %s: unknown quadrature rule (known: sri, full)", rule);
+  }
   PetscCheck(!set || n < 8, comm, PETSC_ERR_ARG_SIZ, "Option -coarse_dirichlet_values: more than 7 label values listed");
   PetscCall(CheckNotEmpty(comm, "-coarse_dirichlet_values", "label values, e.g. 4 (the left side of a box)"));
   dirichlet_label = label;
@@ -166,12 +180,12 @@ PetscErrorCode CoarseModel::CreateMesh()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Elements of about 3 kB (mesh, section, matrices) and five material points each, dealt evenly to
-   the ranks: refused before the points are created if the nodes cannot hold them. */
+/* Elements of about 3 kB (mesh, section, matrices) and the rule's material points each (5 or 4),
+   dealt evenly to the ranks: refused before the points are created if the nodes cannot hold them. */
 PetscErrorCode CoarseModel::CheckSize(PetscReal elements)
 {
   PetscMPIInt       size;
-  const PetscReal   points = q1::kPoints * elements;
+  const PetscReal   points = npts_ * elements;
   const std::string what   = std::to_string((long long)elements) + " coarse elements (-coarse_dm_plex_box_faces, -coarse_dm_refine or the mesh file) with " +
                            std::to_string((long long)points) + " material points (" + pool_.MaterialName() + ")";
   PetscFunctionBeginUser;
@@ -265,8 +279,8 @@ PetscErrorCode CoarseModel::PrecomputeElements()
   PetscCall(DMGetCoordinatesLocal(dm_, &coords));
   PetscCall(DMGetLocalSection(cdm, &cs));
   Xref_.resize(8 * nc);
-  dN_.resize(nc * q1::kPoints * 8);
-  wdet_.resize(nc * q1::kPoints);
+  dN_.resize(nc * npts_ * 8);
+  wdet_.resize(nc * npts_);
   std::string bad; /* the first bad element of this rank */
   for (PetscInt c = c_start_; c < c_end_; c++) {
     PetscScalar   *x = NULL;
@@ -300,12 +314,12 @@ PetscErrorCode CoarseModel::PrecomputeElements()
           bad = buf;
         }
     }
-    for (int q = 0; q < q1::kPoints; q++) {
+    for (int q = 0; q < npts_; q++) {
       PetscReal       dN[4][2];
-      const PetscReal det = q1::Gradients(X, q1::kPointXi[q][0], q1::kPointXi[q][1], dN);
+      const PetscReal det = q1::Gradients(X, rule_->xi[q][0], rule_->xi[q][1], dN);
       for (int a = 0; a < 4; a++)
-        for (int i = 0; i < 2; i++) dN_[(k * q1::kPoints + q) * 8 + 2 * a + i] = dN[a][i];
-      wdet_[k * q1::kPoints + q] = q1::kPointW[q] * PetscAbsReal(det);
+        for (int i = 0; i < 2; i++) dN_[(k * npts_ + q) * 8 + 2 * a + i] = dN[a][i];
+      wdet_[k * npts_ + q] = rule_->w[q] * PetscAbsReal(det);
     }
   }
   std::string msg;
@@ -394,6 +408,8 @@ PetscErrorCode CoarseModel::SetUp()
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("TgCoarseResidual", PETSC_OBJECT_CLASSID, &ev_residual_));
   PetscCall(PetscLogEventRegister("TgCoarseJacobian", PETSC_OBJECT_CLASSID, &ev_jacobian_));
+  rule_ = &q1::kRules[(int)spec_.quadrature];
+  npts_ = rule_->points;
   PetscCall(CreateMesh());
   {
     PetscInt n = c_end_ - c_start_;
@@ -402,7 +418,7 @@ PetscErrorCode CoarseModel::SetUp()
   }
   PetscCall(CreateSection());
   PetscCall(PrecomputeElements());
-  const PetscInt np = (c_end_ - c_start_) * q1::kPoints;
+  const PetscInt np = (c_end_ - c_start_) * npts_;
   PetscCall(pool_.SetUp(np));
   F_.assign(np, Tensor2::Identity());
   Fdot_.assign(np, Tensor2::Zero());
@@ -441,19 +457,17 @@ PetscErrorCode CoarseModel::GlobalToLocal(Vec U, Vec Uloc)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Where a material point is and what it was asked: global element, which of its five points, F,
-   Fdot, the reason and the last residual. */
+/* Where a material point is and what it was asked: global element, which of its points, F, Fdot,
+   the reason and the last residual. */
 PetscErrorCode CoarseModel::DescribePoint(PetscInt m, std::string *text) const
 {
-  static const char *const where[q1::kPoints] = {"Gauss point 1", "Gauss point 2", "Gauss point 3", "Gauss point 4", "centre"};
-  const Tensor2           &F = F_[m], &Fd = Fdot_[m];
-  char                     buf[512];
+  const Tensor2 &F = F_[m], &Fd = Fdot_[m];
+  char           buf[512];
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf,
                           "element %" PetscInt_FMT " (%s), F = [%.6g %.6g; %.6g %.6g] (det %.4g), Fdot = [%.4g %.4g; %.4g %.4g] /µs, residual %.3g: %s",
-                          cell_gid_[m / q1::kPoints], where[m % q1::kPoints], (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1),
-                          (double)F.Det(), (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)response_[m].residual,
-                          response_[m].reason.c_str()));
+                          cell_gid_[m / npts_], rule_->where[m % npts_], (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)F.Det(),
+                          (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)response_[m].residual, response_[m].reason.c_str()));
   *text = buf;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -478,15 +492,15 @@ PetscErrorCode CoarseModel::CacheHolds(Vec Uloc, bool tangents, bool *holds)
 PetscErrorCode CoarseModel::DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std::vector<Tensor2> &Fdot)
 {
   PetscFunctionBeginUser;
-  F.resize((c_end_ - c_start_) * q1::kPoints);
+  F.resize((c_end_ - c_start_) * npts_);
   Fdot.resize(F.size());
   for (PetscInt c = c_start_; c < c_end_; c++) {
     PetscScalar   *x  = NULL;
     PetscInt       nx = 0;
     const PetscInt k  = c - c_start_;
     PetscCall(DMPlexVecGetClosure(dm_, NULL, Uloc, c, &nx, &x));
-    for (int q = 0; q < q1::kPoints; q++) {
-      const PetscReal *dN = &dN_[(k * q1::kPoints + q) * 8];
+    for (int q = 0; q < npts_; q++) {
+      const PetscReal *dN = &dN_[(k * npts_ + q) * 8];
       Tensor2          Fq = Tensor2::Identity(), Fd;
       for (int a = 0; a < 4; a++)
         for (int i = 0; i < 2; i++)
@@ -494,8 +508,8 @@ PetscErrorCode CoarseModel::DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std
             Fq(i, j) += PetscRealPart(x[4 * a + i]) * dN[2 * a + j];
             Fd(i, j) += PetscRealPart(x[4 * a + 2 + i]) * dN[2 * a + j];
           }
-      F[k * q1::kPoints + q]    = Fq;
-      Fdot[k * q1::kPoints + q] = Fd;
+      F[k * npts_ + q]    = Fq;
+      Fdot[k * npts_ + q] = Fd;
     }
     PetscCall(DMPlexVecRestoreClosure(dm_, NULL, Uloc, c, &nx, &x));
   }
@@ -519,19 +533,37 @@ PetscErrorCode CoarseModel::EvaluateCellStress(Vec U, PetscBool *ok)
   for (const MaterialResponse &m : *r) local_ok = local_ok && m.ok;
   PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
   *ok = global_ok ? PETSC_TRUE : PETSC_FALSE;
+  /* each part (pressure, deviator, whole stress) averaged over the points that carry it, weighted
+     as the rule weighs them; the pressure first (sri: p + the mean deviator of the Gauss points) */
+  PetscReal wpart[3] = {0, 0, 0};
+  for (int q = 0; q < npts_; q++) wpart[(int)rule_->part[q]] += rule_->w[q];
   for (PetscInt k = 0; k < c_end_ - c_start_; k++) {
-    const Tensor2  &sc      = (*r)[k * q1::kPoints + q1::kCentre].sigma;
-    const PetscReal p       = 0.5 * sc.Trace();
-    PetscReal       mean[3] = {p, p, 0};
-    for (int q = 0; q < q1::kPoints; q++) {
-      if (q == q1::kCentre) continue;
-      const Tensor2 sg = (*r)[k * q1::kPoints + q].sigma.Sym(); /* its deviator, as InternalForce takes it */
-      mean[0] += 0.125 * (sg(0, 0) - sg(1, 1));
-      mean[1] += 0.125 * (sg(1, 1) - sg(0, 0));
-      mean[2] += 0.25 * sg(0, 1);
-    }
+    PetscReal mean[3] = {0, 0, 0};
+    for (int pass = 0; pass < 2; pass++)
+      for (int q = 0; q < npts_; q++) {
+        const q1::PointPart part = rule_->part[q];
+        if ((part == q1::PointPart::Pressure) != (pass == 0)) continue;
+        const Tensor2   sg = (*r)[k * npts_ + q].sigma.Sym(); /* as InternalForce takes it */
+        const PetscReal f  = rule_->w[q] / wpart[(int)part];
+        switch (part) {
+        case q1::PointPart::Pressure:
+          mean[0] += f * (0.5 * sg.Trace());
+          mean[1] += f * (0.5 * sg.Trace());
+          break;
+        case q1::PointPart::Deviatoric:
+          mean[0] += f * (0.5 * (sg(0, 0) - sg(1, 1)));
+          mean[1] += f * (0.5 * (sg(1, 1) - sg(0, 0)));
+          mean[2] += f * sg(0, 1);
+          break;
+        case q1::PointPart::Whole:
+          mean[0] += f * sg(0, 0);
+          mean[1] += f * sg(1, 1);
+          mean[2] += f * sg(0, 1);
+          break;
+        }
+      }
     bool cell_ok = true;
-    for (int q = 0; q < q1::kPoints; q++) cell_ok = cell_ok && (*r)[k * q1::kPoints + q].ok;
+    for (int q = 0; q < npts_; q++) cell_ok = cell_ok && (*r)[k * npts_ + q].ok;
     for (int i = 0; i < 3; i++) cell_stress_[3 * k + i] = cell_ok ? mean[i] : NAN; /* not a failed point's stress */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -574,9 +606,13 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   if (!global_ok) {
     /* every failure is reported where it happened, without -info: the cause of a rejected step */
     counters_.failures++;
-    if (nfailed)
-      PetscCall(PetscSynchronizedPrintf(comm_, "[%d] material points failed at t = %g µs%s: %" PetscInt_FMT " of %zu on this rank; the first: %s\n", rank_,
-                                        (double)eval_time_, tangents ? " (with tangents)" : "", nfailed, response_.size(), first.c_str()));
+    if (nfailed) {
+      char when[128];
+      if (eval_where_.empty()) PetscCall(PetscSNPrintf(when, sizeof when, "at t = %g µs", (double)eval_time_));
+      else PetscCall(PetscStrncpy(when, eval_where_.c_str(), sizeof when));
+      PetscCall(PetscSynchronizedPrintf(comm_, "[%d] material points failed %s%s: %" PetscInt_FMT " of %zu on this rank; the first: %s\n", rank_, when,
+                                        tangents ? " (with tangents)" : "", nfailed, response_.size(), first.c_str()));
+    }
     PetscCall(PetscSynchronizedFlush(comm_, PETSC_STDOUT));
   }
   *ok              = global_ok ? PETSC_TRUE : PETSC_FALSE;
@@ -586,30 +622,59 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Local [0; f_int - f_ext], f_int,a = sum_g w J dev(sigma_g) F^-T grad_X N_a + W_c J_c p_c F_c^-T
-   grad_X N_a(centre): the deviatoric stress at the 2 x 2 Gauss points, the pressure tr(sigma)/2
-   at the centre (selective reduced integration). */
+/* The part of a material point's (symmetric) stress that its rule integrates there: the whole
+   stress, its deviator sigma - tr(sigma)/2 I, or its pressure tr(sigma)/2 I. */
+static Tensor2 StressPart(q1::PointPart part, const Tensor2 &sg)
+{
+  switch (part) {
+  case q1::PointPart::Pressure:
+    return (0.5 * sg.Trace()) * Tensor2::Identity();
+  case q1::PointPart::Deviatoric:
+    return sg - (0.5 * sg.Trace()) * Tensor2::Identity();
+  default:
+    return sg;
+  }
+}
+
+PetscErrorCode CoarseModel::RevertMaterials()
+{
+  PetscFunctionBeginUser;
+  PetscCall(pool_.Revert());
+  cached_valid_ = false; /* the cached responses came from the states just dropped */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::CreateFreeIS(IS *displacement, IS *velocity) const
+{
+  std::vector<PetscInt> u, v;
+  PetscFunctionBeginUser;
+  for (PetscInt off : free_rows_) {
+    u.insert(u.end(), {off, off + 1});
+    v.insert(v.end(), {off + 2, off + 3});
+  }
+  PetscCall(ISCreateGeneral(comm_, (PetscInt)u.size(), u.data(), PETSC_COPY_VALUES, displacement));
+  PetscCall(ISCreateGeneral(comm_, (PetscInt)v.size(), v.data(), PETSC_COPY_VALUES, velocity));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Local [0; f_int - lambda f_ext], f_int,a = sum_q w_q J_q s_q F_q^-T grad_X N_a(q) with s_q the part of
+   sigma_q the rule takes there: sri, the deviatoric stress at the 2 x 2 Gauss points and the
+   pressure tr(sigma)/2 at the centre (selective reduced integration); full, the whole stress at
+   the 2 x 2 Gauss points. */
 PetscErrorCode CoarseModel::InternalForce(Vec Floc)
 {
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(Floc));
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt  k      = c - c_start_;
-    PetscScalar     fe[16] = {0};
-    const Tensor2  &sc     = response_[k * q1::kPoints + q1::kCentre].sigma;
-    const PetscReal p      = 0.5 * sc.Trace();
-    for (int q = 0; q < q1::kPoints; q++) {
-      const PetscInt   m  = k * q1::kPoints + q;
+    const PetscInt k      = c - c_start_;
+    PetscScalar    fe[16] = {0};
+    for (int q = 0; q < npts_; q++) {
+      const PetscInt   m  = k * npts_ + q;
       const Tensor2   &F  = F_[m];
       const Tensor2    Fi = F.Inverse();
       const PetscReal  W  = wdet_[m] * F.Det();
       const PetscReal *dN = &dN_[m * 8];
-      Tensor2          s;
-      if (q == q1::kCentre) s = p * Tensor2::Identity();
-      else {
-        const Tensor2 sg = response_[m].sigma.Sym();
-        s                = sg - (0.5 * sg.Trace()) * Tensor2::Identity();
-      }
+      const Tensor2    s  = StressPart(rule_->part[q], response_[m].sigma.Sym());
       for (int a = 0; a < 4; a++) {
         const PetscReal gx = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1]; /* grad_x N = F^-T grad_X N */
         const PetscReal gy = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
@@ -618,7 +683,7 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
       }
     }
     for (int a = 0; a < 4; a++)
-      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= f_ext_[8 * k + 2 * a + d];
+      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= load_factor_ * f_ext_[8 * k + 2 * a + d];
     PetscCall(DMPlexVecSetClosure(dm_, NULL, Floc, c, fe, ADD_VALUES));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -684,22 +749,27 @@ PetscErrorCode CoarseModel::RHSFunction(Vec U, Vec G, PetscBool *ok)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Split of a material point's tangents between the deviatoric (Gauss points) and the pressure
-   (centre) parts, so that K is the exact derivative of the selectively integrated f_int. In Voigt
-   form on (11, 22, 12) acting on [dd11, dd22, 2 dd12], with e = [1, 1, 0] and sv = [s11, s22, s12]:
+/* The part of a material point's tangents that goes with the part of its stress (StressPart), so
+   that K is the exact derivative of f_int under either rule: the whole D for the whole stress, and
+   for sri's split, in Voigt form on (11, 22, 12) acting on [dd11, dd22, 2 dd12], with
+   e = [1, 1, 0] and sv = [s11, s22, s12]:
      dev:       D - e e^T D / 2 - e sv^T + tr(sigma) diag(1, 1, 1/2)
      pressure:  e e^T D / 2 + e sv^T - tr(sigma) diag(1, 1, 1/2)
-   (the Truesdell rates of dev(sigma) and of tr(sigma)/2 I); the viscous D^v splits without the
-   geometric terms. */
-static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, bool pressure, bool viscous, PetscReal out[3][3])
+   (the Truesdell rates of dev(sigma) and of tr(sigma)/2 I; the two add up to D); the viscous D^v
+   splits without the geometric terms. */
+static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, q1::PointPart part, bool viscous, PetscReal out[3][3])
 {
   const PetscReal e[3] = {1, 1, 0}, sv[3] = {s(0, 0), s(1, 1), 0.5 * (s(0, 1) + s(1, 0))}, tr = s.Trace();
   const PetscReal diag[3] = {1, 1, 0.5};
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
+      if (part == q1::PointPart::Whole) {
+        out[i][j] = D[i][j];
+        continue;
+      }
       const PetscReal vol = 0.5 * e[i] * (D[0][j] + D[1][j]);
       PetscReal       geo = viscous ? 0.0 : e[i] * sv[j] - (i == j ? tr * diag[i] : 0.0);
-      out[i][j]           = pressure ? vol + geo : D[i][j] - vol - geo;
+      out[i][j]           = part == q1::PointPart::Pressure ? vol + geo : D[i][j] - vol - geo;
     }
 }
 
@@ -728,19 +798,18 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
   for (PetscInt c = c_start_; c < c_end_; c++) {
     const PetscInt k           = c - c_start_;
     PetscScalar    ke[16 * 16] = {0};
-    const Tensor2  sc          = response_[k * q1::kPoints + q1::kCentre].sigma.Sym();
-    for (int q = 0; q < q1::kPoints; q++) {
-      const PetscInt   m      = k * q1::kPoints + q;
-      const Tensor2   &F      = F_[m];
-      const Tensor2    Fi     = F.Inverse();
-      const PetscReal  W      = wdet_[m] * F.Det();
-      const PetscReal *dN     = &dN_[m * 8];
-      const bool       centre = q == q1::kCentre;
-      const Tensor2    sigma  = centre ? sc : response_[m].sigma.Sym();
-      const Tensor2    s      = centre ? (0.5 * sc.Trace()) * Tensor2::Identity() : sigma - (0.5 * sigma.Trace()) * Tensor2::Identity();
-      PetscReal        De[3][3], Dv[3][3], g[4][2];
-      SplitTangent(tangent_[m].De, sigma, centre, false, De);
-      SplitTangent(tangent_[m].Dv, sigma, centre, true, Dv);
+    for (int q = 0; q < npts_; q++) {
+      const PetscInt      m     = k * npts_ + q;
+      const Tensor2      &F     = F_[m];
+      const Tensor2       Fi    = F.Inverse();
+      const PetscReal     W     = wdet_[m] * F.Det();
+      const PetscReal    *dN    = &dN_[m * 8];
+      const q1::PointPart part  = rule_->part[q];
+      const Tensor2       sigma = response_[m].sigma.Sym();
+      const Tensor2       s     = StressPart(part, sigma);
+      PetscReal           De[3][3], Dv[3][3], g[4][2];
+      SplitTangent(tangent_[m].De, sigma, part, false, De);
+      SplitTangent(tangent_[m].Dv, sigma, part, true, Dv);
       for (int a = 0; a < 4; a++) {
         g[a][0] = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1];
         g[a][1] = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
@@ -785,6 +854,21 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
   PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
   PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt CoarseModel::PointsPerElement() const
+{
+  return q1::kRules[(int)spec_.quadrature].points;
+}
+
+const char *CoarseModel::QuadratureName() const
+{
+  return q1::kRules[(int)spec_.quadrature].name;
+}
+
+const char *CoarseModel::QuadratureDescription() const
+{
+  return q1::kRules[(int)spec_.quadrature].description;
 }
 
 PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy)

@@ -114,9 +114,10 @@ PetscErrorCode FE2Run::Report()
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
   PetscCall(PetscPrintf(comm_,
-                        "turgor fe2: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT
-                        " material points (%s, selective reduced integration), %d MPI ranks in %" PetscInt_FMT " material-point groups\n",
-                        model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), size, model_.Pool().NumGroups()));
+                        "turgor fe2: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
+                        " material-point groups\n",
+                        model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), model_.QuadratureDescription(), size,
+                        model_.Pool().NumGroups()));
   PetscCall(model_.Pool().Model().View(PETSC_VIEWER_STDOUT_(comm_)));
   PetscCall(
     PetscPrintf(comm_, "Reference density %.6g ng/µm^2, %s mass matrix\n", (double)model_.ReferenceDensity(), model_.LumpedMass() ? "lumped" : "consistent"));
@@ -245,6 +246,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   const PetscInt npts = model_.NumMaterialPoints();
   js.Set("jacobian_evals", cc.tangent_evals);
   js.Set("material", model_.Pool().MaterialName());
+  js.Set("quadrature", model_.QuadratureName());
   js.Set("n_elements", model_.NumElements());
   js.Set("n_material_points", npts);
   js.Set("n_wall_particles", per[0] * npts);

@@ -43,18 +43,47 @@ inline PetscReal Gradients(const PetscReal X[4][2], PetscReal xi, PetscReal eta,
   return det;
 }
 
-/* The material points of an element: 2 x 2 Gauss points (deviatoric stress) and the centre
-   (pressure), TW 562 §5's selective reduced integration. Weights on the reference square. */
-static const int       kPoints = 5, kCentre = 4;
-static const PetscReal kG             = 0.57735026918962576451; /* 1/sqrt(3) */
-static const PetscReal kPointXi[5][2] = {
+/* What a material point contributes to its element's internal force: its whole Cauchy stress, its
+   deviator sigma - tr(sigma)/2 I, or its pressure part tr(sigma)/2 I. */
+enum class PointPart {
+  Whole,
+  Deviatoric,
+  Pressure
+};
+
+/* A quadrature rule of the coarse element: its material points on the reference square, their
+   weights and parts, and their names for failure reports. */
+struct Rule {
+  const char *name;        /* the -coarse_quadrature value */
+  const char *description; /* for reports */
+  int         points;      /* material points per element */
+  const PetscReal (*xi)[2];
+  const PetscReal   *w;
+  const PointPart   *part;
+  const char *const *where;
+};
+
+static const PetscReal kG = 0.57735026918962576451; /* 1/sqrt(3) */
+
+/* sri: 2 x 2 Gauss points (deviatoric stress) and the centre (pressure), TW 562 §5's selective
+   reduced integration, 5 points. full: the whole stress at the 2 x 2 Gauss points, 4 points. The
+   Gauss points come first, in the same order, in both. */
+static const PetscReal kSRIXi[5][2] = {
   {-kG, -kG},
   {kG,  -kG},
   {kG,  kG },
   {-kG, kG },
   {0,   0  }
 };
-static const PetscReal kPointW[5] = {1, 1, 1, 1, 4};
+static const PetscReal   kSRIW[5]     = {1, 1, 1, 1, 4};
+static const PointPart   kSRIPart[5]  = {PointPart::Deviatoric, PointPart::Deviatoric, PointPart::Deviatoric, PointPart::Deviatoric, PointPart::Pressure};
+static const char *const kSRIWhere[5] = {"Gauss point 1", "Gauss point 2", "Gauss point 3", "Gauss point 4", "centre"};
+static const PointPart   kFullPart[4] = {PointPart::Whole, PointPart::Whole, PointPart::Whole, PointPart::Whole};
+
+static const Rule kRules[2] = {
+  {"sri",  "selective reduced integration", 5, kSRIXi, kSRIW, kSRIPart,  kSRIWhere},
+  {"full", "full 2 x 2 integration",        4, kSRIXi, kSRIW, kFullPart, kSRIWhere}
+};
 
 /* 3 x 3 Gauss rule for the consistent mass matrix (exact for N_a N_b det J on any quad). */
 static const PetscReal kG3[3] = {-0.77459666924148337704, 0.0, 0.77459666924148337704};

@@ -2,6 +2,7 @@
    (later) materials, tissue generators and run modes. */
 #include <turgor/core/register_all.h>
 #include <turgor/coarse/fe2_run.h>
+#include <turgor/coarse/fe2_static_run.h>
 #include <turgor/fine/fine_run.h>
 #include <turgor/material/neo_hookean.h>
 #include <turgor/material/strain_path_run.h>
@@ -43,6 +44,7 @@ PetscErrorCode RegisterAll(void)
   PetscCall(SimulationRegister("fine", CreateInstance<Simulation, FineRun>));
   PetscCall(SimulationRegister("rve", CreateInstance<Simulation, StrainPathRun>));
   PetscCall(SimulationRegister("fe2", CreateInstance<Simulation, FE2Run>));
+  PetscCall(SimulationRegister("fe2_static", CreateInstance<Simulation, FE2StaticRun>));
   PetscCall(PetscRegisterFinalize(Unregister));
   registered = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

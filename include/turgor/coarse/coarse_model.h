@@ -1,18 +1,21 @@
 #pragma once
 /* The coarse (tissue) model of FE^2 (TW 562 §3.3): a DMPlex of bilinear quadrilaterals, Q1
    displacement u and velocity v at the vertices (state per vertex [ux, uy, vx, vy]), material
-   points from a MaterialPointPool at the 2 x 2 Gauss points (deviatoric stress) and the element
-   centre (pressure tr(sigma)/2) -- the seed's selective reduced integration, 5 per element.
+   points from a MaterialPointPool at the points of the element's quadrature rule
+   (-coarse_quadrature): sri, the seed's selective reduced integration, the deviatoric stress at the
+   2 x 2 Gauss points and the pressure tr(sigma)/2 at the element centre (5 per element, the
+   default), or full, the whole stress at the 2 x 2 Gauss points (4 per element).
 
    Semi-discrete system (eqs 31-33) as a linearly implicit first-order system
        F(U, Udot) = Mt Udot - G(U) = 0,   Mt = diag(I, M),   G = [v; f_ext - f_int(u, v)],
    with M the consistent (or lumped) mass matrix, f_int the internal force from the Cauchy stress,
    f_ext the body force. Its Jacobian dF/dU + shift dF/dUdot = shift Mt + [[0, -I], [K, C]] uses
    the stiffness K = initial-stress part + constitutive part with D^e (eqs 35-37) and the damping C
-   with D^v (eqs 38-39), consistent with the selectively integrated residual. The mesh and the
+   with D^v (eqs 38-39), consistent with the residual of either rule (one assembly: each point's
+   stress and tangent enter through its part, whole, deviatoric or pressure). The mesh and the
    essential condition are PETSc's (DMSetFromOptions, a Q1 PetscFE section, DMAddBoundary): the
    vertices on the Dirichlet label values are constrained (all four dofs; displacement from
-   SetBoundaryDisplacement, zero by default, velocity zero); the 5-point assembly is our own. */
+   SetBoundaryDisplacement, zero by default, velocity zero); the assembly is our own. */
 #include <turgor/material/material_pool.h>
 #include <turgor/physics/load_spec.h>
 #include <petscdmplex.h>
@@ -23,6 +26,16 @@
 
 namespace turgor {
 
+namespace q1 {
+struct Rule;
+}
+
+/* -coarse_quadrature: the material points of an element (src/coarse/q1_element.h) */
+enum class CoarseQuadrature {
+  SRI, /* selective reduced integration: deviator at the 2 x 2 Gauss points, pressure at the centre */
+  Full /* the whole stress at the 2 x 2 Gauss points */
+};
+
 struct CoarseCounters {
   PetscInt residuals = 0, jacobians = 0, material_evals = 0, tangent_evals = 0, failures = 0;
 };
@@ -32,6 +45,7 @@ struct CoarseSpec {
   std::string           dirichlet_label  = "Face Sets";
   std::vector<PetscInt> dirichlet_values = {4}; /* box: 1 bottom, 2 right, 3 top, 4 left */
   bool                  lumped_mass      = false;
+  CoarseQuadrature      quadrature       = CoarseQuadrature::SRI;
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -71,8 +85,23 @@ public:
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
   PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
   PetscErrorCode CommitMaterials() { return pool_.Commit(); }
+  /* Back to the material points' last committed states (a rejected load increment); the cache is
+     dropped. */
+  PetscErrorCode RevertMaterials();
   /* The time of the states evaluated next (failure reports say when). */
-  void SetEvaluationTime(PetscReal t) { eval_time_ = t; }
+  void SetEvaluationTime(PetscReal t)
+  {
+    eval_time_ = t;
+    eval_where_.clear();
+  }
+  /* Failure reports say this instead of a time (a static solve: "at load factor 0.5"). */
+  void SetEvaluationWhere(const std::string &where) { eval_where_ = where; }
+  /* f_ext = factor x the body force (load stepping; default 1). */
+  void      SetLoadFactor(PetscReal factor) { load_factor_ = factor; }
+  PetscReal LoadFactor() const { return load_factor_; }
+  /* The global rows of the displacement dofs (ux, uy) and of the velocity dofs (vx, vy; there
+     f_int - f_ext) of the owned, unclamped vertices, vertex by vertex in the same order. */
+  PetscErrorCode CreateFreeIS(IS *displacement, IS *velocity) const;
 
   DM                    GetDM() const { return dm_; }
   Mat                   MassMatrix() const { return Mt_; }
@@ -83,11 +112,16 @@ public:
   PetscReal             ReferenceDensity() const { return rho0_; }
   bool                  LumpedMass() const { return spec_.lumped_mass; }
   CoarseSpec           &Spec() { return spec_; }
+  /* The quadrature rule in use (after SetUp): material points per element, its name. */
+  PetscInt    PointsPerElement() const;
+  const char *QuadratureName() const;
+  const char *QuadratureDescription() const;
   /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
   PetscErrorCode TipDisplacement(Vec U, PetscReal *uy);
-  /* Per local cell, [s11, s22, s12]: the mean Cauchy stress of its Gauss points with the centre
-     pressure, at U, into CellStress(). For output: the material points' states and the cache of
-     EvaluateMaterials stay as they are, so writing a snapshot does not change the run. */
+  /* Per local cell, [s11, s22, s12]: the mean Cauchy stress of its material points (sri: the mean
+     deviator of the Gauss points with the centre pressure), at U, into CellStress(). For output:
+     the material points' states and the cache of EvaluateMaterials stay as they are, so writing a
+     snapshot does not change the run. */
   PetscErrorCode                EvaluateCellStress(Vec U, PetscBool *ok);
   const std::vector<PetscReal> &CellStress() const { return cell_stress_; }
   PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
@@ -123,10 +157,14 @@ private:
 
   /* options */
   CoarseSpec                                                spec_;
-  PetscReal                                                 g_[2] = {0.0, -0.2};
+  PetscReal                                                 g_[2]        = {0.0, -0.2};
+  PetscReal                                                 load_factor_ = 1.0;
   std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
 
-  /* per local cell: reference vertex coordinates, gradients and weights at the 5 points */
+  /* the quadrature rule and its material points per element (from spec_ at SetUp) */
+  const q1::Rule *rule_ = nullptr;
+  PetscInt        npts_ = 0;
+  /* per local cell: reference vertex coordinates, gradients and weights at the material points */
   PetscInt               c_start_ = 0, c_end_ = 0;
   std::vector<PetscReal> Xref_;      /* [cell][4][2] */
   std::vector<PetscReal> dN_;        /* [cell][point][4][2] */
@@ -139,6 +177,7 @@ private:
   std::vector<PetscInt>  cell_gid_; /* global element number of each local cell */
   PetscMPIInt            rank_      = 0;
   PetscReal              eval_time_ = 0; /* time of the state being evaluated (for reports) */
+  std::string            eval_where_;    /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;

@@ -1,0 +1,81 @@
+#pragma once
+/* -mode fe2_static: static equilibrium of the coarse FE^2 model under the scene's loads,
+     R(u) = f_int(u) - lambda f_ext = 0,   v = 0 (so Fdot = 0 at every material point),
+   solved by PETSc SNES (Newton on the stiffness K assembled from the materials' D^e, eqs 35-37)
+   with load stepping: the body force is applied in increments of the load factor lambda up to 1
+   (-fe2_static_load_steps), an increment whose nonlinear solve or material evaluation fails is
+   halved and retried from the last converged state (material points reverted), a converged one is
+   committed and may grow again; below -fe2_static_min_increment the run fails, naming the lambda
+   reached. Outputs: tip.csv (one row per converged load level), summary.json, coarse.h5/.xmf (the
+   final state). Any -material, any -coarse_quadrature, any number of ranks. */
+#include <turgor/coarse/coarse_fields.h>
+#include <turgor/coarse/coarse_model.h>
+#include <turgor/io/output.h>
+#include <turgor/run/simulation.h>
+#include <petscsnes.h>
+
+namespace turgor {
+
+/* -fe2_static_* options (API defaults; options win). */
+struct StaticLoadSpec {
+  PetscInt  load_steps    = 1;    /* initial increments of lambda: the first is 1/load_steps */
+  PetscReal min_increment = 1e-4; /* the smallest increment of lambda tried before giving up */
+  bool      snapshot      = true; /* coarse.h5/.xmf with the final (or last converged) state */
+
+  PetscErrorCode SetFromOptions(MPI_Comm comm);
+};
+
+class FE2StaticRun : public Simulation {
+public:
+  explicit FE2StaticRun(MPI_Comm comm) : comm_(comm), model_(comm) { }
+  ~FE2StaticRun() override;
+  FE2StaticRun(const FE2StaticRun &)            = delete;
+  FE2StaticRun &operator=(const FE2StaticRun &) = delete;
+
+  PetscErrorCode SetFromOptions() override;
+  PetscErrorCode SetUp() override;
+  PetscErrorCode Solve() override;
+  PetscErrorCode WriteSummary() override;
+  PetscErrorCode WriteFailure(const std::string &reason) override;
+  bool           Interrupted() const override { return interrupted_; }
+
+  CoarseModel    &Model() { return model_; }
+  LoadSpec       &Load() { return load_; }
+  StaticLoadSpec &Stepping() { return spec_; }
+  SNES            GetSNES() const { return snes_; }
+  /* The last converged load factor and the tip displacement there. */
+  PetscReal LoadFactor() const { return lambda_; }
+  PetscReal TipDisplacement() const { return tip_; }
+
+private:
+  static PetscErrorCode Residual(SNES snes, Vec x, Vec r, void *ctx);
+  static PetscErrorCode Jacobian(SNES snes, Vec x, Mat A, Mat B, void *ctx);
+  PetscErrorCode        ToState(Vec x); /* U_ = [x; 0] */
+  /* one nonlinear solve at load factor lambda from x (the last converged state); *converged */
+  PetscErrorCode SolveAt(PetscReal lambda, bool *converged, std::string *why);
+  PetscErrorCode Record(PetscReal lambda, PetscInt its); /* a converged level: tip.csv */
+  PetscErrorCode Summary(JsonObject &js, const char *status);
+
+  MPI_Comm           comm_;
+  LoadSpec           load_;
+  StaticLoadSpec     spec_;
+  CoarseModel        model_;
+  SNES               snes_ = nullptr;
+  Mat                J_ = nullptr, K_ = nullptr; /* the model's [[0, -I], [K, C]] and its K block */
+  IS                 is_u_ = nullptr, is_v_ = nullptr;
+  Vec                U_ = nullptr, Udot_ = nullptr, Ffull_ = nullptr; /* full states [u; v] */
+  Vec                x_ = nullptr, x_conv_ = nullptr;                 /* displacements */
+  std::string        output_dir_;
+  bool               overwrite_ = false, have_dir_ = false, solving_ = false, interrupted_ = false;
+  CsvWriter          tip_csv_;
+  CoarseFieldsWriter fields_;
+  PetscLogStage      stage_setup_ = 0, stage_solve_ = 0;
+  PetscLogEvent      ev_increment_ = 0, ev_output_ = 0;
+  /* results */
+  PetscReal      lambda_ = 0, tip_ = 0, increment_ = 0, force_scale_ = 0;
+  PetscInt       increments_ = 0, cutbacks_ = 0, snes_its_ = 0, ksp_its_ = 0, solves_ = 0, failed_solves_ = 0;
+  PetscLogDouble t0_ = 0, wall_ = 0;
+  std::string    last_failure_;
+};
+
+} // namespace turgor

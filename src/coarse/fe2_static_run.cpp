@@ -1,0 +1,472 @@
+#include <turgor/core/errors.h>
+#include <turgor/core/log.h>
+#include <turgor/coarse/fe2_static_run.h>
+#include <cmath>
+
+namespace turgor {
+
+PetscErrorCode StaticLoadSpec::SetFromOptions(MPI_Comm comm)
+{
+  PetscBool snap = snapshot ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "fe2_static_", "Static FE^2 solve with load stepping (-mode fe2_static); its SNES: -fe2_static_snes_*, -fe2_static_ksp_*", "turgor");
+  PetscCall(PetscOptionsInt("-load_steps", "Initial number of load increments: the body force is applied in increments of the load factor of 1/load_steps",
+                            "StaticLoadSpec", load_steps, &load_steps, NULL));
+  PetscCall(PetscOptionsReal("-min_increment",
+                             "Smallest increment of the load factor: a failed increment is halved and retried, and the run fails when it would fall below "
+                             "this, in (0, 1]",
+                             "StaticLoadSpec", min_increment, &min_increment, NULL));
+  PetscCall(PetscOptionsBool("-snapshots", "Write coarse.h5/coarse.xmf with the final state (on failure: the last converged one)", "StaticLoadSpec", snap,
+                             &snap, NULL));
+  PetscOptionsEnd();
+  PetscCheck(load_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_load_steps = %" PetscInt_FMT ": must be >= 1", load_steps);
+  PetscCheck(min_increment > 0 && min_increment <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_min_increment = %g: must be in (0, 1]",
+             (double)min_increment);
+  snapshot = snap;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+FE2StaticRun::~FE2StaticRun()
+{
+  PetscCallVoid(SNESDestroy(&snes_));
+  PetscCallVoid(MatDestroy(&K_));
+  PetscCallVoid(MatDestroy(&J_));
+  PetscCallVoid(ISDestroy(&is_u_));
+  PetscCallVoid(ISDestroy(&is_v_));
+  for (Vec *v : {&U_, &Udot_, &Ffull_, &x_, &x_conv_}) PetscCallVoid(VecDestroy(v));
+}
+
+PetscErrorCode FE2StaticRun::SetFromOptions()
+{
+  PetscMPIInt size;
+  KSP         ksp;
+  PC          pc;
+  PetscFunctionBeginUser;
+  /* as -mode fe2: an RVE's Psi-tc tolerance 1e-9 unless -rve_psi_atol says otherwise */
+  model_.Pool().SetDefaultTolerance(1e-9);
+  /* v = 0: the damping C (from D^v) never enters the static system, so its 3 perturbed
+     material evaluations per point are not made */
+  model_.Pool().Tangent().viscosity = false;
+  PetscCall(load_.SetFromOptions(comm_));
+  model_.SetLoad(load_);
+  PetscCall(model_.SetFromOptions());
+  PetscCall(spec_.SetFromOptions(comm_));
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_));
+  have_dir_ = true;
+  /* the nonlinear solver, with defaults through the API (the user's -fe2_static_snes_* win at
+     SNESSetFromOptions in SetUp): Newton with full steps, the load cut-back being its
+     globalisation -- a line search on |R| (bt, PETSc's default) takes steps of 0.1 on a bending
+     cantilever, whose axial residuals grow along a good bending step (65 Newton iterations and a
+     cut-back where full steps take 4, docs/benchmarks.md); -fe2_static_snes_linesearch_type cp
+     (a critical point of the energy along the step) does large loads in fewer increments -- and a
+     direct solve of the stiffness as -mode fe2 does (PCREDUNDANT on several ranks: the same result
+     run to run) */
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(SNESCreate(comm_, &snes_));
+  PetscCall(SNESSetOptionsPrefix(snes_, "fe2_static_"));
+  PetscCall(SNESSetType(snes_, SNESNEWTONLS));
+  {
+    SNESLineSearch ls;
+    PetscCall(SNESGetLineSearch(snes_, &ls));
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  }
+  PetscCall(SNESGetKSP(snes_, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, size > 1 ? PCREDUNDANT : PCLU));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Displacement-only system. The model's state is [u, v] per vertex and its F(U, Udot = 0) =
+   [-v; f_int - f_ext] with Jacobian [[0, -I], [K, C]] at shift 0 would serve as it is, but its
+   displacement rows have no diagonal (an LU without pivoting, PETSc's own, breaks down; only a
+   pivoting one, MUMPS, works), it doubles the unknowns, and v = 0 would be enforced by the solver
+   rather than by construction. Here the unknowns are the free displacements x, U = [x; 0], the
+   residual is the velocity rows of F (f_int - lambda f_ext) and the Jacobian is the K block of the
+   model's matrix (MatCreateSubMatrix on the free u columns and v rows): the textbook static
+   problem, symmetric for a hyperelastic material, that any PETSc solver (-fe2_static_pc_type
+   cholesky, gamg, ...) takes. */
+PetscErrorCode FE2StaticRun::SetUp()
+{
+  PetscInt  n;
+  PetscReal scale[2];
+  PetscFunctionBeginUser;
+  PetscCheck(snes_, comm_, PETSC_ERR_ORDER, "SetFromOptions() must be called before SetUp()");
+  PetscCall(RegisterLogStage("fe2_static setup", &stage_setup_));
+  PetscCall(RegisterLogStage("fe2_static solve", &stage_solve_));
+  PetscCall(PetscLogEventRegister("TgLoadIncrement", PETSC_OBJECT_CLASSID, &ev_increment_));
+  PetscCall(PetscLogEventRegister("TgOutput", PETSC_OBJECT_CLASSID, &ev_output_));
+  PetscCall(PetscLogStagePush(stage_setup_));
+  PetscCall(model_.SetUp());
+  PetscCall(model_.CreateGlobalVector(&U_));
+  PetscCall(PetscObjectSetName((PetscObject)U_, "state"));
+  PetscCall(VecZeroEntries(U_));
+  PetscCall(VecDuplicate(U_, &Udot_));
+  PetscCall(VecZeroEntries(Udot_));
+  PetscCall(VecDuplicate(U_, &Ffull_));
+  PetscCall(MatDuplicate(model_.MassMatrix(), MAT_DO_NOT_COPY_VALUES, &J_)); /* the model's pattern */
+  PetscCall(model_.CreateFreeIS(&is_u_, &is_v_));
+  PetscCall(ISGetLocalSize(is_u_, &n));
+  PetscCall(VecCreateMPI(comm_, n, PETSC_DETERMINE, &x_));
+  PetscCall(VecZeroEntries(x_));
+  PetscCall(VecDuplicate(x_, &x_conv_));
+  PetscCall(VecZeroEntries(x_conv_));
+  PetscCall(MatCreateSubMatrix(J_, is_v_, is_u_, MAT_INITIAL_MATRIX, &K_));
+  {
+    Vec r;
+    PetscCall(VecDuplicate(x_, &r));
+    PetscCall(SNESSetFunction(snes_, r, Residual, this));
+    PetscCall(VecDestroy(&r));
+  }
+  PetscCall(SNESSetJacobian(snes_, K_, K_, Jacobian, this));
+  /* the force scale of the problem, |f_ext| or, without a load, the material's own |f_int(0)|
+     (an RVE's stress at rest): the absolute tolerance is 1e-10 of it, a floor under the relative
+     one (1e-8 of each increment's initial residual) that tiny increments and round-off reach */
+  {
+    Vec r0, r1;
+    PetscCall(VecDuplicate(x_, &r0));
+    PetscCall(VecDuplicate(x_, &r1));
+    model_.SetLoadFactor(0);
+    PetscCall(Residual(snes_, x_, r0, this));
+    model_.SetLoadFactor(1);
+    PetscCall(Residual(snes_, x_, r1, this));
+    PetscCall(VecNorm(r0, NORM_2, &scale[0]));
+    PetscCall(VecAXPY(r1, -1.0, r0));
+    PetscCall(VecNorm(r1, NORM_2, &scale[1]));
+    PetscCall(VecDestroy(&r0));
+    PetscCall(VecDestroy(&r1));
+    PetscCheck(std::isfinite(scale[0]), comm_, PETSC_ERR_NOT_CONVERGED, "The material fails at rest (F = I)");
+    force_scale_ = PetscMax(scale[0], scale[1]);
+  }
+  PetscCall(SNESSetTolerances(snes_, force_scale_ > 0 ? 1e-10 * force_scale_ : PETSC_DEFAULT, 1e-8, PETSC_DEFAULT, 25, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(snes_));
+  PetscCall(SNESSetConvergenceHistory(snes_, NULL, NULL, PETSC_DECIDE, PETSC_TRUE)); /* each solve's initial residual */
+  {
+    PetscReal atol, rtol, stol;
+    PetscInt  maxit, maxf;
+    PetscCall(SNESGetTolerances(snes_, &atol, &rtol, &stol, &maxit, &maxf));
+    PetscCheck(std::isfinite(atol) && atol >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_snes_atol = %g: must be finite and >= 0", (double)atol);
+    PetscCheck(std::isfinite(rtol) && rtol >= 0 && rtol < 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_snes_rtol = %g: must be in [0, 1)",
+               (double)rtol);
+    PetscCheck(maxit >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_snes_max_it = %" PetscInt_FMT ": must be >= 1", maxit);
+  }
+  {
+    PetscMPIInt rank, size;
+    SNESType    type;
+    PetscReal   atol, rtol;
+    PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    PetscCall(SNESGetType(snes_, &type));
+    PetscCall(SNESGetTolerances(snes_, &atol, &rtol, NULL, NULL, NULL));
+    PetscCall(PetscPrintf(comm_,
+                          "turgor fe2_static: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
+                          " material-point groups\n",
+                          model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), model_.QuadratureDescription(), size,
+                          model_.Pool().NumGroups()));
+    PetscCall(model_.Pool().Model().View(PETSC_VIEWER_STDOUT_(comm_)));
+    PetscCall(
+      PetscPrintf(comm_,
+                  "Static equilibrium f_int(u) = lambda f_ext, body force (%g, %g) µm/µs^2 x rho0 %.6g ng/µm^2 (|f_ext| = %.4g µN, |f_int(0)| = %.4g µN), "
+                  "lambda in increments of 1/%" PetscInt_FMT " (at least %g); SNES %s, rtol = %g, atol = %g\n",
+                  (double)load_.body_acceleration[0], (double)load_.body_acceleration[1], (double)model_.ReferenceDensity(), (double)scale[1], (double)scale[0],
+                  spec_.load_steps, (double)spec_.min_increment, type, (double)rtol, (double)atol));
+    if (rank == 0) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"load_factor", "tip_displacement_y", "snes_its"}));
+  }
+  if (spec_.snapshot) PetscCall(fields_.Open(model_, output_dir_, "coarse"));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2StaticRun::ToState(Vec x)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecISCopy(U_, is_u_, SCATTER_FORWARD, x)); /* the velocity part of U_ stays 0 */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* r = f_int(u) - lambda f_ext on the free dofs; NaN and a domain error when a material point fails
+   (the increment is then cut back). */
+PetscErrorCode FE2StaticRun::Residual(SNES snes, Vec x, Vec r, void *ctx)
+{
+  return TURGOR_GUARDED({
+    FE2StaticRun *run = (FE2StaticRun *)ctx;
+    PetscBool     ok;
+    PetscFunctionBeginUser;
+    PetscCall(run->ToState(x));
+    PetscCall(run->model_.IFunction(run->U_, run->Udot_, run->Ffull_, &ok));
+    if (ok) PetscCall(VecISCopy(run->Ffull_, run->is_v_, SCATTER_REVERSE, r));
+    else {
+      PetscCall(VecSet(r, NAN));
+      PetscCall(SNESSetFunctionDomainError(snes));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+/* K = d f_int / d u from the materials' tangents (the model's Jacobian at shift 0, its K block). */
+PetscErrorCode FE2StaticRun::Jacobian(SNES snes, Vec x, Mat A, Mat B, void *ctx)
+{
+  return TURGOR_GUARDED({
+    FE2StaticRun *run = (FE2StaticRun *)ctx;
+    PetscBool     ok;
+    PetscFunctionBeginUser;
+    PetscCall(run->ToState(x));
+    PetscCall(run->model_.IJacobian(run->U_, 0.0, run->J_, &ok));
+    if (!ok) PetscCall(SNESSetJacobianDomainError(snes));
+    PetscCall(MatCreateSubMatrix(run->J_, run->is_v_, run->is_u_, MAT_REUSE_MATRIX, &B));
+    if (A != B) {
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+/* Newton from the last converged displacements at load factor lambda. On success the material
+   points are at the solution (evaluated there last) and committed; on failure reverted. */
+PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::string *why)
+{
+  SNESConvergedReason reason;
+  PetscInt            its, lits;
+  char                where[64];
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_increment_, 0, 0, 0, 0));
+  PetscCall(PetscSNPrintf(where, sizeof where, "at load factor %.6g", (double)lambda));
+  model_.SetEvaluationWhere(where);
+  model_.SetLoadFactor(lambda);
+  const PetscInt failures = model_.Counters().failures;
+  PetscCall(VecCopy(x_conv_, x_));
+  PetscCall(SNESSolve(snes_, NULL, x_));
+  PetscCall(SNESGetConvergedReason(snes_, &reason));
+  PetscCall(SNESGetIterationNumber(snes_, &its));
+  PetscCall(SNESGetLinearSolveIterations(snes_, &lits));
+  solves_++;
+  snes_its_ += its;
+  ksp_its_ += lits;
+  *converged = reason > 0;
+  if (reason == SNES_CONVERGED_SNORM_RELATIVE) {
+    /* a step below -snes_stol of the solution: Newton at the round-off (or an RVE's accuracy)
+       floor, or a line search that stalled far from it; only the first is a solution */
+    PetscReal *hist;
+    PetscInt   nhist;
+    PetscReal  fnorm, atol;
+    Vec        F;
+    PetscCall(SNESGetConvergenceHistory(snes_, &hist, NULL, &nhist));
+    PetscCall(SNESGetFunction(snes_, &F, NULL, NULL));
+    PetscCall(VecNorm(F, NORM_2, &fnorm)); /* at the final iterate (the history stops one short) */
+    PetscCall(SNESGetTolerances(snes_, &atol, NULL, NULL, NULL, NULL));
+    if (nhist > 0 && !(fnorm <= PetscMax(atol, 1e-4 * hist[0]))) {
+      *converged = false;
+      char buf[256];
+      PetscCall(PetscSNPrintf(buf, sizeof buf, "the Newton steps stalled (SNES CONVERGED_SNORM_RELATIVE) at residual %.3g, %.2g of the initial %.3g",
+                              (double)fnorm, (double)(fnorm / hist[0]), (double)hist[0]));
+      *why = buf;
+    }
+  }
+  if (*converged) {
+    /* the material points' current states must be the solution's (the last evaluation normally
+       is; the cache makes this free then) */
+    PetscBool   ok;
+    std::string what;
+    PetscCall(ToState(x_));
+    PetscCall(model_.EvaluateMaterials(U_, false, &ok, &what));
+    *converged = ok;
+    if (!ok) *why = "material points failed at the converged state: " + what;
+  } else if (reason <= 0)
+    *why = std::string(model_.Counters().failures > failures ? "material points failed, " : "") + "SNES " + SNESConvergedReasons[reason] + " after " +
+           std::to_string(its) + " iterations";
+  if (*converged) PetscCall(model_.CommitMaterials());
+  else {
+    failed_solves_++;
+    PetscCall(model_.RevertMaterials());
+  }
+  PetscCall(PetscLogEventEnd(ev_increment_, 0, 0, 0, 0));
+  if (*converged) PetscCall(Record(lambda, its));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2StaticRun::Record(PetscReal lambda, PetscInt its)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ToState(x_));
+  PetscCall(VecCopy(x_, x_conv_));
+  lambda_ = lambda;
+  PetscCall(model_.TipDisplacement(U_, &tip_));
+  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its}));
+  PetscCall(PetscPrintf(comm_, "  load factor %-10.6g (increment %.4g): %2" PetscInt_FMT " Newton iterations, tip displacement %.8g µm\n", (double)lambda,
+                        (double)increment_, its, (double)tip_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Load stepping. lambda = 0 first: the equilibrium without load (none to find for a material that
+   is stress-free at rest; an RVE's stress at rest may deform the tissue). Then increments of
+   1/load_steps: a failed one (SNES diverged, a material point failed) is halved and retried from
+   the last converged state; after two converged increments in a row the increment doubles again,
+   up to 1/load_steps; below -fe2_static_min_increment the run fails. */
+PetscErrorCode FE2StaticRun::Solve()
+{
+  bool        ok;
+  std::string why;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(stage_solve_));
+  solving_ = true;
+  PetscCall(PetscTime(&t0_));
+  increment_ = 0;
+  PetscCall(SolveAt(0.0, &ok, &why));
+  if (!ok) {
+    PetscCall(PetscTime(&wall_));
+    wall_ -= t0_;
+    last_failure_ = why;
+    SETERRQ(comm_, PETSC_ERR_NOT_CONVERGED,
+            "The fe2_static solve failed without load (load factor 0: the equilibrium under the material's own stress at rest): %s; try "
+            "-fe2_static_snes_max_it, -fe2_static_snes_linesearch_type, or a material point that is stress-free at rest",
+            why.c_str());
+  }
+  const PetscReal max_increment = 1.0 / (PetscReal)spec_.load_steps;
+  PetscReal       dl            = max_increment;
+  PetscInt        streak        = 0;
+  while (lambda_ < 1) {
+    PetscBool stop;
+    PetscCall(InterruptRequestedAll(comm_, &stop));
+    if (stop) {
+      interrupted_ = true;
+      PetscCall(PetscPrintf(comm_, "Interrupted at load factor %g: stopping\n", (double)lambda_));
+      break;
+    }
+    PetscReal target = lambda_ + dl;
+    if (target > 1 - 1e-12) target = 1; /* no sliver of an increment left by round-off */
+    increment_ = target - lambda_;
+    PetscCall(SolveAt(target, &ok, &why));
+    if (ok) {
+      increments_++;
+      if (++streak >= 2 && dl < max_increment) {
+        dl     = PetscMin(2 * dl, max_increment);
+        streak = 0;
+      }
+      continue;
+    }
+    cutbacks_++;
+    streak        = 0;
+    last_failure_ = why;
+    dl            = 0.5 * (target - lambda_);
+    PetscCall(PetscPrintf(comm_, "  load factor %-10.6g failed (%s): back to %g, increment halved to %.4g\n", (double)target, why.c_str(), (double)lambda_,
+                          (double)dl));
+    if (dl < spec_.min_increment) {
+      PetscCall(PetscTime(&wall_));
+      wall_ -= t0_;
+      if (spec_.snapshot) { /* the last converged state, for a look at what went wrong */
+        PetscBool sok;
+        PetscCall(ToState(x_conv_));
+        PetscCall(model_.EvaluateCellStress(U_, &sok));
+        PetscCall(fields_.Write(model_, U_, lambda_));
+      }
+      SETERRQ(comm_, PETSC_ERR_NOT_CONVERGED,
+              "The fe2_static solve reached load factor %g of 1 (tip displacement %g µm): the increment to %g failed (%s) and halving it would go "
+              "below -fe2_static_min_increment = %g; the material-point failures printed above (if any) say where; try more -fe2_static_load_steps "
+              "or a smaller -fe2_static_min_increment",
+              (double)lambda_, (double)tip_, (double)target, why.c_str(), (double)spec_.min_increment);
+    }
+  }
+  PetscCall(PetscTime(&wall_));
+  wall_ -= t0_;
+  if (spec_.snapshot) {
+    PetscBool sok;
+    PetscCall(PetscLogEventBegin(ev_output_, 0, 0, 0, 0));
+    PetscCall(ToState(x_conv_));
+    PetscCall(model_.EvaluateCellStress(U_, &sok));
+    PetscCall(fields_.Write(model_, U_, lambda_));
+    PetscCall(PetscLogEventEnd(ev_output_, 0, 0, 0, 0));
+  }
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The keys a run reports completed or not; not collective (rank-local counts where it matters). */
+PetscErrorCode FE2StaticRun::Summary(JsonObject &js, const char *status)
+{
+  PetscMPIInt size;
+  PetscReal   atol = 0, rtol = 0, stol = 0;
+  PetscInt    maxit = 0, maxf = 0;
+  SNESType    type = NULL;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  js.Set("mode", "fe2_static");
+  js.Set("status", status);
+  js.Set("material", model_.Pool().MaterialName());
+  js.Set("quadrature", model_.QuadratureName());
+  js.Set("n_elements", model_.NumElements());
+  js.Set("n_material_points", model_.NumMaterialPoints());
+  js.Set("mpi_ranks", (PetscInt)size);
+  js.Set("body_force", std::vector<PetscReal>{load_.body_acceleration[0], load_.body_acceleration[1]});
+  if (snes_) {
+    PetscCall(SNESGetType(snes_, &type));
+    PetscCall(SNESGetTolerances(snes_, &atol, &rtol, &stol, &maxit, &maxf));
+  }
+  js.Set("snes_type", type ? type : "");
+  js.Set("snes_rtol", rtol);
+  js.Set("snes_atol", atol);
+  js.Set("snes_stol", stol);
+  js.Set("snes_max_it", maxit);
+  js.Set("load_steps", spec_.load_steps);
+  js.Set("min_increment", spec_.min_increment);
+  js.Set("load_factor_final", lambda_);
+  js.Set("load_increments", increments_);
+  js.Set("load_cutbacks", cutbacks_);
+  js.Set("nonlinear_solves", solves_);
+  js.Set("failed_nonlinear_solves", failed_solves_);
+  js.Set("snes_its", snes_its_);
+  js.Set("ksp_its", ksp_its_);
+  js.Set("rhs_evals", model_.Counters().residuals);
+  js.Set("jacobian_evals", model_.Counters().tangent_evals);
+  js.Set("material_evaluations", model_.Counters().material_evals);
+  js.Set("material_failures", model_.Counters().failures);
+  js.Set("force_scale", force_scale_);
+  js.Set("tip_displacement_final", tip_);
+  js.Set("wall_time_s", (PetscReal)wall_);
+  js.Set("snapshots", fields_.Count());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2StaticRun::WriteSummary()
+{
+  JsonObject       js;
+  MaterialCounters rc;
+  PetscFunctionBeginUser;
+  PetscCall(Summary(js, interrupted_ ? "interrupted" : "completed"));
+  if (interrupted_) js.Set("reason", "interrupted (SIGINT/SIGTERM): load_factor_final is below 1");
+  PetscCall(model_.Pool().GlobalCounters(&rc));
+  js.Set("rve_solves", rc.solves);
+  js.Set("rve_tangent_solves", rc.tangent_solves);
+  js.Set("rve_output_solves", rc.output_solves);
+  js.Set("psi_tc_iterations", rc.iterations);
+  js.Set("rve_failures", rc.failures);
+  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+  PetscCall(PetscPrintf(comm_,
+                        "%s: load factor %g in %" PetscInt_FMT " increments (%" PetscInt_FMT " cut back), %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT
+                        " function and %" PetscInt_FMT " Jacobian evaluations, %" PetscInt_FMT " RVE solves, %.3f s wall; final tip displacement %.8g µm\n"
+                        "Outputs in %s: tip.csv, summary.json%s\n",
+                        interrupted_ ? "Interrupted" : "Done", (double)lambda_, increments_, cutbacks_, snes_its_, model_.Counters().residuals,
+                        model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, output_dir_.c_str(),
+                        fields_.Count() ? ", coarse.h5 + coarse.xmf" : ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2StaticRun::WriteFailure(const std::string &reason)
+{
+  JsonObject  js;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (rank != 0 || !have_dir_) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(Summary(js, "failed"));
+  js.Set("reason", reason);
+  if (solving_) {
+    js.Set("last_failure", last_failure_);
+    js.Set("partial_outputs", std::vector<std::string>{"tip.csv", "coarse.h5 + coarse.xmf"});
+  }
+  PetscCall(tip_csv_.Close());
+  PetscCall(js.Write(PETSC_COMM_SELF, output_dir_ + "/summary.json"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
