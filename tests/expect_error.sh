@@ -1,6 +1,7 @@
 #!/bin/sh
 # Bad input must end the run with a non-zero exit status and a message matching REGEX (naming the
-# option and value) -- never a crash (signal), a hang (ctest TIMEOUT) or a silent success.
+# option and value) -- never a crash (signal), a hang (ctest TIMEOUT), a sanitizer's report or a
+# silent success.
 #   expect_error.sh REGEX command [args...]
 regex=$1
 shift
@@ -12,6 +13,12 @@ if [ "$rc" -eq 0 ]; then
 fi
 if printf '%s' "$out" | grep -qE 'Segmentation|Caught signal|core dumped|SIGSEGV|SIGFPE'; then
   printf 'FAIL: crashed instead of reporting an error:\n%s\n' "$out"
+  exit 1
+fi
+# sanitized builds (-DTURGOR_SANITIZE=ON): a memory error, a leak or undefined behaviour on the way
+# to the error also ends the run non-zero, after the expected message
+if printf '%s' "$out" | grep -qE 'ERROR: (Address|Leak)Sanitizer|runtime error: '; then
+  printf 'FAIL: a sanitizer reported an error:\n%s\n' "$out"
   exit 1
 fi
 if ! printf '%s' "$out" | grep -qE -- "$regex"; then
