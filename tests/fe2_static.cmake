@@ -68,12 +68,4 @@ turgor_add_test(fe2_static_min_increment_reached COMMAND ${BAD} "reached load fa
   ${STATIC} ${STATIC_NH} ${STATIC_BEAM} -body_force 0,-1e-4 -fe2_static_load_steps 4 -fe2_static_snes_max_it 4 -fe2_static_min_increment 0.1
   -output_dir static_min_increment LABELS fe2 static hard TIMEOUT 60)
 
-# Bad input: a clear error naming the option and the value (no square brackets in these regexes: an
-# unbalanced one stops CMake from splitting the command list).
-set(STATIC_BAD ${STATIC} -material neo_hookean -output_dir bad_input_out)
-turgor_bad_input(bad_static_load_steps "Option -fe2_static_load_steps = -2: must be >= 1" ${STATIC_BAD} -fe2_static_load_steps -2)
-turgor_bad_input(bad_static_min_increment_zero "Option -fe2_static_min_increment = 0.*: must be in .0, 1." ${STATIC_BAD} -fe2_static_min_increment 0)
-turgor_bad_input(bad_static_min_increment_large "Option -fe2_static_min_increment = 1.5: must be in .0, 1." ${STATIC_BAD} -fe2_static_min_increment 1.5)
-turgor_bad_input(bad_static_snes_rtol "Option -fe2_static_snes_rtol = -1.*: must be in .0, 1." ${STATIC_BAD} -fe2_static_snes_rtol -1)
-turgor_bad_input(bad_quadrature "Option -coarse_quadrature = gauss3: unknown quadrature rule \\(known: sri, full\\)" ${STATIC_BAD} -coarse_quadrature gauss3)
-turgor_bad_input(bad_quadrature_fe2 "Option -coarse_quadrature = reduced: unknown quadrature rule" ${FE2} -coarse_quadrature reduced)
+# Bad input of this mode: tests/bad_input.txt (section fe2_static).

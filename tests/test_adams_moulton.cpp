@@ -228,7 +228,13 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
     PetscCall(TSGetAdapt(ts, &adapt));
     PetscCall(TSAdaptSetType(adapt, TSADAPTNONE)); /* command-line adapters apply to the adaptive runs only */
   }
-  PetscCall(TSSolve(ts, Y));
+  /* a refused setup, such as (7)'s IFunction, is returned to the caller after freeing the run */
+  if (PetscErrorCode ierr = TSSolve(ts, Y)) {
+    PetscCall(TSDestroy(&ts));
+    PetscCall(VecDestroy(&Y));
+    PetscCall(VecDestroy(&p.X));
+    PetscCall(ierr); /* returns it, with this frame in the traceback */
+  }
   PetscCall(TSGetConvergedReason(ts, &res->reason));
   PetscCall(TSGetTime(ts, &res->t));
   PetscCall(TSGetSolveTime(ts, &res->solve_time));

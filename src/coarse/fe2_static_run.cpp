@@ -51,8 +51,7 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions());
   PetscCall(spec_.SetFromOptions(comm_));
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_));
-  have_dir_ = true;
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_)); /* not prepared under -help */
   /* the nonlinear solver, with defaults through the API (the user's -fe2_static_snes_* win at
      SNESSetFromOptions in SetUp): Newton with full steps, the load cut-back being its
      globalisation -- a line search on |R| (bt, PETSc's default) takes steps of 0.1 on a bending
@@ -170,9 +169,9 @@ PetscErrorCode FE2StaticRun::SetUp()
                   "lambda in increments of 1/%" PetscInt_FMT " (at least %g); SNES %s, rtol = %g, atol = %g\n",
                   (double)load_.body_acceleration[0], (double)load_.body_acceleration[1], (double)model_.ReferenceDensity(), (double)scale[1], (double)scale[0],
                   spec_.load_steps, (double)spec_.min_increment, type, (double)rtol, (double)atol));
-    if (rank == 0) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"load_factor", "tip_displacement_y", "snes_its"}));
+    if (rank == 0 && have_dir_) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"load_factor", "tip_displacement_y", "snes_its"}));
   }
-  if (spec_.snapshot) PetscCall(fields_.Open(model_, output_dir_, "coarse"));
+  if (spec_.snapshot && have_dir_) PetscCall(fields_.Open(model_, output_dir_, "coarse"));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
