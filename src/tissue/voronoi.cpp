@@ -174,46 +174,117 @@ static void CellAreas(const std::vector<PowerCell> &cells, std::vector<PetscReal
   for (size_t i = 0; i < cells.size(); i++) (*A)[i] = cells[i].v.empty() ? 0 : RingSignedArea(cells[i].v);
 }
 
-/* Laguerre weights for the target areas: w_i += (T_i - A_i) / (2 sum_j l_ij / (2 d_ij)), the
-   diagonal of dA/dw (l_ij the shared edge, d_ij the seed distance), a damped Jacobi step on the
-   area equations; a step that empties a cell is halved. Hand-written (not a PETSc solver) so that
-   the tissue does not depend on the BLAS kernels of the machine. */
+static PetscReal MaxAreaError(const std::vector<PowerCell> &cells, const std::vector<PetscReal> &targets)
+{
+  std::vector<PetscReal> A;
+  PetscReal              err = 0;
+  CellAreas(cells, &A);
+  for (size_t i = 0; i < A.size(); i++) err = std::max(err, std::fabs(A[i] - targets[i]) / targets[i]);
+  return err;
+}
+
+/* Laguerre weights for the target areas by Newton's method on A(w) = T: dA_i/dw_j = -l_ij / (2 d_ij)
+   (l_ij the shared edge, d_ij the seed distance), dA_i/dw_i = sum_j l_ij / (2 d_ij), a weighted graph
+   Laplacian (singular: adding a constant to every weight changes nothing; T - A sums to zero, so the
+   system is consistent). Each Newton step is solved by Jacobi-preconditioned CG, then damped until no
+   cell is empty and the largest area error falls. CG is hand-written (not PETSc's KSP) so that the
+   tissue does not depend on the machine's BLAS kernels: same seed, same bits. */
 static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], VoronoiDiagram &D)
 {
-  const size_t           N       = D.seeds.size();
-  const PetscInt         max_its = 500;
-  const PetscReal        tol     = 1e-3;
-  std::vector<PetscReal> A, dw(N), w0;
-  PetscFunctionBeginUser;
-  PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
-  for (PetscInt it = 0; it < max_its; it++) {
-    CellAreas(D.cells, &A);
-    PetscReal err = 0;
-    for (size_t i = 0; i < N; i++) err = std::max(err, std::fabs(A[i] - D.targets[i]) / D.targets[i]);
-    D.max_area_error = err;
-    if (err < tol) break;
+  const size_t                        N       = D.seeds.size();
+  const PetscInt                      max_its = 100;
+  const PetscReal                     tol     = 1e-6;
+  std::vector<PetscReal>              A, b(N), x(N), r(N), z(N), p(N), q(N), diag(N), w0;
+  std::vector<std::vector<PetscInt>>  nbr(N);
+  std::vector<std::vector<PetscReal>> coef(N);
+  auto                                any_empty = [&]() {
+    for (const PowerCell &c : D.cells)
+      if (c.v.empty()) return true;
+    return false;
+  };
+  auto apply = [&](const std::vector<PetscReal> &v, std::vector<PetscReal> &out) {
     for (size_t i = 0; i < N; i++) {
-      const PowerCell &c    = D.cells[i];
-      PetscReal        diag = 0;
+      PetscReal s = 0;
+      for (size_t t = 0; t < nbr[i].size(); t++) s += coef[i][t] * (v[i] - v[(size_t)nbr[i][t]]);
+      out[i] = s;
+    }
+  };
+  auto dot = [&](const std::vector<PetscReal> &u, const std::vector<PetscReal> &v) {
+    PetscReal s = 0;
+    for (size_t i = 0; i < N; i++) s += u[i] * v[i];
+    return s;
+  };
+  PetscFunctionBeginUser;
+  /* after a Lloyd step the old weights may empty a cell: pull them toward 0 (Voronoi, where no cell is empty) */
+  PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
+  for (int k = 0; any_empty(); k++) {
+    for (PetscReal &w : D.weights) w = k < 60 ? 0.5 * w : 0;
+    PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
+  }
+  D.max_area_error = MaxAreaError(D.cells, D.targets);
+  for (PetscInt it = 0; it < max_its && D.max_area_error >= tol; it++) {
+    CellAreas(D.cells, &A);
+    for (size_t i = 0; i < N; i++) {
+      const PowerCell &c = D.cells[i];
+      nbr[i].clear();
+      coef[i].clear();
+      diag[i] = 0;
       for (size_t k = 0; k < c.v.size(); k++) {
         const PetscInt j = c.label[k];
         if (j < 0) continue;
-        const Point2 &a = c.v[k], &b = c.v[(k + 1) % c.v.size()];
-        diag += std::hypot(b[0] - a[0], b[1] - a[1]) / (2 * std::hypot(D.seeds[j][0] - D.seeds[i][0], D.seeds[j][1] - D.seeds[i][1]));
+        const Point2   &u = c.v[k], &v = c.v[(k + 1) % c.v.size()];
+        const PetscReal cij = std::hypot(v[0] - u[0], v[1] - u[1]) / (2 * std::hypot(D.seeds[j][0] - D.seeds[i][0], D.seeds[j][1] - D.seeds[i][1]));
+        nbr[i].push_back(j);
+        coef[i].push_back(cij);
+        diag[i] += cij;
       }
-      dw[i] = diag > 0 ? 0.5 * (D.targets[i] - A[i]) / diag : 0;
+      b[i] = D.targets[i] - A[i];
     }
+    /* CG from 0 to a relative residual of 1e-8, on the range of the Laplacian: b's mean (rounding)
+       is removed, else CG chases it and the weights drift by a constant until the bisectors lose
+       their digits; the step is made mean-free for the same reason */
+    PetscReal bmean = 0;
+    for (size_t i = 0; i < N; i++) bmean += b[i];
+    bmean /= (PetscReal)N;
+    for (size_t i = 0; i < N; i++) b[i] -= bmean;
+    const PetscReal bb = dot(b, b);
+    std::fill(x.begin(), x.end(), 0);
+    r = b;
+    for (size_t i = 0; i < N; i++) z[i] = diag[i] > 0 ? r[i] / diag[i] : 0;
+    p            = z;
+    PetscReal rz = dot(r, z);
+    for (PetscInt k = 0; k < 2000 && dot(r, r) > 1e-16 * bb; k++) {
+      apply(p, q);
+      const PetscReal pq = dot(p, q);
+      if (!(pq > 0)) break;
+      const PetscReal alpha = rz / pq;
+      for (size_t i = 0; i < N; i++) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+        z[i] = diag[i] > 0 ? r[i] / diag[i] : 0;
+      }
+      const PetscReal rz1 = dot(r, z), beta = rz1 / rz;
+      rz = rz1;
+      for (size_t i = 0; i < N; i++) p[i] = z[i] + beta * p[i];
+    }
+    PetscReal xmean = 0;
+    for (size_t i = 0; i < N; i++) xmean += x[i];
+    xmean /= (PetscReal)N;
+    for (size_t i = 0; i < N; i++) x[i] -= xmean;
+    /* damped: no empty cell, and the largest area error must fall */
     w0             = D.weights;
-    PetscReal step = 1;
+    PetscReal step = 1, err = PETSC_MAX_REAL;
     for (int halve = 0;; halve++) {
-      for (size_t i = 0; i < N; i++) D.weights[i] = w0[i] + step * dw[i];
+      for (size_t i = 0; i < N; i++) D.weights[i] = w0[i] + step * x[i];
       PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
-      bool empty = false;
-      for (const PowerCell &c : D.cells) empty = empty || c.v.empty();
-      if (!empty) break;
-      PetscCheck(halve < 40, comm, PETSC_ERR_NOT_CONVERGED, "Option -tissue_size_cv: Laguerre weights: a cell stays empty however short the step");
+      if (!any_empty()) {
+        err = MaxAreaError(D.cells, D.targets);
+        if (err < D.max_area_error || halve >= 30) break;
+      }
+      PetscCheck(halve < 40, comm, PETSC_ERR_NOT_CONVERGED, "Option -tissue_size_cv: Laguerre weights: a cell stays empty however short the Newton step");
       step *= 0.5;
     }
+    D.max_area_error    = err;
     D.weight_iterations = it + 1;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -234,14 +305,12 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
   }
   D.weights.assign(N, 0);
   if (spec.size_cv > 0) {
-    /* areas uniform with the requested cv: a = 1 + sqrt(3) c (2 u - 1), scaled to fill the box */
-    PetscReal sum = 0;
+    /* areas uniform with the requested cv, stratified so that the sample has that cv (to a factor
+       sqrt(1 - 1/N^2)) rather than the request plus sampling noise: a_k = 1 + sqrt(3) c (2 (k + 1/2)/N - 1)
+       dealt to the cells in a random order (Fisher-Yates), scaled to fill the box */
     D.targets.resize(N);
-    for (PetscReal &t : D.targets) {
-      t = 1 + std::sqrt(3.0) * spec.size_cv * (2 * u() - 1);
-      sum += t;
-    }
-    for (PetscReal &t : D.targets) t *= W * H / sum;
+    for (size_t k = 0; k < N; k++) D.targets[k] = (1 + std::sqrt(3.0) * spec.size_cv * (2 * ((PetscReal)k + 0.5) / (PetscReal)N - 1)) * W * H / (PetscReal)N;
+    for (size_t k = N; k > 1; k--) std::swap(D.targets[k - 1], D.targets[(size_t)(u() * (PetscReal)k)]);
   }
   for (PetscInt step = 0;; step++) {
     if (spec.size_cv > 0) PetscCall(AdaptWeights(comm, spec.box, D));
