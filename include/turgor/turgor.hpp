@@ -9,4 +9,8 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
 #include <turgor/run/simulation.h>
+#include <turgor/tissue/node_file.h>
+#include <turgor/tissue/polygon_tissue.h>
+#include <turgor/tissue/polyline.h>
 #include <turgor/tissue/square_grid.h>
+#include <turgor/tissue/voronoi.h>

@@ -11,7 +11,10 @@
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
 #include <turgor/rve/rve.h>
+#include <turgor/tissue/node_file.h>
+#include <turgor/tissue/polyline.h>
 #include <turgor/tissue/square_grid.h>
+#include <turgor/tissue/voronoi.h>
 #include <turgor/ts/ts_register.h>
 #include <turgor/core/errors.h>
 
@@ -40,6 +43,9 @@ PetscErrorCode RegisterAll(void)
   PetscCall(MaterialModelRegister("neo_hookean", CreateInstance<MaterialModel, NeoHookeanMaterial>));
   /* tissue generators (-tissue_type) */
   PetscCall(TissueGeneratorRegister("square_grid", CreateInstance<TissueGenerator, SquareGridGenerator>));
+  PetscCall(TissueGeneratorRegister("node_file", CreateInstance<TissueGenerator, NodeFileGenerator>));
+  PetscCall(TissueGeneratorRegister("voronoi", CreateInstance<TissueGenerator, VoronoiGenerator>));
+  PetscCall(TissueGeneratorRegister("polyline", CreateInstance<TissueGenerator, PolylineGenerator>));
   /* run modes (-mode) */
   PetscCall(SimulationRegister("fine", CreateInstance<Simulation, FineRun>));
   PetscCall(SimulationRegister("rve", CreateInstance<Simulation, StrainPathRun>));

@@ -1,0 +1,212 @@
+/* -tissue_type node_file: cells of nodes and bars from the L-hyphen code's node file. */
+#include <turgor/tissue/node_file.h>
+#include <turgor/core/options.h>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace turgor {
+
+PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm)
+{
+  char      buf[PETSC_MAX_PATH_LEN];
+  PetscInt  ids[1025], n = 1025;
+  PetscBool set_path, set_open;
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(buf, path.c_str(), sizeof buf));
+  PetscOptionsBegin(comm, "tissue_", "Node-file tissue (-tissue_type node_file)", "turgor");
+  PetscCall(PetscOptionsString("-node_file", "Node file: one node per line 'x y cellId', each cell's nodes together and in order around it", "NodeFileSpec",
+                               buf, buf, sizeof buf, &set_path));
+  PetscCall(PetscOptionsReal("-length_scale", "Length of one file unit [µm]", "NodeFileSpec", length_scale, &length_scale, NULL));
+  PetscCall(
+    PetscOptionsIntArray("-open_cells", "Cell ids (as in the file) that are open chains: no closing bar, no pressure", "NodeFileSpec", ids, &n, &set_open));
+  PetscOptionsEnd();
+  PetscCall(CheckNotEmpty(comm, "-tissue_node_file", "the path of a node file"));
+  PetscCall(CheckNotEmpty(comm, "-tissue_open_cells", "cell ids id,id,..."));
+  path = buf;
+  PetscCheck(!path.empty(), comm, PETSC_ERR_ARG_WRONG, "Option -tissue_node_file: no file given (-tissue_type node_file needs one)");
+  PetscCheck(std::isfinite(length_scale) && length_scale > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_length_scale = %g: must be finite and > 0",
+             (double)length_scale);
+  PetscCheck(!set_open || n < 1025, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_open_cells: more than 1024 cells listed");
+  if (set_open) open_cells.assign(ids, ids + n);
+  for (PetscInt id : open_cells) PetscCheck(id >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell id %" PetscInt_FMT " is negative", id);
+  /* the file must exist now, before any allocation; it is read in Generate */
+  std::ifstream f(path);
+  PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", path.c_str(), std::strerror(errno));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One line: 0 = blank or comment, 1 = a node, -1 = malformed. */
+static int ParseNodeLine(const std::string &line, PetscReal *x, PetscReal *y, long long *id)
+{
+  const char *s = line.c_str();
+  while (*s == ' ' || *s == '\t' || *s == '\r') s++;
+  if (!*s || *s == '#') return 0;
+  char *e;
+  errno = 0;
+  *x    = std::strtod(s, &e);
+  if (e == s) return -1;
+  s  = e;
+  *y = std::strtod(s, &e);
+  if (e == s) return -1;
+  s   = e;
+  *id = std::strtoll(s, &e, 10);
+  if (e == s || errno) return -1;
+  s = e;
+  while (*s == ' ' || *s == '\t' || *s == '\r') s++;
+  if (*s && *s != '#') return -1;
+  return std::isfinite(*x) && std::isfinite(*y) ? 1 : -1;
+}
+
+PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue)
+{
+  const char                         *fn = spec.path.c_str();
+  std::vector<PolygonRing>            rings;
+  std::vector<long long>              first_line; /* file line of each cell's first node */
+  std::vector<std::vector<long long>> lines;      /* file line of each node */
+  long long                           id0 = -1, lineno = 0;
+  std::string                         line;
+  PetscFunctionBeginUser;
+  std::ifstream f(spec.path);
+  PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
+  while (std::getline(f, line)) {
+    PetscReal x, y;
+    long long id;
+    lineno++;
+    const int kind = ParseNodeLine(line, &x, &y, &id);
+    if (kind == 0) continue;
+    PetscCheck(kind > 0, comm, PETSC_ERR_FILE_UNEXPECTED,
+               "Option -tissue_node_file = %s: line %lld: expected 'x y cellId' (two finite numbers and an integer), got '%s'", fn, lineno, line.c_str());
+    PetscCheck(id >= 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: line %lld: cell id %lld is negative", fn, lineno, id);
+    if (rings.empty()) id0 = id;
+    const long long cur = id0 + (long long)rings.size() - 1;
+    if (rings.empty() || id != cur) {
+      PetscCheck(rings.empty() || id == cur + 1, comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "Option -tissue_node_file = %s: line %lld: cell id %lld follows cell %lld: ids must increase by one, each cell's nodes listed together", fn,
+                 lineno, id, cur);
+      rings.emplace_back();
+      lines.emplace_back();
+      first_line.push_back(lineno);
+    }
+    rings.back().points.push_back({x * spec.length_scale, y * spec.length_scale});
+    lines.back().push_back(lineno);
+  }
+  PetscCheck(!f.bad(), comm, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: read error after line %lld", fn, lineno);
+  PetscCheck(!rings.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: no nodes in the file", fn);
+  for (PetscInt id : spec.open_cells) {
+    PetscCheck(id >= id0 && id < id0 + (long long)rings.size(), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -tissue_open_cells: cell %" PetscInt_FMT " is not in %s (its cells are %lld to %lld)", id, fn, id0, id0 + (long long)rings.size() - 1);
+    rings[id - id0].open = true;
+  }
+  for (size_t c = 0; c < rings.size(); c++) {
+    PolygonRing    &R  = rings[c];
+    const long long id = id0 + (long long)c;
+    const size_t    n  = R.points.size();
+    PetscCheck(n >= (R.open ? 2u : 3u), comm, PETSC_ERR_FILE_UNEXPECTED,
+               "Option -tissue_node_file = %s: line %lld: %s cell %lld has %zu node%s (needs at least %d)", fn, first_line[c], R.open ? "open" : "closed", id,
+               n, n == 1 ? "" : "s", R.open ? 2 : 3);
+    const size_t m = R.open ? n - 1 : n;
+    for (size_t k = 0; k < m; k++) {
+      const Point2 &a = R.points[k], &b = R.points[(k + 1) % n];
+      PetscCheck(a[0] != b[0] || a[1] != b[1], comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "Option -tissue_node_file = %s: line %lld: cell %lld: zero-length bar from the node of line %lld to the node of line %lld (%g, %g)%s", fn,
+                 lines[c][(k + 1) % n], id, lines[c][k], lines[c][(k + 1) % n], (double)a[0], (double)a[1],
+                 k + 1 == n ? ": its first node is repeated at its end; list each node once" : "");
+    }
+    size_t e1, e2;
+    if (FindSelfIntersection(R.points, R.open, &e1, &e2))
+      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED,
+              "Option -tissue_node_file = %s: line %lld: cell %lld is not simple: its bar from line %lld to line %lld crosses or touches its bar from line "
+              "%lld to line %lld",
+              fn, first_line[c], id, lines[c][e1], lines[c][(e1 + 1) % n], lines[c][e2], lines[c][(e2 + 1) % n]);
+    if (!R.open) {
+      const PetscReal A = RingSignedArea(R.points);
+      PetscCheck(A != 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: line %lld: closed cell %lld has zero area", fn, first_line[c], id);
+      if (A < 0) std::reverse(R.points.begin() + 1, R.points.end()); /* clockwise: the same polygon counter-clockwise, from the same first node */
+    }
+  }
+  BuildPolygonTissue(rings, poly, true, tissue);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissue &tissue)
+{
+  const ParticleSet &P = tissue.particles;
+  PetscFunctionBeginUser;
+  FILE *f = std::fopen(path.c_str(), "w");
+  PetscCheck(f, comm, PETSC_ERR_FILE_OPEN, "Cannot write the node file %s (%s)", path.c_str(), std::strerror(errno));
+  std::string open;
+  for (size_t c = 0; c < P.polygons.size(); c++)
+    if (P.polygons[c].open) open += (open.empty() ? "" : ",") + std::to_string(c);
+  std::fprintf(f, "# turgor node file: x y cellId, one node per line, each cell's nodes in order (closed cells counter-clockwise)\n");
+  if (!open.empty()) std::fprintf(f, "# open cells (read with -tissue_open_cells %s)\n", open.c_str());
+  for (size_t c = 0; c < P.polygons.size(); c++)
+    for (PetscInt i : P.polygons[c].nodes) std::fprintf(f, "%.17g %.17g %zu\n", (double)tissue.X[2 * i], (double)tissue.X[2 * i + 1], c);
+  const bool ok = !std::ferror(f);
+  PetscCheck(std::fclose(f) == 0 && ok, comm, PETSC_ERR_FILE_WRITE, "Cannot write the node file %s", path.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode NodeFileGenerator::SetFromOptions(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(poly.SetFromOptions(comm, true));
+  PetscCall(spec.SetFromOptions(comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A streaming pass over the file (nothing stored): nodes after subdivision and bars. Malformed lines
+   are skipped here; Generate reports them. */
+PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
+{
+  std::ifstream f(spec.path);
+  std::string   line;
+  PetscReal     nodes = 0, first[2] = {0, 0}, prev[2] = {0, 0};
+  long long     cur  = -1;
+  auto          bars = [&](const PetscReal a[2], const PetscReal b[2]) {
+    return BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]) * spec.length_scale, poly.bar_length);
+  };
+  PetscFunctionBeginUser;
+  while (std::getline(f, line)) {
+    PetscReal x, y;
+    long long id;
+    if (ParseNodeLine(line, &x, &y, &id) <= 0) continue;
+    const PetscReal p[2] = {x, y};
+    if (id != cur) {
+      if (cur >= 0) nodes += bars(prev, first) + 1; /* closing bar, or the last node of an open cell: an upper bound either way */
+      cur      = id;
+      first[0] = x;
+      first[1] = y;
+    } else nodes += bars(prev, p);
+    prev[0] = x;
+    prev[1] = y;
+  }
+  if (cur >= 0) nodes += bars(prev, first) + 1;
+  *particles = nodes;
+  *springs   = nodes;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::string NodeFileGenerator::SizeOptions() const
+{
+  std::ostringstream s;
+  s << "-tissue_node_file " << spec.path;
+  if (poly.bar_length > 0) s << " -tissue_bar_length " << poly.bar_length;
+  return s.str();
+}
+
+PetscErrorCode NodeFileGenerator::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue node_file: %s x %g µm, %zu open cells, bar radius %g µm, node mass %g ng, bar length %g µm\n",
+                                   spec.path.c_str(), (double)spec.length_scale, spec.open_cells.size(), (double)poly.bar_radius, (double)poly.node_mass,
+                                   (double)poly.bar_length));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
