@@ -40,6 +40,7 @@ private:
   };
   std::vector<Hinge>     hinge_;
   std::vector<PetscReal> cos0_, sin0_, theta_p_;
+  std::vector<PetscReal> last_x_, d_; /* state and angles of the last AddForces (plastic hinges) */
   PetscReal              dissipated_ = 0;
   bool                   have_ref_   = false;
 };
