@@ -48,8 +48,7 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
     }
   }
   nb.RequestParticleSpringPairs(2 * r_);
-  cand_p_.clear();
-  cand_s_.clear();
+  cand_.clear();
   cand_h_.clear();
   hist_.clear();
   seen_rebuilds_ = -1;
@@ -93,13 +92,11 @@ PetscErrorCode Contact::Refresh(const ForceInput &in)
   if (in.nb->Rebuilds() == seen_rebuilds_) PetscFunctionReturn(PETSC_SUCCESS);
   const PointSegmentList &L = in.nb->ParticleSpringPairs();
   const ParticleSet      &P = *in.P;
-  cand_p_.clear();
-  cand_s_.clear();
+  cand_.clear();
   cand_h_.clear();
   for (size_t k = 0; k < L.size(); k++) {
     if (!Eligible(P, L.p[k], L.s[k])) continue;
-    cand_p_.push_back(L.p[k]);
-    cand_s_.push_back(L.s[k]);
+    cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k]});
     auto it = hist_.find(Key(P, L.p[k], L.s[k]));
     cand_h_.push_back(it == hist_.end() ? nullptr : &it->second);
   }
@@ -122,15 +119,24 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   const bool         tangential = mu > 0 && kt > 0;
   PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
   PetscInt           active = 0;
-  for (size_t k = 0; k < cand_p_.size(); k++) {
-    const PetscInt  p = cand_p_[k], s = cand_s_[k], a = P.springs[s].i, b = P.springs[s].j;
+  for (size_t k = 0; k < cand_.size(); k++) {
+    const PetscInt  p = cand_[k].p, s = cand_[k].s, a = cand_[k].a, b = cand_[k].b;
     const PetscReal ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
     const PetscReal px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
     const PetscReal L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
-    const PetscReal lam = std::clamp(proj / L2, (PetscReal)0, (PetscReal)1);
-    const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
     History        *h = cand_h_[k];
-    if (d2 >= R2 || d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
+    if (MODE <= 1 && tangential) trial_xi_[k] = PETSC_MAX_REAL; /* not in contact */
+    /* reject without a division: interior |p x e|^2 >= (2r)^2 |e|^2, or the end distances */
+    bool far;
+    if (proj <= 0) far = px * px + py * py >= R2;
+    else if (proj >= L2) far = (px - ex) * (px - ex) + (py - ey) * (py - ey) >= R2;
+    else {
+      const PetscReal cr = px * ey - py * ex;
+      far                = cr * cr >= R2 * L2;
+    }
+    const PetscReal lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj / L2;
+    const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
+    if (far || d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
       if (MODE == 2 && h) {
         hist_.erase(Key(P, p, s));
         cand_h_[k] = nullptr;
@@ -153,6 +159,10 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       ft                  = -kt * xi;
       const PetscReal cap = mu * fn;
       if (std::fabs(ft) > cap) ft = ft > 0 ? cap : -cap;
+    }
+    if (MODE <= 1 && tangential) {
+      trial_xi_[k] = -ft / kt;
+      trial_s_[k]  = sc;
     }
     if (MODE == 2) {
       if (tangential) {
@@ -195,9 +205,17 @@ PetscErrorCode Contact::AddForces(const ForceInput &in, PetscReal *f, PetscReal 
 {
   PetscFunctionBeginUser;
   PetscCall(Refresh(in));
+  const bool tangential = friction > 0 && kt_ > 0;
+  if (tangential) { /* AcceptStep at this same state commits these trial values */
+    trial_xi_.resize(cand_.size());
+    trial_s_.resize(cand_.size());
+    last_x_.assign(in.x, in.x + 2 * in.P->n);
+    last_v_.assign(in.v, in.v + 2 * in.P->n);
+    last_builds_ = list_builds_;
+  }
   if (virial) Kernel<1>(in, f, virial);
   else Kernel<0>(in, f, NULL);
-  PetscCall(PetscLogFlops(40.0 * cand_p_.size()));
+  PetscCall(PetscLogFlops(40.0 * cand_.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -215,9 +233,31 @@ PetscErrorCode Contact::Energy(const ForceInput &in, PetscReal *E, PetscBool *ha
 PetscErrorCode Contact::AcceptStep(const ForceInput &in)
 {
   PetscFunctionBeginUser;
+  if (!(friction > 0 && kt_ > 0)) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
   PetscCall(Refresh(in));
   stamp_++;
-  Kernel<2>(in, NULL, NULL);
+  const size_t n2 = 2 * (size_t)in.P->n;
+  /* velocity Verlet accepts the state it last evaluated: commit that evaluation's trial values (same
+     bits in, same bits out) instead of recomputing the geometry */
+  const bool same = last_builds_ == list_builds_ && trial_xi_.size() == cand_.size() && last_x_.size() == n2 &&
+                    std::equal(last_x_.begin(), last_x_.end(), in.x) &&
+                    (damping == 0 || std::equal(last_v_.begin(), last_v_.end(), in.v)); /* v enters through the damping only */
+  if (same) {
+    for (size_t k = 0; k < cand_.size(); k++) {
+      History *h = cand_h_[k];
+      if (trial_xi_[k] == PETSC_MAX_REAL) {
+        if (h) {
+          hist_.erase(Key(*in.P, cand_[k].p, cand_[k].s));
+          cand_h_[k] = nullptr;
+        }
+        continue;
+      }
+      if (!h) h = cand_h_[k] = &hist_[Key(*in.P, cand_[k].p, cand_[k].s)];
+      h->xi    = trial_xi_[k];
+      h->s_ref = trial_s_[k];
+      h->stamp = stamp_;
+    }
+  } else Kernel<2>(in, NULL, NULL);
   size_t live = 0;
   for (History *h : cand_h_) live += (h != nullptr);
   if (live != hist_.size())

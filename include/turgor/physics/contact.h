@@ -29,7 +29,7 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override;
 
   PetscInt CandidateListBuilds() const { return list_builds_; } /* filtered node-bar lists built */
-  size_t   Candidates() const { return cand_p_.size(); }
+  size_t   Candidates() const { return cand_.size(); }
   PetscInt ActiveContacts() const { return active_; } /* pairs in contact at the last evaluation */
   size_t   HistoryEntries() const { return hist_.size(); }
 
@@ -51,9 +51,14 @@ private:
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
 
-  PetscReal                                  r_ = 0, kt_ = 0;
-  std::vector<PetscInt>                      bar_poly_, bar_pos_, node_pos_, node_bars_;
-  std::vector<PetscInt>                      cand_p_, cand_s_;
+  PetscReal             r_ = 0, kt_ = 0;
+  std::vector<PetscInt> bar_poly_, bar_pos_, node_pos_, node_bars_;
+  struct Candidate {
+    PetscInt p, a, b, s; /* node, bar ends, bar */
+  };
+  std::vector<Candidate>                     cand_;
+  std::vector<PetscReal>                     trial_xi_, trial_s_, last_x_, last_v_; /* the last evaluation (friction) */
+  PetscInt                                   last_builds_ = -1;
   std::vector<History *>                     cand_h_;
   std::unordered_map<std::uint64_t, History> hist_;
   PetscInt                                   seen_rebuilds_ = -1, list_builds_ = 0, stamp_ = 0, active_ = 0;
