@@ -102,7 +102,7 @@ int main(int argc, char **argv)
   const auto     t0       = std::chrono::steady_clock::now();
   const auto     c0       = std::clock(); /* CPU time as well: on a shared machine the wall time includes waiting */
   PetscCall(run(steps));
-  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), cpu = (double)(std::clock() - c0) / CLOCKS_PER_SEC;
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "polygon forces [%s]: %" PetscInt_FMT " cells, %" PetscInt_FMT " nodes, %zu bars, dt %.3g µs\n", physics.c_str(),
                         nx * ny, T.particles.n, T.particles.springs.size(), dt));
   if (C)
