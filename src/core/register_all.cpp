@@ -6,9 +6,14 @@
 #include <turgor/fine/fine_run.h>
 #include <turgor/material/neo_hookean.h>
 #include <turgor/material/strain_path_run.h>
+#include <turgor/physics/bars.h>
 #include <turgor/physics/body_force.h>
+#include <turgor/physics/cell_pressure.h>
+#include <turgor/physics/contact.h>
+#include <turgor/physics/hinges.h>
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
+#include <turgor/physics/viscosity.h>
 #include <turgor/physics/wall_springs.h>
 #include <turgor/rve/rve.h>
 #include <turgor/tissue/node_file.h>
@@ -38,6 +43,11 @@ PetscErrorCode RegisterAll(void)
   PetscCall(ForceTermRegister("repulsion", CreateInstance<ForceTerm, Repulsion>));
   PetscCall(ForceTermRegister("sph", CreateInstance<ForceTerm, SPHFluid>));
   PetscCall(ForceTermRegister("body_force", CreateInstance<ForceTerm, BodyForce>));
+  PetscCall(ForceTermRegister("bars", CreateInstance<ForceTerm, Bars>));
+  PetscCall(ForceTermRegister("hinges", CreateInstance<ForceTerm, Hinges>));
+  PetscCall(ForceTermRegister("contact", CreateInstance<ForceTerm, Contact>));
+  PetscCall(ForceTermRegister("pressure", CreateInstance<ForceTerm, CellPressure>));
+  PetscCall(ForceTermRegister("viscosity", CreateInstance<ForceTerm, Viscosity>));
   /* materials (-material) */
   PetscCall(MaterialModelRegister("rve", CreateInstance<MaterialModel, RVEMaterial>));
   PetscCall(MaterialModelRegister("neo_hookean", CreateInstance<MaterialModel, NeoHookeanMaterial>));

@@ -35,12 +35,12 @@ PetscErrorCode WallSprings::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 
 /* Force on i: [k (r - l0) + gamma (e . v_ij)] e with e = (x_j - x_i)/r, v_ij = v_j - v_i. The seed's
    eq 16 prints the opposite overall sign (it pushes a stretched spring apart); see docs/model.md. */
+namespace {
 template <bool VIRIAL>
-void WallSprings::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) const
+void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscReal *f, PetscReal *virial)
 {
   const PetscReal *x = in.x, *v = in.v;
   const auto      &S    = in.P->springs;
-  const PetscReal  k    = stiffness;
   PetscReal        w[4] = {0, 0, 0, 0};
   for (size_t s = 0; s < S.size(); s++) {
     const PetscInt   i = S[s].i, j = S[s].j;
@@ -65,12 +65,30 @@ void WallSprings::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial) 
   if (VIRIAL)
     for (int c = 0; c < 4; c++) virial[c] += w[c];
 }
+} // namespace
+
+void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, PetscReal *f, PetscReal *virial)
+{
+  if (virial) Kernel<true>(in, k, gamma.data(), f, virial);
+  else Kernel<false>(in, k, gamma.data(), f, NULL);
+}
+
+PetscReal SpringEnergy(const ForceInput &in, PetscReal k)
+{
+  PetscReal E = 0;
+  for (const Spring &s : in.P->springs) {
+    const PetscReal *sx = in.images->x[s.image];
+    const PetscReal  dx = in.x[2 * s.j] + sx[0] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] + sx[1] - in.x[2 * s.i + 1];
+    const PetscReal  e = std::sqrt(dx * dx + dy * dy) - s.rest_length;
+    E += 0.5 * k * e * e;
+  }
+  return E;
+}
 
 PetscErrorCode WallSprings::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  if (virial) Kernel<true>(in, f, virial);
-  else Kernel<false>(in, f, NULL);
+  SpringForces(in, stiffness, gamma_, f, virial);
   PetscCall(PetscLogFlops(30.0 * in.P->springs.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -78,13 +96,7 @@ PetscErrorCode WallSprings::AddForces(const ForceInput &in, PetscReal *f, PetscR
 PetscErrorCode WallSprings::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  *E = 0;
-  for (const Spring &s : in.P->springs) {
-    const PetscReal *sx = in.images->x[s.image];
-    const PetscReal  dx = in.x[2 * s.j] + sx[0] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] + sx[1] - in.x[2 * s.i + 1];
-    const PetscReal  e = std::sqrt(dx * dx + dy * dy) - s.rest_length;
-    *E += 0.5 * stiffness * e * e;
-  }
+  *E   = SpringEnergy(in, stiffness);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -94,7 +106,14 @@ PetscErrorCode WallSprings::Energy(const ForceInput &in, PetscReal *E, PetscBool
    stable for dt < 2 / (c/2 + sqrt(c^2/4 + w^2)), the largest |eigenvalue| of x'' + c x' + w^2 x. */
 PetscErrorCode WallSprings::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
 {
-  const ParticleSet     &P = *in.P;
+  PetscFunctionBeginUser;
+  PetscCall(SpringTimeStepLimit(*in.P, stiffness, gamma_, "wall springs", limits));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SpringTimeStepLimit(const ParticleSet &P, PetscReal stiffness, const std::vector<PetscReal> &gamma_, const char *label,
+                                   std::vector<TimeStepLimit> &limits)
+{
   std::vector<PetscReal> w2(P.n, 0.0), c(P.n, 0.0);
   PetscFunctionBeginUser;
   for (size_t s = 0; s < P.springs.size(); s++) {
@@ -116,7 +135,7 @@ PetscErrorCode WallSprings::AddTimeStepLimits(const ForceInput &in, std::vector<
   }
   if (lam > 0) {
     char why[256];
-    PetscCall(PetscSNPrintf(why, sizeof why, "wall springs: omega_max <= %.4g /µs, dashpot rate <= %.4g /µs (Gershgorin)", (double)wmax, (double)cmax));
+    PetscCall(PetscSNPrintf(why, sizeof why, "%s: omega_max <= %.4g /µs, dashpot rate <= %.4g /µs (Gershgorin)", label, (double)wmax, (double)cmax));
     limits.push_back({2.0 / lam, why});
   }
   PetscFunctionReturn(PETSC_SUCCESS);

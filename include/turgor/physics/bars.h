@@ -1,0 +1,27 @@
+#pragma once
+/* Bars of polygonal cells (the L-hyphen model): axial springs along ParticleSet::springs with an
+   optional dashpot, the wall-spring kernel with the bar parameters (wall_springs.h). */
+#include <turgor/physics/force_term.h>
+#include <vector>
+
+namespace turgor {
+
+class Bars : public ForceTermBase<Bars> {
+public:
+  const char    *Name() const override { return "bars"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return stiffness * length; }
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
+  PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */
+
+private:
+  std::vector<PetscReal> gamma_; /* per bar (all `damping`) */
+};
+
+} // namespace turgor

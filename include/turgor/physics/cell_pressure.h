@@ -1,0 +1,43 @@
+#pragma once
+/* Pressure of closed polygonal cells: p(A) x bar length along each bar's outward normal, half on
+   each end node -- exactly p(A) dA/dx, so the potential is E = -int_{A0}^{A} p(a) da. Laws
+   (-pressure_law): constant p = p0; gas p = p0 A0 / A (isothermal); elastic p = p0 - K (A - A0)/A0.
+   A0 is the cell's area in the reference geometry. Open cells get none. */
+#include <turgor/physics/force_term.h>
+#include <vector>
+
+namespace turgor {
+
+class CellPressure : public ForceTermBase<CellPressure> {
+public:
+  enum Law {
+    CONSTANT = 0,
+    GAS      = 1,
+    ELASTIC  = 2
+  };
+  const char    *Name() const override { return "pressure"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return p0 * length; }
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  void      SetReference(const PetscReal *X); /* A0 from X; without a call, the first evaluation's */
+  PetscReal Pressure(PetscReal A, PetscReal A0) const;
+  PetscReal ReferenceArea(size_t c) const { return A0_[c]; }
+
+  Law       law          = CONSTANT;
+  PetscReal p0           = 0.2; /* [N/m = µN/µm] */
+  PetscReal bulk_modulus = 0;   /* K [N/m] (elastic law) */
+
+private:
+  std::vector<PetscInt>  closed_; /* closed polygons */
+  std::vector<PetscReal> A0_;
+  const ParticleSet     *P_        = nullptr;
+  bool                   have_ref_ = false;
+};
+
+PetscReal PolygonCellArea(const PolygonCell &c, const PetscReal *x);
+
+} // namespace turgor

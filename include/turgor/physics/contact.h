@@ -1,0 +1,68 @@
+#pragma once
+/* Node-bar contact of polygonal cells (the L-hyphen model). A node is a disk and a bar a capsule,
+   both of radius r = ParticleSet::bar_radius; they touch when the node is closer than 2 r to the
+   bar's segment. Pairs: a node against the bars of other cells, and of its own closed cell except
+   its two own bars and the two next to them (crushed cells fold); open cells have no self-contact.
+   Normal force k_n delta (+ damping on the normal relative velocity, only pushing); tangential
+   spring k_t xi with history xi per pair (node gid, bar), capped at mu f_n (Coulomb slip). The
+   history changes only in AcceptStep, is kept by key across neighbour-list rebuilds and is dropped
+   when the pair separates. The bar's share goes to its end nodes by the lever rule, plus a couple
+   that balances the torque of the tangential force: linear and angular momentum are conserved.
+   A node whose closest point is a bar end (a corner) is counted by one bar only (see contact.cpp). */
+#include <turgor/physics/force_term.h>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace turgor {
+
+class Contact : public ForceTermBase<Contact> {
+public:
+  const char    *Name() const override { return "contact"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  bool           HasInternalState() const override { return friction > 0 && tangential_stiffness > 0; }
+  PetscErrorCode AcceptStep(const ForceInput &in) override;
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  PetscInt CandidateListBuilds() const { return list_builds_; } /* filtered node-bar lists built */
+  size_t   Candidates() const { return cand_.size(); }
+  PetscInt ActiveContacts() const { return active_; } /* pairs in contact at the last evaluation */
+  size_t   HistoryEntries() const { return hist_.size(); }
+
+  PetscReal stiffness            = 1.0e4; /* k_n [N/m] */
+  PetscReal damping              = 0;     /* normal dashpot [ng/µs] */
+  PetscReal friction             = 0;     /* mu */
+  PetscReal tangential_stiffness = -1;    /* k_t [N/m]; < 0: k_n */
+
+private:
+  struct History {
+    PetscReal xi    = 0; /* committed elastic tangential displacement [µm] */
+    PetscReal s_ref = 0; /* node's coordinate along the bar at the last accepted step */
+    PetscInt  stamp = 0;
+  };
+  template <int MODE>
+  PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  PetscErrorCode Refresh(const ForceInput &in);
+  bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
+  bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
+  std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
+
+  PetscReal             r_ = 0, kt_ = 0;
+  std::vector<PetscInt> bar_poly_, bar_pos_, node_pos_, node_bars_;
+  struct Candidate {
+    PetscInt p, a, b, s; /* node, bar ends, bar */
+  };
+  std::vector<Candidate>                     cand_;
+  std::vector<PetscReal>                     trial_xi_, trial_s_, last_x_, last_v_; /* the last evaluation (friction) */
+  PetscInt                                   last_builds_ = -1;
+  std::vector<History *>                     cand_h_;
+  std::unordered_map<std::uint64_t, History> hist_;
+  PetscInt                                   seen_rebuilds_ = -1, list_builds_ = 0, stamp_ = 0, active_ = 0;
+  size_t                                     n_springs_ = 0;
+};
+
+} // namespace turgor

@@ -1,0 +1,48 @@
+#pragma once
+/* Bending hinges of polygonal cells (the L-hyphen model): at every interior node of a polygon (every
+   node of a closed cell, all but the two ends of an open one) a moment M = k_r (theta - theta0 -
+   theta_p) between its two bars, |M| capped at M_max (elastic-perfectly plastic). theta is the
+   signed angle from the bar to the previous node to the bar to the next node, theta0 its value in
+   the reference geometry. The moment acts as force couples: M/l perpendicular to each bar at its far
+   node, balanced at the hinge node, so that linear and angular momentum are conserved exactly.
+   The plastic angle theta_p changes only in AcceptStep (return mapping at the accepted state). */
+#include <turgor/physics/force_term.h>
+#include <vector>
+
+namespace turgor {
+
+class Hinges : public ForceTermBase<Hinges> {
+public:
+  const char    *Name() const override { return "hinges"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  bool           HasInternalState() const override { return max_moment > 0; }
+  PetscErrorCode AcceptStep(const ForceInput &in) override;
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  /* Reference angles from positions X[2n]; without a call, the first evaluation's positions. */
+  void      SetReference(const PetscReal *X);
+  PetscReal PlasticDissipation() const { return dissipated_; } /* sum M_max |d theta_p| so far [µN µm] */
+  size_t    NumHinges() const { return hinge_.size(); }
+  PetscReal PlasticAngle(size_t h) const { return theta_p_[h]; }
+  PetscReal Angle(size_t h, const PetscReal *x) const; /* theta - theta0 of hinge h at x */
+  PetscInt  HingeNode(size_t h) const { return hinge_[h].b; }
+
+  PetscReal stiffness  = 1.0e4; /* k_r [µN µm / rad] */
+  PetscReal max_moment = 0;     /* M_max [µN µm]; 0 = elastic */
+
+private:
+  struct Hinge {
+    PetscInt a, b, c; /* previous node, hinge node, next node */
+  };
+  std::vector<Hinge>     hinge_;
+  std::vector<PetscReal> cos0_, sin0_, theta_p_;
+  std::vector<PetscReal> last_x_, d_; /* state and angles of the last AddForces (plastic hinges) */
+  PetscReal              dissipated_ = 0;
+  bool                   have_ref_   = false;
+};
+
+} // namespace turgor

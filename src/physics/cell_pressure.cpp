@@ -1,0 +1,132 @@
+#include <turgor/physics/cell_pressure.h>
+#include <cmath>
+
+namespace turgor {
+
+static const char *const kLaws[] = {"constant", "gas", "elastic", "CellPressure::Law", "", NULL};
+
+PetscErrorCode CellPressure::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
+{
+  PetscFunctionBeginUser;
+  PetscEnum e = (PetscEnum)law;
+  PetscOptionsBegin(comm, "pressure_", "Pressure of closed polygonal cells", "turgor");
+  PetscCall(PetscOptionsEnum("-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, e, &e, NULL));
+  PetscCall(PetscOptionsReal("-p0", "Reference pressure p0 [N/m]", "CellPressure", p0, &p0, NULL));
+  PetscCall(PetscOptionsReal("-bulk_modulus", "Bulk modulus K of the elastic law [N/m]", "CellPressure", bulk_modulus, &bulk_modulus, NULL));
+  PetscOptionsEnd();
+  law = (Law)e;
+  PetscCheck(std::isfinite(p0), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_p0 = %g: must be finite", (double)p0);
+  PetscCheck(law != GAS || p0 >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_p0 = %g: a gas pressure must be >= 0", (double)p0);
+  PetscCheck(bulk_modulus >= 0 && std::isfinite(bulk_modulus), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_bulk_modulus = %g: must be finite and >= 0",
+             (double)bulk_modulus);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscReal PolygonCellArea(const PolygonCell &c, const PetscReal *x)
+{
+  PetscReal    A = 0;
+  const size_t N = c.nodes.size();
+  for (size_t k = 0; k < N; k++) {
+    const PetscInt i = c.nodes[k], j = c.nodes[(k + 1) % N];
+    A += x[2 * i] * x[2 * j + 1] - x[2 * j] * x[2 * i + 1];
+  }
+  return 0.5 * A;
+}
+
+PetscErrorCode CellPressure::SetUp(const ParticleSet &P, NeighbourSearch &nb)
+{
+  PetscFunctionBeginUser;
+  closed_.clear();
+  for (size_t c = 0; c < P.polygons.size(); c++)
+    if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3) closed_.push_back((PetscInt)c);
+  A0_.assign(P.polygons.size(), 0.0);
+  P_        = &P;
+  have_ref_ = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void CellPressure::SetReference(const PetscReal *X)
+{
+  for (PetscInt c : closed_) A0_[c] = PolygonCellArea(P_->polygons[c], X);
+  have_ref_ = true;
+}
+
+PetscReal CellPressure::Pressure(PetscReal A, PetscReal A0) const
+{
+  switch (law) {
+  case GAS:
+    return p0 * A0 / A;
+  case ELASTIC:
+    return p0 - bulk_modulus * (A - A0) / A0;
+  default:
+    return p0;
+  }
+}
+
+PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  const PetscReal *x    = in.x;
+  PetscReal        w[4] = {0, 0, 0, 0};
+  for (PetscInt c : closed_) {
+    const PolygonCell &C = in.P->polygons[c];
+    const PetscReal    A = PolygonCellArea(C, x);
+    PetscCheck(law != GAS || A > 0, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Cell %" PetscInt_FMT " has area %g: the gas law needs A > 0 (inverted cell)", c,
+               (double)A);
+    const PetscReal hp = 0.5 * Pressure(A, A0_[c]);
+    const size_t    N  = C.nodes.size();
+    for (size_t k = 0; k < N; k++) { /* bar i -> j, CCW: outward normal x length = (dy, -dx) */
+      const PetscInt  i = C.nodes[k], j = C.nodes[(k + 1) % N];
+      const PetscReal fx = hp * (x[2 * j + 1] - x[2 * i + 1]), fy = -hp * (x[2 * j] - x[2 * i]);
+      f[2 * i] += fx;
+      f[2 * i + 1] += fy;
+      f[2 * j] += fx;
+      f[2 * j + 1] += fy;
+      if (virial) { /* -sum f (x) x; each cell's forces sum to zero, so this is translation invariant */
+        const PetscReal sx = x[2 * i] + x[2 * j], sy = x[2 * i + 1] + x[2 * j + 1];
+        w[0] -= fx * sx;
+        w[1] -= fx * sy;
+        w[2] -= fy * sx;
+        w[3] -= fy * sy;
+      }
+    }
+  }
+  if (virial)
+    for (int q = 0; q < 4; q++) virial[q] += w[q];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* E = -int_{A0}^{A} p da: constant -p0 (A - A0); gas -p0 A0 ln(A/A0); elastic
+   -p0 (A - A0) + K (A - A0)^2 / (2 A0). */
+PetscErrorCode CellPressure::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  *E = 0;
+  for (PetscInt c : closed_) {
+    const PetscReal A = PolygonCellArea(in.P->polygons[c], in.x), A0 = A0_[c], dA = A - A0;
+    switch (law) {
+    case GAS:
+      *E -= p0 * A0 * std::log(A / A0);
+      break;
+    case ELASTIC:
+      *E += -p0 * dA + 0.5 * bulk_modulus * dA * dA / A0;
+      break;
+    default:
+      *E -= p0 * dA;
+    }
+  }
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CellPressure::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "pressure: %zu closed cells, law %s, p0 = %g N/m, K = %g N/m\n", closed_.size(), kLaws[law], (double)p0,
+                                   (double)bulk_modulus));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

@@ -1,0 +1,291 @@
+#include <turgor/physics/contact.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+PetscErrorCode Contact::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "contact_", "Node-bar contact of polygonal cells with Coulomb friction", "turgor");
+  PetscCall(PetscOptionsReal("-stiffness", "Normal stiffness k_n [N/m]", "Contact", stiffness, &stiffness, NULL));
+  PetscCall(PetscOptionsReal("-damping", "Normal dashpot on the normal relative velocity [ng/µs] (only pushes)", "Contact", damping, &damping, NULL));
+  PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient mu; 0 = frictionless", "Contact", friction, &friction, NULL));
+  PetscCall(
+    PetscOptionsReal("-tangential_stiffness", "Tangential spring k_t [N/m]; negative = k_n", "Contact", tangential_stiffness, &tangential_stiffness, NULL));
+  PetscOptionsEnd();
+  PetscCheck(stiffness > 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -contact_stiffness = %g: must be finite and > 0",
+             (double)stiffness);
+  PetscCheck(damping >= 0 && std::isfinite(damping), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -contact_damping = %g: must be finite and >= 0", (double)damping);
+  PetscCheck(friction >= 0 && std::isfinite(friction), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -contact_friction = %g: must be finite and >= 0",
+             (double)friction);
+  PetscCheck(std::isfinite(tangential_stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -contact_tangential_stiffness = %g: must be finite",
+             (double)tangential_stiffness);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(P.bar_radius > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "contact needs a bar radius > 0 (-tissue_bar_radius), got %g", (double)P.bar_radius);
+  PetscCheck(!P.polygons.empty() && P.node_polygon.size() == (size_t)P.n, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+             "contact needs a polygonal tissue (cells of nodes and bars: -tissue_type node_file, voronoi or polyline)");
+  r_         = P.bar_radius;
+  kt_        = tangential_stiffness < 0 ? stiffness : tangential_stiffness;
+  n_springs_ = std::max<size_t>(P.springs.size(), 1);
+  bar_poly_.assign(P.springs.size(), -1);
+  bar_pos_.assign(P.springs.size(), -1);
+  node_pos_.assign(P.n, -1);
+  node_bars_.assign(2 * P.n, -1);
+  for (size_t c = 0; c < P.polygons.size(); c++) {
+    const PolygonCell &C = P.polygons[c];
+    for (size_t k = 0; k < C.nodes.size(); k++) node_pos_[C.nodes[k]] = (PetscInt)k;
+    for (size_t k = 0; k < C.bars.size(); k++) {
+      const PetscInt s = C.bars[k];
+      bar_poly_[s]     = (PetscInt)c;
+      bar_pos_[s]      = (PetscInt)k;
+      for (PetscInt e : {P.springs[s].i, P.springs[s].j}) node_bars_[2 * e + (node_bars_[2 * e] >= 0)] = s;
+    }
+  }
+  nb.RequestParticleSpringPairs(2 * r_);
+  cand_.clear();
+  cand_h_.clear();
+  hist_.clear();
+  seen_rebuilds_ = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Bar k of a closed N-gon joins nodes k and k+1: node k's own bars are k-1 and k, their neighbours
+   k-2 and k+1; those four never touch it (they meet it at a node or fold with it at a hinge). */
+bool Contact::Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const
+{
+  const PetscInt cb = bar_poly_[s], cp = P.node_polygon[p];
+  if (cb < 0 || cp < 0) return false;
+  if (cb != cp) return true;
+  const PolygonCell &C = P.polygons[cb];
+  if (C.open) return false;
+  const PetscInt N = (PetscInt)C.bars.size(), d = ((bar_pos_[s] - node_pos_[p]) % N + N) % N;
+  return !(d == 0 || d == 1 || d == N - 1 || d == N - 2);
+}
+
+/* Node p is closest to bar s at its end q (a corner). The seed counts such a contact from both bars
+   at q; here exactly one counts it: the other bar s2 at q if p projects inside s2 (s2 is closer or
+   as close), the lower-numbered of the two if p is closest to q on both, otherwise s. A bar s2 that
+   may not touch p (own or adjacent bars) leaves it to s. */
+bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const
+{
+  const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
+  if (s2 < 0 || s2 == s || !Eligible(P, p, s2)) return true;
+  const PetscInt  o  = P.springs[s2].i == q ? P.springs[s2].j : P.springs[s2].i; /* far end of s2 */
+  const PetscReal ex = x[2 * o] - x[2 * q], ey = x[2 * o + 1] - x[2 * q + 1];
+  const PetscReal t = ((x[2 * p] - x[2 * q]) * ex + (x[2 * p + 1] - x[2 * q + 1]) * ey) / (ex * ex + ey * ey);
+  if (t <= 0) return s < s2; /* closest to q on both bars */
+  if (t < 1) return false;   /* inside s2: s2 counts it */
+  return true;
+}
+
+/* The neighbour search's node-spring candidates filtered to eligible pairs, each with its history
+   entry found once per rebuild (the map is keyed by (node gid, bar), not by list position). */
+PetscErrorCode Contact::Refresh(const ForceInput &in)
+{
+  PetscFunctionBeginUser;
+  if (in.nb->Rebuilds() == seen_rebuilds_) PetscFunctionReturn(PETSC_SUCCESS);
+  const PointSegmentList &L = in.nb->ParticleSpringPairs();
+  const ParticleSet      &P = *in.P;
+  cand_.clear();
+  cand_h_.clear();
+  for (size_t k = 0; k < L.size(); k++) {
+    if (!Eligible(P, L.p[k], L.s[k])) continue;
+    cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k]});
+    auto it = hist_.find(Key(P, L.p[k], L.s[k]));
+    cand_h_.push_back(it == hist_.end() ? nullptr : &it->second);
+  }
+  seen_rebuilds_ = in.nb->Rebuilds();
+  list_builds_++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* MODE 0: forces, 1: forces and virial, 2: accept (commit the history), 3: energy (returned).
+   Geometry: e = x_b - x_a, lambda = clamp((x_p - x_a).e / |e|^2, 0, 1), c = x_a + lambda e,
+   d = x_p - c, delta = 2 r - |d|, n = d / |d|. The tangential direction t is n turned a quarter,
+   with the sense of the bar; the slip is measured by the node's coordinate along the bar
+   s = (x_p - x_a).e/|e| (a rigid motion of node and bar together does not change it). */
+template <int MODE>
+PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  const ParticleSet &P = *in.P;
+  const PetscReal   *x = in.x, *v = in.v;
+  const PetscReal    R = 2 * r_, R2 = R * R, kn = stiffness, cn = damping, mu = friction, kt = kt_;
+  const bool         tangential = mu > 0 && kt > 0;
+  PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
+  PetscInt           active = 0;
+  for (size_t k = 0; k < cand_.size(); k++) {
+    const PetscInt  p = cand_[k].p, s = cand_[k].s, a = cand_[k].a, b = cand_[k].b;
+    const PetscReal ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
+    const PetscReal px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
+    const PetscReal L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
+    History        *h = cand_h_[k];
+    if (MODE <= 1 && tangential) trial_xi_[k] = PETSC_MAX_REAL; /* not in contact */
+    /* reject without a division: interior |p x e|^2 >= (2r)^2 |e|^2, or the end distances */
+    bool far;
+    if (proj <= 0) far = px * px + py * py >= R2;
+    else if (proj >= L2) far = (px - ex) * (px - ex) + (py - ey) * (py - ey) >= R2;
+    else {
+      const PetscReal cr = px * ey - py * ex;
+      far                = cr * cr >= R2 * L2;
+    }
+    const PetscReal lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj / L2;
+    const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
+    if (far || d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
+      if (MODE == 2 && h) {
+        hist_.erase(Key(P, p, s));
+        cand_h_[k] = nullptr;
+      }
+      continue;
+    }
+    active++;
+    const PetscReal dist = std::sqrt(d2), id = 1 / dist, nx = dx * id, ny = dy * id, delta = R - dist;
+    const PetscReal l  = 1 - lam;
+    const PetscReal vx = v[2 * p] - l * v[2 * a] - lam * v[2 * b], vy = v[2 * p + 1] - l * v[2 * a + 1] - lam * v[2 * b + 1];
+    PetscReal       fn = kn * delta - cn * (vx * nx + vy * ny);
+    if (fn < 0) fn = 0;
+    PetscReal ft = 0, tx = 0, ty = 0, xi = 0, sc = 0;
+    if (tangential) {
+      const PetscReal sg  = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
+      tx                  = sg * ny;
+      ty                  = -sg * nx;
+      sc                  = proj / std::sqrt(L2);
+      xi                  = h ? h->xi + (sc - h->s_ref) : 0;
+      ft                  = -kt * xi;
+      const PetscReal cap = mu * fn;
+      if (std::fabs(ft) > cap) ft = ft > 0 ? cap : -cap;
+    }
+    if (MODE <= 1 && tangential) {
+      trial_xi_[k] = -ft / kt;
+      trial_s_[k]  = sc;
+    }
+    if (MODE == 2) {
+      if (tangential) {
+        if (!h) h = cand_h_[k] = &hist_[Key(P, p, s)];
+        h->xi    = -ft / kt; /* the capped (slipped) elastic displacement */
+        h->s_ref = sc;
+        h->stamp = stamp_;
+      }
+      continue;
+    }
+    if (MODE == 3) {
+      E += 0.5 * kn * delta * delta + (tangential ? 0.5 * ft * ft / kt : 0);
+      continue;
+    }
+    const PetscReal Fx = fn * nx + ft * tx, Fy = fn * ny + ft * ty;
+    /* the tangential force acts at distance |d| from the contact point c: its torque
+       tau = d x (ft t) is balanced by a couple -tau on the bar, alpha = -tau / |e| along perp(e)/|e| */
+    const PetscReal tau = ft * (dx * ty - dy * tx), al = -tau / L2; /* force alpha (-e_y, e_x)/|e| = al (-e_y, e_x) */
+    const PetscReal qx = -al * ey, qy = al * ex;
+    f[2 * p] += Fx;
+    f[2 * p + 1] += Fy;
+    f[2 * a] -= l * Fx + qx;
+    f[2 * a + 1] -= l * Fy + qy;
+    f[2 * b] += qx - lam * Fx;
+    f[2 * b + 1] += qy - lam * Fy;
+    if (MODE == 1) { /* -sum f (x) x = -(F (x) d + q (x) e) */
+      w[0] -= Fx * dx + qx * ex;
+      w[1] -= Fx * dy + qx * ey;
+      w[2] -= Fy * dx + qy * ex;
+      w[3] -= Fy * dy + qy * ey;
+    }
+  }
+  active_ = active;
+  if (MODE == 1)
+    for (int q = 0; q < 4; q++) virial[q] += w[q];
+  return E;
+}
+
+PetscErrorCode Contact::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Refresh(in));
+  const bool tangential = friction > 0 && kt_ > 0;
+  if (tangential) { /* AcceptStep at this same state commits these trial values */
+    trial_xi_.resize(cand_.size());
+    trial_s_.resize(cand_.size());
+    last_x_.assign(in.x, in.x + 2 * in.P->n);
+    last_v_.assign(in.v, in.v + 2 * in.P->n);
+    last_builds_ = list_builds_;
+  }
+  if (virial) Kernel<1>(in, f, virial);
+  else Kernel<0>(in, f, NULL);
+  PetscCall(PetscLogFlops(40.0 * cand_.size()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Contact::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Refresh(in));
+  *E   = Kernel<3>(in, NULL, NULL);
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Commit the tangential history at the accepted state; drop pairs that separated (in contact no
+   more, or gone from the candidate list: farther than 2 r + skin). */
+PetscErrorCode Contact::AcceptStep(const ForceInput &in)
+{
+  PetscFunctionBeginUser;
+  if (!(friction > 0 && kt_ > 0)) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
+  PetscCall(Refresh(in));
+  stamp_++;
+  const size_t n2 = 2 * (size_t)in.P->n;
+  /* velocity Verlet accepts the state it last evaluated: commit that evaluation's trial values (same
+     bits in, same bits out) instead of recomputing the geometry */
+  const bool same = last_builds_ == list_builds_ && trial_xi_.size() == cand_.size() && last_x_.size() == n2 &&
+                    std::equal(last_x_.begin(), last_x_.end(), in.x) &&
+                    (damping == 0 || std::equal(last_v_.begin(), last_v_.end(), in.v)); /* v enters through the damping only */
+  if (same) {
+    for (size_t k = 0; k < cand_.size(); k++) {
+      History *h = cand_h_[k];
+      if (trial_xi_[k] == PETSC_MAX_REAL) {
+        if (h) {
+          hist_.erase(Key(*in.P, cand_[k].p, cand_[k].s));
+          cand_h_[k] = nullptr;
+        }
+        continue;
+      }
+      if (!h) h = cand_h_[k] = &hist_[Key(*in.P, cand_[k].p, cand_[k].s)];
+      h->xi    = trial_xi_[k];
+      h->s_ref = trial_s_[k];
+      h->stamp = stamp_;
+    }
+  } else Kernel<2>(in, NULL, NULL);
+  size_t live = 0;
+  for (History *h : cand_h_) live += (h != nullptr);
+  if (live != hist_.size())
+    for (auto it = hist_.begin(); it != hist_.end();) it = it->second.stamp == stamp_ ? std::next(it) : hist_.erase(it);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A normal contact is a spring k_n between the node and the bar's contact point: per node at most
+   a few contacts; we bound omega^2 by 4 (k_n + k_t) / m_min (the node and the two bar ends). */
+PetscErrorCode Contact::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
+{
+  PetscFunctionBeginUser;
+  PetscReal mmin = PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < in.P->n; i++) mmin = std::min(mmin, in.P->mass[i]);
+  const PetscReal w2 = 4 * (stiffness + (friction > 0 ? kt_ : 0)) / mmin, c = 4 * damping / mmin;
+  const PetscReal lam = 0.5 * c + std::sqrt(0.25 * c * c + w2);
+  char            why[160];
+  PetscCall(PetscSNPrintf(why, sizeof why, "contact: omega_max <= %.4g /µs, damping rate <= %.4g /µs", (double)std::sqrt(w2), (double)c));
+  limits.push_back({2.0 / lam, why});
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Contact::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "contact: r = %g µm, k_n = %g N/m, damping %g ng/µs, mu = %g, k_t = %g N/m\n", (double)r_, (double)stiffness,
+                                   (double)damping, (double)friction, (double)kt_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

@@ -1,0 +1,203 @@
+#include <turgor/physics/hinges.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+namespace {
+/* atan2(y, x) for the hinge angle deviation. Hinges bend little, so nearly always x > 0 and y/x
+   small: there the Taylor series of atan(t), t = y/x, truncated where the first omitted term is
+   below 1e-18 relative, is exact to rounding and several times cheaper than libm; elsewhere libm. */
+inline PetscReal HingeAtan2(PetscReal y, PetscReal x)
+{
+  if (x > 0 && std::fabs(y) <= 0.1 * x) { /* |t| <= 0.1: to t^15, first omitted term t^17/17 < 1e-18 */
+    const PetscReal t = y / x, t2 = t * t, t4 = t2 * t2;
+    /* even and odd halves in t^4 evaluated side by side (half the dependency chain of Horner) */
+    const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
+    const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
+    return t * (pe + t2 * po);
+  }
+  if (x > 0 && std::fabs(y) <= 0.2679491924311227 * x) { /* |t| <= tan(pi/12): to t^27 */
+    const PetscReal        t = y / x, t2 = t * t;
+    static const PetscReal c[14] = {1.0,       -1.0 / 3, 1.0 / 5,   -1.0 / 7, 1.0 / 9,   -1.0 / 11, 1.0 / 13,
+                                    -1.0 / 15, 1.0 / 17, -1.0 / 19, 1.0 / 21, -1.0 / 23, 1.0 / 25,  -1.0 / 27};
+    PetscReal              p     = 0;
+    for (int k = 13; k >= 0; k--) p = c[k] + t2 * p;
+    return t * p;
+  }
+  return std::atan2(y, x);
+}
+} // namespace
+
+PetscErrorCode Hinges::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "hinge_", "Bending hinges at polygon nodes (elastic-perfectly plastic)", "turgor");
+  PetscCall(PetscOptionsReal("-stiffness", "Rotational stiffness k_r [µN µm/rad]", "Hinges", stiffness, &stiffness, NULL));
+  PetscCall(PetscOptionsReal("-max_moment", "Plastic moment M_max [µN µm]; 0 = elastic", "Hinges", max_moment, &max_moment, NULL));
+  PetscOptionsEnd();
+  PetscCheck(stiffness >= 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -hinge_stiffness = %g: must be finite and >= 0",
+             (double)stiffness);
+  PetscCheck(max_moment >= 0 && std::isfinite(max_moment), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -hinge_max_moment = %g: must be finite and >= 0 (0 = elastic)", (double)max_moment);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
+{
+  PetscFunctionBeginUser;
+  hinge_.clear();
+  for (const PolygonCell &c : P.polygons) {
+    const PetscInt N = (PetscInt)c.nodes.size();
+    if (c.open)
+      for (PetscInt k = 1; k + 1 < N; k++) hinge_.push_back({c.nodes[k - 1], c.nodes[k], c.nodes[k + 1]});
+    else if (N >= 3)
+      for (PetscInt k = 0; k < N; k++) hinge_.push_back({c.nodes[(k + N - 1) % N], c.nodes[k], c.nodes[(k + 1) % N]});
+  }
+  cos0_.assign(hinge_.size(), 1.0);
+  sin0_.assign(hinge_.size(), 0.0);
+  theta_p_.assign(hinge_.size(), 0.0);
+  dissipated_ = 0;
+  have_ref_   = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Hinges::SetReference(const PetscReal *X)
+{
+  for (size_t h = 0; h < hinge_.size(); h++) {
+    const Hinge    &H  = hinge_[h];
+    const PetscReal ux = X[2 * H.a] - X[2 * H.b], uy = X[2 * H.a + 1] - X[2 * H.b + 1];
+    const PetscReal wx = X[2 * H.c] - X[2 * H.b], wy = X[2 * H.c + 1] - X[2 * H.b + 1];
+    const PetscReal th = std::atan2(ux * wy - uy * wx, ux * wx + uy * wy);
+    cos0_[h]           = std::cos(th);
+    sin0_[h]           = std::sin(th);
+  }
+  have_ref_ = true;
+}
+
+/* theta - theta0 in (-pi, pi]: the current angle rotated back by the reference one, so that a single
+   atan2 gives the difference without wrapping. */
+PetscReal Hinges::Angle(size_t h, const PetscReal *x) const
+{
+  const Hinge    &H  = hinge_[h];
+  const PetscReal ux = x[2 * H.a] - x[2 * H.b], uy = x[2 * H.a + 1] - x[2 * H.b + 1];
+  const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
+  const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
+  return HingeAtan2(s * cos0_[h] - c * sin0_[h], c * cos0_[h] + s * sin0_[h]);
+}
+
+/* E = -M dtheta/dx: dtheta/dx_c = perp(w)/|w|^2, dtheta/dx_a = -perp(u)/|u|^2 (perp(v) = (-v_y, v_x)),
+   dtheta/dx_b = -(both): forces M/l perpendicular to each bar, summing to zero with zero torque. */
+PetscErrorCode Hinges::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  const PetscReal *x     = in.x;
+  const bool       cache = max_moment > 0; /* AcceptStep at the state of the last evaluation reuses its angles */
+  if (cache) {
+    last_x_.assign(x, x + 2 * in.P->n);
+    d_.resize(hinge_.size());
+  }
+  const PetscReal k = stiffness, Mmax = max_moment > 0 ? max_moment : PETSC_MAX_REAL;
+  PetscReal       w4[4] = {0, 0, 0, 0};
+  for (size_t h = 0; h < hinge_.size(); h++) {
+    const Hinge    &H  = hinge_[h];
+    const PetscReal ux = x[2 * H.a] - x[2 * H.b], uy = x[2 * H.a + 1] - x[2 * H.b + 1];
+    const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
+    const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
+    const PetscReal d = HingeAtan2(s * cos0_[h] - c * sin0_[h], c * cos0_[h] + s * sin0_[h]);
+    if (cache) d_[h] = d;
+    const PetscReal M  = std::clamp(k * (d - theta_p_[h]), -Mmax, Mmax);
+    const PetscReal iu = M / (ux * ux + uy * uy), iw = M / (wx * wx + wy * wy);
+    const PetscReal fax = -uy * iu, fay = ux * iu; /* -M dtheta/dx_a */
+    const PetscReal fcx = wy * iw, fcy = -wx * iw; /* -M dtheta/dx_c */
+    f[2 * H.a] += fax;
+    f[2 * H.a + 1] += fay;
+    f[2 * H.c] += fcx;
+    f[2 * H.c + 1] += fcy;
+    f[2 * H.b] -= fax + fcx;
+    f[2 * H.b + 1] -= fay + fcy;
+    if (virial) { /* -sum f (x) x = -(f_a (x) u + f_c (x) w) relative to the hinge node */
+      w4[0] -= fax * ux + fcx * wx;
+      w4[1] -= fax * uy + fcx * wy;
+      w4[2] -= fay * ux + fcy * wx;
+      w4[3] -= fay * uy + fcy * wy;
+    }
+  }
+  if (virial)
+    for (int q = 0; q < 4; q++) virial[q] += w4[q];
+  PetscCall(PetscLogFlops(45.0 * hinge_.size()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The potential of AddForces at the committed theta_p: k/2 e^2 for |e| <= e_max = M_max/k, and
+   continued linearly (slope M_max) beyond, so that the capped force is still -dE/dx. */
+PetscErrorCode Hinges::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  *E                 = 0;
+  const PetscReal em = max_moment > 0 && stiffness > 0 ? max_moment / stiffness : PETSC_MAX_REAL;
+  for (size_t h = 0; h < hinge_.size(); h++) {
+    const PetscReal e = std::fabs(Angle(h, in.x) - theta_p_[h]);
+    *E += e <= em ? 0.5 * stiffness * e * e : max_moment * (e - em) + 0.5 * stiffness * em * em;
+  }
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Return mapping at the accepted state: a trial moment beyond M_max moves theta_p by the excess
+   rotation, so that the moment is exactly M_max, and dissipates M_max |d theta_p|. */
+PetscErrorCode Hinges::AcceptStep(const ForceInput &in)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  /* velocity Verlet accepts the state it last evaluated: the angles are then those of AddForces
+     (same bits in, same bits out), computed once */
+  const bool same = last_x_.size() == (size_t)(2 * in.P->n) && d_.size() == hinge_.size() && std::equal(last_x_.begin(), last_x_.end(), in.x);
+  if (max_moment > 0 && stiffness > 0)
+    for (size_t h = 0; h < hinge_.size(); h++) {
+      const PetscReal e = (same ? d_[h] : Angle(h, in.x)) - theta_p_[h], em = max_moment / stiffness;
+      if (std::fabs(e) > em) {
+        const PetscReal dp = e > 0 ? e - em : e + em;
+        theta_p_[h] += dp;
+        dissipated_ += max_moment * std::fabs(dp);
+      }
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One hinge is the rank-one stiffness k_r g g^T (g = dtheta/dx); its frequency^2 is
+   k_r g^T M^-1 g = k_r (1/(m_a l_a^2) + 1/(m_c l_c^2) + |g_b|^2/m_b). A node takes part in at most
+   three hinges (its own and its two neighbours'), hence 3 x the largest (Gershgorin-like bound). */
+PetscErrorCode Hinges::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
+{
+  PetscFunctionBeginUser;
+  const PetscReal *x  = in.x;
+  const auto      &m  = in.P->mass;
+  PetscReal        w2 = 0;
+  for (const Hinge &H : hinge_) {
+    const PetscReal ux = x[2 * H.a] - x[2 * H.b], uy = x[2 * H.a + 1] - x[2 * H.b + 1];
+    const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
+    const PetscReal u2 = ux * ux + uy * uy, ww = wx * wx + wy * wy;
+    const PetscReal gbx = uy / u2 - wy / ww, gby = -ux / u2 + wx / ww;
+    w2 = std::max(w2, stiffness * (1 / (m[H.a] * u2) + 1 / (m[H.c] * ww) + (gbx * gbx + gby * gby) / m[H.b]));
+  }
+  if (w2 > 0) {
+    char why[160];
+    PetscCall(PetscSNPrintf(why, sizeof why, "hinges: omega_max <= %.4g /µs (k_r / (m l^2), 3 hinges per node)", (double)std::sqrt(3 * w2)));
+    limits.push_back({2.0 / std::sqrt(3 * w2), why});
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Hinges::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  if (max_moment > 0)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "hinges: %zu, k_r = %g µN µm/rad, M_max = %g µN µm\n", hinge_.size(), (double)stiffness, (double)max_moment));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "hinges: %zu, k_r = %g µN µm/rad, elastic\n", hinge_.size(), (double)stiffness));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
