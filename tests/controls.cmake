@@ -1,0 +1,17 @@
+# Load controls (-controls, -control_<name>_*) and the fine driver's polygon outputs (issue 10, part C).
+turgor_test_program(test_controls)
+turgor_add_test(test_controls COMMAND test_controls LABELS unit fine)
+
+# Controls cost nothing and change nothing they should not: a velocity-0 control on the left side
+# (-fine_clamp none) gives the same bits as -fine_clamp left, and a zero force control the same
+# bits as no control at all (tip.csv byte for byte, the same steps and evaluations).
+set(CTL_SMALL -mode fine -tissue_cells_x 3 -tissue_cells_y 2 -ts_max_time 5 -fine_snapshots 0 -fine_progress_interval 0 -fine_tip_samples 50 -output_overwrite)
+turgor_add_test(controls_clamp COMMAND turgor_app ${CTL_SMALL} -output_dir ctl_clamp LABELS fine SETUP ctl_clamp)
+turgor_add_test(controls_hold COMMAND turgor_app ${CTL_SMALL} -fine_clamp none -controls hold -control_hold_box -1,-1000,1e-9,1000
+  -control_hold_velocity 0,0 -output_dir ctl_hold LABELS fine SETUP ctl_hold)
+turgor_add_test(controls_hold_is_clamp COMMAND ${CHECK} identical ctl_hold ctl_clamp steps rhs_evals LABELS fine REQUIRES "ctl_hold;ctl_clamp")
+turgor_add_test(controls_zero_force COMMAND turgor_app ${CTL_SMALL} -controls z -control_z_cells 1 -control_z_force 0,0 -output_dir ctl_zero
+  LABELS fine SETUP ctl_zero)
+turgor_add_test(controls_zero_force_changes_nothing COMMAND ${CHECK} identical ctl_zero ctl_clamp steps rhs_evals LABELS fine REQUIRES "ctl_zero;ctl_clamp")
+turgor_add_test(controls_summary COMMAND ${CHECK} keys ctl_hold n_nodes n_cells n_bars node_steps_per_s dt_stable n_wall_particles n_springs
+  LABELS fine REQUIRES ctl_hold)
