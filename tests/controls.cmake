@@ -15,3 +15,17 @@ turgor_add_test(controls_zero_force COMMAND turgor_app ${CTL_SMALL} -controls z 
 turgor_add_test(controls_zero_force_changes_nothing COMMAND ${CHECK} identical ctl_zero ctl_clamp steps rhs_evals LABELS fine REQUIRES "ctl_zero;ctl_clamp")
 turgor_add_test(controls_summary COMMAND ${CHECK} keys ctl_hold n_nodes n_cells n_bars node_steps_per_s dt_stable n_wall_particles n_springs
   LABELS fine REQUIRES ctl_hold)
+
+# Polygon snapshots: a hand-built tissue of a quadrilateral and a pentagon (XDMF Mixed) and one of
+# two quadrilaterals (Polygon, NodesPerElement 4); where pvpython is found, they are opened in ParaView (cells, cell_id, area_ratio against the points' areas).
+turgor_test_program(test_polygon_snapshots)
+turgor_add_test(polygon_snapshots_mixed COMMAND test_polygon_snapshots -dir poly_mixed LABELS fine SETUP poly_mixed)
+turgor_add_test(polygon_snapshots_quads COMMAND test_polygon_snapshots -quads -dir poly_quads LABELS fine SETUP poly_quads)
+find_program(TURGOR_PVPYTHON pvpython)
+if(TURGOR_PVPYTHON)
+  set(PVPOLY ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py polygons)
+  foreach(run mixed quads)
+    turgor_add_test(paraview_polygons_${run} COMMAND ${PVPOLY} poly_${run} LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
+    turgor_add_test(paraview_polygons_${run}_legacy COMMAND ${PVPOLY} poly_${run} --reader XDMFReader LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
+  endforeach()
+endif()
