@@ -29,3 +29,7 @@ if(TURGOR_PVPYTHON)
     turgor_add_test(paraview_polygons_${run}_legacy COMMAND ${PVPOLY} poly_${run} --reader XDMFReader LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
   endforeach()
 endif()
+
+# -help lists the control options (with a placeholder group name when no -controls is given)
+turgor_add_test(help_fine_controls COMMAND ${HELP} fine -controls -control_<name>_nodes -control_<name>_box -control_<name>_velocity
+  -control_<name>_force -control_<name>_profile -control_<name>_ramp_time -control_<name>_half_period LABELS unit)
