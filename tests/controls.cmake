@@ -33,3 +33,9 @@ endif()
 # -help lists the control options (with a placeholder group name when no -controls is given)
 turgor_add_test(help_fine_controls COMMAND ${HELP} fine -controls -control_<name>_nodes -control_<name>_box -control_<name>_velocity
   -control_<name>_force -control_<name>_profile -control_<name>_ramp_time -control_<name>_half_period LABELS unit)
+
+# The tensile scene (config/tensile_pull_fine.yaml), 2 µs into its 20 µs ramp: the pulled side has
+# moved v t^2 / (2 T) = 0.05 x 4 / 40 = 0.005 µm
+turgor_add_test(controls_scene COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/tensile_pull_fine.yaml -ts_max_time 2
+  -fine_snapshots 0 -fine_progress_interval 0 -output_dir ctl_scene -output_overwrite LABELS fine SETUP ctl_scene)
+turgor_add_test(controls_scene_ramp COMMAND ${CHECK} column ctl_scene/groups.csv pull_ux -1 0.005 1e-12 LABELS fine REQUIRES ctl_scene)
