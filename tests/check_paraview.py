@@ -3,6 +3,7 @@
 
   pvpython check_paraview.py fine RUN_DIR [--reader XDMFReader]
   pvpython check_paraview.py fe2  RUN_DIR [--reader XDMFReader]
+  pvpython check_paraview.py polygons RUN_DIR [--reader XDMFReader]   (see check_polygons)
 
 RUN_DIR holds summary.json and particles.xmf (fine) or coarse.xmf (fe2). The file is opened with
 ParaView's default reader for .xmf (OpenDataFile; the reader it picked is printed), or the one named
@@ -37,7 +38,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkDataObject
 
 RTOL = 1e-6
-VTK_VERTEX, VTK_POLY_VERTEX, VTK_LINE, VTK_POLY_LINE, VTK_QUAD = 1, 2, 3, 4, 9
+VTK_VERTEX, VTK_POLY_VERTEX, VTK_LINE, VTK_POLY_LINE, VTK_POLYGON, VTK_QUAD = 1, 2, 3, 4, 7, 9
 
 
 def fail(msg):
@@ -223,13 +224,44 @@ def check_fe2(run, reader):
           f"stress_xx/yy/xy density; stress range [{s[:, 0].min():.4g}, {s[:, 0].max():.4g}] N/m (xx)")
 
 
+def polygon_area(x, ids):
+    return 0.5 * sum(x[ids[k], 0] * x[ids[(k + 1) % len(ids)], 1] - x[ids[(k + 1) % len(ids)], 0] * x[ids[k], 1] for k in range(len(ids)))
+
+
+def check_polygons(run, reader):
+    """A polygonal tissue: a third block of summary.json's n_cells closed polygons (VTK polygon cells
+    through the particles' points), cell arrays cell_id (integer, 0..n-1) and area_ratio equal to the
+    polygon's area from the points at the last time step over its area at the first; the walls
+    block has a bar_strain cell array."""
+    summary = json.load(open(os.path.join(run, "summary.json")))
+    r, times = open_reader(os.path.join(run, "particles.xmf"), reader)
+    check_times(times, summary)
+    first, last = fetch(r, times[0]), fetch(r, times[-1])
+    check(len(last) == 3, f"{len(last)} blocks at the last time step, expected 3 (particles, walls, cells)")
+    cells, walls = last[2], last[1]
+    nc = summary["n_cells"]
+    types, ids = cells_of(cells)
+    check(len(types) == nc and set(types) == {VTK_POLYGON}, f"cells: {len(types)} cells of types {sorted(set(types))}, expected {nc} polygons")
+    cid = array(cells, "cell", "cell_id", 1, True)
+    check(list(cid) == list(range(nc)), f"cell_id is {list(cid)}")
+    ratio = array(cells, "cell", "area_ratio", 1, False)
+    x0, x1 = points(first[2]), points(cells)
+    want = [polygon_area(x1, c) / polygon_area(x0, c) for c in ids]
+    check(all(polygon_area(x0, c) > 0 for c in ids), "a polygon is not counter-clockwise at t = 0")
+    check(all(close(a, b, 1e-12) for a, b in zip(ratio, want)), f"area_ratio {list(ratio)} differs from the points' areas {want}")
+    check(max(abs(a - 1) for a in ratio) > 1e-3, "no cell changed its area: the test does not test area_ratio")
+    strain = array(walls, "cell", "bar_strain", 1, False)
+    check(len(strain) == summary["n_bars"], "bar_strain is not one value per bar")
+    print(f"  OK: {nc} polygons with {[len(c) for c in ids]} nodes, area_ratio {[round(float(a), 6) for a in ratio]}, {len(strain)} bar strains")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("mode", choices=["fine", "fe2"])
+    p.add_argument("mode", choices=["fine", "fe2", "polygons"])
     p.add_argument("run", help="the run's output directory")
     p.add_argument("--reader", help="a ParaView reader to use instead of the default (e.g. XDMFReader)")
     a = p.parse_args()
-    (check_fine if a.mode == "fine" else check_fe2)(a.run, a.reader)
+    {"fine": check_fine, "fe2": check_fe2, "polygons": check_polygons}[a.mode](a.run, a.reader)
 
 
 if __name__ == "__main__":

@@ -59,6 +59,7 @@ PetscErrorCode FineRun::ModeSetFromOptions()
   PetscCall(load_.SetFromOptions(comm_));
   PetscCall(physics_.SetFromOptions(comm_, TermContext{&load_}));
   PetscCall(spec_.SetFromOptions(comm_));
+  PetscCall(controls_.SetFromOptions(comm_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -107,7 +108,29 @@ PetscErrorCode FineRun::CreateSwarm()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FineRun::SyncSwarm(Vec U)
+void FineRun::Constrained(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc)
+{
+  if (!controls_.Active()) {
+    *xc = x, *vc = v;
+    return;
+  }
+  const PetscInt n2 = 2 * n_local_;
+  xw_.assign(x, x + n2);
+  vw_.assign(v, v + n2);
+  controls_.Impose(t, xw_.data(), vw_.data());
+  *xc = xw_.data(), *vc = vw_.data();
+}
+
+PetscErrorCode FineRun::AfterSolve()
+{
+  PetscReal t;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetTime(ts_, &t));
+  PetscCall(SyncSwarm(t, U_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::SyncSwarm(PetscReal t, Vec U)
 {
   const PetscScalar *u;
   PetscReal         *pos, *vel;
@@ -119,6 +142,7 @@ PetscErrorCode FineRun::SyncSwarm(Vec U)
     pos[k] = u[k];
     vel[k] = u[2 * n_local_ + k];
   }
+  controls_.Impose(t, pos, vel);
   PetscCall(DMSwarmRestoreField(swarm_, "velocity", NULL, NULL, (void **)&vel));
   PetscCall(DMSwarmRestoreField(swarm_, "position", NULL, NULL, (void **)&pos));
   PetscCall(VecRestoreArrayRead(U, &u));
@@ -139,6 +163,7 @@ PetscErrorCode FineRun::SetUpModel()
     PetscCall(tissues_.Generate(comm_, &tissue_));
   }
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
+  PetscCall(controls_.SetUp(comm_, tissue_, rank == 0));
   /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
   tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
@@ -165,6 +190,7 @@ PetscErrorCode FineRun::SetUpModel()
     u[k]                = tissue_.X[k];
     u[2 * n_local_ + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
   }
+  controls_.Impose(0, u, u + 2 * n_local_);
   PetscCall(VecRestoreArray(U_, &u));
   v_stale_.assign(2 * n_local_, 0);
 
@@ -210,6 +236,14 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
     PetscCall(TSGetOptionsPrefix(ts_, &prefix));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_basicsymplectic_type", &chosen));
     if (!chosen) PetscCall(TSBasicSymplecticSetType(ts_, TSBASICSYMPLECTICVELVERLET));
+    /* PETSc 3.18's schemes: velocity Verlet drifts twice by h/2, symplectic Euler once by h; for the
+       others a controlled velocity is taken at the start of each drift (first order in time) */
+    TSBasicSymplecticType scheme;
+    PetscBool             verlet, euler;
+    PetscCall(TSBasicSymplecticGetType(ts_, &scheme));
+    PetscCall(PetscStrcmp(scheme, TSBASICSYMPLECTICVELVERLET, &verlet));
+    PetscCall(PetscStrcmp(scheme, TSBASICSYMPLECTICSIEULER, &euler));
+    drift_fraction_ = verlet ? 0.5 : euler ? 1.0 : 0.0;
   }
   {
     /* a fixed step is not clipped at the final time: shorten it so that whole steps end there */
@@ -247,6 +281,7 @@ PetscErrorCode FineRun::Report()
   PetscCall(model_.View(out));
   PetscCall(PetscPrintf(comm_, "Explicit stability limits at t = 0 (smallest first):\n"));
   for (const TimeStepLimit &l : limits_) PetscCall(PetscPrintf(comm_, "  dt <= %-11.4g %s\n", (double)l.dt, l.why.c_str()));
+  PetscCall(controls_.View(comm_));
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTimeStep(ts_, &dt));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &fixed));
@@ -267,7 +302,7 @@ PetscErrorCode FineRun::OpenSnapshots()
 PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
 {
   PetscFunctionBeginUser;
-  PetscCall(SyncSwarm(U));
+  PetscCall(SyncSwarm(t, U));
   PetscCall(snapshots_writer_.Write(swarm_, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -300,8 +335,16 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     PetscCall(VecGetArrayRead(U, &u));
     PetscCall(VecGetArray(F, &f));
     const std::vector<char> &fixed = run->tissue_.particles.fixed;
-    for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
-    PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
+    if (!run->controls_.Active()) {
+      for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
+      PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
+    } else { /* the controlled components: x and v imposed, dx/dt = v_c(t), v not integrated */
+      const PetscReal *x, *v;
+      run->Constrained(t, u, u + n2, &x, &v);
+      for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : v[k];
+      PetscCall(run->model_.ComputeAcceleration(x, v, f + n2));
+      run->controls_.AdjustAccelerations(t, f + n2);
+    }
     PetscCall(VecRestoreArray(F, &f));
     PetscCall(VecRestoreArrayRead(U, &u));
     run->rhs_evals_++;
@@ -325,6 +368,11 @@ PetscErrorCode FineRun::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *c
       xd[k]            = fixed[k / 2] ? 0 : v[k];
       run->v_stale_[k] = v[k];
     }
+    if (run->controls_.Active()) {
+      PetscReal h;
+      PetscCall(TSGetTimeStep(run->ts_, &h));
+      run->controls_.PositionRates(t, run->drift_fraction_ * h, xd);
+    }
     PetscCall(VecRestoreArray(Xdot, &xd));
     PetscCall(VecRestoreArrayRead(V, &v));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -340,7 +388,13 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     PetscFunctionBeginUser;
     PetscCall(VecGetArrayRead(X, &x));
     PetscCall(VecGetArray(Vdot, &a));
-    PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
+    if (!run->controls_.Active()) PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
+    else {
+      const PetscReal *xc, *vc;
+      run->Constrained(t, x, run->v_stale_.data(), &xc, &vc);
+      PetscCall(run->model_.ComputeAcceleration(xc, vc, a));
+      run->controls_.AdjustAccelerations(t, a);
+    }
     for (PetscInt k = 0; k < 2 * run->n_local_; k++)
       PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
                  "Non-finite acceleration of particle %" PetscInt_FMT
@@ -363,8 +417,12 @@ PetscErrorCode FineRun::PostStep(TS ts)
     PetscCall(TSGetApplicationContext(ts, &base));
     FineRun *run = static_cast<FineRun *>(base);
     PetscCall(TSGetSolution(ts, &U));
+    PetscReal        t;
+    const PetscReal *x, *v;
+    PetscCall(TSGetTime(ts, &t));
     PetscCall(VecGetArrayRead(U, &u));
-    PetscCall(run->model_.AcceptStep(u, u + 2 * run->n_local_));
+    run->Constrained(t, u, u + 2 * run->n_local_, &x, &v);
+    PetscCall(run->model_.AcceptStep(x, v));
     PetscCall(VecRestoreArrayRead(U, &u));
     PetscFunctionReturn(PETSC_SUCCESS);
   });
@@ -387,14 +445,39 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
   const PetscScalar *u;
   PetscReal          vals[2] = {0, 0}, ke = 0;
   PetscFunctionBeginUser;
+  const PetscReal *x, *v;
   PetscCall(VecGetArrayRead(U, &u));
   const PetscInt n2 = 2 * n_local_;
-  for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (u[n2 + 2 * i] * u[n2 + 2 * i] + u[n2 + 2 * i + 1] * u[n2 + 2 * i + 1]);
-  if (tip_ >= 0) vals[0] = u[2 * tip_ + 1] - tip_y0_;
+  Constrained(t, u, u + n2, &x, &v);
+  for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+  if (tip_ >= 0) vals[0] = x[2 * tip_ + 1] - tip_y0_;
   PetscCall(VecRestoreArrayRead(U, &u));
   vals[1] = ke;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, vals, 2, MPIU_REAL, MPIU_SUM, comm_));
   row = {vals[0], vals[1]};
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::vector<TimeRun::Series> FineRun::ObservedSeries() const
+{
+  if (!controls_.Active()) return {};
+  return {
+    {"groups.csv", controls_.Columns()}
+  };
+}
+
+/* groups.csv: the forces at the sampled state (one evaluation per sample, with controls only) */
+PetscErrorCode FineRun::ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows)
+{
+  const PetscScalar     *u;
+  const PetscReal       *x, *v;
+  std::vector<PetscReal> f(2 * n_local_);
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &u));
+  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(model_.ComputeForces(x, v, f.data(), NULL));
+  PetscCall(controls_.Observe(comm_, t, x, f.data(), rows[0]));
+  PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -415,6 +498,23 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
   js.Set("dt_stable", dt_stable_);
   js.Set("dt_initial", dt_initial_);
   js.Set("neighbour_rebuilds", rebuilds);
+  {
+    /* issue 10's sizes: nodes are the wall particles, bars the springs */
+    PetscInt  ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.polygons.size(), steps;
+    PetscReal wall   = WallTime();
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
+    PetscCall(TSGetStepNumber(ts_, &steps));
+    js.Set("n_nodes", nw);
+    js.Set("n_cells", ncells);
+    js.Set("n_bars", nsprings);
+    js.Set("node_steps_per_s", wall > 0 ? (PetscReal)(nw + nf) * steps / wall : 0.0);
+    std::vector<PetscReal>   dts;
+    std::vector<std::string> why;
+    for (const TimeStepLimit &l : limits_) dts.push_back(l.dt), why.push_back(l.why);
+    js.Set("stability_limits_dt", dts);
+    js.Set("stability_limits", why);
+    js.Set("controls", controls_.Names());
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,4 +1,6 @@
 #include <turgor/io/particle_snapshots.h>
+#include <turgor/tissue/tissue.h>
+#include <cmath>
 #include <petscdmswarm.h>
 #include <petscviewerhdf5.h>
 #include <hdf5.h>
@@ -64,11 +66,91 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
     PetscCall(ISView(is, viewer_));
     PetscCall(ISDestroy(&is));
   }
-  PetscCall(PetscViewerHDF5PopGroup(viewer_));
+  /* polygonal tissues: the closed cells as Polygon (all the same size) or Mixed topology */
+  polys_.clear();
+  area0_.clear();
+  bars_.clear();
+  n_polys_ = mixed_size_ = nodes_per_poly_ = 0;
+  PetscInt any                             = P.polygons.empty() ? 0 : 1;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPIU_INT, MPI_MAX, comm_));
+  if (any) {
+    PetscReal *pos;
+    PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
+    for (const PolygonCell &c : P.polygons)
+      if (!c.open) {
+        polys_.push_back(c.nodes);
+        area0_.push_back(PolygonArea(c.nodes, pos));
+      }
+    PetscCall(DMSwarmRestoreField(swarm, "position", NULL, NULL, (void **)&pos));
+    bars_       = P.springs;
+    PetscInt np = (PetscInt)polys_.size(), lo = PETSC_MAX_INT, hi = 0, size = 0;
+    for (auto &c : polys_) lo = PetscMin(lo, (PetscInt)c.size()), hi = PetscMax(hi, (PetscInt)c.size()), size += 2 + (PetscInt)c.size();
+    PetscCallMPI(MPI_Allreduce(&np, &n_polys_, 1, MPIU_INT, MPI_SUM, comm_));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPIU_INT, MPI_MIN, comm_));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPIU_INT, MPI_MAX, comm_));
+    PetscCallMPI(MPI_Allreduce(&size, &mixed_size_, 1, MPIU_INT, MPI_SUM, comm_));
+    nodes_per_poly_ = lo == hi ? lo : 0;
+    std::vector<PetscInt> conn, ids;
+    for (size_t c = 0; c < P.polygons.size(); c++) {
+      if (P.polygons[c].open) continue;
+      if (!nodes_per_poly_) {
+        conn.push_back(3); /* XDMF's Polygon type code in a Mixed topology */
+        conn.push_back((PetscInt)P.polygons[c].nodes.size());
+      }
+      for (PetscInt i : P.polygons[c].nodes) conn.push_back(start + i);
+      ids.push_back((PetscInt)c);
+    }
+    PetscCall(PetscViewerHDF5PushGroup(viewer_, "/static"));
+    IS is;
+    PetscCall(ISCreateGeneral(comm_, (PetscInt)conn.size(), conn.data(), PETSC_COPY_VALUES, &is));
+    if (nodes_per_poly_) PetscCall(ISSetBlockSize(is, nodes_per_poly_)); /* (n x k), as the XDMF says */
+    PetscCall(PetscObjectSetName((PetscObject)is, "polygons"));
+    PetscCall(ISView(is, viewer_));
+    PetscCall(ISDestroy(&is));
+    PetscCall(WriteIntegerField(comm_, viewer_, "cell_id", ids.data(), (PetscInt)ids.size(), 0));
+    PetscCall(PetscViewerHDF5PopGroup(viewer_));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time)
+/* Per snapshot: A/A0 of every closed cell, the callers' cell fields and every bar's strain. */
+PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const std::vector<CellField> &cell_fields)
+{
+  PetscFunctionBeginUser;
+  const PetscInt                                              np = (PetscInt)polys_.size(), nb = (PetscInt)bars_.size();
+  std::vector<std::pair<std::string, std::vector<PetscReal>>> fields;
+  {
+    std::vector<PetscReal> ratio(np), strain(nb);
+    for (PetscInt c = 0; c < np; c++) ratio[c] = PolygonArea(polys_[c], x) / area0_[c];
+    for (PetscInt b = 0; b < nb; b++)
+      strain[b] = std::hypot(x[2 * bars_[b].j] - x[2 * bars_[b].i], x[2 * bars_[b].j + 1] - x[2 * bars_[b].i + 1]) / bars_[b].rest_length - 1;
+    fields.push_back({"area_ratio", ratio});
+    fields.push_back({"bar_strain", strain});
+  }
+  field_names_.clear();
+  field_units_.clear();
+  for (const CellField &f : cell_fields) {
+    PetscCheck((PetscInt)f.values.size() == np, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Cell field %s has %zu values for %" PetscInt_FMT " closed cells",
+               f.name.c_str(), f.values.size(), np);
+    fields.push_back({f.name, f.values});
+    field_names_.push_back(f.name);
+    field_units_.push_back(f.unit);
+  }
+  for (auto &f : fields) {
+    Vec          v;
+    PetscScalar *a;
+    PetscCall(VecCreateMPI(comm_, (PetscInt)f.second.size(), PETSC_DETERMINE, &v));
+    PetscCall(PetscObjectSetName((PetscObject)v, f.first.c_str()));
+    PetscCall(VecGetArray(v, &a));
+    for (size_t k = 0; k < f.second.size(); k++) a[k] = f.second[k];
+    PetscCall(VecRestoreArray(v, &a));
+    PetscCall(VecView(v, viewer_));
+    PetscCall(VecDestroy(&v));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const std::vector<CellField> &cell_fields)
 {
   char group[64];
   Vec  v;
@@ -98,6 +180,12 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time)
     PetscCall(VecView(v, viewer_));
     PetscCall(VecDestroy(&v));
   }
+  if (n_polys_ > 0) {
+    PetscReal *pos;
+    PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
+    PetscCall(WritePolygonFields(pos, cell_fields));
+    PetscCall(DMSwarmRestoreField(swarm, "position", NULL, NULL, (void **)&pos));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
   PetscCall(PetscViewerHDF5PopGroup(viewer_));
   {
@@ -125,12 +213,23 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
   PetscCall(PetscFPrintf(comm_, fp,
                          "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
                          "  <Information Name=\"units\" Value=\"length µm, time µs, mass ng; velocity µm/µs, force µN\"/>\n"));
-  for (int grid = 0; grid < 2; grid++) {
-    PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grid ? "walls" : "particles"));
+  const char *grids[3] = {"particles", "walls", "cells"};
+  for (int grid = 0; grid < (n_polys_ > 0 ? 3 : 2); grid++) {
+    PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grids[grid]));
     for (size_t k = 0; k < times_.size(); k++) {
-      PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grid ? "walls" : "particles", k,
-                             (double)times_[k]));
-      if (grid)
+      PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grids[grid], k, (double)times_[k]));
+      if (grid == 2 && nodes_per_poly_)
+        PetscCall(
+          PetscFPrintf(comm_, fp,
+                       "    <Topology TopologyType=\"Polygon\" NumberOfElements=\"%lld\" NodesPerElement=\"%lld\">\n     <DataItem Dimensions=\"%lld %lld\" "
+                       "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/polygons</DataItem>\n    </Topology>\n",
+                       (long long)n_polys_, (long long)nodes_per_poly_, (long long)n_polys_, (long long)nodes_per_poly_, ip, h5));
+      else if (grid == 2)
+        PetscCall(PetscFPrintf(comm_, fp,
+                               "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld\" "
+                               "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/polygons</DataItem>\n    </Topology>\n",
+                               (long long)n_polys_, (long long)mixed_size_, ip, h5));
+      else if (grid)
         PetscCall(PetscFPrintf(comm_, fp,
                                "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "
                                "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/springs</DataItem>\n    </Topology>\n",
@@ -150,6 +249,32 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
                              "     <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n"
                              "    </Attribute>\n",
                              N, h5, k));
+      if (grid == 2) {
+        PetscCall(PetscFPrintf(comm_, fp,
+                               "    <Attribute Name=\"cell_id\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"values\" Value=\"index in "
+                               "the tissue's polygons\"/>\n"
+                               "     <DataItem Dimensions=\"%lld 1\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/cell_id</DataItem>\n    "
+                               "</Attribute>\n",
+                               (long long)n_polys_, ip, h5));
+        std::vector<std::pair<std::string, std::string>> reals = {
+          {"area_ratio", "1"}
+        };
+        for (size_t f = 0; f < field_names_.size(); f++) reals.push_back({field_names_[f], field_units_[f]});
+        for (auto &a : reals)
+          PetscCall(PetscFPrintf(comm_, fp,
+                                 "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
+                                 "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    "
+                                 "</Attribute>\n",
+                                 a.first.c_str(), a.second.c_str(), (long long)n_polys_, h5, k, a.first.c_str()));
+        PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+        continue;
+      }
+      if (grid == 1 && n_polys_ > 0)
+        PetscCall(PetscFPrintf(
+          comm_, fp,
+          "    <Attribute Name=\"bar_strain\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"values\" Value=\"l / l0 - 1\"/>\n"
+          "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/bar_strain</DataItem>\n    </Attribute>\n",
+          S, h5, k));
       const char *ints[3][2] = {
         {"kind",  "0 wall, 1 fluid"                                        },
         {"cell",  "tissue cell of a fluid particle, -1 for a wall particle"},

@@ -93,6 +93,17 @@ PetscErrorCode TimeRun::SetUp()
     for (const std::string &c : ObservedColumns()) columns.push_back(c);
     PetscCall(tip_csv_.Open(PETSC_COMM_SELF, out_.dir + "/tip.csv", columns));
   }
+  series_csv_.clear();
+  series_files_.clear();
+  for (const Series &s : ObservedSeries()) {
+    series_csv_.push_back(std::make_unique<CsvWriter>());
+    series_files_.push_back(s.file);
+    if (rank == 0 && out_.ready) {
+      std::vector<std::string> columns = {"time"};
+      for (const std::string &c : s.columns) columns.push_back(c);
+      PetscCall(series_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + s.file, columns));
+    }
+  }
   if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -149,6 +160,14 @@ PetscErrorCode TimeRun::Sample(PetscReal t, Vec U)
   observed_ = row.empty() ? 0 : row[0];
   row.insert(row.begin(), t);
   if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row(row));
+  if (!series_csv_.empty()) {
+    std::vector<std::vector<PetscReal>> rows(series_csv_.size());
+    PetscCall(ObserveSeries(t, U, rows));
+    for (size_t k = 0; k < series_csv_.size(); k++) {
+      rows[k].insert(rows[k].begin(), t);
+      if (series_csv_[k]->IsOpen()) PetscCall(series_csv_[k]->Row(rows[k]));
+    }
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -260,7 +279,9 @@ PetscErrorCode TimeRun::WriteSummary()
   PetscCall(CommonSummary(js, interrupted_ ? "interrupted" : "completed"));
   if (interrupted_) {
     js.Set("reason", "interrupted (SIGINT/SIGTERM): the time series end at t_final, before t_requested");
-    js.Set("partial_outputs", std::vector<std::string>{"tip.csv", std::string(SnapshotFiles())});
+    std::vector<std::string> partial = {"tip.csv", std::string(SnapshotFiles())};
+    partial.insert(partial.end(), series_files_.begin(), series_files_.end());
+    js.Set("partial_outputs", partial);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_));
   js.Set("rhs_evals", evals);
@@ -293,9 +314,12 @@ PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
   js.Set("reason", reason);
   if (solving_) {
     js.Set("tip_displacement_last_sample", observed_);
-    js.Set("partial_outputs", std::vector<std::string>{"tip.csv", std::string(SnapshotFiles())});
+    std::vector<std::string> partial = {"tip.csv", std::string(SnapshotFiles())};
+    partial.insert(partial.end(), series_files_.begin(), series_files_.end());
+    js.Set("partial_outputs", partial);
   }
   PetscCall(tip_csv_.Close());
+  for (auto &csv : series_csv_) PetscCall(csv->Close());
   PetscCall(js.Write(PETSC_COMM_SELF, out_.dir + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

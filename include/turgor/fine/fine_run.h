@@ -7,6 +7,7 @@
 
    Integrators (options only): -ts_type rk -ts_rk_type 5dp (default, adaptive, rtol = atol = 1e-3)
    or -ts_type basicsymplectic (PETSc's velocity Verlet, fixed step from the stability limits). */
+#include <turgor/fine/controls.h>
 #include <turgor/io/particle_snapshots.h>
 #include <turgor/physics/force_model.h>
 #include <turgor/run/time_run.h>
@@ -34,6 +35,8 @@ public:
   PhysicsSpec &Physics() { return physics_; }
   LoadSpec    &Load() { return load_; }
   TissueSpec  &Tissues() { return tissues_; }
+  /* Load controls (-controls): add groups through the API before SetUp. */
+  Controls &GetControls() { return controls_; }
   /* Use this tissue instead of generating one from the -tissue_ options (tests, custom scenes);
      call between SetFromOptions() and SetUp(). Clamps from -fine_clamp are still applied. */
   void SetTissue(const Tissue &tissue)
@@ -55,12 +58,14 @@ protected:
   PetscErrorCode           Report() override;
   std::vector<std::string> ObservedColumns() const override { return {"tip_displacement_y", "kinetic_energy"}; }
   PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) override;
+  std::vector<Series>      ObservedSeries() const override;
+  PetscErrorCode           ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) override;
   PetscErrorCode           OpenSnapshots() override;
   PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) override;
   PetscInt                 SnapshotCount() const override { return snapshots_writer_.Count(); }
   const char              *SnapshotFiles() const override { return "particles.h5 + particles.xmf"; }
   PetscInt                 FunctionEvaluations() const override { return rhs_evals_; }
-  PetscErrorCode           AfterSolve() override { return SyncSwarm(U_); }
+  PetscErrorCode           AfterSolve() override;
   PetscErrorCode           AddSummary(JsonObject &js) override;
   PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
@@ -76,7 +81,10 @@ private:
   static PetscErrorCode PostStep(TS ts); /* the terms' internal state at the accepted state */
 
   PetscErrorCode CreateSwarm();
-  PetscErrorCode SyncSwarm(Vec U);
+  PetscErrorCode SyncSwarm(PetscReal t, Vec U);
+  /* With controls: x and v of the state with the controlled components imposed at t (work arrays);
+     without: the state's own arrays. */
+  void           Constrained(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc);
   PetscErrorCode ChooseTimeStep();
 
   FineRunSpec                spec_;
@@ -90,6 +98,9 @@ private:
   IS                         is_x_ = nullptr, is_v_ = nullptr;
   PetscInt                   n_local_ = 0;
   std::vector<PetscReal>     v_stale_; /* velocities seen by the last position update (Verlet) */
+  Controls                   controls_;
+  std::vector<PetscReal>     xw_, vw_;            /* controls only: the state with the constraints imposed */
+  PetscReal                  drift_fraction_ = 0; /* splitting integrators: a position update's share of the step */
   std::vector<TimeStepLimit> limits_;
   PetscReal                  dt_stable_ = 0, dt_initial_ = 0;
 

@@ -4,7 +4,14 @@
    vertex and spring connectivity), and an XDMF file describing a temporal collection of two grids,
    the particles (Polyvertex, one vertex cell per particle, with velocity, kind, cell, fixed) and
    the wall springs (Polyline through the same positions), with units. The XDMF file is rewritten
-   after every snapshot, so a run that stops early stays readable. */
+   after every snapshot, so a run that stops early stays readable.
+
+   Polygonal tissues (ParticleSet::polygons not empty) get a third grid, "cells": the closed
+   polygons as XDMF Polygon cells (topology Polygon with NodesPerElement when all have the same
+   number of nodes, else Mixed with type code 3 and the node count before each cell's nodes), with
+   the cell attributes cell_id, area_ratio A/A0 (A0 at Open) and any fields the caller passes to
+   Write (e.g. a pressure); the walls grid then also has each bar's strain l/l0 - 1. Open cells are
+   drawn by their bars only. */
 #include <turgor/particles/particles.h>
 #include <petscdm.h>
 #include <petscviewer.h>
@@ -18,19 +25,32 @@ public:
   /* `swarm` holds fields "position" and "velocity" (bs 2) and "kind", "cell" (int); `P` gives the
      springs and fixed flags of the local particles (local indices). Files: dir/base.h5, dir/base.xmf. */
   PetscErrorCode Open(DM swarm, const ParticleSet &P, const std::string &dir, const std::string &base);
-  PetscErrorCode Write(DM swarm, PetscReal time);
+  /* A per-cell field of the polygon grid (one value per closed polygon, in ParticleSet::polygons
+     order, closed cells only): the hook for terms that own a cell quantity (pressure). */
+  struct CellField {
+    std::string            name, unit;
+    std::vector<PetscReal> values;
+  };
+  PetscErrorCode Write(DM swarm, PetscReal time, const std::vector<CellField> &cell_fields = {});
   PetscErrorCode Close();
   ~ParticleSnapshotWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
 
 private:
   PetscErrorCode WriteXdmf();
+  PetscErrorCode WritePolygonFields(const PetscReal *x, const std::vector<CellField> &cell_fields);
 
-  MPI_Comm               comm_   = MPI_COMM_NULL;
-  PetscViewer            viewer_ = nullptr;
-  std::string            dir_, h5name_, xmfpath_;
-  PetscInt               n_global_ = 0, n_springs_ = 0;
-  std::vector<PetscReal> times_;
+  MPI_Comm    comm_   = MPI_COMM_NULL;
+  PetscViewer viewer_ = nullptr;
+  std::string dir_, h5name_, xmfpath_;
+  PetscInt    n_global_ = 0, n_springs_ = 0;
+  /* polygonal tissues: the closed cells (local node indices), their reference areas, the bars */
+  std::vector<std::vector<PetscInt>> polys_;
+  std::vector<PetscReal>             area0_;
+  std::vector<Spring>                bars_;
+  PetscInt                           n_polys_ = 0, mixed_size_ = 0, nodes_per_poly_ = 0; /* global; 0: mixed */
+  std::vector<std::string>           field_names_, field_units_;
+  std::vector<PetscReal>             times_;
 };
 
 } // namespace turgor

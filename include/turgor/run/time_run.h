@@ -12,6 +12,7 @@
 #include <turgor/io/time_sampler.h>
 #include <turgor/run/simulation.h>
 #include <petscts.h>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,10 +68,18 @@ protected:
   virtual std::vector<std::string> ObservedColumns() const = 0;
   /* Collective; row gets one value per column (all ranks). */
   virtual PetscErrorCode Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) = 0;
-  virtual PetscErrorCode OpenSnapshots()                                          = 0;
-  virtual PetscErrorCode WriteSnapshot(PetscReal t, Vec U)                        = 0;
-  virtual PetscInt       SnapshotCount() const                                    = 0;
-  virtual const char    *SnapshotFiles() const                                    = 0; /* for the final report */
+  /* Further CSV files in the output directory sampled at the same times as tip.csv (one sampler
+     for all): each file's name and columns after "time", and (collective) one row per file. */
+  struct Series {
+    std::string              file;
+    std::vector<std::string> columns;
+  };
+  virtual std::vector<Series> ObservedSeries() const { return {}; }
+  virtual PetscErrorCode      ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode      OpenSnapshots()                   = 0;
+  virtual PetscErrorCode      WriteSnapshot(PetscReal t, Vec U) = 0;
+  virtual PetscInt            SnapshotCount() const             = 0;
+  virtual const char         *SnapshotFiles() const             = 0; /* for the final report */
   /* The right-hand-side / residual evaluations so far (this rank). */
   virtual PetscInt FunctionEvaluations() const = 0;
   /* After a successful TSSolve (e.g. the particle record brought up to date). */
@@ -98,17 +107,19 @@ private:
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
 
-  std::string                mode_;
-  CsvWriter                  tip_csv_;
-  TimeSampler                sampler_;
-  PetscLogDouble             wall_        = 0;
-  PetscReal                  observed_    = 0;
-  PetscLogStage              stage_setup_ = 0, stage_solve_ = 0;
-  PetscLogEvent              ev_output_   = 0;
-  bool                       interrupted_ = false, solving_ = false;
-  PetscReal                  t_last_ = 0, stalled_ = -1, dt_min_ = 0; /* stalled_: the accepted step below dt_min_ (>= 0) */
-  PetscInt                   step_last_       = -1;
-  static constexpr PetscReal kMinStepFraction = 1e-10; /* default -ts_adapt_dt_min / -ts_max_time */
+  std::string                             mode_;
+  CsvWriter                               tip_csv_;
+  std::vector<std::unique_ptr<CsvWriter>> series_csv_;
+  std::vector<std::string>                series_files_;
+  TimeSampler                             sampler_;
+  PetscLogDouble                          wall_        = 0;
+  PetscReal                               observed_    = 0;
+  PetscLogStage                           stage_setup_ = 0, stage_solve_ = 0;
+  PetscLogEvent                           ev_output_   = 0;
+  bool                                    interrupted_ = false, solving_ = false;
+  PetscReal                               t_last_ = 0, stalled_ = -1, dt_min_ = 0; /* stalled_: the accepted step below dt_min_ (>= 0) */
+  PetscInt                                step_last_       = -1;
+  static constexpr PetscReal              kMinStepFraction = 1e-10; /* default -ts_adapt_dt_min / -ts_max_time */
 };
 
 } // namespace turgor

@@ -1,0 +1,83 @@
+#pragma once
+/* Load controls of the fine run (-controls a,b and -control_<name>_*): groups of nodes with an
+   imposed velocity (per component, or `free`) or an imposed force, scaled in time by a profile.
+
+   A velocity-controlled component is an exact constraint: x(t) = X + v S(t), v(t) = v s(t), where
+   s is the profile (step: 1; ramp: min(t / T, 1); cyclic: +1, -1 alternating every half period)
+   and S its integral. The driver overwrites those components wherever the state is read (forces,
+   outputs), integrates dx/dt = v s(t) and leaves their velocity un-integrated (dv/dt = 0). A force
+   control applies the total force F s(t) to the group, shared by mass (every node gets the same
+   acceleration F s(t) / M). Nodes are wall particles (box and cells select wall particles only;
+   -control_<name>_nodes may name any particle). See docs/model.md, "Controls". */
+#include <turgor/tissue/tissue.h>
+#include <string>
+#include <vector>
+
+namespace turgor {
+
+enum ControlProfile {
+  CONTROL_STEP,
+  CONTROL_RAMP,
+  CONTROL_CYCLIC
+};
+
+struct ControlGroup {
+  std::string name;
+  /* selection (union of all given): particle ids, cells, a box of reference positions */
+  std::vector<PetscInt> node_ids, cells;
+  bool                  has_box = false;
+  PetscReal             box[4]  = {0, 0, 0, 0}; /* xmin, ymin, xmax, ymax */
+  /* what is imposed */
+  bool           velocity    = true;           /* false: force */
+  PetscReal      value[2]    = {0, 0};         /* velocity [µm/µs] or total force [µN] */
+  bool           free[2]     = {false, false}; /* velocity components left free */
+  ControlProfile profile     = CONTROL_STEP;
+  PetscReal      ramp_time   = 0; /* [µs] */
+  PetscReal      half_period = 0; /* [µs] */
+
+  /* set up from the tissue: the nodes (local indices), their reference positions, total mass */
+  std::vector<PetscInt>  nodes;
+  std::vector<PetscReal> X0;
+  PetscReal              mass = 0;
+
+  PetscReal Scale(PetscReal t) const;    /* s(t) */
+  PetscReal Integral(PetscReal t) const; /* S(t) = int_0^t s */
+  PetscReal Rate(PetscReal t) const;     /* ds/dt (the smooth part: 1/T on a ramp, else 0) */
+};
+
+class Controls {
+public:
+  /* Read -controls and every listed group's options (prefix -control_<name>_), validated. */
+  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  /* Add a configured group (tests), before SetUp. */
+  void Add(const ControlGroup &g) { groups_.push_back(g); }
+  /* Resolve the groups' nodes on the full tissue (every rank holds it at this point, so the checks
+     agree on all ranks); `owner` false: this rank keeps the groups but no nodes. */
+  PetscErrorCode SetUp(MPI_Comm comm, const Tissue &tissue, bool owner);
+
+  bool                             Active() const { return !groups_.empty(); }
+  const std::vector<ControlGroup> &Groups() const { return groups_; }
+
+  /* Overwrite the velocity-controlled components of x and v (either may be NULL) with their values
+     at time t. */
+  void Impose(PetscReal t, PetscReal *x, PetscReal *v) const;
+  /* Velocity-controlled components of xdot: the mean velocity over [t, t + tau] (tau > 0: a drift of
+     a splitting integrator, exact for any profile), or the velocity at t (tau = 0). */
+  void PositionRates(PetscReal t, PetscReal tau, PetscReal *xdot) const;
+  /* Accelerations: the velocity-controlled components are not integrated (set to 0); force groups
+     add F s(t) / M. */
+  void AdjustAccelerations(PetscReal t, PetscReal *a) const;
+  /* Per group (ux, uy, fx, fy): the mean displacement, and the reaction (velocity components:
+     M a_c - sum of the other forces f on the group) or the applied force. Collective. */
+  PetscErrorCode           Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const;
+  std::vector<std::string> Columns() const;
+  std::vector<std::string> Names() const;
+  PetscErrorCode           View(MPI_Comm comm) const;
+
+private:
+  std::vector<ControlGroup> groups_;
+  /* the velocity-controlled components: state index 2 i + d, and its group */
+  std::vector<PetscInt> comp_, comp_group_;
+};
+
+} // namespace turgor
