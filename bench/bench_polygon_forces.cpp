@@ -81,7 +81,7 @@ int main(int argc, char **argv)
   const bool state = M.HasInternalState();
   PetscCall(M.ComputeAcceleration(x.data(), v.data(), a.data()));
   const Contact *C        = dynamic_cast<const Contact *>(M.Term("contact"));
-  double         cand_sum = 0, contact_sum = 0;
+  double         cand_sum = 0, near_sum = 0, contact_sum = 0;
   auto           run = [&](PetscInt n) -> PetscErrorCode {
     PetscFunctionBeginUser;
     for (PetscInt s = 0; s < n; s++) {
@@ -92,23 +92,24 @@ int main(int argc, char **argv)
       PetscCall(M.ComputeAcceleration(x.data(), v.data(), a.data()));
       for (size_t q = 0; q < x.size(); q++) v[q] += 0.5 * dt * a[q];
       if (state) PetscCall(M.AcceptStep(x.data(), v.data()));
-      if (C) cand_sum += C->Candidates(), contact_sum += C->ActiveContacts();
+      if (C) cand_sum += C->Candidates(), near_sum += C->NearCandidates(), contact_sum += C->ActiveContacts();
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   };
   PetscCall(run(steps / 10)); /* warm-up */
-  cand_sum = contact_sum  = 0;
-  const PetscInt rebuild0 = M.Neighbours().Rebuilds();
-  const auto     t0       = std::chrono::steady_clock::now();
-  const auto     c0       = std::clock(); /* CPU time as well: on a shared machine the wall time includes waiting */
+  cand_sum = near_sum = contact_sum = 0;
+  const PetscInt rebuild0 = M.Neighbours().Rebuilds(), near0 = C ? C->NearListBuilds() : 0;
+  const auto     t0 = std::chrono::steady_clock::now();
+  const auto     c0 = std::clock(); /* CPU time as well: on a shared machine the wall time includes waiting */
   PetscCall(run(steps));
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), cpu = (double)(std::clock() - c0) / CLOCKS_PER_SEC;
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "polygon forces [%s]: %" PetscInt_FMT " cells, %" PetscInt_FMT " nodes, %zu bars, dt %.3g µs\n", physics.c_str(),
                         nx * ny, T.particles.n, T.particles.springs.size(), dt));
   if (C)
     PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                          "  contact: %.0f candidates and %.0f contacts per step on average, %" PetscInt_FMT " rebuilds in %" PetscInt_FMT " steps\n",
-                          cand_sum / steps, contact_sum / steps, M.Neighbours().Rebuilds() - rebuild0, steps));
+                          "  contact: %.0f candidates, %.0f near and %.0f contacts per step on average, %" PetscInt_FMT " rebuilds and %" PetscInt_FMT
+                          " near-list builds in %" PetscInt_FMT " steps\n",
+                          cand_sum / steps, near_sum / steps, contact_sum / steps, M.Neighbours().Rebuilds() - rebuild0, C->NearListBuilds() - near0, steps));
   PetscCall(PetscPrintf(PETSC_COMM_SELF,
                         "  %" PetscInt_FMT " steps in %.3f s wall, %.3f s CPU: %.3g node-steps/s (wall), %.3g node-steps/s (CPU), %.1f ns CPU per node-step\n",
                         steps, sec, cpu, steps * (double)T.particles.n / sec, steps * (double)T.particles.n / cpu,

@@ -31,7 +31,7 @@ PetscErrorCode Bars::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 PetscErrorCode Bars::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  SpringForces(in, stiffness, gamma_, f, virial);
+  SpringForces(in, stiffness, gamma_, damping > 0, f, virial);
   PetscCall(PetscLogFlops(30.0 * in.P->springs.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

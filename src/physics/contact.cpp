@@ -49,7 +49,7 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   }
   nb.RequestParticleSpringPairs(2 * r_);
   cand_.clear();
-  cand_h_.clear();
+  near_.clear();
   hist_.clear();
   seen_rebuilds_ = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -85,24 +85,59 @@ bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, 
 }
 
 /* The neighbour search's node-spring candidates filtered to eligible pairs, each with its history
-   entry found once per rebuild (the map is keyed by (node gid, bar), not by list position). */
+   entry found once per rebuild (the map is keyed by (node gid, bar), not by list position); then
+   the near list. Between rebuilds the near list is rebuilt when some node has moved more than half
+   the near skin since it was built: a pair left out was farther than 2 r + near skin, and neither
+   its node nor its bar's ends has moved half of that, so it is still apart. */
 PetscErrorCode Contact::Refresh(const ForceInput &in)
 {
   PetscFunctionBeginUser;
-  if (in.nb->Rebuilds() == seen_rebuilds_) PetscFunctionReturn(PETSC_SUCCESS);
-  const PointSegmentList &L = in.nb->ParticleSpringPairs();
-  const ParticleSet      &P = *in.P;
-  cand_.clear();
-  cand_h_.clear();
-  for (size_t k = 0; k < L.size(); k++) {
-    if (!Eligible(P, L.p[k], L.s[k])) continue;
-    cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k]});
-    auto it = hist_.find(Key(P, L.p[k], L.s[k]));
-    cand_h_.push_back(it == hist_.end() ? nullptr : &it->second);
+  const PetscReal *x = in.x;
+  const PetscInt   n = in.P->n;
+  if (in.nb->Rebuilds() != seen_rebuilds_) {
+    const PointSegmentList &L = in.nb->ParticleSpringPairs();
+    const ParticleSet      &P = *in.P;
+    cand_.clear();
+    for (size_t k = 0; k < L.size(); k++) {
+      if (!Eligible(P, L.p[k], L.s[k])) continue;
+      auto it = hist_.find(Key(P, L.p[k], L.s[k]));
+      cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k], it == hist_.end() ? nullptr : &it->second});
+    }
+    seen_rebuilds_ = in.nb->Rebuilds();
+    list_builds_++;
+    near_skin_ = 0.25 * in.nb->Skin();
+    BuildNearList(x, n);
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
-  seen_rebuilds_ = in.nb->Rebuilds();
-  list_builds_++;
+  PetscReal d2 = 0; /* the largest move since the near list was built (no early exit: vectorised) */
+  for (PetscInt k = 0; k < 2 * n; k += 2) {
+    const PetscReal dx = x[k] - near_x_[k], dy = x[k + 1] - near_x_[k + 1];
+    d2 = std::max(d2, dx * dx + dy * dy);
+  }
+  if (4 * d2 > near_skin_ * near_skin_ || (near_skin_ == 0 && d2 > 0)) BuildNearList(x, n);
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Contact::BuildNearList(const PetscReal *x, PetscInt n)
+{
+  const PetscReal R = 2 * r_ + near_skin_, R2 = R * R;
+  near_.clear();
+  for (size_t k = 0; k < cand_.size(); k++) {
+    const Candidate &c  = cand_[k];
+    const PetscReal  ex = x[2 * c.b] - x[2 * c.a], ey = x[2 * c.b + 1] - x[2 * c.a + 1];
+    const PetscReal  px = x[2 * c.p] - x[2 * c.a], py = x[2 * c.p + 1] - x[2 * c.a + 1];
+    const PetscReal  L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
+    bool             near;
+    if (proj <= 0) near = px * px + py * py < R2;
+    else if (proj >= L2) near = (px - ex) * (px - ex) + (py - ey) * (py - ey) < R2;
+    else {
+      const PetscReal cr = px * ey - py * ex;
+      near               = cr * cr < R2 * L2;
+    }
+    if (near || c.h) near_.push_back((PetscInt)k); /* a pair with history is kept until AcceptStep drops it */
+  }
+  near_x_.assign(x, x + 2 * n);
+  near_builds_++;
 }
 
 /* MODE 0: forces, 1: forces and virial, 2: accept (commit the history), 3: energy (returned).
@@ -119,13 +154,14 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   const bool         tangential = mu > 0 && kt > 0;
   PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
   PetscInt           active = 0;
-  for (size_t k = 0; k < cand_.size(); k++) {
-    const PetscInt  p = cand_[k].p, s = cand_[k].s, a = cand_[k].a, b = cand_[k].b;
+  for (size_t j = 0; j < near_.size(); j++) {
+    Candidate      &C = cand_[near_[j]];
+    const PetscInt  p = C.p, s = C.s, a = C.a, b = C.b;
     const PetscReal ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
     const PetscReal px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
     const PetscReal L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
-    History        *h = cand_h_[k];
-    if (MODE <= 1 && tangential) trial_xi_[k] = PETSC_MAX_REAL; /* not in contact */
+    History        *h = C.h;
+    if (MODE <= 1 && tangential) trial_xi_[j] = PETSC_MAX_REAL; /* not in contact */
     /* reject without a division: interior |p x e|^2 >= (2r)^2 |e|^2, or the end distances */
     bool far;
     if (proj <= 0) far = px * px + py * py >= R2;
@@ -134,12 +170,19 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       const PetscReal cr = px * ey - py * ex;
       far                = cr * cr >= R2 * L2;
     }
-    const PetscReal lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj / L2;
-    const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
-    if (far || d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
+    if (far) {
       if (MODE == 2 && h) {
         hist_.erase(Key(P, p, s));
-        cand_h_[k] = nullptr;
+        C.h = nullptr;
+      }
+      continue;
+    }
+    const PetscReal lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj / L2;
+    const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
+    if (d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
+      if (MODE == 2 && h) {
+        hist_.erase(Key(P, p, s));
+        C.h = nullptr;
       }
       continue;
     }
@@ -161,12 +204,12 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       if (std::fabs(ft) > cap) ft = ft > 0 ? cap : -cap;
     }
     if (MODE <= 1 && tangential) {
-      trial_xi_[k] = -ft / kt;
-      trial_s_[k]  = sc;
+      trial_xi_[j] = -ft / kt;
+      trial_s_[j]  = sc;
     }
     if (MODE == 2) {
       if (tangential) {
-        if (!h) h = cand_h_[k] = &hist_[Key(P, p, s)];
+        if (!h) h = C.h = &hist_[Key(P, p, s)];
         h->xi    = -ft / kt; /* the capped (slipped) elastic displacement */
         h->s_ref = sc;
         h->stamp = stamp_;
@@ -205,17 +248,14 @@ PetscErrorCode Contact::AddForces(const ForceInput &in, PetscReal *f, PetscReal 
 {
   PetscFunctionBeginUser;
   PetscCall(Refresh(in));
-  const bool tangential = friction > 0 && kt_ > 0;
-  if (tangential) { /* AcceptStep at this same state commits these trial values */
-    trial_xi_.resize(cand_.size());
-    trial_s_.resize(cand_.size());
-    last_x_.assign(in.x, in.x + 2 * in.P->n);
-    last_v_.assign(in.v, in.v + 2 * in.P->n);
-    last_builds_ = list_builds_;
+  if (friction > 0 && kt_ > 0) { /* AcceptStep at this same state commits these trial values */
+    trial_xi_.resize(near_.size());
+    trial_s_.resize(near_.size());
+    trial_builds_ = near_builds_;
   }
   if (virial) Kernel<1>(in, f, virial);
   else Kernel<0>(in, f, NULL);
-  PetscCall(PetscLogFlops(40.0 * cand_.size()));
+  PetscCall(PetscLogFlops(40.0 * near_.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -229,39 +269,41 @@ PetscErrorCode Contact::Energy(const ForceInput &in, PetscReal *E, PetscBool *ha
 }
 
 /* Commit the tangential history at the accepted state; drop pairs that separated (in contact no
-   more, or gone from the candidate list: farther than 2 r + skin). */
+   more, or gone from the lists: farther than 2 r + near skin). */
 PetscErrorCode Contact::AcceptStep(const ForceInput &in)
 {
   PetscFunctionBeginUser;
   if (!(friction > 0 && kt_ > 0)) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
-  PetscCall(Refresh(in));
   stamp_++;
-  const size_t n2 = 2 * (size_t)in.P->n;
-  /* velocity Verlet accepts the state it last evaluated: commit that evaluation's trial values (same
-     bits in, same bits out) instead of recomputing the geometry */
-  const bool same = last_builds_ == list_builds_ && trial_xi_.size() == cand_.size() && last_x_.size() == n2 &&
-                    std::equal(last_x_.begin(), last_x_.end(), in.x) &&
-                    (damping == 0 || std::equal(last_v_.begin(), last_v_.end(), in.v)); /* v enters through the damping only */
-  if (same) {
-    for (size_t k = 0; k < cand_.size(); k++) {
-      History *h = cand_h_[k];
-      if (trial_xi_[k] == PETSC_MAX_REAL) {
-        if (h) {
-          hist_.erase(Key(*in.P, cand_[k].p, cand_[k].s));
-          cand_h_[k] = nullptr;
+  /* velocity Verlet accepts the positions it last evaluated: commit that evaluation's trial values
+     (same bits in, same bits out) instead of recomputing the geometry; v enters through the damping
+     only */
+  if (in.same_x && (damping == 0 || in.same_v) && trial_builds_ == near_builds_ && trial_xi_.size() == near_.size()) {
+    for (size_t j = 0; j < near_.size(); j++) {
+      Candidate &C = cand_[near_[j]];
+      if (trial_xi_[j] == PETSC_MAX_REAL) {
+        if (C.h) {
+          hist_.erase(Key(*in.P, C.p, C.s));
+          C.h = nullptr;
         }
         continue;
       }
-      if (!h) h = cand_h_[k] = &hist_[Key(*in.P, cand_[k].p, cand_[k].s)];
-      h->xi    = trial_xi_[k];
-      h->s_ref = trial_s_[k];
-      h->stamp = stamp_;
+      if (!C.h) C.h = &hist_[Key(*in.P, C.p, C.s)];
+      C.h->xi    = trial_xi_[j];
+      C.h->s_ref = trial_s_[j];
+      C.h->stamp = stamp_;
     }
-  } else Kernel<2>(in, NULL, NULL);
+  } else {
+    PetscCall(Refresh(in));
+    Kernel<2>(in, NULL, NULL);
+  }
   size_t live = 0;
-  for (History *h : cand_h_) live += (h != nullptr);
-  if (live != hist_.size())
+  for (PetscInt k : near_) live += (cand_[k].h != nullptr);
+  if (live != hist_.size()) { /* entries of pairs no longer listed: forget every pointer to them, then drop them */
+    for (Candidate &C : cand_)
+      if (C.h && C.h->stamp != stamp_) C.h = nullptr;
     for (auto it = hist_.begin(); it != hist_.end();) it = it->second.stamp == stamp_ ? std::next(it) : hist_.erase(it);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -47,13 +47,16 @@ PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
   hinge_.clear();
-  for (const PolygonCell &c : P.polygons) {
-    const PetscInt N = (PetscInt)c.nodes.size();
+  runs_.clear();
+  for (const PolygonCell &c : P.polygons) { /* one run of consecutive hinges per polygon */
+    const PetscInt N = (PetscInt)c.nodes.size(), first = (PetscInt)hinge_.size();
     if (c.open)
       for (PetscInt k = 1; k + 1 < N; k++) hinge_.push_back({c.nodes[k - 1], c.nodes[k], c.nodes[k + 1]});
     else if (N >= 3)
       for (PetscInt k = 0; k < N; k++) hinge_.push_back({c.nodes[(k + N - 1) % N], c.nodes[k], c.nodes[(k + 1) % N]});
+    if ((PetscInt)hinge_.size() > first) runs_.push_back({first, (PetscInt)hinge_.size() - first, !c.open});
   }
+  have_angles_ = false;
   cos0_.assign(hinge_.size(), 1.0);
   sin0_.assign(hinge_.size(), 0.0);
   theta_p_.assign(hinge_.size(), 0.0);
@@ -87,45 +90,81 @@ PetscReal Hinges::Angle(size_t h, const PetscReal *x) const
 }
 
 /* E = -M dtheta/dx: dtheta/dx_c = perp(w)/|w|^2, dtheta/dx_a = -perp(u)/|u|^2 (perp(v) = (-v_y, v_x)),
-   dtheta/dx_b = -(both): forces M/l perpendicular to each bar, summing to zero with zero torque. */
+   dtheta/dx_b = -(both): forces M/l perpendicular to each bar, summing to zero with zero torque.
+   Hinges are visited along each polygon, so that a bar's vector and 1/|bar|^2 serve the two hinges
+   at its ends: u of hinge k is minus the w of hinge k - 1. One division per hinge gives both 1/|w|^2
+   and the tangent of the angle deviation (q = 1 / (X |w|^2)). */
+template <bool VIRIAL, bool CACHE>
+void Hinges::Kernel(const PetscReal *x, PetscReal *f, PetscReal *virial)
+{
+  const PetscReal k = stiffness, Mmax = max_moment > 0 ? max_moment : PETSC_MAX_REAL;
+  PetscReal       w4[4] = {0, 0, 0, 0};
+  for (const Run &R : runs_) {
+    /* the bar into the first hinge: u = x_a - x_b of hinge R.first */
+    const Hinge &H0 = hinge_[R.first];
+    PetscReal    ux = x[2 * H0.a] - x[2 * H0.b], uy = x[2 * H0.a + 1] - x[2 * H0.b + 1], iu2 = 1 / (ux * ux + uy * uy);
+    /* A hinge node's force comes from three hinges (its own, and as the far node of the two next to
+       it): it is summed in registers and written once, after the next hinge (pb: own + previous
+       hinge's share, cc: this hinge's share for the next hinge node, fa0: the first hinge's share
+       for its previous node, added at the end of a closed ring). */
+    PetscReal pbx = 0, pby = 0, ccx = 0, ccy = 0, fa0x = 0, fa0y = 0;
+    for (PetscInt h = R.first; h < R.first + R.count; h++) {
+      const Hinge    &H  = hinge_[h];
+      const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1], w2 = wx * wx + wy * wy;
+      const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
+      const PetscReal Y = s * cos0_[h] - c * sin0_[h], X = c * cos0_[h] + s * sin0_[h];
+      PetscReal       d, iw2;
+      if (X > 0 && std::fabs(Y) <= 0.1 * X) { /* the usual case: the series of HingeAtan2, sharing its division */
+        const PetscReal q = 1 / (X * w2), t = Y * w2 * q, t2 = t * t, t4 = t2 * t2;
+        const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
+        const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
+        d                  = t * (pe + t2 * po);
+        iw2                = X * q;
+      } else {
+        d   = HingeAtan2(Y, X);
+        iw2 = 1 / w2;
+      }
+      if (CACHE) d_[h] = d;
+      const PetscReal M  = std::clamp(k * (d - theta_p_[h]), -Mmax, Mmax);
+      const PetscReal iu = M * iu2, iw = M * iw2;
+      const PetscReal fax = -uy * iu, fay = ux * iu; /* -M dtheta/dx_a */
+      const PetscReal fcx = wy * iw, fcy = -wx * iw; /* -M dtheta/dx_c */
+      if (h == R.first) {
+        if (R.closed) fa0x = fax, fa0y = fay;
+        else f[2 * H.a] += fax, f[2 * H.a + 1] += fay;
+      } else { /* the previous hinge node is this hinge's node a */
+        f[2 * H.a] += pbx + fax;
+        f[2 * H.a + 1] += pby + fay;
+      }
+      pbx = ccx - fax - fcx, pby = ccy - fay - fcy;
+      ccx = fcx, ccy = fcy;
+      if (VIRIAL) { /* -sum f (x) x = -(f_a (x) u + f_c (x) w) relative to the hinge node */
+        w4[0] -= fax * ux + fcx * wx;
+        w4[1] -= fax * uy + fcx * wy;
+        w4[2] -= fay * ux + fcy * wx;
+        w4[3] -= fay * uy + fcy * wy;
+      }
+      ux = -wx, uy = -wy, iu2 = iw2; /* the next hinge's u: this bar seen from its other end */
+    }
+    const Hinge &HL = hinge_[R.first + R.count - 1];
+    f[2 * HL.b] += pbx + fa0x; /* fa0 = 0 on an open chain */
+    f[2 * HL.b + 1] += pby + fa0y;
+    f[2 * HL.c] += ccx; /* closed: the first hinge node; open: the chain's last node */
+    f[2 * HL.c + 1] += ccy;
+  }
+  if (VIRIAL)
+    for (int q = 0; q < 4; q++) virial[q] += w4[q];
+}
+
 PetscErrorCode Hinges::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
   if (!have_ref_) SetReference(in.x);
-  const PetscReal *x     = in.x;
-  const bool       cache = max_moment > 0; /* AcceptStep at the state of the last evaluation reuses its angles */
-  if (cache) {
-    last_x_.assign(x, x + 2 * in.P->n);
-    d_.resize(hinge_.size());
-  }
-  const PetscReal k = stiffness, Mmax = max_moment > 0 ? max_moment : PETSC_MAX_REAL;
-  PetscReal       w4[4] = {0, 0, 0, 0};
-  for (size_t h = 0; h < hinge_.size(); h++) {
-    const Hinge    &H  = hinge_[h];
-    const PetscReal ux = x[2 * H.a] - x[2 * H.b], uy = x[2 * H.a + 1] - x[2 * H.b + 1];
-    const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
-    const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
-    const PetscReal d = HingeAtan2(s * cos0_[h] - c * sin0_[h], c * cos0_[h] + s * sin0_[h]);
-    if (cache) d_[h] = d;
-    const PetscReal M  = std::clamp(k * (d - theta_p_[h]), -Mmax, Mmax);
-    const PetscReal iu = M / (ux * ux + uy * uy), iw = M / (wx * wx + wy * wy);
-    const PetscReal fax = -uy * iu, fay = ux * iu; /* -M dtheta/dx_a */
-    const PetscReal fcx = wy * iw, fcy = -wx * iw; /* -M dtheta/dx_c */
-    f[2 * H.a] += fax;
-    f[2 * H.a + 1] += fay;
-    f[2 * H.c] += fcx;
-    f[2 * H.c + 1] += fcy;
-    f[2 * H.b] -= fax + fcx;
-    f[2 * H.b + 1] -= fay + fcy;
-    if (virial) { /* -sum f (x) x = -(f_a (x) u + f_c (x) w) relative to the hinge node */
-      w4[0] -= fax * ux + fcx * wx;
-      w4[1] -= fax * uy + fcx * wy;
-      w4[2] -= fay * ux + fcy * wx;
-      w4[3] -= fay * uy + fcy * wy;
-    }
-  }
-  if (virial)
-    for (int q = 0; q < 4; q++) virial[q] += w4[q];
+  const bool cache = max_moment > 0; /* AcceptStep at the state of the last evaluation reuses its angles */
+  if (cache) d_.resize(hinge_.size());
+  if (virial) cache ? Kernel<true, true>(in.x, f, virial) : Kernel<true, false>(in.x, f, virial);
+  else cache ? Kernel<false, true>(in.x, f, NULL) : Kernel<false, false>(in.x, f, NULL);
+  have_angles_ = cache;
   PetscCall(PetscLogFlops(45.0 * hinge_.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -154,7 +193,7 @@ PetscErrorCode Hinges::AcceptStep(const ForceInput &in)
   if (!have_ref_) SetReference(in.x);
   /* velocity Verlet accepts the state it last evaluated: the angles are then those of AddForces
      (same bits in, same bits out), computed once */
-  const bool same = last_x_.size() == (size_t)(2 * in.P->n) && d_.size() == hinge_.size() && std::equal(last_x_.begin(), last_x_.end(), in.x);
+  const bool same = in.same_x && have_angles_ && d_.size() == hinge_.size();
   if (max_moment > 0 && stiffness > 0)
     for (size_t h = 0; h < hinge_.size(); h++) {
       const PetscReal e = (same ? d_[h] : Angle(h, in.x)) - theta_p_[h], em = max_moment / stiffness;

@@ -36,21 +36,32 @@ PetscErrorCode WallSprings::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 /* Force on i: [k (r - l0) + gamma (e . v_ij)] e with e = (x_j - x_i)/r, v_ij = v_j - v_i. The seed's
    eq 16 prints the opposite overall sign (it pushes a stretched spring apart); see docs/model.md. */
 namespace {
-template <bool VIRIAL>
+/* PERIODIC: end j at an image (RVEs); DAMPED: some dashpot (the velocity pass is skipped otherwise) */
+template <bool VIRIAL, bool PERIODIC, bool DAMPED>
 void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscReal *f, PetscReal *virial)
 {
   const PetscReal *x = in.x, *v = in.v;
   const auto      &S    = in.P->springs;
   PetscReal        w[4] = {0, 0, 0, 0};
   for (size_t s = 0; s < S.size(); s++) {
-    const PetscInt   i = S[s].i, j = S[s].j;
-    const PetscReal *sx = in.images->x[S[s].image], *sv = in.images->v[S[s].image];
-    const PetscReal  dx = x[2 * j] + sx[0] - x[2 * i], dy = x[2 * j + 1] + sx[1] - x[2 * i + 1];
-    const PetscReal  r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
-    const PetscReal  ex = dx * ir, ey = dy * ir;
-    const PetscReal  vr  = (v[2 * j] + sv[0] - v[2 * i]) * ex + (v[2 * j + 1] + sv[1] - v[2 * i + 1]) * ey;
-    const PetscReal  mag = k * (r - S[s].rest_length) + gamma_[s] * vr;
-    const PetscReal  fx = mag * ex, fy = mag * ey;
+    const PetscInt i = S[s].i, j = S[s].j;
+    PetscReal      dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
+    if (PERIODIC) {
+      const PetscReal *sx = in.images->x[S[s].image];
+      dx += sx[0], dy += sx[1];
+    }
+    const PetscReal r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
+    const PetscReal ex = dx * ir, ey = dy * ir;
+    PetscReal       mag = k * (r - S[s].rest_length);
+    if (DAMPED) {
+      PetscReal dvx = v[2 * j] - v[2 * i], dvy = v[2 * j + 1] - v[2 * i + 1];
+      if (PERIODIC) {
+        const PetscReal *sv = in.images->v[S[s].image];
+        dvx += sv[0], dvy += sv[1];
+      }
+      mag += gamma_[s] * (dvx * ex + dvy * ey);
+    }
+    const PetscReal fx = mag * ex, fy = mag * ey;
     f[2 * i] += fx;
     f[2 * i + 1] += fy;
     f[2 * j] -= fx;
@@ -65,12 +76,19 @@ void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscRea
   if (VIRIAL)
     for (int c = 0; c < 4; c++) virial[c] += w[c];
 }
+
+template <bool VIRIAL>
+void KernelFor(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial)
+{
+  if (in.images->periodic) damped ? Kernel<VIRIAL, true, true>(in, k, gamma.data(), f, virial) : Kernel<VIRIAL, true, false>(in, k, gamma.data(), f, virial);
+  else damped ? Kernel<VIRIAL, false, true>(in, k, gamma.data(), f, virial) : Kernel<VIRIAL, false, false>(in, k, gamma.data(), f, virial);
+}
 } // namespace
 
-void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, PetscReal *f, PetscReal *virial)
+void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial)
 {
-  if (virial) Kernel<true>(in, k, gamma.data(), f, virial);
-  else Kernel<false>(in, k, gamma.data(), f, NULL);
+  if (virial) KernelFor<true>(in, k, gamma, damped, f, virial);
+  else KernelFor<false>(in, k, gamma, damped, f, NULL);
 }
 
 PetscReal SpringEnergy(const ForceInput &in, PetscReal k)
@@ -88,7 +106,7 @@ PetscReal SpringEnergy(const ForceInput &in, PetscReal k)
 PetscErrorCode WallSprings::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  SpringForces(in, stiffness, gamma_, f, virial);
+  SpringForces(in, stiffness, gamma_, damping_ratio > 0, f, virial);
   PetscCall(PetscLogFlops(30.0 * in.P->springs.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -8,7 +8,12 @@
    history changes only in AcceptStep, is kept by key across neighbour-list rebuilds and is dropped
    when the pair separates. The bar's share goes to its end nodes by the lever rule, plus a couple
    that balances the torque of the tangential force: linear and angular momentum are conserved.
-   A node whose closest point is a bar end (a corner) is counted by one bar only (see contact.cpp). */
+   A node whose closest point is a bar end (a corner) is counted by one bar only (see contact.cpp).
+
+   Two lists: the neighbour search's node-bar pairs within 2 r + skin (rebuilt when a node has moved
+   skin/2), and from them the pairs within 2 r + skin/4, refreshed when a node has moved skin/8
+   since; only the second is visited per evaluation (a few pairs per node in a packed tissue are
+   near, most are not). */
 #include <turgor/physics/force_term.h>
 #include <cstdint>
 #include <unordered_map>
@@ -29,7 +34,9 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override;
 
   PetscInt CandidateListBuilds() const { return list_builds_; } /* filtered node-bar lists built */
-  size_t   Candidates() const { return cand_.size(); }
+  size_t   Candidates() const { return cand_.size(); }          /* pairs within 2 r + skin */
+  size_t   NearCandidates() const { return near_.size(); }      /* pairs within 2 r + skin/4: visited per evaluation */
+  PetscInt NearListBuilds() const { return near_builds_; }
   PetscInt ActiveContacts() const { return active_; } /* pairs in contact at the last evaluation */
   size_t   HistoryEntries() const { return hist_.size(); }
 
@@ -47,21 +54,24 @@ private:
   template <int MODE>
   PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   PetscErrorCode Refresh(const ForceInput &in);
+  void           BuildNearList(const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
 
-  PetscReal             r_ = 0, kt_ = 0;
+  PetscReal             r_ = 0, kt_ = 0, near_skin_ = 0;
   std::vector<PetscInt> bar_poly_, bar_pos_, node_pos_, node_bars_;
   struct Candidate {
     PetscInt p, a, b, s; /* node, bar ends, bar */
+    History *h;          /* its history entry, if any */
   };
-  std::vector<Candidate>                     cand_;
-  std::vector<PetscReal>                     trial_xi_, trial_s_, last_x_, last_v_; /* the last evaluation (friction) */
-  PetscInt                                   last_builds_ = -1;
-  std::vector<History *>                     cand_h_;
+  std::vector<Candidate>                     cand_;               /* eligible pairs of the neighbour list */
+  std::vector<PetscInt>                      near_;               /* indices into cand_ of the near pairs */
+  std::vector<PetscReal>                     near_x_;             /* positions when near_ was built */
+  std::vector<PetscReal>                     trial_xi_, trial_s_; /* per near pair, from the last evaluation (friction) */
+  PetscInt                                   trial_builds_ = -1;  /* near_builds_ of the trial values */
   std::unordered_map<std::uint64_t, History> hist_;
-  PetscInt                                   seen_rebuilds_ = -1, list_builds_ = 0, stamp_ = 0, active_ = 0;
+  PetscInt                                   seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, stamp_ = 0, active_ = 0;
   size_t                                     n_springs_ = 0;
 };
 

@@ -72,7 +72,9 @@ private:
   std::vector<PetscLogEvent>              events_;
   NeighbourSearch                         nb_;
   PeriodicImages                          images_;
-  std::vector<PetscReal>                  inv_mass_; /* 0 for fixed particles */
+  std::vector<PetscReal>                  inv_mass_;        /* 0 for fixed particles */
+  std::vector<PetscReal>                  last_x_, last_v_; /* the last ComputeForces' state, when a term has internal state */
+  bool                                    has_state_   = false;
   PetscInt                                evaluations_ = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;
 };

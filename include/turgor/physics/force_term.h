@@ -21,6 +21,10 @@ struct ForceInput {
   const NeighbourSearch *nb;
   const PeriodicImages  *images;      /* never NULL; all zero shifts unless periodic */
   const PetscReal       *a = nullptr; /* accelerations of all terms together, where a criterion needs them */
+  /* AcceptStep only: the positions (velocities) are those of the last AddForces, bit for bit, so a
+     term may commit what that evaluation computed instead of recomputing it (ForceModel compares
+     once for all terms). */
+  bool same_x = false, same_v = false;
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */

@@ -38,11 +38,18 @@ private:
   struct Hinge {
     PetscInt a, b, c; /* previous node, hinge node, next node */
   };
+  struct Run {
+    PetscInt first, count; /* the hinges of one polygon, in order: hinge h's next bar is hinge h+1's previous one */
+    bool     closed;       /* closed ring: the last hinge's next node is the first hinge's node */
+  };
+  template <bool VIRIAL, bool CACHE>
+  void                   Kernel(const PetscReal *x, PetscReal *f, PetscReal *virial);
   std::vector<Hinge>     hinge_;
+  std::vector<Run>       runs_;
   std::vector<PetscReal> cos0_, sin0_, theta_p_;
-  std::vector<PetscReal> last_x_, d_; /* state and angles of the last AddForces (plastic hinges) */
+  std::vector<PetscReal> d_; /* angles of the last AddForces (plastic hinges) */
   PetscReal              dissipated_ = 0;
-  bool                   have_ref_   = false;
+  bool                   have_ref_ = false, have_angles_ = false;
 };
 
 } // namespace turgor

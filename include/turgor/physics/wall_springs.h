@@ -8,8 +8,8 @@ namespace turgor {
 
 /* The axial spring kernel shared by `springs` (wall springs) and `bars` (polygon bars): along every
    ParticleSet::springs entry, force on i [k (r - l0) + gamma_s (e . v_ij)] e, e = (x_j - x_i)/r;
-   gamma[s] per spring (all zero: no dashpot). virial may be NULL. */
-void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, PetscReal *f, PetscReal *virial);
+   gamma[s] per spring, read only if `damped` (false: no dashpot). virial may be NULL. */
+void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial);
 /* sum_s k/2 (r_s - l0_s)^2 */
 PetscReal SpringEnergy(const ForceInput &in, PetscReal k);
 /* Gershgorin bound on the spring block (see wall_springs.cpp); `label` names the term in the report. */
