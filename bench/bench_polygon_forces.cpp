@@ -27,27 +27,16 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-friction", &mu, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-physics_set", set, sizeof set, NULL));
   const std::string physics = set;
-  /* hexagons on a triangular lattice of spacing D, flat sides facing the neighbours, shrunk by r */
-  const PetscReal             D = 10, r = 0.25, apo = 0.5 * D - r, R = apo / std::cos(PETSC_PI / 6), m = 1;
+  /* hexagons on a triangular lattice of spacing D, neighbours 2 r apart; the jitter (nodes pulled
+     towards their centre by up to 0.1 µm) is part of the reference geometry (rest lengths and
+     angles), so the tissue starts at rest with no overlap; a uniform compression velocity (strain
+     rate 1e-3 /µs) then closes the gaps and brings cells into contact */
+  const PetscReal             D = 10, r = 0.25, m = 1;
   turgor_test::PolygonBuilder B;
   turgor_test::Random         rnd(2024);
-  /* the jitter (nodes pulled towards their centre by up to 0.1 µm) is part of the reference
-     geometry (rest lengths and angles), so the tissue starts at rest with no overlap; a uniform
-     compression velocity (strain rate 1e-3 /µs) then closes the gaps and brings cells into contact */
-  for (PetscInt j = 0; j < ny; j++)
-    for (PetscInt i = 0; i < nx; i++) {
-      std::vector<std::array<PetscReal, 2>> pts;
-      const PetscReal                       cx = D * (i + 0.5 * (j % 2)), cy = D * std::sqrt(3.0) / 2 * j;
-      for (int k = 0; k < 6; k++) {
-        const PetscReal phi = PETSC_PI / 6 + PETSC_PI * k / 3;
-        const PetscReal Rk  = R - 0.05 * (1 + rnd());
-        pts.push_back({cx + Rk * std::cos(phi), cy + Rk * std::sin(phi)});
-      }
-      B.AddCell(pts, false, m);
-    }
-  Tissue                &T  = B.Finish(r);
-  std::vector<PetscReal> x  = T.X, v(x.size()), a(x.size());
-  const PetscReal        xc = 0.5 * (T.lo[0] + T.hi[0]), yc = 0.5 * (T.lo[1] + T.hi[1]), rate = 1e-3;
+  Tissue                     &T  = turgor_test::HexagonTissue(B, nx, ny, D, r, m, rnd);
+  std::vector<PetscReal>      x  = T.X, v(x.size()), a(x.size());
+  const PetscReal             xc = 0.5 * (T.lo[0] + T.hi[0]), yc = 0.5 * (T.lo[1] + T.hi[1]), rate = 1e-3;
   for (PetscInt i = 0; i < T.particles.n; i++) {
     v[2 * i]     = -rate * (x[2 * i] - xc) + 0.01 * rnd();
     v[2 * i + 1] = -rate * (x[2 * i + 1] - yc) + 0.01 * rnd();

@@ -5,6 +5,7 @@
 #include <turgor/turgor.hpp>
 #include <turgor/physics/force_model.h>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -47,6 +48,28 @@ struct PolygonBuilder {
     return T;
   }
 };
+
+/* nx x ny jittered hexagons on a triangular lattice of spacing D (flat sides facing the neighbours,
+   shrunk by r so that neighbours are 2 r apart, nodes then pulled towards their centre by 0.05 (1 +
+   rnd()) µm, rnd() in [-1, 1): the jitter is part of the reference geometry), node mass m.
+   Benchmark and tests share it. */
+template <class Random>
+inline turgor::Tissue &HexagonTissue(PolygonBuilder &B, PetscInt nx, PetscInt ny, PetscReal D, PetscReal r, PetscReal m, Random &rnd)
+{
+  const PetscReal apo = 0.5 * D - r, R = apo / std::cos(PETSC_PI / 6);
+  for (PetscInt j = 0; j < ny; j++)
+    for (PetscInt i = 0; i < nx; i++) {
+      std::vector<std::array<PetscReal, 2>> pts;
+      const PetscReal                       cx = D * (i + 0.5 * (j % 2)), cy = D * std::sqrt(3.0) / 2 * j;
+      for (int k = 0; k < 6; k++) {
+        const PetscReal phi = PETSC_PI / 6 + PETSC_PI * k / 3;
+        const PetscReal Rk  = R - 0.05 * (1 + rnd());
+        pts.push_back({cx + Rk * std::cos(phi), cy + Rk * std::sin(phi)});
+      }
+      B.AddCell(pts, false, m);
+    }
+  return B.Finish(r);
+}
 
 /* A ForceModel with exactly these configured terms (no options read). */
 inline PetscErrorCode MakeModel(const turgor::ParticleSet &P, std::vector<std::unique_ptr<turgor::ForceTerm>> terms, turgor::ForceModel &M,
