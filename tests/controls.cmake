@@ -31,7 +31,7 @@ if(TURGOR_PVPYTHON)
 endif()
 
 # -help lists the control options (with a placeholder group name when no -controls is given)
-turgor_add_test(help_fine_controls COMMAND ${HELP} fine -controls -control_<name>_nodes -control_<name>_box -control_<name>_velocity
+turgor_add_test(help_fine_controls COMMAND ${HELP} fine -controls -control_<name>_nodes -control_<name>_plates -control_<name>_box -control_<name>_velocity
   -control_<name>_force -control_<name>_profile -control_<name>_ramp_time -control_<name>_half_period LABELS unit)
 
 # The tensile scene (config/tensile_pull_fine.yaml), 2 µs into its 20 µs ramp: the pulled side has

@@ -4,7 +4,7 @@ static const char help[] = "Load controls of the fine run against closed forms, 
                            "2. a ramp reaches v T / 2 + v (t - T); a cyclic profile is back at the start after a full period;\n"
                            "3. a force-controlled node with no other force moves as F t^2 / (2 m), and groups.csv reports F;\n"
                            "4. the reaction of a node pulling a spring chain equals the last spring's tension k (l - l0);\n"
-                           "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy and one row per sample.\n";
+                           "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy, _mz and one row per sample.\n";
 #include "test_util.h"
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/wall_springs.h>
@@ -116,11 +116,13 @@ int main(int argc, char **argv)
       TG_CHECK_CLOSE(r.x[2], free3.X[2] + 0.5 * T, 1e-12, 1, "controlled x of the half-free particle");
       TG_CHECK_CLOSE(r.x[3], free3.X[3] - 0.5 * g * T * T, 1e-9, 1, "free y of the half-free particle (free fall)");
       TG_CHECK_CLOSE(r.rows.back()[1], 0.25 * T, 1e-13, 1, "groups.csv a_ux");
-      TG_CHECK_CLOSE(r.rows.back()[6], -0.5 * g * T * T, 1e-9, 1, "groups.csv b_uy (free)");
+      TG_CHECK_CLOSE(r.rows.back()[7], -0.5 * g * T * T, 1e-9, 1, "groups.csv b_uy (free)");
       /* the gravity the controlled components resist: reaction = -(m g) per node, in y only for a */
       TG_CHECK_CLOSE(r.rows.back()[4], 2 * m * g, 1e-12, 1, "groups.csv a_fy: the reaction holds the weight");
-      TG_CHECK(r.rows.back()[8] == 0, "a free component has no reaction");
-      TG_CHECK(r.header.size() == 9 && r.header[0] == "time" && r.header[1] == "a_ux" && r.header[4] == "a_fy" && r.header[8] == "b_fy", "groups.csv columns");
+      TG_CHECK(r.rows.back()[9] == 0, "a free component has no reaction");
+      TG_CHECK(r.header.size() == 11 && r.header[0] == "time" && r.header[1] == "a_ux" && r.header[4] == "a_fy" && r.header[5] == "a_mz" &&
+                 r.header[9] == "b_fy",
+               "groups.csv columns");
       TG_CHECK(r.rows.size() == 11, "groups.csv has %zu rows, expected 11", r.rows.size());
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-16s constant velocity: x - (x0 + v t) = %.2e µm, free fall error %.2e µm\n", type,
                             (double)(r.x[0] - free3.X[0] - 0.25 * T), (double)(r.x[3] - free3.X[3] + 0.5 * g * T * T)));
@@ -134,8 +136,8 @@ int main(int argc, char **argv)
       TG_CHECK_CLOSE(r.rows.back()[1], ramp, 1e-13, 1, "ramp displacement (groups.csv)");
       TG_CHECK_CLOSE(r.x[0] - free3.X[0], ramp, type == TSRK ? 1e-7 : 1e-12, 1, "ramp displacement (state)");
       TG_CHECK_CLOSE(r.rows[4][1], 0.4 * 1.0 / (2 * 2.5), 1e-13, 1, "ramp displacement at t = 1 < T (v t^2 / 2T)");
-      TG_CHECK_CLOSE(r.rows[7][6], 0.3 * 1.75, 1e-13, 1, "cyclic displacement after a half period");
-      TG_CHECK(std::fabs(r.rows[14][6]) < 1e-13 && std::fabs(r.rows.back()[6]) < 1e-13, "cyclic: not back at the start after full periods");
+      TG_CHECK_CLOSE(r.rows[7][7], 0.3 * 1.75, 1e-13, 1, "cyclic displacement after a half period");
+      TG_CHECK(std::fabs(r.rows[14][7]) < 1e-13 && std::fabs(r.rows.back()[7]) < 1e-13, "cyclic: not back at the start after full periods");
       TG_CHECK(std::fabs(r.x[5] - free3.X[5]) < (type == TSRK ? 1e-7 : 1e-12), "cyclic (state): %g", (double)(r.x[5] - free3.X[5]));
       TG_CHECK_CLOSE(r.rows[4][3], m * 0.4 / 2.5, 1e-12, 1, "ramp reaction: m a_c");
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-16s ramp: state error %.2e µm; cyclic after 2 periods: state %.2e µm\n", type,

@@ -54,9 +54,11 @@ static PetscErrorCode CountValues(const std::string &name, PetscInt *count)
 static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool help_only, ControlGroup *g)
 {
   const std::string pre = "-control_" + name + "_";
-  PetscInt          nn = 0, nc = 0, nbox = 4, nf = 2, nv = 2;
-  PetscBool         set_nodes = PETSC_FALSE, set_cells = PETSC_FALSE, set_box = PETSC_FALSE, set_v = PETSC_FALSE, set_f = PETSC_FALSE, set_ramp, set_half;
+  PetscInt          nn = 0, nc = 0, nbox = 4, nf = 2, nv = 2, np = 5;
+  PetscBool         set_nodes = PETSC_FALSE, set_cells = PETSC_FALSE, set_plates = PETSC_FALSE, set_box = PETSC_FALSE, set_v = PETSC_FALSE, set_f = PETSC_FALSE,
+            set_ramp, set_half;
   char             *vel[3]     = {NULL, NULL, NULL};
+  char             *plates[5]  = {NULL, NULL, NULL, NULL, NULL};
   const char *const profiles[] = {"step", "ramp", "cyclic", "ControlProfile", "CONTROL_", NULL};
   PetscEnum         profile    = (PetscEnum)g->profile;
   PetscReal         box[5] = {0, 0, 0, 0, 0}, force[3] = {0, 0, 0};
@@ -70,6 +72,8 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   PetscCall(PetscOptionsIntArray("-nodes", "Particle ids of the group", "Controls", nodes.data(), &nn, &set_nodes));
   PetscCall(PetscOptionsIntArray("-cells", "Cells whose nodes (polygon nodes, or the square grid's wall particles) join the group", "Controls", cells.data(),
                                  &nc, &set_cells));
+  PetscCall(PetscOptionsStringArray("-plates", "Plates (-tissue_plates) whose nodes join the group: any of bottom,right,top,left", "Controls", plates, &np,
+                                    &set_plates));
   PetscCall(PetscOptionsRealArray("-box", "xmin,ymin,xmax,ymax: wall particles whose reference position is inside join the group [µm]", "Controls", box, &nbox,
                                   &set_box));
   PetscCall(PetscOptionsStringArray("-velocity", "vx,vy imposed velocity [µm/µs]; a component may be 'free'", "Controls", vel, &nv, &set_v));
@@ -84,11 +88,20 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   g->profile = (ControlProfile)profile;
   PetscCall(CheckNotEmpty(comm, (pre + "nodes").c_str(), "particle ids"));
   PetscCall(CheckNotEmpty(comm, (pre + "cells").c_str(), "cell ids"));
+  PetscCall(CheckNotEmpty(comm, (pre + "plates").c_str(), "plates: bottom, right, top, left"));
   PetscCall(CheckNotEmpty(comm, (pre + "box").c_str(), "xmin,ymin,xmax,ymax"));
   PetscCall(CheckNotEmpty(comm, (pre + "velocity").c_str(), "vx,vy (numbers or free)"));
   PetscCall(CheckNotEmpty(comm, (pre + "force").c_str(), "fx,fy"));
   if (set_nodes) g->node_ids.assign(nodes.begin(), nodes.begin() + nn);
   if (set_cells) g->cells.assign(cells.begin(), cells.begin() + nc);
+  if (set_plates) {
+    PetscCheck(np < 5, comm, PETSC_ERR_ARG_SIZ, "Option %splates: more than 4 plates listed", pre.c_str());
+    g->named.clear();
+    for (PetscInt k = 0; k < np; k++) {
+      g->named.push_back(plates[k]);
+      PetscCall(PetscFree(plates[k]));
+    }
+  }
   if (set_box) {
     PetscCheck(nbox == 4, comm, PETSC_ERR_ARG_SIZ, "Option %sbox: %" PetscInt_FMT " values given, expected 4 (xmin,ymin,xmax,ymax)", pre.c_str(), nbox);
     for (int k = 0; k < 4; k++)
@@ -99,8 +112,9 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
     g->has_box = true;
     for (int k = 0; k < 4; k++) g->box[k] = box[k];
   }
-  PetscCheck(set_nodes || set_cells || set_box || !g->node_ids.empty() || !g->cells.empty() || g->has_box, comm, PETSC_ERR_ARG_WRONG,
-             "Control group '%s' selects no nodes: give %snodes, %scells or %sbox", name.c_str(), pre.c_str(), pre.c_str(), pre.c_str());
+  PetscCheck(set_nodes || set_cells || set_plates || set_box || !g->node_ids.empty() || !g->cells.empty() || !g->named.empty() || g->has_box, comm,
+             PETSC_ERR_ARG_WRONG, "Control group '%s' selects no nodes: give %snodes, %scells, %splates or %sbox", name.c_str(), pre.c_str(), pre.c_str(),
+             pre.c_str(), pre.c_str());
   PetscCheck(!(set_v && set_f), comm, PETSC_ERR_ARG_INCOMP, "Options %svelocity and %sforce: a group imposes either a velocity or a force, not both",
              pre.c_str(), pre.c_str());
   PetscCheck(set_v || set_f, comm, PETSC_ERR_ARG_WRONG, "Control group '%s' imposes nothing: give %svelocity vx,vy or %sforce fx,fy", name.c_str(), pre.c_str(),
@@ -185,6 +199,7 @@ PetscErrorCode Controls::SetUp(MPI_Comm comm, const Tissue &tissue, bool owner)
   PetscFunctionBeginUser;
   comp_.clear();
   comp_group_.clear();
+  node_mass_ = P.mass;
   for (size_t gi = 0; gi < groups_.size(); gi++) {
     ControlGroup     &g   = groups_[gi];
     const std::string pre = "-control_" + g.name + "_";
@@ -200,6 +215,15 @@ PetscErrorCode Controls::SetUp(MPI_Comm comm, const Tissue &tissue, bool owner)
       PetscCheck(c >= 0 && c < ncells, comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "Option %scells: cell %" PetscInt_FMT " does not exist (the tissue has %" PetscInt_FMT " cells)", pre.c_str(), c, ncells);
       for (PetscInt i : polygons ? P.polygons[c].nodes : tissue.cell_walls[c]) in[i] = 1;
+    }
+    for (const std::string &name : g.named) {
+      auto        it = std::find_if(tissue.named_cells.begin(), tissue.named_cells.end(), [&](const auto &nc) { return nc.first == name; });
+      std::string known;
+      for (const auto &nc : tissue.named_cells) known += (known.empty() ? "" : ", ") + nc.first;
+      PetscCheck(it != tissue.named_cells.end(), comm, PETSC_ERR_ARG_WRONG,
+                 "Option %splates: the tissue has no plate '%s' (it has: %s; add plates with -tissue_plates)", pre.c_str(), name.c_str(),
+                 known.empty() ? "none" : known.c_str());
+      for (PetscInt i : P.polygons[it->second].nodes) in[i] = 1;
     }
     if (g.has_box)
       for (PetscInt i = 0; i < P.n; i++)
@@ -279,29 +303,46 @@ void Controls::AdjustAccelerations(PetscReal t, PetscReal *a) const
 PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const
 {
   const size_t ng = groups_.size();
+  const int    K  = 8; /* per group: sum ux, uy, fx, fy, count, m x, m y, and (second pass) mz */
   PetscFunctionBeginUser;
-  row.assign(4 * ng, 0);
-  std::vector<PetscReal> sums(5 * ng, 0); /* sum ux, uy, fx, fy, count */
+  row.assign(5 * ng, 0);
+  std::vector<PetscReal> sums(K * ng, 0);
   for (size_t g = 0; g < ng; g++) {
     const ControlGroup &G = groups_[g];
     for (size_t k = 0; k < G.nodes.size(); k++) {
       const PetscInt i = G.nodes[k];
       for (int d = 0; d < 2; d++) {
-        sums[5 * g + d] += x[2 * i + d] - G.X0[2 * k + d];
-        sums[5 * g + 2 + d] += f[2 * i + d];
+        sums[K * g + d] += x[2 * i + d] - G.X0[2 * k + d];
+        sums[K * g + 2 + d] += f[2 * i + d];
+        sums[K * g + 5 + d] += node_mass_[i] * x[2 * i + d];
       }
-      sums[5 * g + 4] += 1;
+      sums[K * g + 4] += 1;
     }
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sums.data(), (PetscMPIInt)sums.size(), MPIU_REAL, MPIU_SUM, comm));
+  /* the moment about the centre of mass c: a velocity group's reaction on node i is m_i a_c - f_i on
+     its constrained components (a_c is uniform, so sum m_i (x_i - c) x a_c = 0), a force group's
+     applied force m_i F s / M (its moment about c is 0) */
+  std::vector<PetscReal> mz(ng, 0);
   for (size_t g = 0; g < ng; g++) {
     const ControlGroup &G = groups_[g];
-    const PetscReal     n = sums[5 * g + 4] > 0 ? sums[5 * g + 4] : 1;
-    for (int d = 0; d < 2; d++) {
-      row[4 * g + d] = sums[5 * g + d] / n;
-      if (!G.velocity) row[4 * g + 2 + d] = G.value[d] * G.Scale(t);
-      else if (!G.free[d]) row[4 * g + 2 + d] = G.mass * G.value[d] * G.Rate(t) - sums[5 * g + 2 + d];
+    if (!G.velocity) continue;
+    const PetscReal cx = sums[K * g + 5] / G.mass, cy = sums[K * g + 6] / G.mass;
+    for (PetscInt i : G.nodes) {
+      const PetscReal rx = G.free[0] ? 0 : -f[2 * i], ry = G.free[1] ? 0 : -f[2 * i + 1];
+      mz[g] += (x[2 * i] - cx) * ry - (x[2 * i + 1] - cy) * rx;
     }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mz.data(), (PetscMPIInt)mz.size(), MPIU_REAL, MPIU_SUM, comm));
+  for (size_t g = 0; g < ng; g++) {
+    const ControlGroup &G = groups_[g];
+    const PetscReal     n = sums[K * g + 4] > 0 ? sums[K * g + 4] : 1;
+    for (int d = 0; d < 2; d++) {
+      row[5 * g + d] = sums[K * g + d] / n;
+      if (!G.velocity) row[5 * g + 2 + d] = G.value[d] * G.Scale(t);
+      else if (!G.free[d]) row[5 * g + 2 + d] = G.mass * G.value[d] * G.Rate(t) - sums[K * g + 2 + d];
+    }
+    row[5 * g + 4] = mz[g];
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -310,7 +351,7 @@ std::vector<std::string> Controls::Columns() const
 {
   std::vector<std::string> c;
   for (const ControlGroup &G : groups_)
-    for (const char *q : {"ux", "uy", "fx", "fy"}) c.push_back(G.name + "_" + q);
+    for (const char *q : {"ux", "uy", "fx", "fy", "mz"}) c.push_back(G.name + "_" + q);
   return c;
 }
 

@@ -292,13 +292,15 @@ PetscErrorCode TimeRun::WriteSummary()
   PetscCall(TSGetSolveTime(ts_, &t));
   PetscCall(TSGetStepNumber(ts_, &steps));
   PetscCall(TSGetStepRejections(ts_, &rej));
-  std::string details;
+  std::string details, files = "tip.csv, summary.json";
   PetscCall(DoneDetails(&details));
+  for (const Series &s : ObservedSeries()) files += ", " + s.file;
+  if (out_.snapshots > 0) files += std::string(", ") + SnapshotFiles();
   PetscCall(PetscPrintf(comm_,
                         "%s: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT
-                        " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: tip.csv, summary.json%s\n",
+                        " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: %s\n",
                         interrupted_ ? "Interrupted" : "Done", (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(),
-                        out_.snapshots > 0 ? (std::string(", ") + SnapshotFiles()).c_str() : ""));
+                        files.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

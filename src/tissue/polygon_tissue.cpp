@@ -23,6 +23,7 @@ PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide)
              (double)node_mass);
   PetscCheck(std::isfinite(bar_length) && bar_length >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -tissue_bar_length = %g: must be finite and > 0 (or 0: one bar per polygon edge)", (double)bar_length);
+  PetscCall(plates.SetFromOptions(comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -43,19 +44,23 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h)
   return c;
 }
 
-void BuildPolygonTissue(const std::vector<PolygonRing> &rings, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
+void BuildPolygonTissue(const std::vector<PolygonRing> &cells, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
 {
-  const PetscReal h = subdivide ? spec.bar_length : 0;
-  *tissue           = Tissue();
-  Tissue      &T    = *tissue;
-  ParticleSet &P    = T.particles;
-  P.bar_radius      = spec.bar_radius;
+  std::vector<PolygonRing>                      rings = cells;
+  std::vector<std::pair<std::string, PetscInt>> names;
+  AddPlateRings(spec.plates, spec.bar_radius, &rings, &names);
+  *tissue        = Tissue();
+  Tissue &T      = *tissue;
+  T.named_cells  = names;
+  ParticleSet &P = T.particles;
+  P.bar_radius   = spec.bar_radius;
   P.polygons.resize(rings.size());
   for (size_t c = 0; c < rings.size(); c++) {
     const PolygonRing &R = rings[c];
     PolygonCell       &C = P.polygons[c];
     C.open               = R.open;
-    const size_t n = R.points.size(), m = R.open ? n - 1 : n;
+    const size_t    n = R.points.size(), m = R.open ? n - 1 : n;
+    const PetscReal h = subdivide && !R.whole ? spec.bar_length : 0;
     for (size_t k = 0; k < m; k++) {
       const Point2  &a = R.points[k], &b = R.points[(k + 1) % n];
       const PetscInt nb = (PetscInt)BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]), h);

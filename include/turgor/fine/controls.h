@@ -23,10 +23,11 @@ enum ControlProfile {
 
 struct ControlGroup {
   std::string name;
-  /* selection (union of all given): particle ids, cells, a box of reference positions */
-  std::vector<PetscInt> node_ids, cells;
-  bool                  has_box = false;
-  PetscReal             box[4]  = {0, 0, 0, 0}; /* xmin, ymin, xmax, ymax */
+  /* selection (union of all given): particle ids, cells, named cells (plates), a box of reference positions */
+  std::vector<PetscInt>    node_ids, cells;
+  std::vector<std::string> named; /* Tissue::named_cells, e.g. the plates "top", "bottom" */
+  bool                     has_box = false;
+  PetscReal                box[4]  = {0, 0, 0, 0}; /* xmin, ymin, xmax, ymax */
   /* what is imposed */
   bool           velocity    = true;           /* false: force */
   PetscReal      value[2]    = {0, 0};         /* velocity [µm/µs] or total force [µN] */
@@ -67,8 +68,9 @@ public:
   /* Accelerations: the velocity-controlled components are not integrated (set to 0); force groups
      add F s(t) / M. */
   void AdjustAccelerations(PetscReal t, PetscReal *a) const;
-  /* Per group (ux, uy, fx, fy): the mean displacement, and the reaction (velocity components:
-     M a_c - sum of the other forces f on the group) or the applied force. Collective. */
+  /* Per group (ux, uy, fx, fy, mz): the mean displacement, the reaction (velocity components:
+     M a_c - sum of the other forces f on the group) or the applied force, and the moment of those
+     forces about the group's centre of mass. Collective. */
   PetscErrorCode           Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const;
   std::vector<std::string> Columns() const;
   std::vector<std::string> Names() const;
@@ -77,7 +79,8 @@ public:
 private:
   std::vector<ControlGroup> groups_;
   /* the velocity-controlled components: state index 2 i + d, and its group */
-  std::vector<PetscInt> comp_, comp_group_;
+  std::vector<PetscInt>  comp_, comp_group_;
+  std::vector<PetscReal> node_mass_; /* of every local particle (the centre of mass of a group) */
 };
 
 } // namespace turgor

@@ -2,6 +2,7 @@
 /* What the polygonal tissues (-tissue_type node_file, voronoi, polyline) share: the bar radius,
    the node mass and the bar subdivision (PolygonTissueSpec), the builder that turns rings of points
    into nodes, bars and PolygonCells, and the planar geometry their checks use. */
+#include <turgor/tissue/plates.h>
 #include <turgor/tissue/tissue.h>
 #include <array>
 #include <cstddef>
@@ -13,6 +14,7 @@ struct PolygonTissueSpec {
   PetscReal bar_radius = 0.5; /* µm: a node is a disk, a bar a capsule of this radius */
   PetscReal node_mass  = 0.5; /* ng, every node */
   PetscReal bar_length = 0;   /* µm: each polygon edge is cut into bars of at most this length; 0: one bar per edge */
+  PlateSpec plates;           /* -tissue_plates: plates along the sides, added after the tissue's cells */
 
   /* `subdivide`: the generator honours -tissue_bar_length (the polyline, whose node count is given,
      leaves it unread so that a stray one is reported as unused). */
@@ -24,7 +26,8 @@ using Point2 = std::array<PetscReal, 2>;
 /* A cell before it becomes nodes: its corner points in order (closed rings counter-clockwise). */
 struct PolygonRing {
   std::vector<Point2> points;
-  bool                open = false;
+  bool                open  = false;
+  bool                whole = false; /* never subdivided (a plate: one bar) */
 };
 
 /* Bars an edge of length L is cut into: ceil(L / h), at least 1 (h <= 0: 1). */
@@ -32,10 +35,11 @@ PetscReal BarsPerEdge(PetscReal L, PetscReal h);
 /* Nodes (= bars for a closed ring) after subdivision, in floating point (estimates). */
 PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h);
 
-/* Fill *tissue from the rings: nodes (KIND_WALL, mass spec.node_mass) cell by cell in ring order,
-   each edge cut into BarsPerEdge(L, h) equal bars (h = spec.bar_length if `subdivide`, else none),
-   bars as springs with the geometric rest length, ParticleSet::polygons/node_polygon/bar_radius,
-   Tissue::cell_walls; then Tissue::Finalize(). */
+/* Fill *tissue from the rings and the plates of spec.plates (plates.h): nodes (KIND_WALL, mass
+   spec.node_mass) cell by cell in ring order, each edge cut into BarsPerEdge(L, h) equal bars
+   (h = spec.bar_length if `subdivide`, else none), bars as springs with the geometric rest length,
+   ParticleSet::polygons/node_polygon/bar_radius, Tissue::cell_walls and named_cells; then
+   Tissue::Finalize(). */
 void BuildPolygonTissue(const std::vector<PolygonRing> &rings, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue);
 
 /* Signed area (counter-clockwise positive) and centroid of a closed ring. */

@@ -9,13 +9,14 @@ namespace turgor {
 
 /* A generated tissue: reference positions X, constant particle data, and per-cell wall polygons. */
 struct Tissue {
-  ParticleSet                        particles;
-  std::vector<PetscReal>             X;                              /* [2n] reference positions */
-  std::vector<PetscReal>             V;                              /* [2n] initial velocities; empty means at rest */
-  std::vector<std::vector<PetscInt>> cell_walls;                     /* wall particles of each cell, counter-clockwise */
-  std::vector<std::vector<int>>      cell_wall_images;               /* periodic tissues: the image of each ring point */
-  PetscReal                          lo[2] = {0, 0}, hi[2] = {0, 0}; /* bounding box of X */
-  PetscReal                          period[2] = {0, 0};             /* periodic cell [0,Lx) x [0,Ly); 0: not periodic */
+  ParticleSet                                   particles;
+  std::vector<PetscReal>                        X;                              /* [2n] reference positions */
+  std::vector<PetscReal>                        V;                              /* [2n] initial velocities; empty means at rest */
+  std::vector<std::vector<PetscInt>>            cell_walls;                     /* wall particles of each cell, counter-clockwise */
+  std::vector<std::vector<int>>                 cell_wall_images;               /* periodic tissues: the image of each ring point */
+  PetscReal                                     lo[2] = {0, 0}, hi[2] = {0, 0}; /* bounding box of X */
+  PetscReal                                     period[2] = {0, 0};             /* periodic cell [0,Lx) x [0,Ly); 0: not periodic */
+  std::vector<std::pair<std::string, PetscInt>> named_cells;                    /* cells with a name (the plates: "bottom", ...) */
 
   PetscInt NumCells() const { return (PetscInt)cell_walls.size(); }
   /* Build a tissue by hand (tests, custom geometries): add particles and springs, then Finalize(),
