@@ -1,8 +1,9 @@
 static const char help[] = "Momentum conservation of the fine model, term by term and all together, without clamps or\n"
                            "body force: linear momentum over 1000 steps of DOPRI (rk 5dp, which keeps linear invariants),\n"
-                           "angular momentum over 1000 steps of velocity Verlet (basicsymplectic, which keeps\n"
+                           "angular momentum over 1000 steps of velocity Verlet (basicsymplectic and verlet, which keep\n"
                            "sum x cross m v exactly when every force is torque-free).\n";
 #include "test_util.h"
+#include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 
 using namespace turgor;
@@ -98,11 +99,12 @@ int main(int argc, char **argv)
     PetscCall(RunCase(physics, TSRK, T, &dP, &dL));
     TG_CHECK(dP < 1e-13, "%s: linear momentum drift %.3e under rk", physics, (double)dP);
   }
-  for (const char *physics : {"springs", "repulsion", "sph", "springs,repulsion,sph"}) {
-    PetscCall(RunCase(physics, TSBASICSYMPLECTIC, T, &dP, &dL));
-    TG_CHECK(dP < 1e-13, "%s: linear momentum drift %.3e under velocity Verlet", physics, (double)dP);
-    TG_CHECK(dL < 1e-12, "%s: angular momentum drift %.3e under velocity Verlet", physics, (double)dL);
-  }
+  for (TSType verlet : {TSBASICSYMPLECTIC, TSVERLET})
+    for (const char *physics : {"springs", "repulsion", "sph", "springs,repulsion,sph"}) {
+      PetscCall(RunCase(physics, verlet, T, &dP, &dL));
+      TG_CHECK(dP < 1e-13, "%s: linear momentum drift %.3e under %s", physics, (double)dP, verlet);
+      TG_CHECK(dL < 1e-12, "%s: angular momentum drift %.3e under %s", physics, (double)dL, verlet);
+    }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_conservation: all checks passed\n"));
   PetscCall(PetscFinalize());
   return 0;

@@ -2,6 +2,7 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
+#include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cmath>
 
@@ -214,10 +215,11 @@ PetscErrorCode FineRun::CheckIntegrator()
   PetscBool explicit_type;
   TSType    type;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, "am", ""));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, "am", ""));
   PetscCall(TSGetType(ts_, &type));
   PetscCheck(explicit_type, comm_, PETSC_ERR_SUP,
-             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, euler, ssp, basicsymplectic, am); an implicit one would need the Jacobian "
+             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, euler, ssp, verlet, basicsymplectic, am); an implicit one would need the "
+             "Jacobian "
              "of every particle interaction",
              type);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -225,11 +227,13 @@ PetscErrorCode FineRun::CheckIntegrator()
 
 PetscErrorCode FineRun::AfterTSSetFromOptions()
 {
-  PetscBool symplectic;
+  PetscBool symplectic, kdk;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &symplectic));
-  if (!symplectic) PetscFunctionReturn(PETSC_SUCCESS);
-  {
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSVERLET, &kdk));
+  if (!symplectic && !kdk) PetscFunctionReturn(PETSC_SUCCESS);
+  if (kdk) drift_fraction_ = 1.0; /* one drift of h per step */
+  else {
     /* PETSc's basicsymplectic defaults to first-order symplectic Euler; velocity Verlet unless asked */
     const char *prefix;
     PetscBool   chosen;
@@ -284,7 +288,7 @@ PetscErrorCode FineRun::Report()
   PetscCall(controls_.View(comm_));
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTimeStep(ts_, &dt));
-  PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &fixed));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &fixed, TSBASICSYMPLECTIC, TSVERLET, ""));
   PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, fixed ? "fixed" : "initial", (double)dt));
   if (fixed && dt > dt_stable_)
     PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt,
@@ -352,8 +356,8 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
   });
 }
 
-/* Velocity Verlet (TSBASICSYMPLECTIC) evaluates dx/dt = v and dv/dt = a(x) separately. The dashpot
-   and viscous forces also need v: they use the velocity of the preceding position update. */
+/* Velocity Verlet (TSVERLET, TSBASICSYMPLECTIC) evaluates dx/dt = v and dv/dt = a(x) separately. The
+   dashpot and viscous forces also need v: they use the velocity of the preceding position update. */
 PetscErrorCode FineRun::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx)
 {
   return TURGOR_GUARDED({
@@ -514,6 +518,11 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
     js.Set("stability_limits_dt", dts);
     js.Set("stability_limits", why);
     js.Set("controls", controls_.Names());
+  }
+  for (auto &kv : model_.Statistics()) { /* the terms' counters (contacts, plastic dissipation) */
+    PetscReal v = kv.second;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPIU_REAL, MPIU_SUM, comm_));
+    js.Set(kv.first, v);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

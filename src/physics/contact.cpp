@@ -52,6 +52,8 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   near_.clear();
   hist_.clear();
   seen_rebuilds_ = -1;
+  evaluations_ = max_active_ = 0;
+  sum_active_ = sum_near_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -177,7 +179,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       }
       continue;
     }
-    const PetscReal lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj / L2;
+    const PetscReal iL2 = 1 / L2, lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * iL2;
     const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
     if (d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
       if (MODE == 2 && h) {
@@ -197,7 +199,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       const PetscReal sg  = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
       tx                  = sg * ny;
       ty                  = -sg * nx;
-      sc                  = proj / std::sqrt(L2);
+      sc                  = proj * std::sqrt(iL2);
       xi                  = h ? h->xi + (sc - h->s_ref) : 0;
       ft                  = -kt * xi;
       const PetscReal cap = mu * fn;
@@ -223,7 +225,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal Fx = fn * nx + ft * tx, Fy = fn * ny + ft * ty;
     /* the tangential force acts at distance |d| from the contact point c: its torque
        tau = d x (ft t) is balanced by a couple -tau on the bar, alpha = -tau / |e| along perp(e)/|e| */
-    const PetscReal tau = ft * (dx * ty - dy * tx), al = -tau / L2; /* force alpha (-e_y, e_x)/|e| = al (-e_y, e_x) */
+    const PetscReal tau = ft * (dx * ty - dy * tx), al = -tau * iL2; /* force alpha (-e_y, e_x)/|e| = al (-e_y, e_x) */
     const PetscReal qx = -al * ey, qy = al * ex;
     f[2 * p] += Fx;
     f[2 * p + 1] += Fy;
@@ -255,6 +257,10 @@ PetscErrorCode Contact::AddForces(const ForceInput &in, PetscReal *f, PetscReal 
   }
   if (virial) Kernel<1>(in, f, virial);
   else Kernel<0>(in, f, NULL);
+  evaluations_++;
+  sum_active_ += active_;
+  sum_near_ += near_.size();
+  max_active_ = std::max(max_active_, active_);
   PetscCall(PetscLogFlops(40.0 * near_.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -275,10 +281,11 @@ PetscErrorCode Contact::AcceptStep(const ForceInput &in)
   PetscFunctionBeginUser;
   if (!(friction > 0 && kt_ > 0)) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
   stamp_++;
-  /* velocity Verlet accepts the positions it last evaluated: commit that evaluation's trial values
-     (same bits in, same bits out) instead of recomputing the geometry; v enters through the damping
-     only */
-  if (in.same_x && (damping == 0 || in.same_v) && trial_builds_ == near_builds_ && trial_xi_.size() == near_.size()) {
+  /* velocity Verlet and DOPRI accept the positions they last evaluated: commit that evaluation's
+     trial values (what the step used) instead of recomputing the geometry. The velocities may differ
+     (Verlet's last evaluation saw the half-step velocity, which enters the normal force through the
+     damping): the history is that of the forces the integrator applied. */
+  if (in.same_x && trial_builds_ == near_builds_ && trial_xi_.size() == near_.size()) {
     for (size_t j = 0; j < near_.size(); j++) {
       Candidate &C = cand_[near_[j]];
       if (trial_xi_[j] == PETSC_MAX_REAL) {
@@ -320,6 +327,17 @@ PetscErrorCode Contact::AddTimeStepLimits(const ForceInput &in, std::vector<Time
   PetscCall(PetscSNPrintf(why, sizeof why, "contact: omega_max <= %.4g /µs, damping rate <= %.4g /µs", (double)std::sqrt(w2), (double)c));
   limits.push_back({2.0 / lam, why});
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Contact::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
+{
+  const PetscReal n = evaluations_ > 0 ? (PetscReal)evaluations_ : 1;
+  stats.push_back({"contact_mean_contacts", sum_active_ / n});
+  stats.push_back({"contact_max_contacts", (PetscReal)max_active_});
+  stats.push_back({"contact_mean_near_pairs", sum_near_ / n});
+  stats.push_back({"contact_pair_lists", (PetscReal)list_builds_});
+  stats.push_back({"contact_near_lists", (PetscReal)near_builds_});
+  stats.push_back({"contact_history_entries", (PetscReal)hist_.size()});
 }
 
 PetscErrorCode Contact::View(PetscViewer viewer) const

@@ -226,6 +226,13 @@ std::vector<std::string> ForceModel::ActiveTerms() const
   return names;
 }
 
+std::vector<std::pair<std::string, PetscReal>> ForceModel::Statistics() const
+{
+  std::vector<std::pair<std::string, PetscReal>> stats;
+  for (const auto &t : terms_) t->Statistics(stats);
+  return stats;
+}
+
 ForceTerm *ForceModel::Term(const std::string &name) const
 {
   for (const auto &t : terms_)

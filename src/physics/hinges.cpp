@@ -230,6 +230,15 @@ PetscErrorCode Hinges::AddTimeStepLimits(const ForceInput &in, std::vector<TimeS
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void Hinges::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
+{
+  if (max_moment <= 0) return;
+  PetscReal plastic = 0;
+  for (PetscReal tp : theta_p_) plastic += tp != 0;
+  stats.push_back({"hinge_plastic_dissipation", dissipated_});
+  stats.push_back({"hinge_plastic_hinges", plastic});
+}
+
 PetscErrorCode Hinges::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;

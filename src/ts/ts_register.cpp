@@ -2,6 +2,7 @@
 #include <turgor/ts/ts_register.h>
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/radau_iia.h>
+#include <turgor/ts/velocity_verlet.h>
 #include "ts_types_internal.h"
 
 namespace {
@@ -29,6 +30,7 @@ PetscErrorCode TurgorTSRegisterAll(void)
   PetscCall(TSRegister("radau5", TSCreate_RadauIIA));
 #endif
   PetscCall(TSRegister(TSAM, TSCreate_AM));
+  PetscCall(TSRegister(TSVERLET, TSCreate_Verlet));
   PetscCall(PetscRegisterFinalize(TurgorTSUnregister));
   registered = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,3 +4,4 @@
 
 PetscErrorCode TSCreate_RadauIIA(TS ts);
 PetscErrorCode TSCreate_AM(TS ts);
+PetscErrorCode TSCreate_Verlet(TS ts);

@@ -32,6 +32,7 @@ public:
   bool           HasInternalState() const override { return friction > 0 && tangential_stiffness > 0; }
   PetscErrorCode AcceptStep(const ForceInput &in) override;
   PetscErrorCode View(PetscViewer viewer) const override;
+  void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
 
   PetscInt CandidateListBuilds() const { return list_builds_; } /* filtered node-bar lists built */
   size_t   Candidates() const { return cand_.size(); }          /* pairs within 2 r + skin */
@@ -72,6 +73,8 @@ private:
   PetscInt                                   trial_builds_ = -1;  /* near_builds_ of the trial values */
   std::unordered_map<std::uint64_t, History> hist_;
   PetscInt                                   seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, stamp_ = 0, active_ = 0;
+  PetscInt                                   evaluations_ = 0, max_active_ = 0; /* AddForces calls, most contacts in one */
+  PetscReal                                  sum_active_ = 0, sum_near_ = 0;    /* over AddForces calls */
   size_t                                     n_springs_ = 0;
 };
 

@@ -58,8 +58,10 @@ public:
 
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;
-  NeighbourSearch         &Neighbours() { return nb_; }
-  const NeighbourSearch   &Neighbours() const { return nb_; }
+  /* Every term's Statistics(), in term order. */
+  std::vector<std::pair<std::string, PetscReal>> Statistics() const;
+  NeighbourSearch                               &Neighbours() { return nb_; }
+  const NeighbourSearch                         &Neighbours() const { return nb_; }
   /* Periodic lattice for RVEs (positions and rates of the image shifts); default: not periodic. */
   void                  SetPeriodicImages(const PeriodicImages &images) { images_ = images; }
   const PeriodicImages &Images() const { return images_; }

@@ -74,6 +74,9 @@ public:
      equations by it); 0 if the term sets none. */
   virtual PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const { return 0; }
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  /* Counters for summary.json, as (key, value) pairs summed over ranks (e.g. contact's mean number
+     of contacts per evaluation); keys start with the term's name. */
+  virtual void Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const { }
 };
 
 /* Clone() for a term that is copyable while configured and not yet set up. */

@@ -22,6 +22,7 @@ public:
   bool           HasInternalState() const override { return max_moment > 0; }
   PetscErrorCode AcceptStep(const ForceInput &in) override;
   PetscErrorCode View(PetscViewer viewer) const override;
+  void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
 
   /* Reference angles from positions X[2n]; without a call, the first evaluation's positions. */
   void      SetReference(const PetscReal *X);

@@ -1,0 +1,25 @@
+#pragma once
+/* Kick-drift-kick velocity Verlet with a fixed step, registered as the PETSc TS type "verlet": the
+   scheme of the L-hyphen seed code,
+       v+ = v_n + h/2 a(x_n),   x_{n+1} = x_n + h v+,   v_{n+1} = v+ + h/2 a(x_{n+1}),
+   one force evaluation per step, the last one (at x_{n+1}, the accepted positions) reused as the
+   first of the next step. PETSc's basicsymplectic "2" is the drift-kick-drift form, whose only
+   force evaluation is at the half-step positions x_n + h/2 v_n: both are second order and
+   symplectic, but only this one evaluates the forces at the positions a step accepts, so terms with
+   internal state (plastic hinges, friction) commit what the step used without evaluating again.
+
+   Like basicsymplectic, it needs the two splits "position" (dx/dt = v) and "momentum" (dv/dt = a)
+   of TSRHSSplitSetIS/TSRHSSplitSetRHSFunction; a force that depends on v (dashpots, viscosity)
+   sees the velocity of the preceding drift, v+. The step is fixed (no TSAdapt); TSInterpolate is a
+   cubic Hermite interpolation of x (with v) and of v (with a) over the last step.
+   A C header: the functions have C linkage (PETSC_EXTERN). */
+#include <turgor/core/petsc_compat.h>
+#include <petscts.h>
+#include <turgor/ts/ts_register.h> /* TurgorTSRegisterAll() registers it */
+
+#define TSVERLET "verlet"
+
+/* Momentum evaluations since the TS was set up, and how many of them were reused from the previous
+   step's end (the first step evaluates twice, every later step once). Errors on a TS of another
+   type. */
+PETSC_EXTERN PetscErrorCode TSVerletGetCounters(TS ts, PetscInt *evaluations, PetscInt *reused);
