@@ -1,5 +1,6 @@
 #include <turgor/physics/contact.h>
 #include <algorithm>
+#include <unordered_map>
 #include <cmath>
 
 namespace turgor {
@@ -99,11 +100,17 @@ PetscErrorCode Contact::Refresh(const ForceInput &in)
   if (in.nb->Rebuilds() != seen_rebuilds_) {
     const PointSegmentList &L = in.nb->ParticleSpringPairs();
     const ParticleSet      &P = *in.P;
+    /* the live histories, by key, carried over to the new list */
+    std::unordered_map<std::uint64_t, History> keep;
+    for (size_t k = 0; k < cand_.size(); k++)
+      if (hist_[k].live) keep.emplace(Key(P, cand_[k].p, cand_[k].s), hist_[k]);
     cand_.clear();
+    hist_.clear();
     for (size_t k = 0; k < L.size(); k++) {
       if (!Eligible(P, L.p[k], L.s[k])) continue;
-      auto it = hist_.find(Key(P, L.p[k], L.s[k]));
-      cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k], it == hist_.end() ? nullptr : &it->second});
+      cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k]});
+      auto it = keep.find(Key(P, L.p[k], L.s[k]));
+      hist_.push_back(it == keep.end() ? History() : it->second);
     }
     seen_rebuilds_ = in.nb->Rebuilds();
     list_builds_++;
@@ -136,7 +143,7 @@ void Contact::BuildNearList(const PetscReal *x, PetscInt n)
       const PetscReal cr = px * ey - py * ex;
       near               = cr * cr < R2 * L2;
     }
-    if (near || c.h) near_.push_back((PetscInt)k); /* a pair with history is kept until AcceptStep drops it */
+    if (near || hist_[k].live) near_.push_back((PetscInt)k); /* a pair with history is kept until AcceptStep drops it */
   }
   near_x_.assign(x, x + 2 * n);
   near_builds_++;
@@ -157,12 +164,12 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
   PetscInt           active = 0;
   for (size_t j = 0; j < near_.size(); j++) {
-    Candidate      &C = cand_[near_[j]];
-    const PetscInt  p = C.p, s = C.s, a = C.a, b = C.b;
-    const PetscReal ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
-    const PetscReal px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
-    const PetscReal L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
-    History        *h = C.h;
+    const Candidate &C = cand_[near_[j]];
+    const PetscInt   p = C.p, s = C.s, a = C.a, b = C.b;
+    const PetscReal  ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
+    const PetscReal  px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
+    const PetscReal  L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
+    History         &h = hist_[near_[j]];
     if (MODE <= 1 && tangential) trial_xi_[j] = PETSC_MAX_REAL; /* not in contact */
     /* reject without a division: interior |p x e|^2 >= (2r)^2 |e|^2, or the end distances */
     bool far;
@@ -173,19 +180,13 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       far                = cr * cr >= R2 * L2;
     }
     if (far) {
-      if (MODE == 2 && h) {
-        hist_.erase(Key(P, p, s));
-        C.h = nullptr;
-      }
+      if (MODE == 2) h.live = false;
       continue;
     }
     const PetscReal iL2 = 1 / L2, lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * iL2;
     const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
     if (d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
-      if (MODE == 2 && h) {
-        hist_.erase(Key(P, p, s));
-        C.h = nullptr;
-      }
+      if (MODE == 2) h.live = false;
       continue;
     }
     active++;
@@ -200,7 +201,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       tx                  = sg * ny;
       ty                  = -sg * nx;
       sc                  = proj * std::sqrt(iL2);
-      xi                  = h ? h->xi + (sc - h->s_ref) : 0;
+      xi                  = h.live ? h.xi + (sc - h.s_ref) : 0;
       ft                  = -kt * xi;
       const PetscReal cap = mu * fn;
       if (std::fabs(ft) > cap) ft = ft > 0 ? cap : -cap;
@@ -210,12 +211,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       trial_s_[j]  = sc;
     }
     if (MODE == 2) {
-      if (tangential) {
-        if (!h) h = C.h = &hist_[Key(P, p, s)];
-        h->xi    = -ft / kt; /* the capped (slipped) elastic displacement */
-        h->s_ref = sc;
-        h->stamp = stamp_;
-      }
+      if (tangential) h = {-ft / kt, sc, true}; /* the capped (slipped) elastic displacement */
       continue;
     }
     if (MODE == 3) {
@@ -280,36 +276,19 @@ PetscErrorCode Contact::AcceptStep(const ForceInput &in)
 {
   PetscFunctionBeginUser;
   if (!(friction > 0 && kt_ > 0)) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
-  stamp_++;
   /* velocity Verlet and DOPRI accept the positions they last evaluated: commit that evaluation's
      trial values (what the step used) instead of recomputing the geometry. The velocities may differ
      (Verlet's last evaluation saw the half-step velocity, which enters the normal force through the
      damping): the history is that of the forces the integrator applied. */
   if (in.same_x && trial_builds_ == near_builds_ && trial_xi_.size() == near_.size()) {
     for (size_t j = 0; j < near_.size(); j++) {
-      Candidate &C = cand_[near_[j]];
-      if (trial_xi_[j] == PETSC_MAX_REAL) {
-        if (C.h) {
-          hist_.erase(Key(*in.P, C.p, C.s));
-          C.h = nullptr;
-        }
-        continue;
-      }
-      if (!C.h) C.h = &hist_[Key(*in.P, C.p, C.s)];
-      C.h->xi    = trial_xi_[j];
-      C.h->s_ref = trial_s_[j];
-      C.h->stamp = stamp_;
+      History &h = hist_[near_[j]];
+      if (trial_xi_[j] == PETSC_MAX_REAL) h.live = false;
+      else h = {trial_xi_[j], trial_s_[j], true};
     }
   } else {
     PetscCall(Refresh(in));
     Kernel<2>(in, NULL, NULL);
-  }
-  size_t live = 0;
-  for (PetscInt k : near_) live += (cand_[k].h != nullptr);
-  if (live != hist_.size()) { /* entries of pairs no longer listed: forget every pointer to them, then drop them */
-    for (Candidate &C : cand_)
-      if (C.h && C.h->stamp != stamp_) C.h = nullptr;
-    for (auto it = hist_.begin(); it != hist_.end();) it = it->second.stamp == stamp_ ? std::next(it) : hist_.erase(it);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -329,6 +308,11 @@ PetscErrorCode Contact::AddTimeStepLimits(const ForceInput &in, std::vector<Time
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+size_t Contact::HistoryEntries() const
+{
+  return (size_t)std::count_if(hist_.begin(), hist_.end(), [](const History &h) { return h.live; });
+}
+
 void Contact::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
 {
   const PetscReal n = evaluations_ > 0 ? (PetscReal)evaluations_ : 1;
@@ -337,7 +321,7 @@ void Contact::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) 
   stats.push_back({"contact_mean_near_pairs", sum_near_ / n});
   stats.push_back({"contact_pair_lists", (PetscReal)list_builds_});
   stats.push_back({"contact_near_lists", (PetscReal)near_builds_});
-  stats.push_back({"contact_history_entries", (PetscReal)hist_.size()});
+  stats.push_back({"contact_history_entries", (PetscReal)HistoryEntries()});
 }
 
 PetscErrorCode Contact::View(PetscViewer viewer) const

@@ -39,7 +39,7 @@ public:
   size_t   NearCandidates() const { return near_.size(); }      /* pairs within 2 r + skin/4: visited per evaluation */
   PetscInt NearListBuilds() const { return near_builds_; }
   PetscInt ActiveContacts() const { return active_; } /* pairs in contact at the last evaluation */
-  size_t   HistoryEntries() const { return hist_.size(); }
+  size_t   HistoryEntries() const;                    /* pairs with a tangential history */
 
   PetscReal stiffness            = 1.0e4; /* k_n [N/m] */
   PetscReal damping              = 0;     /* normal dashpot [ng/µs] */
@@ -48,9 +48,9 @@ public:
 
 private:
   struct History {
-    PetscReal xi    = 0; /* committed elastic tangential displacement [µm] */
-    PetscReal s_ref = 0; /* node's coordinate along the bar at the last accepted step */
-    PetscInt  stamp = 0;
+    PetscReal xi    = 0;     /* committed elastic tangential displacement [µm] */
+    PetscReal s_ref = 0;     /* node's coordinate along the bar at the last accepted step */
+    bool      live  = false; /* the pair was in contact at the last accepted step */
   };
   template <int MODE>
   PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
@@ -64,18 +64,17 @@ private:
   std::vector<PetscInt> bar_poly_, bar_pos_, node_pos_, node_bars_;
   struct Candidate {
     PetscInt p, a, b, s; /* node, bar ends, bar */
-    History *h;          /* its history entry, if any */
   };
-  std::vector<Candidate>                     cand_;               /* eligible pairs of the neighbour list */
-  std::vector<PetscInt>                      near_;               /* indices into cand_ of the near pairs */
-  std::vector<PetscReal>                     near_x_;             /* positions when near_ was built */
-  std::vector<PetscReal>                     trial_xi_, trial_s_; /* per near pair, from the last evaluation (friction) */
-  PetscInt                                   trial_builds_ = -1;  /* near_builds_ of the trial values */
-  std::unordered_map<std::uint64_t, History> hist_;
-  PetscInt                                   seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, stamp_ = 0, active_ = 0;
-  PetscInt                                   evaluations_ = 0, max_active_ = 0; /* AddForces calls, most contacts in one */
-  PetscReal                                  sum_active_ = 0, sum_near_ = 0;    /* over AddForces calls */
-  size_t                                     n_springs_ = 0;
+  std::vector<Candidate> cand_;               /* eligible pairs of the neighbour list */
+  std::vector<History>   hist_;               /* beside cand_ */
+  std::vector<PetscInt>  near_;               /* indices into cand_ of the near pairs */
+  std::vector<PetscReal> near_x_;             /* positions when near_ was built */
+  std::vector<PetscReal> trial_xi_, trial_s_; /* per near pair, from the last evaluation (friction) */
+  PetscInt               trial_builds_  = -1; /* near_builds_ of the trial values */
+  PetscInt               seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
+  PetscInt               evaluations_ = 0, max_active_ = 0; /* AddForces calls, most contacts in one */
+  PetscReal              sum_active_ = 0, sum_near_ = 0;    /* over AddForces calls */
+  size_t                 n_springs_ = 0;
 };
 
 } // namespace turgor
