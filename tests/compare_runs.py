@@ -16,6 +16,7 @@
   compare_runs.py settling DIR RELTOL        a damped oscillation about a rest state: the tip's range
                                              shrinks from third to third of the history, and the
                                              thirds' means agree within RELTOL of their size
+  compare_runs.py samekey A_DIR B_DIR KEY RELTOL  summary.json[KEY] of the two runs agree within RELTOL (relative)
   compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
                                              CSV[ROW][NAME] (minus CSV[BASE_ROW][NAME]) is EXPECTED
                                              within RELTOL (relative); ROW -1 is the last row
@@ -120,6 +121,12 @@ def main(argv):
             sys.exit("FAIL: the oscillation does not decay")
         if not spread <= float(argv[3]):
             sys.exit(f"FAIL: the mean moves by more than {argv[3]}")
+    elif mode == "samekey":
+        a, b = json.load(open(f"{argv[2]}/summary.json"))[argv[4]], json.load(open(f"{argv[3]}/summary.json"))[argv[4]]
+        rel = abs(a - b) / max(abs(b), 1e-300)
+        print(f"{argv[4]}: {a:.10g} vs {b:.10g}, relative difference {rel:.3e}")
+        if not rel <= float(argv[5]):
+            sys.exit(f"FAIL: relative difference above {argv[5]}")
     elif mode == "column":
         rows = list(csv.DictReader(open(argv[2])))
         name, row, expected, tol = argv[3], int(argv[4]), float(argv[5]), float(argv[6])

@@ -71,7 +71,6 @@ PetscErrorCode FE2Run::SetUpModel()
   PetscCall(MatDuplicate(model_.MassMatrix(), MAT_DO_NOT_COPY_VALUES, &J_));
   PetscCall(TSSetDM(ts_, model_.GetDM()));
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
-  PetscCall(TSSetPostStep(ts_, PostStep));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -132,6 +131,7 @@ PetscErrorCode FE2Run::IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, voi
     FE2Run   *run = (FE2Run *)ctx;
     PetscBool ok;
     PetscFunctionBeginUser;
+    PetscCall(CheckStopNow());
     run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.IFunction(U, Udot, F, &ok));
     if (!ok) { /* reject: the nonlinear solve fails and TS retries with a smaller step */
@@ -172,6 +172,7 @@ PetscErrorCode FE2Run::RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx)
     FE2Run   *run = (FE2Run *)ctx;
     PetscBool ok;
     PetscFunctionBeginUser;
+    PetscCall(CheckStopNow());
     run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.RHSFunction(U, G, &ok));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -195,16 +196,12 @@ PetscErrorCode FE2Run::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
   });
 }
 
-PetscErrorCode FE2Run::PostStep(TS ts)
+PetscErrorCode FE2Run::AfterStep(PetscReal t, Vec U)
 {
-  return TURGOR_GUARDED({
-    FE2Run *run;
-    PetscFunctionBeginUser;
-    PetscCall(TSGetApplicationContext(ts, &run));
-    PetscCall(run->model_.CommitMaterials());
-    run->steps_since_refresh_++;
-    PetscFunctionReturn(PETSC_SUCCESS);
-  });
+  PetscFunctionBeginUser;
+  PetscCall(model_.CommitMaterials());
+  steps_since_refresh_++;
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FE2Run::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)

@@ -51,11 +51,11 @@ PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun,
   return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
 }
 
-volatile std::sig_atomic_t interrupted = 0; /* written by the signal handler only */
+volatile std::sig_atomic_t interrupted = 0; /* signals received; written by the signal handler only */
 
 extern "C" void OnInterrupt(int)
 {
-  interrupted = 1;
+  if (interrupted < 2) interrupted = interrupted + 1;
 }
 
 } // namespace
@@ -98,6 +98,14 @@ PetscErrorCode InstallInterruptHandler(void)
 bool InterruptRequested(void)
 {
   return interrupted != 0;
+}
+
+PetscErrorCode CheckStopNow(void)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(interrupted < 2, PETSC_COMM_SELF, PETSC_ERR_SIG,
+             "Interrupted twice (SIGINT/SIGTERM): stopped inside a step; the outputs end at the last sample before it");
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *all)

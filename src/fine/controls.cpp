@@ -9,6 +9,8 @@ namespace turgor {
 
 PetscReal ControlGroup::Scale(PetscReal t) const
 {
+  t -= delay;
+  if (t < 0) return 0;
   switch (profile) {
   case CONTROL_RAMP:
     return t < ramp_time ? t / ramp_time : 1;
@@ -21,6 +23,8 @@ PetscReal ControlGroup::Scale(PetscReal t) const
 
 PetscReal ControlGroup::Integral(PetscReal t) const
 {
+  t -= delay;
+  if (t <= 0) return 0;
   switch (profile) {
   case CONTROL_RAMP:
     return t < ramp_time ? 0.5 * t * t / ramp_time : 0.5 * ramp_time + (t - ramp_time);
@@ -35,7 +39,8 @@ PetscReal ControlGroup::Integral(PetscReal t) const
 
 PetscReal ControlGroup::Rate(PetscReal t) const
 {
-  return profile == CONTROL_RAMP && t < ramp_time ? 1 / ramp_time : 0;
+  t -= delay;
+  return profile == CONTROL_RAMP && t >= 0 && t < ramp_time ? 1 / ramp_time : 0;
 }
 
 /* The number of comma-separated values of option `name` (0 if not given), so that the list is read
@@ -82,6 +87,8 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
                              "Controls", profiles, profile, &profile, NULL));
   PetscCall(PetscOptionsReal("-ramp_time", "Ramp duration [µs] (profile ramp)", "Controls", g->ramp_time, &g->ramp_time, &set_ramp));
   PetscCall(PetscOptionsReal("-half_period", "Half period [µs] (profile cyclic)", "Controls", g->half_period, &g->half_period, &set_half));
+  PetscCall(PetscOptionsReal("-delay", "The profile starts at this time [µs]; before it a velocity group holds still and a force group pushes nothing",
+                             "Controls", g->delay, &g->delay, NULL));
   PetscOptionsEnd();
   if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
   g->name    = name;
@@ -144,6 +151,8 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
     g->velocity = false;
     g->value[0] = force[0], g->value[1] = force[1];
   }
+  PetscCheck(std::isfinite(g->delay) && g->delay >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %sdelay = %g: must be finite and >= 0", pre.c_str(),
+             (double)g->delay);
   if (g->profile == CONTROL_RAMP)
     PetscCheck(std::isfinite(g->ramp_time) && g->ramp_time > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "Option %sramp_time = %g: profile ramp needs a finite ramp time > 0", pre.c_str(), (double)g->ramp_time);
@@ -376,6 +385,7 @@ PetscErrorCode Controls::View(MPI_Comm comm) const
                           G.velocity ? "µm/µs" : "µN (total, shared by mass)", profiles[G.profile]));
     if (G.profile == CONTROL_RAMP) PetscCall(PetscPrintf(comm, " over %g µs", (double)G.ramp_time));
     if (G.profile == CONTROL_CYCLIC) PetscCall(PetscPrintf(comm, ", half period %g µs", (double)G.half_period));
+    if (G.delay > 0) PetscCall(PetscPrintf(comm, ", from t = %g µs", (double)G.delay));
     PetscCall(PetscPrintf(comm, "\n"));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

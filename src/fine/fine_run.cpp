@@ -201,7 +201,6 @@ PetscErrorCode FineRun::SetUpModel()
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "position", NULL, RHSPosition, this));
   PetscCall(TSRHSSplitSetRHSFunction(ts_, "momentum", NULL, RHSMomentum, this));
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
-  if (model_.HasInternalState()) PetscCall(TSSetPostStep(ts_, PostStep));
   PetscCall(ChooseTimeStep());
   dt_initial_ = spec_.dt > 0 ? spec_.dt : spec_.dt_safety * dt_stable_;
   PetscCall(TSSetTimeStep(ts_, dt_initial_));
@@ -336,6 +335,7 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     const PetscScalar *u;
     PetscScalar       *f;
     PetscFunctionBeginUser;
+    PetscCall(CheckStopNow());
     PetscCall(VecGetArrayRead(U, &u));
     PetscCall(VecGetArray(F, &f));
     const std::vector<char> &fixed = run->tissue_.particles.fixed;
@@ -390,6 +390,7 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     const PetscScalar *x;
     PetscScalar       *a;
     PetscFunctionBeginUser;
+    PetscCall(CheckStopNow());
     PetscCall(VecGetArrayRead(X, &x));
     PetscCall(VecGetArray(Vdot, &a));
     if (!run->controls_.Active()) PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
@@ -411,25 +412,18 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
   });
 }
 
-PetscErrorCode FineRun::PostStep(TS ts)
+/* The terms' internal state (plastic angles, contact history) at the accepted state. */
+PetscErrorCode FineRun::AfterStep(PetscReal t, Vec U)
 {
-  return TURGOR_GUARDED({
-    TimeRun           *base;
-    Vec                U;
-    const PetscScalar *u;
-    PetscFunctionBeginUser;
-    PetscCall(TSGetApplicationContext(ts, &base));
-    FineRun *run = static_cast<FineRun *>(base);
-    PetscCall(TSGetSolution(ts, &U));
-    PetscReal        t;
-    const PetscReal *x, *v;
-    PetscCall(TSGetTime(ts, &t));
-    PetscCall(VecGetArrayRead(U, &u));
-    run->Constrained(t, u, u + 2 * run->n_local_, &x, &v);
-    PetscCall(run->model_.AcceptStep(x, v));
-    PetscCall(VecRestoreArrayRead(U, &u));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  });
+  const PetscScalar *u;
+  const PetscReal   *x, *v;
+  PetscFunctionBeginUser;
+  if (!model_.HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecGetArrayRead(U, &u));
+  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(model_.AcceptStep(x, v));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* A stage with non-finite values is rejected, so an adaptive integrator retries with a smaller step. */

@@ -77,6 +77,7 @@ PetscErrorCode TimeRun::SetUp()
   PetscCheck(ts_, comm_, PETSC_ERR_ORDER, "SetFromOptions() must be called before SetUp()");
   PetscCall(SetUpModel());
   PetscCall(TSMonitorSet(ts_, Monitor, this, NULL));
+  PetscCall(TSSetPostStep(ts_, PostStep));
   PetscCall(TSSetFromOptions(ts_));
   PetscCall(CheckIntegrator());
   PetscCall(CheckTSOptions());
@@ -171,29 +172,48 @@ PetscErrorCode TimeRun::Sample(PetscReal t, Vec U)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+/* After every accepted step: the mode's own work (internal state committed), then the decisions to
+   stop. They are taken here, not in the monitor: TSSolve monitors before TSStep, which resets the
+   converged reason, so a reason set by a monitor is lost and the run goes on. */
+PetscErrorCode TimeRun::PostStep(TS ts)
 {
   return TURGOR_GUARDED({
-    TimeRun  *run = (TimeRun *)ctx;
+    TimeRun  *run;
+    PetscReal t;
+    PetscInt  step;
+    Vec       U;
     PetscBool stop;
     PetscFunctionBeginUser;
+    PetscCall(TSGetApplicationContext(ts, &run));
+    PetscCall(TSGetTime(ts, &t));
+    PetscCall(TSGetStepNumber(ts, &step));
+    PetscCall(TSGetSolution(ts, &U));
+    PetscCall(run->AfterStep(t, U));
     /* an accepted step below -ts_adapt_dt_min, or one that does not advance the time at all (below
        the round-off of t), before the final time: the integrator is cutting its step at a state
        it cannot pass, and would crawl on (or repeat) forever */
     const PetscReal h = t - run->t_last_;
-    if (step > 0 && step != run->step_last_ && t < run->t_final_ &&
-        !(h >= run->dt_min_ && h > 64 * PETSC_MACHINE_EPSILON * PetscMax(PetscAbsReal(t), run->t_final_))) {
-      run->stalled_ = t - run->t_last_;
+    if (t < run->t_final_ && !(h >= run->dt_min_ && h > 64 * PETSC_MACHINE_EPSILON * PetscMax(PetscAbsReal(t), run->t_final_))) {
+      run->stalled_ = h;
       PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
     }
-    run->t_last_    = t;
-    run->step_last_ = step; /* TSSolve monitors the last step again when it stops */
+    run->t_last_ = t;
     PetscCall(InterruptRequestedAll(run->comm_, &stop));
     if (stop && !run->interrupted_) { /* after this step: the outputs hold every sample up to here */
       run->interrupted_ = true;
       PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
-      PetscCall(PetscPrintf(run->comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT "): stopping after this step\n", (double)t, step));
+      PetscCall(PetscPrintf(run->comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT "): stopping after this step (a second signal stops inside it)\n",
+                            (double)t, step));
     }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  return TURGOR_GUARDED({
+    TimeRun *run = (TimeRun *)ctx;
+    PetscFunctionBeginUser;
     PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
     PetscCall(run->sampler_.Monitor(
       ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
@@ -210,6 +230,7 @@ PetscErrorCode TimeRun::Solve()
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(stage_solve_));
   solving_ = true;
+  PetscCall(TSGetTime(ts_, &t_last_));
   PetscCall(TSSolve(ts_, U_));
   wall_ = sampler_.Elapsed();
   PetscCall(TSGetConvergedReason(ts_, &reason));

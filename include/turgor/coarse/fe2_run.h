@@ -46,7 +46,7 @@ private:
   static PetscErrorCode IJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shift, Mat A, Mat B, void *ctx);
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
-  static PetscErrorCode PostStep(TS ts);
+  PetscErrorCode        AfterStep(PetscReal t, Vec U) override;
 
   LoadSpec    load_;
   CoarseModel model_;

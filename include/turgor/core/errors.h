@@ -6,8 +6,10 @@
      message instead of unwinding through PETSc's C frames.
    - PushOptionValueErrorHandler(): PETSc's message for an option value that does not parse ("Input
      string abc has no numeric value") does not say which option; this error handler names it.
-   - Interrupts: SIGINT/SIGTERM set a flag that a time-dependent run checks at every step, so it
-     stops after the step, writes summary.json with status "interrupted" and exits non-zero. */
+   - Interrupts: SIGINT/SIGTERM set a flag that a time-dependent run checks after every step, so it
+     stops after the step, writes summary.json with status "interrupted" and exits non-zero. A
+     second signal stops inside the step (CheckStopNow() in the right-hand sides): the run fails
+     with that reason, for a step that takes too long to finish. */
 #include <turgor/core/petsc_compat.h>
 #include <exception>
 #include <new>
@@ -62,6 +64,9 @@ PetscErrorCode PushOptionValueErrorHandler(void);
 PetscErrorCode InstallInterruptHandler(void);
 /* True once SIGINT or SIGTERM arrived on this rank. */
 bool InterruptRequested(void);
+/* An error (PETSC_ERR_SIG) once a second SIGINT/SIGTERM arrived on this rank; right-hand sides call
+   it, so that a step that takes too long (an adaptive integrator rejecting again and again) ends. */
+PetscErrorCode CheckStopNow(void);
 /* Collective: true on every rank if it is true on one. */
 PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *interrupted);
 

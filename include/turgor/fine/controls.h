@@ -3,8 +3,9 @@
    imposed velocity (per component, or `free`) or an imposed force, scaled in time by a profile.
 
    A velocity-controlled component is an exact constraint: x(t) = X + v S(t), v(t) = v s(t), where
-   s is the profile (step: 1; ramp: min(t / T, 1); cyclic: +1, -1 alternating every half period)
-   and S its integral. The driver overwrites those components wherever the state is read (forces,
+   s is the profile (step: 1; ramp: min(t / T, 1); cyclic: +1, -1 alternating every half period),
+   started at the group's delay (s = 0 before it: a velocity group holds still, a force group
+   pushes nothing), and S its integral. The driver overwrites those components wherever the state is read (forces,
    outputs), integrates dx/dt = v s(t) and leaves their velocity un-integrated (dv/dt = 0). A force
    control applies the total force F s(t) to the group, shared by mass (every node gets the same
    acceleration F s(t) / M). Nodes are wall particles (box and cells select wall particles only;
@@ -35,6 +36,7 @@ struct ControlGroup {
   ControlProfile profile     = CONTROL_STEP;
   PetscReal      ramp_time   = 0; /* [µs] */
   PetscReal      half_period = 0; /* [µs] */
+  PetscReal      delay       = 0; /* [µs]: the profile starts at t = delay */
 
   /* set up from the tissue: the nodes (local indices), their reference positions, total mass */
   std::vector<PetscInt>  nodes;

@@ -78,7 +78,7 @@ private:
   static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx);
   static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
-  static PetscErrorCode PostStep(TS ts); /* the terms' internal state at the accepted state */
+  PetscErrorCode        AfterStep(PetscReal t, Vec U) override; /* the terms' internal state at the accepted state */
 
   PetscErrorCode CreateSwarm();
   PetscErrorCode SyncSwarm(PetscReal t, Vec U);

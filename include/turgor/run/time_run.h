@@ -82,6 +82,8 @@ protected:
   virtual const char         *SnapshotFiles() const             = 0; /* for the final report */
   /* The right-hand-side / residual evaluations so far (this rank). */
   virtual PetscInt FunctionEvaluations() const = 0;
+  /* After every accepted step, at the accepted state (internal state committed, RVE states kept). */
+  virtual PetscErrorCode AfterStep(PetscReal t, Vec U) { return PETSC_SUCCESS; }
   /* After a successful TSSolve (e.g. the particle record brought up to date). */
   virtual PetscErrorCode AfterSolve() { return PETSC_SUCCESS; }
   /* The mode's summary keys (collective), and the details of the final report line. */
@@ -103,6 +105,7 @@ protected:
 
 private:
   static PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
+  static PetscErrorCode PostStep(TS ts);
   PetscErrorCode        Sample(PetscReal t, Vec U);
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
@@ -118,8 +121,7 @@ private:
   PetscLogEvent                           ev_output_   = 0;
   bool                                    interrupted_ = false, solving_ = false;
   PetscReal                               t_last_ = 0, stalled_ = -1, dt_min_ = 0; /* stalled_: the accepted step below dt_min_ (>= 0) */
-  PetscInt                                step_last_       = -1;
-  static constexpr PetscReal              kMinStepFraction = 1e-10; /* default -ts_adapt_dt_min / -ts_max_time */
+  static constexpr PetscReal              kMinStepFraction = 1e-10;                /* default -ts_adapt_dt_min / -ts_max_time */
 };
 
 } // namespace turgor
