@@ -228,18 +228,20 @@ def polygon_area(x, ids):
     return 0.5 * sum(x[ids[k], 0] * x[ids[(k + 1) % len(ids)], 1] - x[ids[(k + 1) % len(ids)], 0] * x[ids[k], 1] for k in range(len(ids)))
 
 
-def check_polygons(run, reader):
+def check_polygons(run, reader, gas_p0=None):
     """A polygonal tissue: a third block of summary.json's n_cells closed polygons (VTK polygon cells
     through the particles' points), cell arrays cell_id (integer, 0..n-1) and area_ratio equal to the
     polygon's area from the points at the last time step over its area at the first; the walls
-    block has a bar_strain cell array."""
+    block has a bar_strain cell array (and an axial_force cell array of the same sign where the run
+    wrote one), the particles a 3-component force; with --gas-p0 P0, a pressure cell array equal to
+    P0 / area_ratio (the gas law). Open cells (plates, walls) are not in the cells block."""
     summary = json.load(open(os.path.join(run, "summary.json")))
     r, times = open_reader(os.path.join(run, "particles.xmf"), reader)
     check_times(times, summary)
     first, last = fetch(r, times[0]), fetch(r, times[-1])
     check(len(last) == 3, f"{len(last)} blocks at the last time step, expected 3 (particles, walls, cells)")
     cells, walls = last[2], last[1]
-    nc = summary["n_cells"]
+    nc = summary.get("n_closed_cells", summary["n_cells"])
     types, ids = cells_of(cells)
     check(len(types) == nc and set(types) == {VTK_POLYGON}, f"cells: {len(types)} cells of types {sorted(set(types))}, expected {nc} polygons")
     cid = array(cells, "cell", "cell_id", 1, True)
@@ -252,7 +254,19 @@ def check_polygons(run, reader):
     check(max(abs(a - 1) for a in ratio) > 1e-3, "no cell changed its area: the test does not test area_ratio")
     strain = array(walls, "cell", "bar_strain", 1, False)
     check(len(strain) == summary["n_bars"], "bar_strain is not one value per bar")
-    print(f"  OK: {nc} polygons with {[len(c) for c in ids]} nodes, area_ratio {[round(float(a), 6) for a in ratio]}, {len(strain)} bar strains")
+    extra = ""
+    if walls.GetCellData().GetArray("axial_force") is not None:
+        force = array(walls, "cell", "axial_force", 1, False)
+        check(len(force) == len(strain) and all((f > 0) == (e > 0) for f, e in zip(force, strain) if abs(e) > 1e-12),
+              "axial_force is not one value per bar, of the sign of the bar's strain")
+        nf = array(last[0], "point", "force", 3, False)
+        check(len(nf) == summary["n_nodes"] and all(abs(v[2]) == 0 for v in nf), "force: not a 3-component vector (z = 0) per particle")
+        extra += f", axial forces {min(force):.4g} .. {max(force):.4g} µN, node forces up to {max(abs(v[0]) + abs(v[1]) for v in nf):.4g} µN"
+    if gas_p0 is not None:
+        p = array(cells, "cell", "pressure", 1, False)
+        check(all(close(a * q, gas_p0, 1e-9) for a, q in zip(ratio, p)), "pressure is not p0 / area_ratio (the gas law)")
+        extra += f", pressure {min(p):.6g} .. {max(p):.6g} N/m = p0 A0/A"
+    print(f"  OK: {nc} polygons with {[len(c) for c in ids][:8]}... nodes, area_ratio {[round(float(a), 6) for a in ratio][:8]}..., {len(strain)} bar strains{extra}")
 
 
 def main():
@@ -260,8 +274,12 @@ def main():
     p.add_argument("mode", choices=["fine", "fe2", "polygons"])
     p.add_argument("run", help="the run's output directory")
     p.add_argument("--reader", help="a ParaView reader to use instead of the default (e.g. XDMFReader)")
+    p.add_argument("--gas-p0", type=float, help="polygons: the cells follow the gas law with this p0 [N/m]")
     a = p.parse_args()
-    {"fine": check_fine, "fe2": check_fe2, "polygons": check_polygons}[a.mode](a.run, a.reader)
+    if a.mode == "polygons":
+        check_polygons(a.run, a.reader, a.gas_p0)
+    else:
+        {"fine": check_fine, "fe2": check_fe2}[a.mode](a.run, a.reader)
 
 
 if __name__ == "__main__":

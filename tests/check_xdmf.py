@@ -16,9 +16,10 @@ import sys
 import xml.etree.ElementTree as ET
 
 import h5py
+import numpy
 
 COMPONENTS = {"Scalar": 1, "Vector": 3, "Tensor": 9, "Tensor6": 6}
-CONNECTED = {"Polyvertex": 1, "Polyline": None, "Triangle": 3, "Quadrilateral": 4}
+CONNECTED = {"Polyvertex": 1, "Polyline": None, "Triangle": 3, "Quadrilateral": 4, "Polygon": None, "Mixed": None}
 
 
 def fail(msg):
@@ -81,9 +82,21 @@ class Checker:
         if ttype not in CONNECTED:
             fail(f"{name}: topology {ttype}, turgor writes {sorted(CONNECTED)}")
         conn = self.data(topo.find("DataItem"), f"{name} topology {ttype}")
-        per = CONNECTED[ttype] or int(topo.get("NodesPerElement", "0"))
-        if conn.size != ncells * per or (conn.ndim == 2 and conn.shape[0] != ncells):
-            fail(f"{name}: {ttype} connectivity of shape {conn.shape} for {ncells} cells of {per} points")
+        if ttype == "Mixed":  # per cell: the type code (3: Polygon), the number of points, the points
+            flat, k, cells, points = conn.ravel(), 0, 0, []
+            while k < flat.size:
+                if flat[k] != 3 or k + 1 >= flat.size:
+                    fail(f"{name}: Mixed connectivity: cell {cells} has type code {flat[k]}, turgor writes polygons (3) with their point counts")
+                m = int(flat[k + 1])
+                points.extend(flat[k + 2 : k + 2 + m])
+                k, cells = k + 2 + m, cells + 1
+            if k != flat.size or cells != ncells:
+                fail(f"{name}: Mixed connectivity of {flat.size} integers holds {cells} cells, the XDMF says {ncells}")
+            conn = numpy.array(points, dtype=int)
+        else:
+            per = CONNECTED[ttype] or int(topo.get("NodesPerElement", "0"))
+            if conn.size != ncells * per or (conn.ndim == 2 and conn.shape[0] != ncells):
+                fail(f"{name}: {ttype} connectivity of shape {conn.shape} for {ncells} cells of {per} points")
         if conn.size and (conn.min() < 0 or conn.max() >= npoints):
             fail(f"{name}: {ttype} connectivity outside the {npoints} points")
         if ttype == "Polyvertex" and sorted(conn.ravel()) != list(range(npoints)):

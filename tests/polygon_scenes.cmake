@@ -51,3 +51,21 @@ set(INTERRUPT ${CMAKE_CURRENT_SOURCE_DIR}/interrupt_run.py)
 turgor_add_test(interrupt_once COMMAND ${INTERRUPT} 1 interrupt_once $<TARGET_FILE:turgor_app> ${BOX} -ts_max_time 90 -fine_progress_interval 0.5 LABELS fine)
 turgor_add_test(interrupt_twice COMMAND ${INTERRUPT} 2 interrupt_twice $<TARGET_FILE:turgor_app> ${BOX} -ts_max_time 90 -fine_progress_interval 0.5 -ts_type rk
   -ts_rtol 1e-6 -ts_atol 1e-6 LABELS fine)
+
+# Snapshots of the box (1 µs, 2 snapshots): the XDMF agrees with its HDF5 data, and ParaView (both
+# XDMF readers) shows the 64 cells as polygons with area_ratio, a pressure equal to p0 A0/A (the gas
+# law, p0 = 50 N/m), the bars' strain and axial force (same sign), and a force on every node.
+turgor_add_test(polygon_compression_snapshots COMMAND turgor_app ${BOX} -ts_max_time 1 -fine_snapshots 2 -output_dir box_snapshots LABELS fine
+  SETUP box_snapshots)
+turgor_add_test(polygon_compression_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py box_snapshots/particles.xmf LABELS fine
+  REQUIRES box_snapshots)
+if(TURGOR_PVPYTHON)
+  foreach(reader default XDMFReader)
+    set(R "")
+    if(NOT reader STREQUAL default)
+      set(R --reader ${reader})
+    endif()
+    turgor_add_test(paraview_polygon_compression_${reader} COMMAND ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py
+      polygons box_snapshots --gas-p0 50 ${R} LABELS paraview fine REQUIRES box_snapshots TIMEOUT 120)
+  endforeach()
+endif()

@@ -302,11 +302,28 @@ PetscErrorCode FineRun::OpenSnapshots()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The particles (from the swarm), the force on every particle and the terms' cell and bar fields,
+   all at the sampled state. */
 PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
 {
+  const PetscScalar             *u;
+  const PetscReal               *x, *v;
+  ParticleSnapshotWriter::Fields fields;
+  std::vector<TermField>         terms;
+  ParticleSnapshotWriter::Field  force{"force", "µN", std::vector<PetscReal>(2 * n_local_), 2};
   PetscFunctionBeginUser;
   PetscCall(SyncSwarm(t, U));
-  PetscCall(snapshots_writer_.Write(swarm_, t));
+  PetscCall(VecGetArrayRead(U, &u));
+  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(model_.ComputeForces(x, v, force.values.data(), NULL));
+  PetscCall(model_.OutputFields(x, v, terms));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  fields.nodes.push_back(std::move(force));
+  for (TermField &f : terms) {
+    if (f.where == TermField::CELL && tissue_.particles.polygons.empty()) continue; /* the square grid has no polygon grid */
+    (f.where == TermField::CELL ? fields.cells : fields.bars).push_back({f.name, f.unit, std::move(f.values), 1});
+  }
+  PetscCall(snapshots_writer_.Write(swarm_, t, fields));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -504,6 +521,10 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
     PetscCall(TSGetStepNumber(ts_, &steps));
     js.Set("n_nodes", nw);
     js.Set("n_cells", ncells);
+    PetscInt nclosed = 0;
+    for (const PolygonCell &c : tissue_.particles.polygons) nclosed += !c.open;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nclosed, 1, MPIU_INT, MPI_SUM, comm_));
+    if (!tissue_.particles.polygons.empty()) js.Set("n_closed_cells", nclosed);
     js.Set("n_bars", nsprings);
     js.Set("node_steps_per_s", wall > 0 ? (PetscReal)(nw + nf) * steps / wall : 0.0);
     std::vector<PetscReal>   dts;

@@ -38,6 +38,7 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
   PetscCall(PetscViewerHDF5Open(comm_, (dir + "/" + h5name_).c_str(), FILE_MODE_WRITE, &viewer_));
   PetscCall(DMSwarmGetSize(swarm, &n_global_));
   PetscCallMPI(MPI_Allreduce(&ns, &n_springs_, 1, MPIU_INT, MPI_SUM, comm_));
+  bars_local_ = P.springs.size();
 
   /* static data */
   PetscCall(PetscViewerHDF5PushGroup(viewer_, "/static"));
@@ -113,8 +114,28 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A distributed dataset of this snapshot: `components` values per item, a 2-vector written with z = 0
+   (ParaView's filters take 3-component vectors). */
+PetscErrorCode ParticleSnapshotWriter::WriteVector(const std::string &name, const std::vector<PetscReal> &values, int components)
+{
+  Vec          v;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  const PetscInt out = components == 2 ? 3 : components, n = (PetscInt)values.size() / components;
+  PetscCall(VecCreateMPI(comm_, out * n, PETSC_DETERMINE, &v));
+  if (out > 1) PetscCall(VecSetBlockSize(v, out));
+  PetscCall(PetscObjectSetName((PetscObject)v, name.c_str()));
+  PetscCall(VecGetArray(v, &a));
+  for (PetscInt i = 0; i < n; i++)
+    for (PetscInt d = 0; d < out; d++) a[out * i + d] = d < components ? values[components * i + d] : 0.0;
+  PetscCall(VecRestoreArray(v, &a));
+  PetscCall(VecView(v, viewer_));
+  PetscCall(VecDestroy(&v));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Per snapshot: A/A0 of every closed cell, the callers' cell fields and every bar's strain. */
-PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const std::vector<CellField> &cell_fields)
+PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const std::vector<Field> &cell_fields)
 {
   PetscFunctionBeginUser;
   const PetscInt                                              np = (PetscInt)polys_.size(), nb = (PetscInt)bars_.size();
@@ -129,32 +150,36 @@ PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, co
   }
   field_names_.clear();
   field_units_.clear();
-  for (const CellField &f : cell_fields) {
+  for (const Field &f : cell_fields) {
     PetscCheck((PetscInt)f.values.size() == np, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Cell field %s has %zu values for %" PetscInt_FMT " closed cells",
                f.name.c_str(), f.values.size(), np);
     fields.push_back({f.name, f.values});
     field_names_.push_back(f.name);
     field_units_.push_back(f.unit);
   }
-  for (auto &f : fields) {
-    Vec          v;
-    PetscScalar *a;
-    PetscCall(VecCreateMPI(comm_, (PetscInt)f.second.size(), PETSC_DETERMINE, &v));
-    PetscCall(PetscObjectSetName((PetscObject)v, f.first.c_str()));
-    PetscCall(VecGetArray(v, &a));
-    for (size_t k = 0; k < f.second.size(); k++) a[k] = f.second[k];
-    PetscCall(VecRestoreArray(v, &a));
-    PetscCall(VecView(v, viewer_));
-    PetscCall(VecDestroy(&v));
-  }
+  for (auto &f : fields) PetscCall(WriteVector(f.first, f.second, 1));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const std::vector<CellField> &cell_fields)
+PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fields &fields)
 {
-  char group[64];
-  Vec  v;
+  char     group[64];
+  Vec      v;
+  PetscInt nlocal;
   PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(swarm, &nlocal));
+  node_meta_.clear();
+  bar_meta_.clear();
+  for (const Field &f : fields.nodes) {
+    PetscCheck((f.components == 1 || f.components == 2) && (PetscInt)f.values.size() == f.components * nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "Node field %s: %zu values for %" PetscInt_FMT " particles x %d components", f.name.c_str(), f.values.size(), nlocal, f.components);
+    node_meta_.push_back({f.name, f.unit, {}, f.components});
+  }
+  for (const Field &f : fields.bars) {
+    PetscCheck(f.components == 1 && f.values.size() == bars_local_, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Bar field %s: %zu values for %zu springs",
+               f.name.c_str(), f.values.size(), bars_local_);
+    bar_meta_.push_back({f.name, f.unit, {}, 1});
+  }
   PetscCall(PetscSNPrintf(group, sizeof group, "/snapshot_%04d", (int)times_.size()));
   PetscCall(PetscViewerHDF5PushGroup(viewer_, group));
   /* Plain Vecs rather than DMSwarmCreateGlobalVectorFromField(): VecView of a swarm Vec forces its
@@ -180,12 +205,14 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const std
     PetscCall(VecView(v, viewer_));
     PetscCall(VecDestroy(&v));
   }
+  for (const Field &f : fields.nodes) PetscCall(WriteVector(f.name, f.values, f.components));
+  for (const Field &f : fields.bars) PetscCall(WriteVector(f.name, f.values, 1));
   if (n_polys_ > 0) {
     PetscReal *pos;
     PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
-    PetscCall(WritePolygonFields(pos, cell_fields));
+    PetscCall(WritePolygonFields(pos, fields.cells));
     PetscCall(DMSwarmRestoreField(swarm, "position", NULL, NULL, (void **)&pos));
-  }
+  } else PetscCheck(fields.cells.empty(), comm_, PETSC_ERR_ARG_WRONG, "Cell fields given for a tissue without polygonal cells");
   PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
   PetscCall(PetscViewerHDF5PopGroup(viewer_));
   {
@@ -226,7 +253,7 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
                        (long long)n_polys_, (long long)nodes_per_poly_, (long long)n_polys_, (long long)nodes_per_poly_, ip, h5));
       else if (grid == 2)
         PetscCall(PetscFPrintf(comm_, fp,
-                               "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld\" "
+                               "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 1\" "
                                "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/polygons</DataItem>\n    </Topology>\n",
                                (long long)n_polys_, (long long)mixed_size_, ip, h5));
       else if (grid)
@@ -249,6 +276,20 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
                              "     <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n"
                              "    </Attribute>\n",
                              N, h5, k));
+      if (grid < 2)
+        for (const Field &f : node_meta_)
+          PetscCall(PetscFPrintf(comm_, fp,
+                                 "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
+                                 "     <DataItem Dimensions=\"%lld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n"
+                                 "    </Attribute>\n",
+                                 f.name.c_str(), f.components == 2 ? "Vector" : "Scalar", f.unit.c_str(), N, f.components == 2 ? 3 : 1, h5, k, f.name.c_str()));
+      if (grid == 1)
+        for (const Field &f : bar_meta_)
+          PetscCall(PetscFPrintf(comm_, fp,
+                                 "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
+                                 "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n"
+                                 "    </Attribute>\n",
+                                 f.name.c_str(), f.unit.c_str(), S, h5, k, f.name.c_str()));
       if (grid == 2) {
         PetscCall(PetscFPrintf(comm_, fp,
                                "    <Attribute Name=\"cell_id\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"values\" Value=\"index in "
@@ -272,7 +313,7 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
       if (grid == 1 && n_polys_ > 0)
         PetscCall(PetscFPrintf(
           comm_, fp,
-          "    <Attribute Name=\"bar_strain\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"values\" Value=\"l / l0 - 1\"/>\n"
+          "    <Attribute Name=\"bar_strain\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"1 (l / l0 - 1)\"/>\n"
           "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/bar_strain</DataItem>\n    </Attribute>\n",
           S, h5, k));
       const char *ints[3][2] = {

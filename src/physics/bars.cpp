@@ -51,6 +51,13 @@ PetscErrorCode Bars::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode Bars::OutputFields(const ForceInput &in, std::vector<TermField> &fields)
+{
+  PetscFunctionBeginUser;
+  fields.push_back({TermField::BAR, "axial_force", "µN (tension > 0)", SpringAxialForces(in, stiffness, gamma_, damping > 0)});
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode Bars::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;

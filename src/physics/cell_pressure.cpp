@@ -121,6 +121,21 @@ PetscErrorCode CellPressure::Energy(const ForceInput &in, PetscReal *E, PetscBoo
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The pressure of every closed polygon (0 for one with fewer than 3 nodes, which has none). */
+PetscErrorCode CellPressure::OutputFields(const ForceInput &in, std::vector<TermField> &fields)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  TermField F{TermField::CELL, "pressure", "N/m", {}};
+  for (size_t c = 0; c < in.P->polygons.size(); c++) {
+    const PolygonCell &C = in.P->polygons[c];
+    if (C.open) continue;
+    F.values.push_back(C.nodes.size() >= 3 ? Pressure(PolygonCellArea(C, in.x), A0_[c]) : 0.0);
+  }
+  fields.push_back(std::move(F));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CellPressure::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;

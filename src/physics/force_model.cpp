@@ -226,6 +226,16 @@ std::vector<std::string> ForceModel::ActiveTerms() const
   return names;
 }
 
+PetscErrorCode ForceModel::OutputFields(const PetscReal *x, const PetscReal *v, std::vector<TermField> &fields)
+{
+  PetscFunctionBeginUser;
+  PetscCall(nb_.Update(*P_, x, images_));
+  const ForceInput in = {P_, x, v, &nb_, &images_};
+  fields.clear();
+  for (auto &t : terms_) PetscCall(t->OutputFields(in, fields));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 std::vector<std::pair<std::string, PetscReal>> ForceModel::Statistics() const
 {
   std::vector<std::pair<std::string, PetscReal>> stats;

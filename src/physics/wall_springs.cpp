@@ -91,6 +91,20 @@ void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal
   else KernelFor<false>(in, k, gamma, damped, f, NULL);
 }
 
+std::vector<PetscReal> SpringAxialForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped)
+{
+  const auto            &S = in.P->springs;
+  std::vector<PetscReal> t(S.size());
+  for (size_t s = 0; s < S.size(); s++) {
+    const PetscInt   i = S[s].i, j = S[s].j;
+    const PetscReal *sx = in.images->x[S[s].image], *sv = in.images->v[S[s].image];
+    const PetscReal  dx = in.x[2 * j] + sx[0] - in.x[2 * i], dy = in.x[2 * j + 1] + sx[1] - in.x[2 * i + 1], r = std::sqrt(dx * dx + dy * dy);
+    t[s] = k * (r - S[s].rest_length);
+    if (damped) t[s] += gamma[s] * ((in.v[2 * j] + sv[0] - in.v[2 * i]) * dx + (in.v[2 * j + 1] + sv[1] - in.v[2 * i + 1]) * dy) / r;
+  }
+  return t;
+}
+
 PetscReal SpringEnergy(const ForceInput &in, PetscReal k)
 {
   PetscReal E = 0;
@@ -156,6 +170,13 @@ PetscErrorCode SpringTimeStepLimit(const ParticleSet &P, PetscReal stiffness, co
     PetscCall(PetscSNPrintf(why, sizeof why, "%s: omega_max <= %.4g /µs, dashpot rate <= %.4g /µs (Gershgorin)", label, (double)wmax, (double)cmax));
     limits.push_back({2.0 / lam, why});
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WallSprings::OutputFields(const ForceInput &in, std::vector<TermField> &fields)
+{
+  PetscFunctionBeginUser;
+  fields.push_back({TermField::BAR, "axial_force", "µN (tension > 0)", SpringAxialForces(in, stiffness, gamma_, damping_ratio > 0)});
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

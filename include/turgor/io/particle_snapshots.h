@@ -11,7 +11,9 @@
    number of nodes, else Mixed with type code 3 and the node count before each cell's nodes), with
    the cell attributes cell_id, area_ratio A/A0 (A0 at Open) and any fields the caller passes to
    Write (e.g. a pressure); the walls grid then also has each bar's strain l/l0 - 1. Open cells are
-   drawn by their bars only. */
+   drawn by their bars only. Write also takes per-particle fields (scalars, or 2-vectors written
+   with z = 0: the force on every node) for the particle and wall grids, and per-spring fields (a
+   bar's axial force) for the walls grid. */
 #include <turgor/particles/particles.h>
 #include <petscdm.h>
 #include <petscviewer.h>
@@ -25,31 +27,40 @@ public:
   /* `swarm` holds fields "position" and "velocity" (bs 2) and "kind", "cell" (int); `P` gives the
      springs and fixed flags of the local particles (local indices). Files: dir/base.h5, dir/base.xmf. */
   PetscErrorCode Open(DM swarm, const ParticleSet &P, const std::string &dir, const std::string &base);
-  /* A per-cell field of the polygon grid (one value per closed polygon, in ParticleSet::polygons
-     order, closed cells only): the hook for terms that own a cell quantity (pressure). */
-  struct CellField {
+  /* A field of one snapshot: `components` (1, or 2 for a vector) values per item. */
+  struct Field {
     std::string            name, unit;
     std::vector<PetscReal> values;
+    int                    components = 1;
   };
-  PetscErrorCode Write(DM swarm, PetscReal time, const std::vector<CellField> &cell_fields = {});
+  /* nodes: one item per local particle; cells: per closed polygon (ParticleSet::polygons order,
+     closed cells only: a pressure); bars: per spring (ParticleSet::springs order: a bar's force).
+     Every snapshot of a file has the same fields. */
+  struct Fields {
+    std::vector<Field> nodes, cells, bars;
+  };
+  PetscErrorCode Write(DM swarm, PetscReal time, const Fields &fields = {});
   PetscErrorCode Close();
   ~ParticleSnapshotWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
 
 private:
   PetscErrorCode WriteXdmf();
-  PetscErrorCode WritePolygonFields(const PetscReal *x, const std::vector<CellField> &cell_fields);
+  PetscErrorCode WritePolygonFields(const PetscReal *x, const std::vector<Field> &cell_fields);
+  PetscErrorCode WriteVector(const std::string &name, const std::vector<PetscReal> &values, int components);
 
   MPI_Comm    comm_   = MPI_COMM_NULL;
   PetscViewer viewer_ = nullptr;
   std::string dir_, h5name_, xmfpath_;
   PetscInt    n_global_ = 0, n_springs_ = 0;
+  size_t      bars_local_ = 0;
   /* polygonal tissues: the closed cells (local node indices), their reference areas, the bars */
   std::vector<std::vector<PetscInt>> polys_;
   std::vector<PetscReal>             area0_;
   std::vector<Spring>                bars_;
   PetscInt                           n_polys_ = 0, mixed_size_ = 0, nodes_per_poly_ = 0; /* global; 0: mixed */
-  std::vector<std::string>           field_names_, field_units_;
+  std::vector<std::string>           field_names_, field_units_;                         /* the callers' cell fields */
+  std::vector<Field>                 node_meta_, bar_meta_;                              /* names, units, components of the node and bar fields (no values) */
   std::vector<PetscReal>             times_;
 };
 

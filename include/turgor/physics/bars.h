@@ -16,6 +16,7 @@ public:
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return stiffness * length; }
   PetscErrorCode View(PetscViewer viewer) const override;
+  PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
 
   PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
   PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */

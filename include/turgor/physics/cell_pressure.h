@@ -22,6 +22,7 @@ public:
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return p0 * length; }
   PetscErrorCode View(PetscViewer viewer) const override;
+  PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
 
   void      SetReference(const PetscReal *X); /* A0 from X; without a call, the first evaluation's */
   PetscReal Pressure(PetscReal A, PetscReal A0) const;

@@ -58,6 +58,8 @@ public:
 
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;
+  /* Every term's snapshot fields at (x, v). */
+  PetscErrorCode OutputFields(const PetscReal *x, const PetscReal *v, std::vector<TermField> &fields);
   /* Every term's Statistics(), in term order. */
   std::vector<std::pair<std::string, PetscReal>> Statistics() const;
   NeighbourSearch                               &Neighbours() { return nb_; }

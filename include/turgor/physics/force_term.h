@@ -38,6 +38,17 @@ struct TermContext {
   const LoadSpec *load = nullptr; /* external loads (the body force); NULL where a scene has none */
 };
 
+/* A quantity a term shows in the snapshots: one value per closed polygon (CELL, in
+   ParticleSet::polygons order, open cells skipped: a pressure) or per spring (BAR: a bar's force). */
+struct TermField {
+  enum Where {
+    CELL,
+    BAR
+  } where;
+  std::string            name, unit;
+  std::vector<PetscReal> values;
+};
+
 class ForceTerm {
 public:
   virtual ~ForceTerm()             = default;
@@ -74,6 +85,8 @@ public:
      equations by it); 0 if the term sets none. */
   virtual PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const { return 0; }
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  /* Fields for the snapshots at the state of `in` (TermField). */
+  virtual PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) { return PETSC_SUCCESS; }
   /* Counters for summary.json, as (key, value) pairs summed over ranks (e.g. contact's mean number
      of contacts per evaluation); keys start with the term's name. */
   virtual void Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const { }

@@ -10,6 +10,8 @@ namespace turgor {
    ParticleSet::springs entry, force on i [k (r - l0) + gamma_s (e . v_ij)] e, e = (x_j - x_i)/r;
    gamma[s] per spring, read only if `damped` (false: no dashpot). virial may be NULL. */
 void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial);
+/* Every spring's axial force [k (r - l0) + gamma (e . v_ij)] (positive in tension), per spring. */
+std::vector<PetscReal> SpringAxialForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped);
 /* sum_s k/2 (r_s - l0_s)^2 */
 PetscReal SpringEnergy(const ForceInput &in, PetscReal k);
 /* Gershgorin bound on the spring block (see wall_springs.cpp); `label` names the term in the report. */
@@ -27,6 +29,7 @@ public:
   /* k_w x cell size: the force of a wall stretched by its own length */
   PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return stiffness * length; }
   PetscErrorCode View(PetscViewer viewer) const override;
+  PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
 
   PetscReal stiffness     = 4000.0; /* k_w [µN/µm = N/m] */
   PetscReal damping_ratio = 1.0;    /* zeta: 1 = critical, 0 = undamped */
