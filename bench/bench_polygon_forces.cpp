@@ -1,12 +1,16 @@
 static const char help[] = "Polygonal-cell forces benchmark: node-steps per second of a velocity-Verlet loop (one force-model\n"
                            "evaluation per step, plus AcceptStep when a term has state) on a jittered hexagonal tissue of\n"
                            "-cells_x x -cells_y hexagons (neighbours 2 r apart) with bars, hinges and contact.\n\n"
-                           "  bench_polygon_forces [-cells_x 20] [-cells_y 19] [-steps 20000] [-friction 0.3] [-physics_set bars,hinges,contact]\n";
+                           "-edge_speed s sets the compression by the speed of the tissue's edge (strain rate s / half-width) instead of\n"
+                           "the strain rate 1e-3 /µs, so that tissues of every size see the same motion at their nodes (node_cost_flatness.py).\n\n"
+                           "  bench_polygon_forces [-cells_x 20] [-cells_y 19] [-steps 20000] [-friction 0.3] [-physics_set bars,hinges,contact]\n"
+                           "                       [-edge_speed s]\n";
 #include "../tests/test_util.h"
 #include "../tests/polygon_util.h"
 #include <turgor/physics/bars.h>
 #include <turgor/physics/contact.h>
 #include <turgor/physics/hinges.h>
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cmath>
@@ -16,7 +20,7 @@ using namespace turgor;
 int main(int argc, char **argv)
 {
   PetscInt  nx = 20, ny = 19, steps = 20000;
-  PetscReal mu       = 0.3;
+  PetscReal mu = 0.3, edge_speed = 0;
   char      set[256] = "bars,hinges,contact";
   PetscFunctionBeginUser;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
@@ -25,6 +29,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-cells_y", &ny, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-steps", &steps, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-friction", &mu, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-edge_speed", &edge_speed, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-physics_set", set, sizeof set, NULL));
   const std::string physics = set;
   /* hexagons on a triangular lattice of spacing D, neighbours 2 r apart; the jitter (nodes pulled
@@ -36,7 +41,8 @@ int main(int argc, char **argv)
   turgor_test::Random         rnd(2024);
   Tissue                     &T  = turgor_test::HexagonTissue(B, nx, ny, D, r, m, rnd);
   std::vector<PetscReal>      x  = T.X, v(x.size()), a(x.size());
-  const PetscReal             xc = 0.5 * (T.lo[0] + T.hi[0]), yc = 0.5 * (T.lo[1] + T.hi[1]), rate = 1e-3;
+  const PetscReal             xc = 0.5 * (T.lo[0] + T.hi[0]), yc = 0.5 * (T.lo[1] + T.hi[1]);
+  const PetscReal             rate = edge_speed > 0 ? edge_speed / (0.5 * std::max(T.hi[0] - T.lo[0], T.hi[1] - T.lo[1])) : 1e-3;
   for (PetscInt i = 0; i < T.particles.n; i++) {
     v[2 * i]     = -rate * (x[2 * i] - xc) + 0.01 * rnd();
     v[2 * i + 1] = -rate * (x[2 * i + 1] - yc) + 0.01 * rnd();
