@@ -77,7 +77,10 @@ PetscErrorCode ReadOnRankZero(const CoarseSnapshotRequest &req, std::vector<Pets
       PetscCall(PetscSNPrintf(buf, sizeof buf, "%s = %g: no snapshot at this time in %s (%zu snapshots at times %g", req.time_option, (double)req.time,
                               req.path.c_str(), times.size(), (double)times[0]));
       std::string msg = buf;
-      for (size_t k = 1; k < times.size() && k < 12; k++) msg += ", " + std::to_string(times[k]);
+      for (size_t k = 1; k < times.size() && k < 12; k++) {
+        PetscCall(PetscSNPrintf(buf, sizeof buf, ", %g", (double)times[k]));
+        msg += buf;
+      }
       *problem = msg + (times.size() > 12 ? ", ...)" : ")");
       PetscCall(PetscViewerDestroy(&v));
       PetscFunctionReturn(PETSC_SUCCESS);
@@ -102,11 +105,15 @@ PetscErrorCode ReadOnRankZero(const CoarseSnapshotRequest &req, std::vector<Pets
       PetscCall(VecRestoreArrayRead(D, &a));
     }
     PetscCall(VecDestroy(&D));
-    if (!has || disp.size() != 3 * (xy.size() / 2))
-      *problem = std::string("the snapshot at t = ") + std::to_string(*found) + " has no displacement of its mesh";
+    if (!has || disp.size() != 3 * (xy.size() / 2)) {
+      PetscCall(PetscSNPrintf(buf, sizeof buf, "the snapshot at t = %g has no displacement of its mesh", (double)*found));
+      *problem = buf;
+    }
     for (size_t k = 0; k < disp.size() && problem->empty(); k++)
-      if (!std::isfinite(disp[k]))
-        *problem = "the displacement of the snapshot at t = " + std::to_string(*found) + " is not finite (vertex " + std::to_string(k / 3) + ")";
+      if (!std::isfinite(disp[k])) {
+        PetscCall(PetscSNPrintf(buf, sizeof buf, "the displacement of the snapshot at t = %g is not finite (at its vertex %zu)", (double)*found, k / 3));
+        *problem = buf;
+      }
   }
   PetscCall(PetscViewerDestroy(&v));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -186,7 +193,9 @@ PetscErrorCode ReadCoarseSnapshot(CoarseModel &model, const CoarseSnapshotReques
     for (; it != order.end() && xy[2 * *it] <= x + tol && hit < 0; ++it)
       if (PetscAbsReal(xy[2 * *it + 1] - y) <= tol) hit = *it;
     if (hit < 0) {
-      missing = "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
+      char where[96];
+      PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g)", (double)x, (double)y));
+      missing = where;
       break;
     }
     PetscCall(PetscSectionGetOffset(ls, v, &off));
