@@ -148,38 +148,18 @@ static PetscErrorCode MakeModel(CoarseModel &model, const char *material, PetscI
 /* a deformed state: u = a (x^2 / L^2 e_y - 0.02 x / L e_x), v = b sin(x) e_y */
 static PetscErrorCode DeformedState(CoarseModel &model, Vec U, PetscReal a, PetscReal b)
 {
-  DM                 dm = model.GetDM(), cdm;
-  Vec                coords, Uloc;
-  PetscSection       cs, ls;
-  PetscInt           vs, ve;
-  const PetscScalar *x;
-  PetscScalar       *u;
+  std::string missing;
   PetscFunctionBeginUser;
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &coords));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMCreateLocalVector(dm, &Uloc));
-  PetscCall(VecZeroEntries(Uloc));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
-  PetscCall(VecGetArrayRead(coords, &x));
-  PetscCall(VecGetArray(Uloc, &u));
-  for (PetscInt v = vs; v < ve; v++) {
-    PetscInt co, off, dof;
-    PetscCall(PetscSectionGetOffset(cs, v, &co));
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    PetscCall(PetscSectionGetDof(ls, v, &dof));
-    if (dof != 4) continue;
-    const PetscReal X = PetscRealPart(x[co]) / 400, Y = PetscRealPart(x[co + 1]) / 400;
-    u[off]     = -0.02 * a * X * 400;
-    u[off + 1] = a * X * X * 400 + 0.01 * a * X * Y * 400;
-    u[off + 3] = b * std::sin(3 * X);
-  }
-  PetscCall(VecRestoreArray(Uloc, &u));
-  PetscCall(VecRestoreArrayRead(coords, &x));
-  PetscCall(VecZeroEntries(U));
-  PetscCall(DMLocalToGlobal(dm, Uloc, INSERT_VALUES, U));
-  PetscCall(VecDestroy(&Uloc));
+  PetscCall(model.VertexState(
+    U,
+    [&](const PetscReal X[2], PetscReal state[4]) {
+      const PetscReal x = X[0] / 400, y = X[1] / 400;
+      state[0] = -0.02 * a * x * 400;
+      state[1] = a * x * x * 400 + 0.01 * a * x * y * 400;
+      state[3] = b * std::sin(3 * x);
+      return true;
+    },
+    &missing));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -12,9 +12,7 @@ DampedModes::~DampedModes()
 
 PetscErrorCode DampedModes::SetFromOptions(const std::string &prefix, PetscInt nev, PetscReal tol)
 {
-  ST  st;
-  KSP ksp;
-  PC  pc;
+  ST st;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("TgEigenDamped", PETSC_OBJECT_CLASSID, &ev_solve_));
   PetscCall(PEPDestroy(&pep_));
@@ -28,12 +26,7 @@ PetscErrorCode DampedModes::SetFromOptions(const std::string &prefix, PetscInt n
   PetscCall(PEPSetTarget(pep_, 0.0));
   PetscCall(PEPSetWhichEigenpairs(pep_, PEP_TARGET_MAGNITUDE));
   PetscCall(PEPGetST(pep_, &st));
-  PetscCall(STSetType(st, STSINVERT));
-  PetscCall(STGetKSP(st, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU)); /* P(target) = K + target C + target^2 M need not be symmetric */
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SetDirectST(st, STSINVERT, PCLU)); /* P(target) = K + target C + target^2 M need not be symmetric */
   PetscCall(PEPSetFromOptions(pep_));
   {
     PetscInt n;
@@ -77,13 +70,11 @@ PetscErrorCode DampedModes::Solve(const CoarseOperators &ops)
                    [](const DampedEigenvalue &a, const DampedEigenvalue &b) { return std::hypot(a.re, a.im) < std::hypot(b.re, b.im); });
   if ((PetscInt)values_.size() > nev_) values_.resize(nev_); /* the modes asked for (PEP may converge a few more) */
   {
-    PEPType     type;
-    ST          st;
-    std::string st_text;
+    PEPType type;
+    ST      st;
     PetscCall(PEPGetType(pep_, &type));
     PetscCall(PEPGetST(pep_, &st));
-    PetscCall(DescribeST(st, &st_text));
-    description_ = std::string(type) + ", " + st_text;
+    PetscCall(DescribeSolver(type, st, &description_));
   }
   PetscCall(PetscLogEventEnd(ev_solve_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

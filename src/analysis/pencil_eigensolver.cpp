@@ -5,7 +5,21 @@
 
 namespace turgor {
 
-PetscErrorCode DescribeST(ST st, std::string *text)
+PetscErrorCode SetDirectST(ST st, STType type, PCType factor)
+{
+  KSP ksp;
+  PC  pc;
+  PetscFunctionBeginUser;
+  PetscCall(STSetType(st, type));
+  PetscCall(STGetKSP(st, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, factor));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DescribeSolver(const char *method, ST st, std::string *text)
 {
   STType        st_type;
   KSPType       ksp_type;
@@ -22,7 +36,7 @@ PetscErrorCode DescribeST(ST st, std::string *text)
   PetscCall(PCGetType(pc, &pc_type));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, PCILU, PCICC, ""));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &solver));
-  *text = std::string(st_type ? st_type : "") + ", " + (ksp_type ? ksp_type : "") + " + " + (pc_type ? pc_type : "") +
+  *text = std::string(method) + ", " + (st_type ? st_type : "") + ", " + (ksp_type ? ksp_type : "") + " + " + (pc_type ? pc_type : "") +
           (solver ? std::string(" (") + solver + ")" : std::string());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -34,9 +48,7 @@ PencilEigensolver::~PencilEigensolver()
 
 PetscErrorCode PencilEigensolver::SetFromOptions(const std::string &prefix, PencilEnd end, PetscInt nev, PetscReal tol)
 {
-  ST  st;
-  KSP ksp;
-  PC  pc;
+  ST st;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("TgEigenSolve", PETSC_OBJECT_CLASSID, &ev_solve_));
   PetscCall(EPSDestroy(&eps_));
@@ -47,22 +59,17 @@ PetscErrorCode PencilEigensolver::SetFromOptions(const std::string &prefix, Penc
   PetscCall(EPSSetDimensions(eps_, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetTolerances(eps_, tol, PETSC_DEFAULT));
   PetscCall(EPSGetST(eps_, &st));
+  /* one direct factorisation (of K - sigma M, or of M), symmetric: MUMPS's LDL^T takes a K that is
+     indefinite past a loss of stability */
   if (end == PencilEnd::Lowest) {
     /* shift-and-invert about the target: the lowest modes converge in a few iterations */
-    PetscCall(STSetType(st, STSINVERT));
+    PetscCall(SetDirectST(st, STSINVERT, PCCHOLESKY));
     PetscCall(EPSSetTarget(eps_, 0.0));
     PetscCall(EPSSetWhichEigenpairs(eps_, EPS_TARGET_MAGNITUDE));
   } else {
-    PetscCall(STSetType(st, STSHIFT));
+    PetscCall(SetDirectST(st, STSHIFT, PCCHOLESKY));
     PetscCall(EPSSetWhichEigenpairs(eps_, EPS_LARGEST_REAL));
   }
-  /* a direct factorisation (of K - sigma M, or of M): MUMPS, on any number of ranks, symmetric
-     (LDL^T: K may be indefinite past a loss of stability) */
-  PetscCall(STGetKSP(st, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(EPSSetFromOptions(eps_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -107,13 +114,11 @@ PetscErrorCode PencilEigensolver::Solve(const CoarseOperators &ops)
   pairs_.clear();
   for (PetscInt i : order_) pairs_.push_back(pairs[i]);
   {
-    EPSType     type;
-    ST          st;
-    std::string st_text;
+    EPSType type;
+    ST      st;
     PetscCall(EPSGetType(eps_, &type));
     PetscCall(EPSGetST(eps_, &st));
-    PetscCall(DescribeST(st, &st_text));
-    description_ = std::string(type) + ", " + st_text;
+    PetscCall(DescribeSolver(type, st, &description_));
   }
   PetscCall(PetscLogEventEnd(ev_solve_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

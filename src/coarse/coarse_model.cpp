@@ -455,6 +455,48 @@ PetscErrorCode CoarseModel::SetUp()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CoarseModel::VertexState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing)
+{
+  DM                 cdm;
+  Vec                coords, Uloc;
+  PetscSection       cs, ls;
+  const PetscScalar *xc;
+  PetscScalar       *u;
+  std::string        mine;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateDM(dm_, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm_, &coords));
+  PetscCall(DMGetLocalSection(dm_, &ls));
+  PetscCall(DMCreateLocalVector(dm_, &Uloc));
+  PetscCall(VecZeroEntries(Uloc));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  PetscCall(VecGetArray(Uloc, &u));
+  for (PetscInt v = v_start_; v < v_end_ && mine.empty(); v++) {
+    PetscInt  coff, off, dof, cdof;
+    PetscReal state[4] = {0, 0, 0, 0};
+    PetscCall(PetscSectionGetOffset(cs, v, &coff));
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    PetscCall(PetscSectionGetDof(ls, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    if (dof - cdof != 4) continue; /* clamped */
+    const PetscReal X[2] = {PetscRealPart(xc[coff]), PetscRealPart(xc[coff + 1])};
+    if (!f(X, state)) {
+      char where[96];
+      PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g)", (double)X[0], (double)X[1]));
+      mine = where;
+    }
+    for (int d = 0; d < 4; d++) u[off + d] = state[d];
+  }
+  PetscCall(VecRestoreArray(Uloc, &u));
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  PetscCall(FirstMessage(comm_, mine, missing));
+  PetscCall(VecZeroEntries(U));
+  PetscCall(DMLocalToGlobal(dm_, Uloc, INSERT_VALUES, U));
+  PetscCall(VecDestroy(&Uloc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The constrained entries of a local vector are not touched by DMGlobalToLocal: the model's own
    local vector keeps the boundary values inserted once (and again when they change); any other one
    gets them here. */

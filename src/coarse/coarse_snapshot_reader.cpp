@@ -150,13 +150,9 @@ PetscErrorCode ReadCoarseSnapshot(CoarseModel &model, const CoarseSnapshotReques
 
   /* the model's vertices among the file's, by reference coordinates: the file's sorted by x, each
      model vertex looked up in the x window of the tolerance */
-  DM                 dm = model.GetDM(), cdm;
-  Vec                coords, Uloc;
-  PetscSection       cs, ls;
-  PetscInt           vs, ve, nfile = (PetscInt)xy.size() / 2, nmodel = 0;
-  const PetscScalar *xc;
-  PetscScalar       *u;
-  PetscReal          lo[2], hi[2];
+  DM        dm = model.GetDM();
+  PetscInt  vs, ve, nfile = (PetscInt)xy.size() / 2, nmodel = 0;
+  PetscReal lo[2], hi[2];
   PetscCall(DMGetBoundingBox(dm, lo, hi));
   const PetscReal       tol = 1e-9 * std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
   std::vector<PetscInt> order(nfile);
@@ -175,48 +171,23 @@ PetscErrorCode ReadCoarseSnapshot(CoarseModel &model, const CoarseSnapshotReques
   PetscCheck(nmodel == nfile, comm, PETSC_ERR_ARG_INCOMP,
              "Option %s = %s: a snapshot of another mesh (%" PetscInt_FMT " vertices; this run's mesh has %" PetscInt_FMT ")", req.file_option,
              req.path.c_str(), nfile, nmodel);
-  PetscCall(DMGetCoordinateDM(dm, &cdm));
-  PetscCall(DMGetLocalSection(cdm, &cs));
-  PetscCall(DMGetCoordinatesLocal(dm, &coords));
-  PetscCall(DMGetLocalSection(dm, &ls));
-  PetscCall(DMCreateLocalVector(dm, &Uloc));
-  PetscCall(VecZeroEntries(Uloc));
-  PetscCall(VecGetArrayRead(coords, &xc));
-  PetscCall(VecGetArray(Uloc, &u));
   std::string missing;
-  for (PetscInt v = vs; v < ve && missing.empty(); v++) {
-    PetscInt coff, off, dof;
-    PetscCall(PetscSectionGetOffset(cs, v, &coff));
-    const PetscReal x = PetscRealPart(xc[coff]), y = PetscRealPart(xc[coff + 1]);
-    auto            it  = std::lower_bound(order.begin(), order.end(), x - tol, [&](PetscInt a, PetscReal val) { return xy[2 * a] < val; });
-    PetscInt        hit = -1;
-    for (; it != order.end() && xy[2 * *it] <= x + tol && hit < 0; ++it)
-      if (PetscAbsReal(xy[2 * *it + 1] - y) <= tol) hit = *it;
-    if (hit < 0) {
-      char where[96];
-      PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g)", (double)x, (double)y));
-      missing = where;
-      break;
-    }
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    PetscCall(PetscSectionGetDof(ls, v, &dof));
-    if (dof == 4) {
-      u[off]     = disp[3 * hit];
-      u[off + 1] = disp[3 * hit + 1];
-    }
-  }
-  PetscCall(VecRestoreArray(Uloc, &u));
-  PetscCall(VecRestoreArrayRead(coords, &xc));
-  {
-    std::string msg;
-    PetscCall(FirstMessage(comm, missing, &msg));
-    if (!msg.empty()) PetscCall(VecDestroy(&Uloc));
-    PetscCheck(msg.empty(), comm, PETSC_ERR_ARG_INCOMP, "Option %s = %s: a snapshot of another mesh (this run's vertex at %s is not among the file's vertices)",
-               req.file_option, req.path.c_str(), msg.c_str());
-  }
-  PetscCall(VecZeroEntries(U));
-  PetscCall(DMLocalToGlobal(dm, Uloc, INSERT_VALUES, U));
-  PetscCall(VecDestroy(&Uloc));
+  PetscCall(model.VertexState(
+    U,
+    [&](const PetscReal X[2], PetscReal state[4]) {
+      auto it = std::lower_bound(order.begin(), order.end(), X[0] - tol, [&](PetscInt a, PetscReal val) { return xy[2 * a] < val; });
+      for (; it != order.end() && xy[2 * *it] <= X[0] + tol; ++it)
+        if (PetscAbsReal(xy[2 * *it + 1] - X[1]) <= tol) {
+          state[0] = disp[3 * *it];
+          state[1] = disp[3 * *it + 1];
+          return true;
+        }
+      return false;
+    },
+    &missing));
+  PetscCheck(missing.empty(), comm, PETSC_ERR_ARG_INCOMP,
+             "Option %s = %s: a snapshot of another mesh (this run's vertex at %s is not among the file's vertices)", req.file_option, req.path.c_str(),
+             missing.c_str());
   *time_found = found;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

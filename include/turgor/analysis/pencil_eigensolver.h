@@ -16,8 +16,12 @@
 
 namespace turgor {
 
-/* "sinvert, preonly + cholesky (mumps)": a spectral transformation and its linear solver, for reports */
-PetscErrorCode DescribeST(ST st, std::string *text);
+/* A spectral transformation of `type` whose linear solves are one direct factorisation (KSPPREONLY,
+   `factor` = PCCHOLESKY or PCLU, by MUMPS on any number of ranks); defaults, options win. */
+PetscErrorCode SetDirectST(ST st, STType type, PCType factor);
+/* "krylovschur, sinvert, preonly + cholesky (mumps)": a method, its spectral transformation and its
+   linear solver, for reports */
+PetscErrorCode DescribeSolver(const char *method, ST st, std::string *text);
 
 enum class PencilEnd {
   Lowest,

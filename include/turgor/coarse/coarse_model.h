@@ -140,6 +140,10 @@ public:
      AssembleTangentAt; NaN for a cell whose points failed. */
   const std::vector<PetscReal> &CellAcoustic() const { return cell_acoustic_; }
   PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
+  /* U (global) from a function of the reference position: f(X, state) gives [ux, uy, vx, vy] of the
+     vertex at X, or false when it has none; the clamped vertices are left out. Collective: *missing
+     is the first position without a value on any rank ("" when every vertex got one). */
+  PetscErrorCode VertexState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing);
   /* Global vector with the boundary values inserted into the local constrained dofs. */
   PetscErrorCode GlobalToLocal(Vec U, Vec Uloc);
   /* The boundary values (u = g(X), v = 0) into the constrained dofs of a local vector. */
