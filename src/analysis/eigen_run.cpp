@@ -156,6 +156,12 @@ PetscErrorCode EigenRun::Solve()
     PetscCall(static_->Solve());
     PetscCall(static_->ConvergedState(U_));
     state_time_ = static_->LoadFactor();
+    if (static_->Interrupted()) { /* SIGINT/SIGTERM: the load is not all on; no state to analyse */
+      PetscLogDouble t1;
+      PetscCall(PetscTime(&t1));
+      wall_ = t1 - t0_;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
   }
   PetscCall(PetscLogStagePush(stage_solve_));
   PetscCall(PetscLogEventBegin(ev_assemble_, 0, 0, 0, 0));
@@ -367,6 +373,15 @@ PetscErrorCode EigenRun::WriteSummary()
   MaterialCounters rc;
   PetscMPIInt      rank;
   PetscFunctionBeginUser;
+  if (Interrupted()) {
+    PetscCall(Summary(js, "interrupted"));
+    js.Set("reason",
+           "interrupted (SIGINT/SIGTERM) during the relaxed state's static solve, at load factor " + std::to_string(state_time_) + ": no eigen analysis");
+    PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+    PetscCall(PetscPrintf(comm_, "Interrupted during the relaxed state's static solve: no eigen analysis; outputs in %s: summary.json, tip.csv\n",
+                          output_dir_.c_str()));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(Summary(js, "completed"));
   PetscCall(model_->Pool().GlobalCounters(&rc));
   js.Set("rve_solves", rc.solves);

@@ -61,6 +61,8 @@ public:
   PetscErrorCode Solve() override;
   PetscErrorCode WriteSummary() override;
   PetscErrorCode WriteFailure(const std::string &reason) override;
+  /* SIGINT/SIGTERM during the relaxed state's static solve (the eigen analysis is then not made) */
+  bool Interrupted() const override { return static_ && static_->Interrupted(); }
 
   EigenSpec               &Spec() { return spec_; }
   CoarseModel             &Model() { return *model_; } /* after SetFromOptions */
