@@ -375,8 +375,10 @@ PetscErrorCode EigenRun::WriteSummary()
   PetscFunctionBeginUser;
   if (Interrupted()) {
     PetscCall(Summary(js, "interrupted"));
-    js.Set("reason",
-           "interrupted (SIGINT/SIGTERM) during the relaxed state's static solve, at load factor " + std::to_string(state_time_) + ": no eigen analysis");
+    char reason[160];
+    PetscCall(PetscSNPrintf(reason, sizeof reason, "interrupted (SIGINT/SIGTERM) during the relaxed state's static solve, at load factor %g: no eigen analysis",
+                            (double)state_time_));
+    js.Set("reason", reason);
     PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
     PetscCall(PetscPrintf(comm_, "Interrupted during the relaxed state's static solve: no eigen analysis; outputs in %s: summary.json, tip.csv\n",
                           output_dir_.c_str()));
