@@ -4,6 +4,7 @@
   pvpython check_paraview.py fine RUN_DIR [--reader XDMFReader]
   pvpython check_paraview.py fe2  RUN_DIR [--reader XDMFReader]
   pvpython check_paraview.py polygons RUN_DIR [--reader XDMFReader]   (see check_polygons)
+  pvpython check_paraview.py modes RUN_DIR [--reader XDMFReader]      (see check_modes: -mode eigen's modes.xmf)
 
 RUN_DIR holds summary.json and particles.xmf (fine) or coarse.xmf (fe2). The file is opened with
 ParaView's default reader for .xmf (OpenDataFile; the reader it picked is printed), or the one named
@@ -18,7 +19,8 @@ by --reader (XDMFReader: the legacy reader). At the last time step the data are 
         tip_displacement_final (and tip.csv's last row), to 1e-6 relative.
   fe2   one block of summary.json's n_elements quadrilaterals; point arrays displacement and
         velocity (3 components, z = 0), cell arrays stress (a 9-component tensor, xx, xy, 0 / xy,
-        yy, 0 / 0, 0, 0, equal to stress_xx, stress_yy, stress_xy), density (> 0); WarpByVector with
+        yy, 0 / 0, 0, 0, equal to stress_xx, stress_yy, stress_xy), density (> 0), acoustic_min_det
+        (finite, > 0: the bending bar stays elliptic); WarpByVector with
         the displacement moves the tip vertex (nearest the middle of the right side) by summary.json's
         tip_displacement_final to 1e-6 relative, and the clamped left side not at all.
 
@@ -200,6 +202,8 @@ def check_fe2(run, reader):
     check(bool((abs(sxx) + abs(syy)).max() > 0), "the stress is zero everywhere at the last time step")
     rho = array(mesh, "cell", "density", 1, False)
     check(bool((rho > 0).all()), "density not positive")
+    ac = array(mesh, "cell", "acoustic_min_det", 1, False)
+    check(bool(np.isfinite(ac).all() and (ac > 0).all()), f"acoustic_min_det not finite and positive (elliptic) everywhere: {ac.min()}..{ac.max()}")
     mt = mesh.GetCellData().GetTensors()
     if reader is None:
         check(mt is not None and mt.GetName() == "stress", "stress is not the active cell tensor")
@@ -269,9 +273,42 @@ def check_polygons(run, reader, gas_p0=None):
     print(f"  OK: {nc} polygons with {[len(c) for c in ids][:8]}... nodes, area_ratio {[round(float(a), 6) for a in ratio][:8]}..., {len(strain)} bar strains{extra}")
 
 
+def check_modes(run, reader):
+    """-mode eigen's modes.xmf: one time step per mode (time = the mode number, as many as
+    summary.json's eigenvalues), each one block of n_elements quadrilaterals with the point arrays
+    mode (3 components, z = 0, largest vertex displacement 1, 0 on the clamped left side) and
+    displacement (the analysed state, the same at every step); Warp By Vector with the mode moves the
+    points by it; two modes differ (the file is not one mode repeated)."""
+    summary = json.load(open(os.path.join(run, "summary.json")))
+    r, times = open_reader(os.path.join(run, "modes.xmf"), reader)
+    n = len(summary["eigenvalues"])
+    check([round(t) for t in times] == list(range(1, n + 1)), f"times {times}, expected the mode numbers 1..{n}")
+    shapes, state = [], None
+    for t in times:
+        (mesh,) = fetch(r, t)
+        types, _ = cells_of(mesh)
+        check(len(types) == summary["n_elements"] and set(types) == {VTK_QUAD}, f"mode {t}: {len(types)} cells, expected {summary['n_elements']} quadrilaterals")
+        m = array(mesh, "point", "mode", 3, False)
+        d = array(mesh, "point", "displacement", 3, False)
+        check(bool((m[:, 2] == 0).all()), f"mode {t} has a z component")
+        big = float(np.sqrt((m**2).sum(axis=1)).max())
+        check(close(big, 1.0, 1e-12), f"mode {t}: largest vertex displacement {big}, expected 1")
+        x0 = points(mesh)
+        left = x0[:, 0] == x0[:, 0].min()
+        check(bool((m[left] == 0).all()), f"mode {t} moves the clamped left side")
+        check(state is None or bool((d == state).all()), f"mode {t}: the state's displacement differs from mode 1's")
+        state = d
+        shapes.append(m)
+    warp = simple.WarpByVector(Input=r, Vectors=["POINTS", "mode"])
+    (w,) = fetch(warp, times[0])
+    check(bool((abs(points(w) - points(fetch(r, times[0])[0]) - shapes[0]) <= 1e-12).all()), "WarpByVector did not move the points by mode 1")
+    check(n < 2 or float(abs(shapes[0] - shapes[1]).max()) > 1e-3, "modes 1 and 2 are the same")
+    print(f"  OK: {n} modes on {summary['n_elements']} quadrilaterals, each normalised to 1 µm, clamped side at rest; Warp By Vector moves by the mode")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("mode", choices=["fine", "fe2", "polygons"])
+    p.add_argument("mode", choices=["fine", "fe2", "polygons", "modes"])
     p.add_argument("run", help="the run's output directory")
     p.add_argument("--reader", help="a ParaView reader to use instead of the default (e.g. XDMFReader)")
     p.add_argument("--gas-p0", type=float, help="polygons: the cells follow the gas law with this p0 [N/m]")
@@ -279,7 +316,7 @@ def main():
     if a.mode == "polygons":
         check_polygons(a.run, a.reader, a.gas_p0)
     else:
-        {"fine": check_fine, "fe2": check_fe2}[a.mode](a.run, a.reader)
+        {"fine": check_fine, "fe2": check_fe2, "modes": check_modes}[a.mode](a.run, a.reader)
 
 
 if __name__ == "__main__":

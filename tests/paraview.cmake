@@ -15,3 +15,6 @@ turgor_add_test(paraview_fine COMMAND ${PVCHECK} fine small_rk LABELS paraview f
 turgor_add_test(paraview_fine_legacy COMMAND ${PVCHECK} fine small_rk --reader XDMFReader LABELS paraview fine REQUIRES small_rk TIMEOUT 120)
 turgor_add_test(paraview_fe2 COMMAND ${PVCHECK} fe2 fe2_mpi2 LABELS paraview fe2 REQUIRES fe2_mpi2 TIMEOUT 120)
 turgor_add_test(paraview_fe2_legacy COMMAND ${PVCHECK} fe2 fe2_mpi2 --reader XDMFReader LABELS paraview fe2 REQUIRES fe2_mpi2 TIMEOUT 120)
+# -mode eigen's mode shapes (modes.xmf): one step per mode, each a Warp By Vector away
+turgor_add_test(paraview_modes COMMAND ${PVCHECK} modes eigen_bar LABELS paraview eigen REQUIRES eigen_bar TIMEOUT 120)
+turgor_add_test(paraview_modes_legacy COMMAND ${PVCHECK} modes eigen_bar --reader XDMFReader LABELS paraview eigen REQUIRES eigen_bar TIMEOUT 120)

@@ -58,10 +58,13 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
   PetscCall(Close());
   PetscCall(PetscObjectGetComm((PetscObject)dm, &comm_));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
-  h5name_  = base + ".h5";
-  xmfpath_ = dir + "/" + base + ".xmf";
+  h5name_   = base + ".h5";
+  xmfpath_  = dir + "/" + base + ".xmf";
+  grid_     = base;
+  acoustic_ = model.Spec().acoustic_field;
   times_.clear();
   PetscCall(DMCreateLocalVector(dm, &Uloc_));
+  PetscCall(DMCreateLocalVector(dm, &Vloc_));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
   PetscCall(DMPlexGetVertexNumbering(dm, &gnum));
@@ -124,42 +127,57 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal time)
+PetscErrorCode CoarseFieldsWriter::GatherVertexVector(CoarseModel &model, Vec V, PetscInt offset, bool boundary_values, std::vector<PetscReal> &xyz)
 {
-  DM                     dm = model.GetDM();
+  DM                     dm  = model.GetDM();
+  Vec                    loc = boundary_values ? Uloc_ : Vloc_;
   PetscSection           ls;
   PetscInt               vs, ve;
   const PetscScalar     *u;
-  std::vector<PetscReal> mine, all, stress;
+  std::vector<PetscReal> mine, all;
   PetscFunctionBeginUser;
-  PetscCall(model.GlobalToLocal(U, Uloc_));
+  if (boundary_values) PetscCall(model.GlobalToLocal(V, loc));
+  else { /* the constrained entries stay 0 */ PetscCall(VecZeroEntries(loc));
+    PetscCall(DMGlobalToLocal(dm, V, INSERT_VALUES, loc));
+  }
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
-  PetscCall(VecGetArrayRead(Uloc_, &u));
+  PetscCall(VecGetArrayRead(loc, &u));
   for (PetscInt v = vs; v < ve; v++) {
     if (vertex_gid_[v - vs] < 0) continue;
     PetscInt off;
     PetscCall(PetscSectionGetOffset(ls, v, &off));
-    mine.push_back((PetscReal)vertex_gid_[v - vs]);
-    for (int d = 0; d < 4; d++) mine.push_back(PetscRealPart(u[off + d]));
+    mine.insert(mine.end(), {(PetscReal)vertex_gid_[v - vs], PetscRealPart(u[off + offset]), PetscRealPart(u[off + offset + 1])});
   }
-  PetscCall(VecRestoreArrayRead(Uloc_, &u));
+  PetscCall(VecRestoreArrayRead(loc, &u));
   PetscCall(GatherToZero(comm_, mine, all));
+  xyz.assign(rank_ == 0 ? 3 * n_vertices_ : 0, 0);
+  for (size_t k = 0; k + 2 < all.size(); k += 3) {
+    const PetscInt id = (PetscInt)all[k];
+    for (int d = 0; d < 2; d++) xyz[3 * id + d] = all[k + 1 + d];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal time, const std::vector<Vec> &vectors)
+{
+  std::vector<PetscReal>              disp, vel, stress, acoustic;
+  std::vector<std::vector<PetscReal>> extra(extra_.size());
+  PetscFunctionBeginUser;
+  PetscCheck(vectors.size() == extra_.size(), comm_, PETSC_ERR_ARG_SIZ, "CoarseFieldsWriter::Write: %zu vertex vectors for %zu added fields", vectors.size(),
+             extra_.size());
+  /* vectors with z = 0 (ParaView's Xdmf3 readers keep 2-component vectors as such, and Warp By
+     Vector takes only 3) */
+  PetscCall(GatherVertexVector(model, U, 0, true, disp));
+  PetscCall(GatherVertexVector(model, U, 2, true, vel));
+  for (size_t k = 0; k < extra_.size(); k++) PetscCall(GatherVertexVector(model, vectors[k], 0, false, extra[k]));
   PetscCall(GatherToZero(comm_, model.CellStress(), stress));
+  if (acoustic_) PetscCall(GatherToZero(comm_, model.CellAcoustic(), acoustic));
   if (rank_ == 0) {
-    /* vectors with z = 0 (ParaView's Xdmf3 readers keep 2-component vectors as such, and Warp By
-       Vector takes only 3); the stress as a 3 x 3 tensor (row-major, the z row and column 0: the
-       model is 2D) beside its three components; the density of the element, its mass over its
-       current area: rho0 A0 / A (rho dv = rho0 dV, as in the mass matrix) */
-    std::vector<PetscReal> disp(3 * n_vertices_, 0), vel(3 * n_vertices_, 0), sigma(9 * n_cells_, 0), sxx(n_cells_), syy(n_cells_), sxy(n_cells_),
-      rho(n_cells_);
-    for (size_t k = 0; k + 4 < all.size(); k += 5) {
-      const PetscInt id = (PetscInt)all[k];
-      for (int d = 0; d < 2; d++) {
-        disp[3 * id + d] = all[k + 1 + d];
-        vel[3 * id + d]  = all[k + 3 + d];
-      }
-    }
+    /* the stress as a 3 x 3 tensor (row-major, the z row and column 0: the model is 2D) beside its
+       three components; the density of the element, its mass over its current area: rho0 A0 / A
+       (rho dv = rho0 dV, as in the mass matrix) */
+    std::vector<PetscReal> sigma(9 * n_cells_, 0), sxx(n_cells_), syy(n_cells_), sxy(n_cells_), rho(n_cells_);
     for (PetscInt c = 0; c < n_cells_; c++) {
       sxx[c]           = stress[3 * c];
       syy[c]           = stress[3 * c + 1];
@@ -180,6 +198,8 @@ PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal ti
     PetscCall(WriteArray("stress_yy", syy, 1));
     PetscCall(WriteArray("stress_xy", sxy, 1));
     PetscCall(WriteArray("density", rho, 1));
+    if (acoustic_) PetscCall(WriteArray("acoustic_min_det", acoustic, 1));
+    for (size_t k = 0; k < extra_.size(); k++) PetscCall(WriteArray(extra_[k].name.c_str(), extra[k], 3));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
     PetscCall(PetscViewerHDF5PopGroup(viewer_));
     hid_t fid;
@@ -207,9 +227,10 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
   PetscCall(PetscFPrintf(comm_, fp,
                          "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
                          "  <Information Name=\"units\" Value=\"length µm, time µs, mass ng; velocity µm/µs, force µN, 2D stress N/m, 2D density ng/µm²\"/>\n"
-                         "  <Grid Name=\"coarse\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"));
+                         "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+                         grid_.c_str()));
   for (size_t k = 0; k < times_.size(); k++) {
-    PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"coarse_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", k, (double)times_[k]));
+    PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grid_.c_str(), k, (double)times_[k]));
     PetscCall(PetscFPrintf(comm_, fp,
                            "    <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 4\" NumberType=\"Int\" "
                            "Precision=\"%d\" Format=\"HDF\">%s:/mesh/cells</DataItem>\n    </Topology>\n",
@@ -218,10 +239,11 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
                            "    <Geometry GeometryType=\"XY\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 2\" "
                            "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n",
                            NV, h5));
-    const struct {
-      const char *name, *type, *center, *unit;
+    struct Attribute {
+      std::string name, type, center, unit;
       long long   n, ncomp;
-    } attrs[] = {
+    };
+    std::vector<Attribute> attrs = {
       {"displacement", "Vector", "Node", "µm",      NV, 3},
       {"velocity",     "Vector", "Node", "µm/µs",  NV, 3},
       {"stress",       "Tensor", "Cell", "N/m",      NC, 9},
@@ -230,6 +252,8 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
       {"stress_xy",    "Scalar", "Cell", "N/m",      NC, 1},
       {"density",      "Scalar", "Cell", "ng/µm²", NC, 1}
     };
+    if (acoustic_) attrs.push_back({"acoustic_min_det", "Scalar", "Cell", "(N/m)²", NC, 1});
+    for (const Field &f : extra_) attrs.push_back({f.name, "Vector", "Node", f.unit, NV, 3});
     for (const auto &a : attrs) {
       char dims[64];
       if (a.ncomp > 1) PetscCall(PetscSNPrintf(dims, sizeof dims, "%lld %lld", a.n, a.ncomp));
@@ -238,7 +262,7 @@ PetscErrorCode CoarseFieldsWriter::WriteXdmf()
                              "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
                              "     <DataItem Dimensions=\"%s\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    "
                              "</Attribute>\n",
-                             a.name, a.type, a.center, a.unit, dims, h5, k, a.name));
+                             a.name.c_str(), a.type.c_str(), a.center.c_str(), a.unit.c_str(), dims, h5, k, a.name.c_str()));
     }
     PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
   }
@@ -253,6 +277,7 @@ PetscErrorCode CoarseFieldsWriter::Close()
   if (viewer_) PetscCall(PetscViewerDestroy(&viewer_));
   viewer_ = nullptr;
   PetscCall(VecDestroy(&Uloc_));
+  PetscCall(VecDestroy(&Vloc_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

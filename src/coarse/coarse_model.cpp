@@ -3,6 +3,7 @@
 #include "q1_element.h"
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/coarse/gmsh_check.h>
+#include <turgor/material/acoustic_tensor.h>
 #include <turgor/core/memory.h>
 #include <turgor/core/log.h>
 #include <petscsf.h>
@@ -27,7 +28,7 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
 {
   char      label[64], rule[64];
   PetscInt  values[8], n = 8;
-  PetscBool set, lumped  = lumped_mass ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE, acoustic = acoustic_field ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
   PetscCall(PetscStrncpy(rule, q1::kRules[(int)quadrature].name, sizeof rule));
@@ -55,6 +56,11 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
                                "Material points of an element: sri (deviatoric stress at the 2 x 2 Gauss points, pressure at the centre: 5 points) or "
                                "full (the whole stress at the 2 x 2 Gauss points: 4 points)",
                                "CoarseSpec", rule, rule, sizeof rule, NULL));
+  PetscCall(PetscOptionsBool("-acoustic_field",
+                             "Snapshots carry acoustic_min_det, per element the smallest det of the acoustic tensor of D^e and the stress over directions and "
+                             "material points (loss of ellipticity where <= 0); needs the material tangents at every snapshot (3 more material "
+                             "evaluations per point, counted as output solves)",
+                             "CoarseSpec", acoustic, &acoustic, NULL));
   PetscOptionsEnd();
   {
     bool known = false;
@@ -69,7 +75,8 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(CheckNotEmpty(comm, "-coarse_dirichlet_values", "label values, e.g. 4 (the left side of a box)"));
   dirichlet_label = label;
   if (set) dirichlet_values.assign(values, values + n);
-  lumped_mass = lumped;
+  lumped_mass    = lumped;
+  acoustic_field = acoustic;
   PetscCheck(!dirichlet_values.empty(), comm, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_values: no value given");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -408,6 +415,7 @@ PetscErrorCode CoarseModel::SetUp()
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventRegister("TgCoarseResidual", PETSC_OBJECT_CLASSID, &ev_residual_));
   PetscCall(PetscLogEventRegister("TgCoarseJacobian", PETSC_OBJECT_CLASSID, &ev_jacobian_));
+  PetscCall(PetscLogEventRegister("TgCoarseTangentAt", PETSC_OBJECT_CLASSID, &ev_tangent_at_));
   rule_ = &q1::kRules[(int)spec_.quadrature];
   npts_ = rule_->points;
   PetscCall(CreateMesh());
@@ -425,6 +433,7 @@ PetscErrorCode CoarseModel::SetUp()
   response_.resize(np);
   tangent_.resize(np);
   cell_stress_.assign(3 * (c_end_ - c_start_), 0);
+  cell_acoustic_.assign(c_end_ - c_start_, NAN);
   /* the reference density from the material at rest (an RVE: its mass over its area) */
   PetscBool   ok;
   std::string why;
@@ -446,6 +455,48 @@ PetscErrorCode CoarseModel::SetUp()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CoarseModel::VertexState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing)
+{
+  DM                 cdm;
+  Vec                coords, Uloc;
+  PetscSection       cs, ls;
+  const PetscScalar *xc;
+  PetscScalar       *u;
+  std::string        mine;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateDM(dm_, &cdm));
+  PetscCall(DMGetLocalSection(cdm, &cs));
+  PetscCall(DMGetCoordinatesLocal(dm_, &coords));
+  PetscCall(DMGetLocalSection(dm_, &ls));
+  PetscCall(DMCreateLocalVector(dm_, &Uloc));
+  PetscCall(VecZeroEntries(Uloc));
+  PetscCall(VecGetArrayRead(coords, &xc));
+  PetscCall(VecGetArray(Uloc, &u));
+  for (PetscInt v = v_start_; v < v_end_ && mine.empty(); v++) {
+    PetscInt  coff, off, dof, cdof;
+    PetscReal state[4] = {0, 0, 0, 0};
+    PetscCall(PetscSectionGetOffset(cs, v, &coff));
+    PetscCall(PetscSectionGetOffset(ls, v, &off));
+    PetscCall(PetscSectionGetDof(ls, v, &dof));
+    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+    if (dof - cdof != 4) continue; /* clamped */
+    const PetscReal X[2] = {PetscRealPart(xc[coff]), PetscRealPart(xc[coff + 1])};
+    if (!f(X, state)) {
+      char where[96];
+      PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g)", (double)X[0], (double)X[1]));
+      mine = where;
+    }
+    for (int d = 0; d < 4; d++) u[off + d] = state[d];
+  }
+  PetscCall(VecRestoreArray(Uloc, &u));
+  PetscCall(VecRestoreArrayRead(coords, &xc));
+  PetscCall(FirstMessage(comm_, mine, missing));
+  PetscCall(VecZeroEntries(U));
+  PetscCall(DMLocalToGlobal(dm_, Uloc, INSERT_VALUES, U));
+  PetscCall(VecDestroy(&Uloc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The constrained entries of a local vector are not touched by DMGlobalToLocal: the model's own
    local vector keeps the boundary values inserted once (and again when they change); any other one
    gets them here. */
@@ -459,15 +510,16 @@ PetscErrorCode CoarseModel::GlobalToLocal(Vec U, Vec Uloc)
 
 /* Where a material point is and what it was asked: global element, which of its points, F, Fdot,
    the reason and the last residual. */
-PetscErrorCode CoarseModel::DescribePoint(PetscInt m, std::string *text) const
+PetscErrorCode CoarseModel::DescribePoint(PetscInt m, const std::vector<Tensor2> &Fs, const std::vector<Tensor2> &Fdots, const std::vector<MaterialResponse> &r,
+                                          std::string *text) const
 {
-  const Tensor2 &F = F_[m], &Fd = Fdot_[m];
+  const Tensor2 &F = Fs[m], &Fd = Fdots[m];
   char           buf[512];
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf,
                           "element %" PetscInt_FMT " (%s), F = [%.6g %.6g; %.6g %.6g] (det %.4g), Fdot = [%.4g %.4g; %.4g %.4g] /µs, residual %.3g: %s",
                           cell_gid_[m / npts_], rule_->where[m % npts_], (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)F.Det(),
-                          (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)response_[m].residual, response_[m].reason.c_str()));
+                          (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)r[m].residual, r[m].reason.c_str()));
   *text = buf;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -523,7 +575,12 @@ PetscErrorCode CoarseModel::EvaluateCellStress(Vec U, PetscBool *ok)
   PetscFunctionBeginUser;
   PetscCall(GlobalToLocal(U, Uloc_));
   PetscCall(CacheHolds(Uloc_, false, &holds));
-  if (!holds) {
+  if (spec_.acoustic_field) { /* one output evaluation with D^e serves both (the stress from the cache when it holds) */
+    PetscBool aok;
+    PetscCall(EvaluateForOutput(Uloc_, false, &aok, NULL));
+    AcousticFromOutput();
+    if (!holds) r = &out_response_;
+  } else if (!holds) {
     PetscCall(DeformationAt(Uloc_, out_F_, out_Fdot_));
     out_response_.resize(out_F_.size());
     PetscCall(pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), NULL, EvaluationKind::Output));
@@ -597,7 +654,7 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   std::string first;
   for (size_t k = 0; k < response_.size(); k++)
     if (!response_[k].ok) {
-      if (!nfailed) PetscCall(DescribePoint((PetscInt)k, &first));
+      if (!nfailed) PetscCall(DescribePoint((PetscInt)k, F_, Fdot_, response_, &first));
       nfailed++;
       local_ok = 0;
     }
@@ -773,43 +830,28 @@ static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, q1::PointPar
     }
 }
 
-PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh)
+/* [[0, -I], [K, C]]: per element, K from each point's part of D^e with the initial-stress term
+   and C from its part of D^v (SplitTangent), on the current configuration; -I on the free
+   displacement rows. */
+PetscErrorCode CoarseModel::AssembleKC(const std::vector<Tensor2> &Fs, const std::vector<MaterialResponse> &r, const std::vector<Tangents> &D, Mat J)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
-  counters_.jacobians++;
-  if (!refresh && KC_) { /* modified Newton: the last K, C with the new shift */
-    *ok = PETSC_TRUE;
-    tangent_age_++;
-    PetscCall(MatCopy(KC_, J, SAME_NONZERO_PATTERN));
-    PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
-    PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  PetscCall(EvaluateMaterials(U, true, ok, NULL));
   PetscCall(MatZeroEntries(J));
-  if (!*ok) { /* the caller rejects the state; leave a harmless matrix */
-    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
-    PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
   for (PetscInt c = c_start_; c < c_end_; c++) {
     const PetscInt k           = c - c_start_;
     PetscScalar    ke[16 * 16] = {0};
     for (int q = 0; q < npts_; q++) {
       const PetscInt      m     = k * npts_ + q;
-      const Tensor2      &F     = F_[m];
+      const Tensor2      &F     = Fs[m];
       const Tensor2       Fi    = F.Inverse();
       const PetscReal     W     = wdet_[m] * F.Det();
       const PetscReal    *dN    = &dN_[m * 8];
       const q1::PointPart part  = rule_->part[q];
-      const Tensor2       sigma = response_[m].sigma.Sym();
+      const Tensor2       sigma = r[m].sigma.Sym();
       const Tensor2       s     = StressPart(part, sigma);
       PetscReal           De[3][3], Dv[3][3], g[4][2];
-      SplitTangent(tangent_[m].De, sigma, part, false, De);
-      SplitTangent(tangent_[m].Dv, sigma, part, true, Dv);
+      SplitTangent(D[m].De, sigma, part, false, De);
+      SplitTangent(D[m].Dv, sigma, part, true, Dv);
       for (int a = 0; a < 4; a++) {
         g[a][0] = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1];
         g[a][1] = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
@@ -848,11 +890,92 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
     for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(J, off + d, off + 2 + d, -1.0, ADD_VALUES));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
+  counters_.jacobians++;
+  if (!refresh && KC_) { /* modified Newton: the last K, C with the new shift */
+    *ok = PETSC_TRUE;
+    tangent_age_++;
+    PetscCall(MatCopy(KC_, J, SAME_NONZERO_PATTERN));
+    PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+    PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(EvaluateMaterials(U, true, ok, NULL));
+  PetscCall(MatZeroEntries(J));
+  if (!*ok) { /* the caller rejects the state; leave a harmless matrix */
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+    PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(AssembleKC(F_, response_, tangent_, J));
   if (!KC_) PetscCall(MatDuplicate(J, MAT_COPY_VALUES, &KC_));
   else PetscCall(MatCopy(J, KC_, SAME_NONZERO_PATTERN));
   tangent_age_ = 0;
   PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
   PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::EvaluateForOutput(Vec Uloc, bool viscous, PetscBool *ok, std::string *why)
+{
+  TangentOptions &opt  = pool_.Tangent();
+  const bool      keep = opt.viscosity;
+  PetscFunctionBeginUser;
+  PetscCall(DeformationAt(Uloc, out_F_, out_Fdot_));
+  out_response_.resize(out_F_.size());
+  out_tangent_.resize(out_F_.size());
+  opt.viscosity             = viscous; /* D^v only when asked: 3 material evaluations per point */
+  const PetscErrorCode ierr = pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), out_tangent_.data(), EvaluationKind::Output);
+  opt.viscosity             = keep;
+  PetscCall(ierr);
+  int         local_ok = 1, global_ok;
+  std::string first;
+  for (size_t k = 0; k < out_response_.size() && local_ok; k++)
+    if (!out_response_[k].ok) {
+      local_ok = 0;
+      PetscCall(DescribePoint((PetscInt)k, out_F_, out_Fdot_, out_response_, &first));
+    }
+  PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
+  *ok = global_ok ? PETSC_TRUE : PETSC_FALSE;
+  if (why) *why = local_ok ? (global_ok ? "" : "on another rank") : first;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void CoarseModel::AcousticFromOutput()
+{
+  for (PetscInt k = 0; k < c_end_ - c_start_; k++) {
+    PetscReal m = PETSC_MAX_REAL;
+    for (PetscInt q = 0; q < npts_ && !std::isnan(m); q++) {
+      const PetscInt p = k * npts_ + q;
+      m                = out_response_[p].ok ? PetscMin(m, MinAcousticDeterminant(out_tangent_[p].De, out_response_[p].sigma.Sym()).det) : NAN;
+    }
+    cell_acoustic_[k] = m;
+  }
+}
+
+PetscErrorCode CoarseModel::AssembleTangentAt(Vec U, bool damping, Mat J, PetscBool *ok, std::string *why)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_tangent_at_, 0, 0, 0, 0));
+  PetscCall(GlobalToLocal(U, Uloc_));
+  PetscCall(EvaluateForOutput(Uloc_, damping, ok, why));
+  if (*ok) {
+    PetscCall(AssembleKC(out_F_, out_response_, out_tangent_, J));
+    AcousticFromOutput();
+  } else {
+    PetscCall(MatZeroEntries(J));
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(PetscLogEventEnd(ev_tangent_at_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -58,6 +58,7 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
                             "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
   PetscOptionsEnd();
   PetscCheck(jacobian_max_age_ >= -1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_jacobian_max_age = %" PetscInt_FMT ": must be >= -1", jacobian_max_age_);
+  PetscCall(monitor_.SetFromOptions("fe2_", "steps", "time"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -71,6 +72,8 @@ PetscErrorCode FE2Run::SetUpModel()
   PetscCall(MatDuplicate(model_.MassMatrix(), MAT_DO_NOT_COPY_VALUES, &J_));
   PetscCall(TSSetDM(ts_, model_.GetDM()));
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
+  PetscCall(monitor_.SetUp(model_, out_.ready ? out_.dir : std::string()));
+  if (monitor_.Active()) PetscCall(TSMonitorSet(ts_, EigenMonitor, this, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -204,6 +207,19 @@ PetscErrorCode FE2Run::AfterStep(PetscReal t, Vec U)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A TS monitor: called at the initial state (step 0) and after every accepted step, after
+   AfterStep (TS post-step); the monitor evaluates the material points for output only. */
+PetscErrorCode FE2Run::EigenMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
+{
+  return TURGOR_GUARDED({
+    FE2Run *run = (FE2Run *)ctx;
+    PetscFunctionBeginUser;
+    run->model_.SetEvaluationTime(t);
+    PetscCall(run->monitor_.Check(step, t, U));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
 PetscErrorCode FE2Run::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
 {
   PetscReal uy;
@@ -271,6 +287,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
     js.Set("time_integrator_and_linear_algebra_s", wall - trial - tangents);
   }
   js.Set("pool_remote_bytes_per_evaluation", model_.Pool().RemoteBytesPerEvaluation());
+  if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -282,6 +299,7 @@ PetscErrorCode FE2Run::DoneDetails(std::string *details)
   PetscCall(model_.Pool().GlobalCounters(&rc));
   *details = std::to_string(cc.residuals) + " function and " + std::to_string(cc.tangent_evals) + " Jacobian evaluations, " + std::to_string(rc.solves) +
              " RVE solves (" + std::to_string(rc.tangent_solves) + " for tangents)";
+  if (monitor_.Active()) *details += "; stability monitor: " + monitor_.Report();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -51,6 +51,7 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions());
   PetscCall(spec_.SetFromOptions(comm_));
+  PetscCall(monitor_.SetFromOptions("fe2_static_", "converged load levels", "load_factor"));
   PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_)); /* not prepared under -help */
   /* the nonlinear solver, with defaults through the API (the user's -fe2_static_snes_* win at
      SNESSetFromOptions in SetUp): Newton with full steps, the load cut-back being its
@@ -172,6 +173,7 @@ PetscErrorCode FE2StaticRun::SetUp()
     if (rank == 0 && have_dir_) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"load_factor", "tip_displacement_y", "snes_its"}));
   }
   if (spec_.snapshot && have_dir_) PetscCall(fields_.Open(model_, output_dir_, "coarse"));
+  PetscCall(monitor_.SetUp(model_, have_dir_ ? output_dir_ : std::string()));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -294,6 +296,15 @@ PetscErrorCode FE2StaticRun::Record(PetscReal lambda, PetscInt its)
   if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its}));
   PetscCall(PetscPrintf(comm_, "  load factor %-10.6g (increment %.4g): %2" PetscInt_FMT " Newton iterations, tip displacement %.8g µm\n", (double)lambda,
                         (double)increment_, its, (double)tip_));
+  PetscCall(monitor_.Check(levels_++, lambda, U_)); /* level 0: the load factor 0 */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2StaticRun::ConvergedState(Vec U)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ToState(x_conv_));
+  PetscCall(VecCopy(U_, U));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -423,6 +434,7 @@ PetscErrorCode FE2StaticRun::Summary(JsonObject &js, const char *status)
   js.Set("tip_displacement_final", tip_);
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("snapshots", fields_.Count());
+  if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -447,6 +459,9 @@ PetscErrorCode FE2StaticRun::WriteSummary()
                         interrupted_ ? "Interrupted" : "Done", (double)lambda_, increments_, cutbacks_, snes_its_, model_.Counters().residuals,
                         model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, output_dir_.c_str(),
                         fields_.Count() ? ", coarse.h5 + coarse.xmf" : ""));
+  if (monitor_.Active())
+    PetscCall(
+      PetscPrintf(comm_, "Stability monitor: %s; stability.csv%s\n", monitor_.Report().c_str(), monitor_.Lost() ? ", stability.h5 + stability.xmf" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,6 +1,7 @@
 /* TurgorRegisterAll(): every pluggable part of turgor, one line each -- TS types, physics terms,
    (later) materials, tissue generators and run modes. */
 #include <turgor/core/register_all.h>
+#include <turgor/analysis/eigen_run.h>
 #include <turgor/coarse/fe2_run.h>
 #include <turgor/coarse/fe2_static_run.h>
 #include <turgor/fine/fine_run.h>
@@ -22,6 +23,7 @@
 #include <turgor/tissue/voronoi.h>
 #include <turgor/ts/ts_register.h>
 #include <turgor/core/errors.h>
+#include <slepcsys.h>
 
 namespace {
 PetscBool registered = PETSC_FALSE; /* PETSc-style registration flag, cleared at PetscFinalize() */
@@ -29,7 +31,7 @@ PetscBool registered = PETSC_FALSE; /* PETSc-style registration flag, cleared at
 PetscErrorCode Unregister(void)
 {
   registered = PETSC_FALSE;
-  return PETSC_SUCCESS;
+  return SlepcFinalize(); /* SLEPc did not start PETSc: this only marks it finalised */
 }
 
 PetscErrorCode RegisterAll(void)
@@ -37,6 +39,8 @@ PetscErrorCode RegisterAll(void)
   using namespace turgor;
   PetscFunctionBeginUser;
   if (registered) PetscFunctionReturn(PETSC_SUCCESS);
+  /* SLEPc (-mode eigen, the stability monitors) on top of the PETSc the caller initialised */
+  PetscCall(SlepcInitializeNoArguments());
   PetscCall(TurgorTSRegisterAll());
   /* physics terms (-physics) */
   PetscCall(ForceTermRegister("springs", CreateInstance<ForceTerm, WallSprings>));
@@ -61,6 +65,7 @@ PetscErrorCode RegisterAll(void)
   PetscCall(SimulationRegister("rve", CreateInstance<Simulation, StrainPathRun>));
   PetscCall(SimulationRegister("fe2", CreateInstance<Simulation, FE2Run>));
   PetscCall(SimulationRegister("fe2_static", CreateInstance<Simulation, FE2StaticRun>));
+  PetscCall(SimulationRegister("eigen", CreateInstance<Simulation, EigenRun>));
   PetscCall(PetscRegisterFinalize(Unregister));
   registered = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -8,7 +8,9 @@ namespace turgor {
 
 /* The files turgor writes into an output directory (any mode): the only ones -output_overwrite
    removes. */
-static const char *const kOutputFiles[] = {"summary.json", "tip.csv", "groups.csv", "rve.csv", "particles.h5", "particles.xmf", "coarse.h5", "coarse.xmf"};
+static const char *const kOutputFiles[] = {"summary.json",  "tip.csv",       "groups.csv",   "rve.csv",       "particles.h5",
+                                           "particles.xmf", "coarse.h5",     "coarse.xmf",   "eigen.csv",     "modes.h5",
+                                           "modes.xmf",     "stability.csv", "stability.h5", "stability.xmf", "spectrum.png"};
 
 PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite, bool *prepared)
 {

@@ -184,7 +184,8 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
     time_trial_ += t1 - t0;
     if (r.ok && D) {
       PetscCall(PetscLogEventBegin(ev_tangents_, 0, 0, 0, 0));
-      PetscCall(ComputeTangents(mp, Fg, Fdg, r, tangent_, &T, &status));
+      /* tangents for output leave the work counters as they are, like the output evaluation itself */
+      PetscCall(ComputeTangents(mp, Fg, Fdg, r, tangent_, &T, &status, kind == EvaluationKind::Output ? EvaluationKind::Output : EvaluationKind::Perturbed));
       PetscCall(PetscLogEventEnd(ev_tangents_, 0, 0, 0, 0));
       PetscCall(PetscTime(&t2));
       time_tangents_ += t2 - t1;

@@ -18,7 +18,7 @@ static void StoreColumn(const Tensor2 &c, int col, PetscReal D[3][3])
 }
 
 PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D,
-                               MaterialResponse *status)
+                               MaterialResponse *status, EvaluationKind kind)
 {
   const PetscReal  U     = opt.U > 0 ? opt.U : mp.StressUncertainty();
   const PetscReal  sq    = std::sqrt(U);
@@ -35,13 +35,13 @@ PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor
       const PetscReal eps = sq;
       const Tensor2   dF  = eps * (E * F);
       Tensor2         dsigma;
-      PetscCall(mp.Evaluate(F + dF, Fdot, EvaluationKind::Perturbed, &rp));
+      PetscCall(mp.Evaluate(F + dF, Fdot, kind, &rp));
       if (!rp.ok) {
         *status = rp;
         PetscFunctionReturn(PETSC_SUCCESS);
       }
       if (opt.central) {
-        PetscCall(mp.Evaluate(F - dF, Fdot, EvaluationKind::Perturbed, &rm));
+        PetscCall(mp.Evaluate(F - dF, Fdot, kind, &rm));
         if (!rm.ok) {
           *status = rm;
           PetscFunctionReturn(PETSC_SUCCESS);
@@ -59,13 +59,13 @@ PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor
       const PetscReal eps = sq * std::max(Fdot.Norm() / EF.Norm(), opt.Fdot_typ);
       const Tensor2   dFd = eps * EF;
       Tensor2         dsigma;
-      PetscCall(mp.Evaluate(F, Fdot + dFd, EvaluationKind::Perturbed, &rp));
+      PetscCall(mp.Evaluate(F, Fdot + dFd, kind, &rp));
       if (!rp.ok) {
         *status = rp;
         PetscFunctionReturn(PETSC_SUCCESS);
       }
       if (opt.central) {
-        PetscCall(mp.Evaluate(F, Fdot - dFd, EvaluationKind::Perturbed, &rm));
+        PetscCall(mp.Evaluate(F, Fdot - dFd, kind, &rm));
         if (!rm.ok) {
           *status = rm;
           PetscFunctionReturn(PETSC_SUCCESS);

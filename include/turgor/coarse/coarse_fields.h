@@ -2,9 +2,10 @@
 /* Coarse fields for ParaView: one HDF5 file with the quadrilateral mesh (vertices, cells) and a
    group per snapshot (displacement and velocity at the vertices, 3 components with z = 0; per
    element the Cauchy stress as a 3 x 3 tensor and as stress_xx, stress_yy, stress_xy, and the
-   density), and an XDMF file describing the temporal collection, with units. The mesh is small:
-   rank 0 gathers and writes (PetscViewerHDF5 on PETSC_COMM_SELF); the XDMF is rewritten after
-   every snapshot. */
+   density; acoustic_min_det when the model computes it, CoarseSpec::acoustic_field; and any further
+   vertex vectors a caller adds, such as mode shapes), and an XDMF file describing the temporal
+   collection, with units. The mesh is small: rank 0 gathers and writes (PetscViewerHDF5 on
+   PETSC_COMM_SELF); the XDMF is rewritten after every snapshot. */
 #include <turgor/coarse/coarse_model.h>
 #include <petscviewer.h>
 #include <string>
@@ -14,9 +15,14 @@ namespace turgor {
 
 class CoarseFieldsWriter {
 public:
+  /* Before Open: a further vertex vector in every snapshot, given to Write as a global vector of the
+     model's layout whose displacement components it takes (3 components, z = 0; 0 on the clamped
+     vertices). */
+  void           AddVertexVector(const std::string &name, const std::string &unit) { extra_.push_back({name, unit}); }
   PetscErrorCode Open(CoarseModel &model, const std::string &dir, const std::string &base);
-  /* U global state; the stresses of the model's last material evaluation (call after one at U). */
-  PetscErrorCode Write(CoarseModel &model, Vec U, PetscReal time);
+  /* U global state; the stresses (and acoustic field) of the model's last EvaluateCellStress at U;
+     `vectors`: one per AddVertexVector, in that order. */
+  PetscErrorCode Write(CoarseModel &model, Vec U, PetscReal time, const std::vector<Vec> &vectors = {});
   PetscErrorCode Close();
   ~CoarseFieldsWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
@@ -24,7 +30,16 @@ public:
 private:
   PetscErrorCode WriteXdmf();
   PetscErrorCode WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs);
+  /* rank 0: components [offset, offset + 1] of each vertex of a global vector V of the model's
+     layout, 3 per vertex (z = 0); the clamped vertices get their boundary values (state) or 0 */
+  PetscErrorCode GatherVertexVector(CoarseModel &model, Vec V, PetscInt offset, bool boundary_values, std::vector<PetscReal> &xyz);
 
+  struct Field {
+    std::string name, unit;
+  };
+  std::vector<Field>     extra_;
+  bool                   acoustic_ = false; /* the model's acoustic_min_det is written */
+  std::string            grid_;             /* the collection's name: the file's base name */
   MPI_Comm               comm_   = MPI_COMM_NULL;
   PetscMPIInt            rank_   = 0;
   PetscViewer            viewer_ = nullptr;
@@ -32,7 +47,7 @@ private:
   PetscInt               n_vertices_ = 0, n_cells_ = 0;
   std::vector<PetscInt>  vertex_gid_; /* per local vertex: global number, < 0 if not owned */
   std::vector<PetscReal> times_;
-  Vec                    Uloc_ = nullptr;
+  Vec                    Uloc_ = nullptr, Vloc_ = nullptr;
   PetscReal              rho0_ = 0;   /* the model's reference density */
   std::vector<PetscReal> xy_, area0_; /* rank 0: reference vertex coordinates, element areas */
   std::vector<PetscInt>  cells_;      /* rank 0: the four vertices of each element */

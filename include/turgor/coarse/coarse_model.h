@@ -46,6 +46,7 @@ struct CoarseSpec {
   std::vector<PetscInt> dirichlet_values = {4}; /* box: 1 bottom, 2 right, 3 top, 4 left */
   bool                  lumped_mass      = false;
   CoarseQuadrature      quadrature       = CoarseQuadrature::SRI;
+  bool                  acoustic_field   = true; /* snapshots carry the acoustic-tensor field (material tangents at output) */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -78,6 +79,14 @@ public:
      Jacobian are reused (a modified Newton iteration: no material tangents); only the shift part
      changes. */
   PetscErrorCode IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *ok, bool refresh = true);
+  /* [[0, -I], [K, C]] at U into J (a matrix of MassMatrix()'s pattern), without the shift: the same
+     assembly as IJacobian's, with C from D^v when `damping` (C = 0 otherwise: D^v is then not
+     computed). The material points are evaluated for output (EvaluationKind::Output, tangents
+     included): their states, the material cache and the K, C kept for the integrator stay as they
+     are, so an analysis during a run (an eigen monitor) does not change the run; the work is
+     counted as output solves. *ok = false when a material point failed, *why says where. Also
+     fills CellAcoustic() at U. */
+  PetscErrorCode AssembleTangentAt(Vec U, bool damping, Mat J, PetscBool *ok, std::string *why);
   /* Jacobians assembled from the same K, C since they were last computed. */
   PetscInt TangentAge() const { return tangent_age_; }
   /* Udot = Mt^{-1} G(U) (explicit integrators). */
@@ -124,7 +133,17 @@ public:
      snapshot does not change the run. */
   PetscErrorCode                EvaluateCellStress(Vec U, PetscBool *ok);
   const std::vector<PetscReal> &CellStress() const { return cell_stress_; }
+  /* Per local cell, the smallest over its material points of min_n det Q(n), Q the acoustic tensor
+     of the point's D^e and stress (material/acoustic_tensor.h) [(N/m)^2]: <= 0 where the
+     incremental problem loses ellipticity. Filled by EvaluateCellStress when
+     Spec().acoustic_field (tangents at output: 3 more material evaluations per point), and by
+     AssembleTangentAt; NaN for a cell whose points failed. */
+  const std::vector<PetscReal> &CellAcoustic() const { return cell_acoustic_; }
   PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
+  /* U (global) from a function of the reference position: f(X, state) gives [ux, uy, vx, vy] of the
+     vertex at X, or false when it has none; the clamped vertices are left out. Collective: *missing
+     is the first position without a value on any rank ("" when every vertex got one). */
+  PetscErrorCode VertexState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing);
   /* Global vector with the boundary values inserted into the local constrained dofs. */
   PetscErrorCode GlobalToLocal(Vec U, Vec Uloc);
   /* The boundary values (u = g(X), v = 0) into the constrained dofs of a local vector. */
@@ -133,12 +152,21 @@ public:
 private:
   static PetscErrorCode BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx);
   PetscErrorCode        CreateMesh();
-  PetscErrorCode        DescribePoint(PetscInt m, std::string *text) const; /* for failure reports */
-  PetscErrorCode        CheckSize(PetscReal elements);                      /* memory and PetscInt range of the material points */
-  PetscErrorCode        CreateSection();
-  PetscErrorCode        PrecomputeElements();
-  PetscErrorCode        AssembleMass();
-  PetscErrorCode        InternalForce(Vec Floc); /* local [0; f_int - f_ext] from the cached materials */
+  /* for failure reports: point m of the evaluation (F, Fdot, r) */
+  PetscErrorCode DescribePoint(PetscInt m, const std::vector<Tensor2> &F, const std::vector<Tensor2> &Fdot, const std::vector<MaterialResponse> &r,
+                               std::string *text) const;
+  PetscErrorCode CheckSize(PetscReal elements); /* memory and PetscInt range of the material points */
+  PetscErrorCode CreateSection();
+  PetscErrorCode PrecomputeElements();
+  PetscErrorCode AssembleMass();
+  PetscErrorCode InternalForce(Vec Floc); /* local [0; f_int - f_ext] from the cached materials */
+  /* [[0, -I], [K, C]] into J from the material points' F, responses and tangents (per local point) */
+  PetscErrorCode AssembleKC(const std::vector<Tensor2> &F, const std::vector<MaterialResponse> &r, const std::vector<Tangents> &D, Mat J);
+  /* the material points at the local state Uloc for output, with tangents (D^v when viscous) into
+     out_tangent_, leaving the points and the cache as they are; *ok on all ranks, *why this rank's
+     first failure */
+  PetscErrorCode EvaluateForOutput(Vec Uloc, bool viscous, PetscBool *ok, std::string *why);
+  void           AcousticFromOutput(); /* cell_acoustic_ from out_response_, out_tangent_ */
   /* F and Fdot at the material points of this rank's cells, from the local state */
   PetscErrorCode DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std::vector<Tensor2> &Fdot);
   /* true when the cached evaluation is of this local state (collective) */
@@ -188,8 +216,10 @@ private:
   std::vector<PetscReal>        cell_stress_;
   std::vector<Tensor2>          out_F_, out_Fdot_; /* EvaluateCellStress's own, outside the cache */
   std::vector<MaterialResponse> out_response_;
+  std::vector<Tangents>         out_tangent_;
+  std::vector<PetscReal>        cell_acoustic_;
   CoarseCounters                counters_;
-  PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0;
+  PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0, ev_tangent_at_ = 0;
 };
 
 } // namespace turgor

@@ -5,7 +5,9 @@
    bdf, arkimex -- made fully implicit --, theta, ...) get the IFunction F = Mt Udot - G(U) and the
    IJacobian shift Mt + [[0, -I], [K, C]] assembled from the material tangents. A failed material
    evaluation (no RVE convergence, inverted element) rejects the step and TS retries with a smaller
-   one. */
+   one. With -fe2_eigen_monitor N the lowest eigenvalues of the stiffness K are computed every N
+   steps (analysis/stability_monitor.h), and the first zero crossing (loss of stability) reported. */
+#include <turgor/analysis/stability_monitor.h>
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/run/time_run.h>
@@ -14,7 +16,7 @@ namespace turgor {
 
 class FE2Run : public TimeRun {
 public:
-  explicit FE2Run(MPI_Comm comm) : TimeRun(comm, "fe2"), model_(comm) { }
+  explicit FE2Run(MPI_Comm comm) : TimeRun(comm, "fe2"), model_(comm), monitor_(comm) { }
   ~FE2Run() override;
 
   CoarseModel &Model() { return model_; }
@@ -47,6 +49,7 @@ private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   PetscErrorCode        AfterStep(PetscReal t, Vec U) override;
+  static PetscErrorCode EigenMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
 
   LoadSpec    load_;
   CoarseModel model_;
@@ -56,6 +59,7 @@ private:
   PetscInt           jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
   bool               explicit_ = false;
   CoarseFieldsWriter fields_;
+  StabilityMonitor   monitor_; /* -fe2_eigen_monitor */
 };
 
 } // namespace turgor

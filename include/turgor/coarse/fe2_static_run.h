@@ -7,7 +7,11 @@
    halved and retried from the last converged state (material points reverted), a converged one is
    committed and may grow again; below -fe2_static_min_increment the run fails, naming the lambda
    reached. Outputs: tip.csv (one row per converged load level), summary.json, coarse.h5/.xmf (the
-   final state). Any -material, any -coarse_quadrature, any number of ranks. */
+   final state). Any -material, any -coarse_quadrature, any number of ranks. With
+   -fe2_static_eigen_monitor N the lowest eigenvalues of K are computed every N converged load levels
+   (analysis/stability_monitor.h): the first zero crossing along the load path is a loss of
+   stability (buckling), reported by its load factor. */
+#include <turgor/analysis/stability_monitor.h>
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/io/output.h>
@@ -27,7 +31,7 @@ struct StaticLoadSpec {
 
 class FE2StaticRun : public Simulation {
 public:
-  explicit FE2StaticRun(MPI_Comm comm) : comm_(comm), model_(comm) { }
+  explicit FE2StaticRun(MPI_Comm comm) : comm_(comm), model_(comm), monitor_(comm) { }
   ~FE2StaticRun() override;
   FE2StaticRun(const FE2StaticRun &)            = delete;
   FE2StaticRun &operator=(const FE2StaticRun &) = delete;
@@ -46,6 +50,8 @@ public:
   /* The last converged load factor and the tip displacement there. */
   PetscReal LoadFactor() const { return lambda_; }
   PetscReal TipDisplacement() const { return tip_; }
+  /* The last converged state [u; 0] into U (a global vector of Model()). */
+  PetscErrorCode ConvergedState(Vec U);
 
 private:
   static PetscErrorCode Residual(SNES snes, Vec x, Vec r, void *ctx);
@@ -69,11 +75,12 @@ private:
   bool               overwrite_ = false, have_dir_ = false, solving_ = false, interrupted_ = false;
   CsvWriter          tip_csv_;
   CoarseFieldsWriter fields_;
+  StabilityMonitor   monitor_; /* -fe2_static_eigen_monitor: eigenvalues of K along the load path */
   PetscLogStage      stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent      ev_increment_ = 0, ev_output_ = 0;
   /* results */
   PetscReal      lambda_ = 0, tip_ = 0, increment_ = 0, force_scale_ = 0;
-  PetscInt       increments_ = 0, cutbacks_ = 0, snes_its_ = 0, ksp_its_ = 0, solves_ = 0, failed_solves_ = 0;
+  PetscInt       levels_ = 0, increments_ = 0, cutbacks_ = 0, snes_its_ = 0, ksp_its_ = 0, solves_ = 0, failed_solves_ = 0;
   PetscLogDouble t0_ = 0, wall_ = 0;
   std::string    last_failure_;
 };

@@ -97,8 +97,10 @@ struct TangentOptions {
 
 /* Eqs 46-53: perturb F by eps (e_k (x) e_l) F for (kl) = (11), (22), (12) and Fdot likewise, and
    difference the stress with the Truesdell-rate correction of eq 48. `base` is the response at
-   (F, Fdot), already computed. On failure of a perturbed evaluation, *status says why. */
+   (F, Fdot), already computed. On failure of a perturbed evaluation, *status says why. The
+   perturbed evaluations are of `kind` (Perturbed; Output for tangents written or analysed only,
+   counted apart like any output evaluation). */
 PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D,
-                               MaterialResponse *status);
+                               MaterialResponse *status, EvaluationKind kind = EvaluationKind::Perturbed);
 
 } // namespace turgor
