@@ -163,11 +163,12 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v)
+PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t)
 {
   PetscFunctionBeginUser;
   const size_t n2 = 2 * (size_t)P_->n;
   ForceInput   in = {P_, x, v, &nb_, &images_};
+  in.t            = t;
   /* velocity Verlet accepts the positions it last evaluated (its velocities differ: the dashpots saw
      the half-step ones); then the neighbour lists are those of that evaluation */
   in.same_x = last_x_.size() == n2 && std::equal(last_x_.begin(), last_x_.end(), x);

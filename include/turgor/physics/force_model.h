@@ -50,8 +50,8 @@ public:
   PetscErrorCode ComputeAcceleration(const PetscReal *x, const PetscReal *v, PetscReal *a);
   /* Sum of the conservative terms' energies; *complete = PETSC_FALSE if some active term has none. */
   PetscErrorCode PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete);
-  /* Every term's AcceptStep at the accepted state (x, v) (integrators call it after each step). */
-  PetscErrorCode AcceptStep(const PetscReal *x, const PetscReal *v);
+  /* Every term's AcceptStep at the accepted state (x, v) of time t (integrators call it after each step). */
+  PetscErrorCode AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t = 0);
   bool           HasInternalState() const; /* some term has: the integrator must call AcceptStep */
   /* Stability bounds of an explicit step at state (x, v), every term's. */
   PetscErrorCode TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits);

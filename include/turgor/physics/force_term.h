@@ -25,6 +25,8 @@ struct ForceInput {
      term may commit what that evaluation computed instead of recomputing it (ForceModel compares
      once for all terms). */
   bool same_x = false, same_v = false;
+  /* AcceptStep only: the time of the accepted state (break records). */
+  PetscReal t = 0;
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */
@@ -47,6 +49,14 @@ struct TermField {
   } where;
   std::string            name, unit;
   std::vector<PetscReal> values;
+};
+
+/* Line segments a term draws in the snapshots (the glue bonds: node to bar point), with per-segment
+   fields (TermField::BAR, one value per segment). */
+struct TermSegments {
+  std::string            name; /* empty: none */
+  std::vector<PetscReal> xy;   /* x0 y0 x1 y1 per segment */
+  std::vector<TermField> fields;
 };
 
 class ForceTerm {
@@ -85,6 +95,13 @@ public:
      equations by it); 0 if the term sets none. */
   virtual PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const { return 0; }
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  /* Energy dissipated so far by the term's internal state (plastic rotation, frictional slip,
+     fracture), counted in AcceptStep; the energy balance (energy.csv) sets it against the work. */
+  virtual PetscReal Dissipation() const { return 0; }
+  /* A purely dissipative force (global viscosity): its work is its dissipation. */
+  virtual bool Dissipative() const { return false; }
+  /* Segments for the snapshots (TermSegments). */
+  virtual PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) { return PETSC_SUCCESS; }
   /* Fields for the snapshots at the state of `in` (TermField). */
   virtual PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) { return PETSC_SUCCESS; }
   /* Counters for summary.json, as (key, value) pairs summed over ranks (e.g. contact's mean number

@@ -21,6 +21,7 @@ public:
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   bool           HasInternalState() const override { return max_moment > 0; }
   PetscErrorCode AcceptStep(const ForceInput &in) override;
+  PetscReal      Dissipation() const override { return dissipated_; }
   PetscErrorCode View(PetscViewer viewer) const override;
   void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
 

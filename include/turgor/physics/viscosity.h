@@ -14,6 +14,7 @@ public:
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   PetscErrorCode View(PetscViewer viewer) const override;
+  bool           Dissipative() const override { return true; }
   /* nu sum |v|^2 at the last evaluation [µN µm/µs]: the rate at which the term removes energy */
   PetscReal DissipatedPower() const { return power_; }
 

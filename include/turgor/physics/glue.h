@@ -1,0 +1,112 @@
+#pragma once
+/* Glue bonds between neighbouring polygonal cells, and their fracture (issue 11; the middle lamella
+   of the L-hyphen seed, ../shared/seeds/004_b974c0f68c63d63f.txt, "Details of the model").
+
+   Bonds are made once, at the first evaluation (the reference geometry): every node within the
+   gluing distance eps (-glue_distance: surface gap, i.e. closer than 2 r + eps to the bar's centre
+   line) of a bar of another cell is bonded to the closest point of the closest such bar of that
+   cell, c = (1 - lambda) x_a + lambda x_b with lambda fixed. A bond carries a length share L of its
+   interface (docs/model.md "Glue"): along each run of consecutive bonded nodes of cell A on cell B,
+   each bond gets half the distances to its neighbours' bond points, so that the shares of a straight
+   interface sum to its length; a lone bond gets half its shorter bar; and where both cells' nodes are
+   bonded to each other, each side counts half.
+
+   Opening: g = x_p - c in the bar's frame (t along the bar, n towards the node), delta_n = g.n -
+   g0.n0, delta_t = g.t - g0.t0 from the reference g0. Per unit length: normal traction k_n <delta_n>
+   (tension only: compression is contact's), tangential k_t delta_t; a bond's force is (1 - D) L times
+   them, derived from its energy (1 - D) L (k_n <delta_n>^2 + k_t delta_t^2) / 2, so momentum and
+   angular momentum are conserved exactly (the bar's share by the lever rule plus a couple).
+
+   Laws (-glue_law):
+     energy    (brittle) breaks when the stored energy per length reaches G_c: at delta_c = sqrt(2 G_c / k_n) in pure opening;
+     strength  (brittle) breaks on the quadratic interaction (k_n <delta_n> / sigma_c)^2 + (k_t delta_t / tau_c)^2 >= 1;
+     softening bilinear: damage D grows with the largest equivalent opening l = sqrt(<delta_n>^2 + (k_t/k_n) delta_t^2)
+               from l_0 = sigma_c / k_n (the peak) to l_f = 2 G_c / sigma_c (broken); unloading is secant. The energy
+               dissipated once the largest opening is l is G_c (l - l_0) / (l_f - l_0) per length (the integral of
+               (1/2) k_n l^2 dD, whose integrand is constant), counted exactly whatever the time step: G_c per unit
+               length at the break, whatever the node spacing.
+   Internal state (damage, the intact flag) changes only in AcceptStep, at the accepted state; an
+   evaluation uses the damage its own opening would give (the trial value), never commits it. A
+   broken bond stays in the list, flagged: nothing but a break removes a bond, so created = intact +
+   broken always. Each break is recorded (BreakRecords) with its time, cells, node, bar, position,
+   mode and the energy it released. */
+#include <turgor/physics/force_term.h>
+#include <string>
+#include <vector>
+
+namespace turgor {
+
+class Glue : public ForceTermBase<Glue> {
+public:
+  enum Law {
+    ENERGY    = 0,
+    STRENGTH  = 1,
+    SOFTENING = 2
+  };
+  /* One break, as breaks.csv writes it. */
+  struct Break {
+    PetscReal   time, x, y, energy, length; /* energy released, the bond's length share */
+    PetscInt    bond, cell_node, cell_bar, node, bar;
+    const char *mode; /* tension, shear or mixed (by the normal and tangential shares of the stored energy) */
+  };
+
+  const char    *Name() const override { return "glue"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
+  PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
+  PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
+  bool           HasInternalState() const override { return true; }
+  PetscErrorCode AcceptStep(const ForceInput &in) override;
+  PetscReal      Dissipation() const override { return dissipated_; }
+  PetscErrorCode View(PetscViewer viewer) const override;
+  PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
+  PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) override;
+  void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
+
+  /* Make the bonds at positions X (without a call, at the first evaluation's positions). */
+  PetscErrorCode CreateBonds(const ParticleSet &P, const PetscReal *X);
+  /* Breaks since the last call (moved out). */
+  std::vector<Break> TakeBreaks();
+
+  PetscInt  Created() const { return (PetscInt)bonds_.size(); }
+  PetscInt  Intact() const { return intact_; }
+  PetscInt  Broken() const { return (PetscInt)bonds_.size() - intact_; }
+  PetscReal LengthShare(PetscInt b) const { return bonds_[b].L; }
+  PetscReal Damage(PetscInt b) const { return Damage(bonds_[b].lmax); }
+  bool      IsIntact(PetscInt b) const { return bonds_[b].intact; }
+  /* opening (delta_n, delta_t) of bond b at x */
+  void Opening(PetscInt b, const PetscReal *x, PetscReal *dn, PetscReal *dt) const;
+
+  Law       law                  = ENERGY;
+  PetscReal distance             = 0.1;   /* eps [µm]: gluing distance (surface gap) */
+  PetscReal normal_stiffness     = 1e4;   /* k_n [N/m per µm of interface] */
+  PetscReal tangential_stiffness = -1;    /* k_t; < 0: k_n */
+  PetscReal fracture_energy      = 1;     /* G_c [µN µm per µm of interface] */
+  PetscReal strength             = -1;    /* sigma_c [N/m]; < 0: sqrt(2 G_c k_n), where the energy law breaks in opening */
+  PetscReal shear_strength       = -1;    /* tau_c [N/m]; < 0: sigma_c sqrt(k_t / k_n) */
+  bool      open_cells           = false; /* glue open cells (plates, walls) too */
+
+private:
+  struct Bond {
+    PetscInt  p, a, b, s, cell_p, cell_s;
+    PetscReal lam, gn0, gt0, sign, L; /* bond point, reference opening components, side of n, length share */
+    PetscReal lmax   = 0;             /* committed largest equivalent opening (softening: D = D(lmax)) */
+    bool      intact = true;
+  };
+  template <int MODE>
+  PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
+  PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
+  void Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt, PetscReal *gn) const;
+
+  PetscReal          kt_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, lf_ = 0;
+  std::vector<Bond>  bonds_;
+  std::vector<Break> breaks_;
+  PetscInt           intact_ = 0, accepted_ = 0;
+  PetscReal          dissipated_ = 0, time_ = 0;
+  bool               have_bonds_ = false;
+  const ParticleSet *P_          = nullptr;
+};
+
+} // namespace turgor

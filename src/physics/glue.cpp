@@ -1,0 +1,416 @@
+#include <turgor/physics/glue.h>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace turgor {
+
+static const char *const kLaws[] = {"energy", "strength", "softening", "Glue::Law", "", NULL};
+
+PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
+{
+  PetscEnum e  = (PetscEnum)law;
+  PetscBool oc = open_cells ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "glue_", "Glue bonds between polygonal cells, and their fracture", "turgor");
+  PetscCall(PetscOptionsEnum("-law", "Rupture: energy (G_c reached), strength (quadratic sigma_c, tau_c interaction), softening (bilinear, G_c dissipated)",
+                             "Glue", kLaws, e, &e, NULL));
+  PetscCall(PetscOptionsReal("-distance", "Gluing distance eps [µm]: a node this close (surface gap) to a bar of another cell is bonded to it", "Glue",
+                             distance, &distance, NULL));
+  PetscCall(PetscOptionsReal("-normal_stiffness", "k_n [N/m per µm of interface]", "Glue", normal_stiffness, &normal_stiffness, NULL));
+  PetscCall(
+    PetscOptionsReal("-tangential_stiffness", "k_t [N/m per µm of interface]; negative: k_n", "Glue", tangential_stiffness, &tangential_stiffness, NULL));
+  PetscCall(
+    PetscOptionsReal("-fracture_energy", "G_c [µN µm per µm of interface] (laws energy and softening)", "Glue", fracture_energy, &fracture_energy, NULL));
+  PetscCall(PetscOptionsReal("-strength", "sigma_c, normal strength [N/m] (laws strength and softening); negative: sqrt(2 G_c k_n)", "Glue", strength,
+                             &strength, NULL));
+  PetscCall(PetscOptionsReal("-shear_strength", "tau_c, shear strength [N/m] (law strength); negative: sigma_c sqrt(k_t/k_n)", "Glue", shear_strength,
+                             &shear_strength, NULL));
+  PetscCall(PetscOptionsBool("-open_cells", "Glue open cells (plates, walls) too", "Glue", oc, &oc, NULL));
+  PetscOptionsEnd();
+  law        = (Law)e;
+  open_cells = oc;
+  PetscCheck(std::isfinite(distance) && distance >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_distance = %g: must be finite and >= 0", (double)distance);
+  PetscCheck(std::isfinite(normal_stiffness) && normal_stiffness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -glue_normal_stiffness = %g: must be finite and > 0", (double)normal_stiffness);
+  PetscCheck(std::isfinite(tangential_stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_tangential_stiffness = %g: must be finite",
+             (double)tangential_stiffness);
+  PetscCheck(std::isfinite(fracture_energy) && fracture_energy > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_fracture_energy = %g: must be finite and > 0",
+             (double)fracture_energy);
+  PetscCheck(std::isfinite(strength) && strength != 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -glue_strength = %g: must be finite and > 0 (or negative: derived)", (double)strength);
+  PetscCheck(std::isfinite(shear_strength) && shear_strength != 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -glue_shear_strength = %g: must be finite and > 0 (or negative: derived)", (double)shear_strength);
+  kt_    = tangential_stiffness < 0 ? normal_stiffness : tangential_stiffness;
+  sigma_ = strength > 0 ? strength : std::sqrt(2 * fracture_energy * normal_stiffness);
+  tau_   = shear_strength > 0 ? shear_strength : sigma_ * std::sqrt(kt_ / normal_stiffness);
+  l0_    = sigma_ / normal_stiffness;
+  lf_    = 2 * fracture_energy / sigma_;
+  PetscCheck(law != SOFTENING || lf_ > l0_ * (1 + 1e-12), comm, PETSC_ERR_ARG_INCOMP,
+             "Options -glue_law softening, -glue_strength = %g, -glue_fracture_energy = %g, -glue_normal_stiffness = %g: the softening branch needs G_c > "
+             "sigma_c^2 / (2 k_n) = %g (the bond would break at its peak: use -glue_law energy, or a lower strength)",
+             (double)sigma_, (double)fracture_energy, (double)normal_stiffness, (double)(sigma_ * sigma_ / (2 * normal_stiffness)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Glue::SetUp(const ParticleSet &P, NeighbourSearch &nb)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!P.polygons.empty() && P.node_polygon.size() == (size_t)P.n, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+             "glue needs a polygonal tissue (cells of nodes and bars: -tissue_type node_file, voronoi or polyline)");
+  P_ = &P;
+  bonds_.clear();
+  breaks_.clear();
+  intact_ = accepted_ = 0;
+  dissipated_         = 0;
+  have_bonds_         = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The bar's frame at x: t along a -> b, n = sign perp(t) towards the node's side, 1/|e|, and g = x_p - c in it. */
+void Glue::Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt,
+                 PetscReal *gn) const
+{
+  const PetscReal ex = x[2 * B.b] - x[2 * B.a], ey = x[2 * B.b + 1] - x[2 * B.a + 1];
+  *il = 1 / std::sqrt(ex * ex + ey * ey);
+  *tx = ex * *il, *ty = ey * *il;
+  *nx = -B.sign * *ty, *ny = B.sign * *tx;
+  const PetscReal gx = x[2 * B.p] - (1 - B.lam) * x[2 * B.a] - B.lam * x[2 * B.b], gy = x[2 * B.p + 1] - (1 - B.lam) * x[2 * B.a + 1] - B.lam * x[2 * B.b + 1];
+  *gt = gx * *tx + gy * *ty;
+  *gn = gx * *nx + gy * *ny;
+}
+
+void Glue::Opening(PetscInt b, const PetscReal *x, PetscReal *dn, PetscReal *dt) const
+{
+  PetscReal tx, ty, nx, ny, il, gt, gn;
+  Frame(bonds_[b], x, &tx, &ty, &nx, &ny, &il, &gt, &gn);
+  *dn = gn - bonds_[b].gn0;
+  *dt = gt - bonds_[b].gt0;
+}
+
+PetscReal Glue::Damage(PetscReal l) const
+{
+  if (law != SOFTENING || l <= l0_) return 0;
+  return l >= lf_ ? 1.0 : lf_ * (l - l0_) / (l * (lf_ - l0_));
+}
+
+PetscReal Glue::Dissipated(PetscReal l) const
+{
+  return law != SOFTENING || l <= l0_ ? 0 : l >= lf_ ? fracture_energy : fracture_energy * (l - l0_) / (lf_ - l0_);
+}
+
+/* Bonds at the reference positions X: for every node, the closest bar of each other cell within
+   2 r + eps (a grid of the nodes, visited from each bar's box), then the length shares. */
+PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
+{
+  PetscFunctionBeginUser;
+  bonds_.clear();
+  const PetscReal R = 2 * P.bar_radius + distance, R2 = R * R;
+  PetscReal       lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
+  for (PetscInt i = 0; i < P.n; i++)
+    for (int d = 0; d < 2; d++) lo[d] = std::min(lo[d], X[2 * i + d]), hi[d] = std::max(hi[d], X[2 * i + d]);
+  PetscReal h = std::max(R, 1e-12);
+  while (((hi[0] - lo[0]) / h + 1) * ((hi[1] - lo[1]) / h + 1) > 4.0 * P.n + 64) h *= 2;
+  const PetscInt        nbx = (PetscInt)((hi[0] - lo[0]) / h) + 1, nby = (PetscInt)((hi[1] - lo[1]) / h) + 1;
+  std::vector<PetscInt> start((size_t)nbx * nby + 1, 0), items(P.n), bin(P.n);
+  for (PetscInt i = 0; i < P.n; i++) {
+    const PetscInt bx = std::min(nbx - 1, (PetscInt)((X[2 * i] - lo[0]) / h)), by = std::min(nby - 1, (PetscInt)((X[2 * i + 1] - lo[1]) / h));
+    bin[i] = by * nbx + bx;
+    start[bin[i] + 1]++;
+  }
+  for (size_t k = 0; k + 1 < start.size(); k++) start[k + 1] += start[k];
+  {
+    std::vector<PetscInt> fill(start.begin(), start.end() - 1);
+    for (PetscInt i = 0; i < P.n; i++) items[fill[bin[i]]++] = i;
+  }
+  std::vector<PetscInt> bar_cell(P.springs.size(), -1);
+  for (size_t c = 0; c < P.polygons.size(); c++)
+    for (PetscInt s : P.polygons[c].bars) bar_cell[s] = (PetscInt)c;
+  /* best bar per (node, other cell): key node * ncells + cell -> (distance^2, bar, lambda) */
+  struct Best {
+    PetscReal d2, lam;
+    PetscInt  s;
+  };
+  std::map<std::pair<PetscInt, PetscInt>, Best> best;
+  for (size_t s = 0; s < P.springs.size(); s++) {
+    const PetscInt cs = bar_cell[s];
+    if (cs < 0 || (P.polygons[cs].open && !open_cells)) continue;
+    const PetscInt   a = P.springs[s].i, b = P.springs[s].j;
+    const PetscReal *xa = &X[2 * a], *xb = &X[2 * b];
+    const PetscReal  ex = xb[0] - xa[0], ey = xb[1] - xa[1], L2 = ex * ex + ey * ey;
+    const PetscInt   bx0 = std::max<PetscInt>(0, (PetscInt)std::floor((std::min(xa[0], xb[0]) - R - lo[0]) / h));
+    const PetscInt   bx1 = std::min<PetscInt>(nbx - 1, (PetscInt)std::floor((std::max(xa[0], xb[0]) + R - lo[0]) / h));
+    const PetscInt   by0 = std::max<PetscInt>(0, (PetscInt)std::floor((std::min(xa[1], xb[1]) - R - lo[1]) / h));
+    const PetscInt   by1 = std::min<PetscInt>(nby - 1, (PetscInt)std::floor((std::max(xa[1], xb[1]) + R - lo[1]) / h));
+    for (PetscInt jy = by0; jy <= by1; jy++)
+      for (PetscInt jx = bx0; jx <= bx1; jx++)
+        for (PetscInt t = start[jy * nbx + jx]; t < start[jy * nbx + jx + 1]; t++) {
+          const PetscInt p = items[t], cp = P.node_polygon[p];
+          if (cp < 0 || cp == cs || (P.polygons[cp].open && !open_cells)) continue;
+          const PetscReal px = X[2 * p] - xa[0], py = X[2 * p + 1] - xa[1];
+          const PetscReal lam = std::clamp((px * ex + py * ey) / L2, (PetscReal)0, (PetscReal)1);
+          const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
+          if (d2 > R2 || d2 == 0) continue;
+          auto it = best.find({p, cs});
+          if (it == best.end() || d2 < it->second.d2 || (d2 == it->second.d2 && (PetscInt)s < it->second.s)) best[{p, cs}] = {d2, lam, (PetscInt)s};
+        }
+  }
+  for (const auto &kv : best) { /* ordered by (node, cell): the same bonds in the same order on every run */
+    Bond           B;
+    const PetscInt s = kv.second.s;
+    B.p = kv.first.first, B.cell_p = P.node_polygon[B.p], B.cell_s = kv.first.second, B.s = s;
+    B.a = P.springs[s].i, B.b = P.springs[s].j, B.lam = kv.second.lam, B.sign = 1, B.L = 0;
+    PetscReal tx, ty, nx, ny, il, gt, gn;
+    Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
+    B.sign = gn >= 0 ? 1 : -1; /* n points from the bar to the node */
+    Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
+    B.gn0 = gn, B.gt0 = gt;
+    bonds_.push_back(B);
+  }
+  /* length shares: runs of consecutive nodes of cell A bonded to cell B, in A's ring order */
+  std::map<std::pair<PetscInt, PetscInt>, std::vector<PetscInt>> by_node; /* (node, cell B) -> bond */
+  for (size_t k = 0; k < bonds_.size(); k++) by_node[{bonds_[k].p, bonds_[k].cell_s}].push_back((PetscInt)k);
+  std::map<std::pair<PetscInt, PetscInt>, PetscReal> span; /* directed (A, B) -> sum of shares */
+  std::vector<PetscReal>                             share(bonds_.size(), 0);
+  auto                                               point = [&](const Bond &B, PetscReal *c) {
+    c[0] = (1 - B.lam) * X[2 * B.a] + B.lam * X[2 * B.b];
+    c[1] = (1 - B.lam) * X[2 * B.a + 1] + B.lam * X[2 * B.b + 1];
+  };
+  for (size_t A = 0; A < P.polygons.size(); A++) {
+    const PolygonCell                                             &C = P.polygons[A];
+    const PetscInt                                                 N = (PetscInt)C.nodes.size();
+    std::map<PetscInt, std::vector<std::pair<PetscInt, PetscInt>>> runs_of; /* B -> (position k, bond) */
+    for (PetscInt k = 0; k < N; k++)
+      for (auto it = by_node.lower_bound({C.nodes[k], -1}); it != by_node.end() && it->first.first == C.nodes[k]; ++it)
+        runs_of[it->first.second].push_back({k, it->second[0]});
+    for (auto &kv : runs_of) {
+      std::vector<std::pair<PetscInt, PetscInt>> &v = kv.second; /* sorted by k */
+      /* split into runs of consecutive k; a closed ring joins its last run to its first */
+      std::vector<std::vector<PetscInt>> runs;
+      for (size_t i = 0; i < v.size(); i++) {
+        if (i == 0 || v[i].first != v[i - 1].first + 1) runs.emplace_back();
+        runs.back().push_back(v[i].second);
+      }
+      if (!C.open && runs.size() > 1 && v.front().first == 0 && v.back().first == N - 1) {
+        runs.back().insert(runs.back().end(), runs.front().begin(), runs.front().end());
+        runs.erase(runs.begin());
+      }
+      for (const auto &run : runs) {
+        if (run.size() == 1) { /* a lone bond: half its node's shorter bar */
+          const Bond    &B = bonds_[run[0]];
+          const PetscInt k = (PetscInt)(std::find(C.nodes.begin(), C.nodes.end(), B.p) - C.nodes.begin());
+          PetscReal      l = PETSC_MAX_REAL;
+          for (PetscInt q : {k - 1, k + 1}) {
+            if (C.open && (q < 0 || q >= N)) continue;
+            const PetscInt o = C.nodes[(q + N) % N];
+            l                = std::min(l, std::hypot(X[2 * o] - X[2 * B.p], X[2 * o + 1] - X[2 * B.p + 1]));
+          }
+          share[run[0]] = 0.5 * (l < PETSC_MAX_REAL ? l : 2 * P.bar_radius);
+        } else
+          for (size_t i = 0; i + 1 < run.size(); i++) {
+            PetscReal c0[2], c1[2];
+            point(bonds_[run[i]], c0);
+            point(bonds_[run[i + 1]], c1);
+            const PetscReal g = std::hypot(c1[0] - c0[0], c1[1] - c0[1]);
+            share[run[i]] += 0.5 * g;
+            share[run[i + 1]] += 0.5 * g;
+          }
+        for (PetscInt b : run) span[{(PetscInt)A, kv.first}] += share[b];
+      }
+    }
+  }
+  for (size_t k = 0; k < bonds_.size(); k++) { /* both sides bonded: each counts half */
+    const Bond &B    = bonds_[k];
+    const bool  both = span.count({B.cell_s, B.cell_p}) && span[{B.cell_s, B.cell_p}] > 0;
+    bonds_[k].L      = share[k] * (both ? 0.5 : 1.0);
+  }
+  for (size_t k = 0; k < bonds_.size(); k++)
+    PetscCheck(bonds_[k].L > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: bond %zu (node %" PetscInt_FMT ", bar %" PetscInt_FMT ") got no length share", k,
+               bonds_[k].p, bonds_[k].s);
+  intact_     = (PetscInt)bonds_.size();
+  have_bonds_ = true;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* MODE 0: forces, 1: forces and virial, 2: accept (damage, breaks), 3: energy (returned).
+   With F_n = (1 - D) L k_n <delta_n>, F_t = (1 - D) L k_t delta_t and F = F_n n + F_t t: force -F on
+   the node, (1 - lambda) F + q n on a and lambda F - q n on b, q = (F_t g.n - F_n g.t) / |e| (the
+   derivative of the bar's frame: the couple that makes the torque zero). */
+template <int MODE>
+PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_, beta2 = kt_ / normal_stiffness;
+  PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    Bond &B = bonds_[k];
+    if (!B.intact) continue;
+    PetscReal tx, ty, nx, ny, il, gt, gn;
+    Frame(B, x, &tx, &ty, &nx, &ny, &il, &gt, &gn);
+    const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = dn > 0 ? dn : 0;
+    const PetscReal l2 = dnp * dnp + beta2 * dt * dt, lm = std::max(B.lmax, std::sqrt(l2)), D = Damage(lm);
+    if (MODE == 2) {
+      const PetscReal e = 0.5 * kn * l2; /* stored energy per length, undamaged */
+      bool            breaks;
+      if (law == SOFTENING) {
+        dissipated_ += B.L * (Dissipated(lm) - Dissipated(B.lmax));
+        B.lmax = lm;
+        breaks = D >= 1;
+      } else if (law == ENERGY) breaks = e >= fracture_energy;
+      else breaks = (kn * dnp / sigma_) * (kn * dnp / sigma_) + (kt * dt / tau_) * (kt * dt / tau_) >= 1;
+      if (breaks) {
+        const PetscReal en = 0.5 * kn * dnp * dnp, et = 0.5 * kt * dt * dt, released = law == SOFTENING ? fracture_energy * B.L : e * B.L;
+        if (law != SOFTENING) dissipated_ += released;
+        B.intact = false;
+        intact_--;
+        PetscReal c[2] = {(1 - B.lam) * x[2 * B.a] + B.lam * x[2 * B.b], (1 - B.lam) * x[2 * B.a + 1] + B.lam * x[2 * B.b + 1]};
+        breaks_.push_back({in.t, 0.5 * (c[0] + x[2 * B.p]), 0.5 * (c[1] + x[2 * B.p + 1]), released, B.L, (PetscInt)k, B.cell_p, B.cell_s, in.P->gid[B.p], B.s,
+                           en >= 9 * et   ? "tension"
+                           : et >= 9 * en ? "shear"
+                                          : "mixed"});
+      }
+      continue;
+    }
+    if (MODE == 3) {
+      E += (1 - D) * B.L * 0.5 * (kn * dnp * dnp + kt * dt * dt);
+      continue;
+    }
+    const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnp, Ft = s * kt * dt;
+    const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
+    const PetscReal l = 1 - B.lam, ax = l * Fx + q * nx, ay = l * Fy + q * ny, bx = B.lam * Fx - q * nx, by = B.lam * Fy - q * ny;
+    f[2 * B.p] -= Fx;
+    f[2 * B.p + 1] -= Fy;
+    f[2 * B.a] += ax;
+    f[2 * B.a + 1] += ay;
+    f[2 * B.b] += bx;
+    f[2 * B.b + 1] += by;
+    if (MODE == 1) { /* -sum f (x) x, relative to the node: a at x_a - x_p, b at x_b - x_p */
+      const PetscReal rax = x[2 * B.a] - x[2 * B.p], ray = x[2 * B.a + 1] - x[2 * B.p + 1], rbx = x[2 * B.b] - x[2 * B.p],
+                      rby = x[2 * B.b + 1] - x[2 * B.p + 1];
+      w[0] -= ax * rax + bx * rbx;
+      w[1] -= ax * ray + bx * rby;
+      w[2] -= ay * rax + by * rbx;
+      w[3] -= ay * ray + by * rby;
+    }
+  }
+  if (MODE == 1)
+    for (int q = 0; q < 4; q++) virial[q] += w[q];
+  return E;
+}
+
+PetscErrorCode Glue::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  PetscFunctionBeginUser;
+  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (virial) Kernel<1>(in, f, virial);
+  else Kernel<0>(in, f, NULL);
+  PetscCall(PetscLogFlops(60.0 * intact_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Glue::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  *E   = Kernel<3>(in, NULL, NULL);
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Glue::AcceptStep(const ForceInput &in)
+{
+  PetscFunctionBeginUser;
+  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  Kernel<2>(in, NULL, NULL);
+  accepted_++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::vector<Glue::Break> Glue::TakeBreaks()
+{
+  std::vector<Break> out;
+  out.swap(breaks_);
+  return out;
+}
+
+/* A bond is a spring of stiffness k L between the node and its bar point (lever weights 1 - lambda,
+   lambda): Gershgorin row sums 2 k L, 2 k L (1 - lambda), 2 k L lambda on its three nodes. */
+PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
+{
+  PetscFunctionBeginUser;
+  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  std::vector<PetscReal> row(in.P->n, 0.0);
+  const PetscReal        k = std::max(normal_stiffness, kt_);
+  for (const Bond &B : bonds_) {
+    if (!B.intact) continue;
+    row[B.p] += 2 * k * B.L;
+    row[B.a] += 2 * k * B.L * (1 - B.lam);
+    row[B.b] += 2 * k * B.L * B.lam;
+  }
+  PetscReal w2 = 0;
+  for (PetscInt i = 0; i < in.P->n; i++) w2 = std::max(w2, row[i] / in.P->mass[i]);
+  if (w2 > 0) {
+    char why[160];
+    PetscCall(PetscSNPrintf(why, sizeof why, "glue: omega_max <= %.4g /µs (%" PetscInt_FMT " bonds, Gershgorin)", (double)std::sqrt(w2), intact_));
+    limits.push_back({2.0 / std::sqrt(w2), why});
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The bonds as line segments from each node to its bar point, with their state. */
+PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments)
+{
+  PetscFunctionBeginUser;
+  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  segments->name = "bonds";
+  segments->xy.resize(4 * bonds_.size());
+  TermField intact{TermField::BAR, "intact", "1 intact, 0 broken", {}}, damage{TermField::BAR, "damage", "1", {}}, opening{TermField::BAR, "opening", "µm", {}},
+    length{TermField::BAR, "length_share", "µm", {}};
+  const PetscReal beta2 = kt_ / normal_stiffness;
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    const Bond &B = bonds_[k];
+    PetscReal   dn, dt;
+    Opening((PetscInt)k, in.x, &dn, &dt);
+    const PetscReal dnp     = dn > 0 ? dn : 0;
+    segments->xy[4 * k]     = in.x[2 * B.p];
+    segments->xy[4 * k + 1] = in.x[2 * B.p + 1];
+    segments->xy[4 * k + 2] = (1 - B.lam) * in.x[2 * B.a] + B.lam * in.x[2 * B.b];
+    segments->xy[4 * k + 3] = (1 - B.lam) * in.x[2 * B.a + 1] + B.lam * in.x[2 * B.b + 1];
+    intact.values.push_back(B.intact ? 1 : 0);
+    damage.values.push_back(B.intact ? Damage(std::max(B.lmax, std::sqrt(dnp * dnp + beta2 * dt * dt))) : 1.0);
+    opening.values.push_back(std::sqrt(dn * dn + dt * dt));
+    length.values.push_back(B.L);
+  }
+  segments->fields = {intact, damage, opening, length};
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Glue::OutputFields(const ForceInput &in, std::vector<TermField> &fields)
+{
+  PetscFunctionBeginUser;
+  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Glue::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
+{
+  PetscReal L = 0;
+  for (const Bond &B : bonds_) L += B.L;
+  stats.push_back({"bonds_created", (PetscReal)bonds_.size()});
+  stats.push_back({"bonds_intact", (PetscReal)intact_});
+  stats.push_back({"bonds_broken", (PetscReal)(bonds_.size() - intact_)});
+  stats.push_back({"glue_interface_length", L});
+  stats.push_back({"glue_fracture_dissipation", dissipated_});
+}
+
+PetscErrorCode Glue::View(PetscViewer viewer) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "glue: law %s, eps = %g µm, k_n = %g, k_t = %g N/m per µm, G_c = %g µN, sigma_c = %g N/m, tau_c = %g N/m%s (bonds made at "
+                                   "the first evaluation)\n",
+                                   kLaws[law], (double)distance, (double)normal_stiffness, (double)kt_, (double)fracture_energy, (double)sigma_, (double)tau_,
+                                   open_cells ? ", open cells glued" : ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
