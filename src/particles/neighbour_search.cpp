@@ -13,9 +13,16 @@ void NeighbourSearch::RequestParticleSpringPairs(PetscReal cutoff)
   spring_cutoff_ = std::max(spring_cutoff_, cutoff);
 }
 
+void NeighbourSearch::Mark(const PetscReal *x, PetscInt n) const
+{
+  x_mark_.assign(x, x + 2 * n);
+  mark_move2_ = 0;
+}
+
 void NeighbourSearch::Reset()
 {
   x_ref_.clear();
+  x_mark_.clear();
   fluid_pairs_     = PairList();
   particle_spring_ = PointSegmentList();
 }
@@ -25,17 +32,28 @@ PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x,
   PetscFunctionBeginUser;
   if (!WantsFluidPairs() && !WantsParticleSpringPairs()) PetscFunctionReturn(PETSC_SUCCESS);
   bool rebuild = x_ref_.size() != (size_t)(2 * P.n);
+  mark_move2_  = PETSC_MAX_REAL;
   if (!rebuild) {
     /* a lattice change moves every image shift by at most |da1| + |da2| */
     PetscReal da = 0;
     if (images.periodic)
       da = std::hypot(images.a[0][0] - a_ref_[0][0], images.a[0][1] - a_ref_[0][1]) + std::hypot(images.a[1][0] - a_ref_[1][0], images.a[1][1] - a_ref_[1][1]);
     const PetscReal lim = 0.5 * (skin_ - da), lim2 = lim * lim;
-    rebuild = lim <= 0;
-    for (PetscInt k = 0; k < P.n && !rebuild; k++) {
-      const PetscReal dx = x[2 * k] - x_ref_[2 * k], dy = x[2 * k + 1] - x_ref_[2 * k + 1];
-      rebuild = dx * dx + dy * dy > lim2;
-    }
+    /* one pass (no early exit, vectorised) for the largest move since the build and since the mark */
+    PetscReal m2 = 0, k2 = 0;
+    if (x_mark_.size() == x_ref_.size())
+      for (PetscInt k = 0; k < 2 * P.n; k += 2) {
+        const PetscReal dx = x[k] - x_ref_[k], dy = x[k + 1] - x_ref_[k + 1], mx = x[k] - x_mark_[k], my = x[k + 1] - x_mark_[k + 1];
+        m2 = std::max(m2, dx * dx + dy * dy);
+        k2 = std::max(k2, mx * mx + my * my);
+      }
+    else
+      for (PetscInt k = 0; k < 2 * P.n; k += 2) {
+        const PetscReal dx = x[k] - x_ref_[k], dy = x[k + 1] - x_ref_[k + 1];
+        m2 = std::max(m2, dx * dx + dy * dy);
+      }
+    rebuild = lim <= 0 || m2 > lim2;
+    if (x_mark_.size() == x_ref_.size()) mark_move2_ = k2;
   }
   if (rebuild) {
     if (images.periodic) PetscCall(BuildPeriodic(P, x, images));

@@ -115,19 +115,16 @@ PetscErrorCode Contact::Refresh(const ForceInput &in)
     seen_rebuilds_ = in.nb->Rebuilds();
     list_builds_++;
     near_skin_ = 0.25 * in.nb->Skin();
-    BuildNearList(x, n);
+    BuildNearList(in, x, n);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscReal d2 = 0; /* the largest move since the near list was built (no early exit: vectorised) */
-  for (PetscInt k = 0; k < 2 * n; k += 2) {
-    const PetscReal dx = x[k] - near_x_[k], dy = x[k + 1] - near_x_[k + 1];
-    d2 = std::max(d2, dx * dx + dy * dy);
-  }
-  if (4 * d2 > near_skin_ * near_skin_ || (near_skin_ == 0 && d2 > 0)) BuildNearList(x, n);
+  /* the largest move since the near list was built, from the neighbour search's pass */
+  const PetscReal d2 = in.nb->MaxMoveSinceMark2();
+  if (4 * d2 > near_skin_ * near_skin_ || (near_skin_ == 0 && d2 > 0)) BuildNearList(in, x, n);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void Contact::BuildNearList(const PetscReal *x, PetscInt n)
+void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n)
 {
   const PetscReal R = 2 * r_ + near_skin_, R2 = R * R;
   near_.clear();
@@ -145,7 +142,7 @@ void Contact::BuildNearList(const PetscReal *x, PetscInt n)
     }
     if (near || hist_[k].live) near_.push_back((PetscInt)k); /* a pair with history is kept until AcceptStep drops it */
   }
-  near_x_.assign(x, x + 2 * n);
+  in.nb->Mark(x, n);
   near_builds_++;
 }
 

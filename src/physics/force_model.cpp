@@ -122,7 +122,6 @@ PetscErrorCode ForceModel::SetUp(const PhysicsSpec &physics, const ParticleSet &
   evaluations_ = 0;
   has_state_   = HasInternalState();
   last_x_.clear();
-  last_v_.clear();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -138,9 +137,9 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   for (PetscInt k = 0; k < 2 * P_->n; k++) f[k] = 0;
   if (virial)
     for (int k = 0; k < 4; k++) virial[k] = 0;
-  if (has_state_) { /* AcceptStep tells its terms whether it is called at this state */
+  if (has_state_) { /* AcceptStep tells its terms whether it is called at these positions */
     last_x_.assign(x, x + 2 * P_->n);
-    last_v_.assign(v, v + 2 * P_->n);
+    last_rebuilds_ = nb_.Rebuilds();
   }
   const ForceInput in = {P_, x, v, &nb_, &images_};
   for (size_t t = 0; t < terms_.size(); t++) {
@@ -169,11 +168,11 @@ PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, Pe
   const size_t n2 = 2 * (size_t)P_->n;
   ForceInput   in = {P_, x, v, &nb_, &images_};
   in.t            = t;
-  /* velocity Verlet accepts the positions it last evaluated (its velocities differ: the dashpots saw
-     the half-step ones); then the neighbour lists are those of that evaluation */
+  /* velocity Verlet and DOPRI accept the positions they last evaluated (Verlet's velocities differ:
+     the dashpots saw the half-step ones); then, unless a call in between rebuilt them, the neighbour
+     lists are those of that evaluation */
   in.same_x = last_x_.size() == n2 && std::equal(last_x_.begin(), last_x_.end(), x);
-  in.same_v = in.same_x && std::equal(last_v_.begin(), last_v_.end(), v);
-  if (!in.same_x) PetscCall(nb_.Update(*P_, x, images_));
+  if (!in.same_x || nb_.Rebuilds() != last_rebuilds_) PetscCall(nb_.Update(*P_, x, images_));
   for (auto &t : terms_) PetscCall(t->AcceptStep(in));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

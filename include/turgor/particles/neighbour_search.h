@@ -37,6 +37,12 @@ public:
      pairs never use images (each cell's fluid lies inside its own cell). */
   PetscErrorCode Update(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images);
 
+  /* A second reference for one client (contact's near list): Mark(x) records x; every Update then
+     also finds the largest squared move since the mark, in the same pass as its own check
+     (PETSC_MAX_REAL when unknown: no mark, or the lists were rebuilt). */
+  void      Mark(const PetscReal *x, PetscInt n) const;
+  PetscReal MaxMoveSinceMark2() const { return mark_move2_; }
+
   const PairList         &FluidPairs() const { return fluid_pairs_; }
   const PointSegmentList &ParticleSpringPairs() const { return particle_spring_; }
   PetscInt                Rebuilds() const { return rebuilds_; }
@@ -49,12 +55,14 @@ private:
   void           SortFluidPairs();
   void           BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin);
 
-  PetscReal              fluid_cutoff_ = 0, spring_cutoff_ = 0, skin_ = 1.0;
-  PetscInt               rebuilds_ = 0;
-  std::vector<PetscReal> x_ref_;
-  PetscReal              a_ref_[2][2] = {};
-  PairList               fluid_pairs_;
-  PointSegmentList       particle_spring_;
+  PetscReal                      fluid_cutoff_ = 0, spring_cutoff_ = 0, skin_ = 1.0;
+  PetscInt                       rebuilds_ = 0;
+  std::vector<PetscReal>         x_ref_;
+  mutable std::vector<PetscReal> x_mark_; /* the client's mark (not the lists' state) */
+  mutable PetscReal              mark_move2_  = PETSC_MAX_REAL;
+  PetscReal                      a_ref_[2][2] = {};
+  PairList                       fluid_pairs_;
+  PointSegmentList               particle_spring_;
   /* bin grid (counting sort) */
   PetscReal             x0_ = 0, y0_ = 0, bin_ = 1;
   PetscInt              nbx_ = 0, nby_ = 0;

@@ -55,7 +55,7 @@ private:
   template <int MODE>
   PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   PetscErrorCode Refresh(const ForceInput &in);
-  void           BuildNearList(const PetscReal *x, PetscInt n);
+  void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
@@ -68,7 +68,6 @@ private:
   std::vector<Candidate> cand_;               /* eligible pairs of the neighbour list */
   std::vector<History>   hist_;               /* beside cand_ */
   std::vector<PetscInt>  near_;               /* indices into cand_ of the near pairs */
-  std::vector<PetscReal> near_x_;             /* positions when near_ was built */
   std::vector<PetscReal> trial_xi_, trial_s_; /* per near pair, from the last evaluation (friction) */
   PetscInt               trial_builds_  = -1; /* near_builds_ of the trial values */
   PetscInt               seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;

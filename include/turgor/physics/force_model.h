@@ -76,10 +76,11 @@ private:
   std::vector<PetscLogEvent>              events_;
   NeighbourSearch                         nb_;
   PeriodicImages                          images_;
-  std::vector<PetscReal>                  inv_mass_;        /* 0 for fixed particles */
-  std::vector<PetscReal>                  last_x_, last_v_; /* the last ComputeForces' state, when a term has internal state */
-  bool                                    has_state_   = false;
-  PetscInt                                evaluations_ = 0;
+  std::vector<PetscReal>                  inv_mass_;           /* 0 for fixed particles */
+  std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
+  PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
+  bool                                    has_state_     = false;
+  PetscInt                                evaluations_   = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;
 };
 

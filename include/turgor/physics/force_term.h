@@ -21,10 +21,10 @@ struct ForceInput {
   const NeighbourSearch *nb;
   const PeriodicImages  *images;      /* never NULL; all zero shifts unless periodic */
   const PetscReal       *a = nullptr; /* accelerations of all terms together, where a criterion needs them */
-  /* AcceptStep only: the positions (velocities) are those of the last AddForces, bit for bit, so a
-     term may commit what that evaluation computed instead of recomputing it (ForceModel compares
-     once for all terms). */
-  bool same_x = false, same_v = false;
+  /* AcceptStep only: the positions are those of the last AddForces, bit for bit, so a term may
+     commit what that evaluation computed instead of recomputing it (ForceModel compares once for all
+     terms; the velocities may differ: Verlet's last evaluation saw the half-step ones). */
+  bool same_x = false;
   /* AcceptStep only: the time of the accepted state (break records). */
   PetscReal t = 0;
 };
