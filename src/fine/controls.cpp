@@ -309,6 +309,18 @@ void Controls::AdjustAccelerations(PetscReal t, PetscReal *a) const
   }
 }
 
+void Controls::ControlForces(PetscReal t, const PetscReal *f, PetscReal *r, PetscInt n) const
+{
+  for (PetscInt k = 0; k < 2 * n; k++) r[k] = 0;
+  for (const ControlGroup &G : groups_)
+    for (PetscInt i : G.nodes)
+      for (int d = 0; d < 2; d++) {
+        const PetscInt c = 2 * i + d;
+        if (!G.velocity) r[c] = G.value[d] * G.Scale(t) * node_mass_[i] / G.mass;
+        else if (!G.free[d]) r[c] = node_mass_[i] * G.value[d] * G.Rate(t) - f[c];
+      }
+}
+
 PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const
 {
   const size_t ng = groups_.size();

@@ -54,6 +54,7 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   hist_.clear();
   seen_rebuilds_ = -1;
   evaluations_ = max_active_ = 0;
+  dissipated_                = 0;
   sum_active_ = sum_near_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -149,8 +150,9 @@ void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n
 /* MODE 0: forces, 1: forces and virial, 2: accept (commit the history), 3: energy (returned).
    Geometry: e = x_b - x_a, lambda = clamp((x_p - x_a).e / |e|^2, 0, 1), c = x_a + lambda e,
    d = x_p - c, delta = 2 r - |d|, n = d / |d|. The tangential direction t is n turned a quarter,
-   with the sense of the bar; the slip is measured by the node's coordinate along the bar
-   s = (x_p - x_a).e/|e| (a rigid motion of node and bar together does not change it). */
+   with the sense of the bar; the slip is the change of the contact's material coordinate on the bar,
+   |e| d(lambda) (a rigid motion of node and bar together, or the bar stretching under a node that
+   rests on it, does not change it). */
 template <int MODE>
 PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
@@ -192,23 +194,28 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal vx = v[2 * p] - l * v[2 * a] - lam * v[2 * b], vy = v[2 * p + 1] - l * v[2 * a + 1] - lam * v[2 * b + 1];
     PetscReal       fn = kn * delta - cn * (vx * nx + vy * ny);
     if (fn < 0) fn = 0;
-    PetscReal ft = 0, tx = 0, ty = 0, xi = 0, sc = 0;
+    PetscReal ft = 0, tx = 0, ty = 0, xi = 0;
     if (tangential) {
-      const PetscReal sg  = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
-      tx                  = sg * ny;
-      ty                  = -sg * nx;
-      sc                  = proj * std::sqrt(iL2);
-      xi                  = h.live ? h.xi + (sc - h.s_ref) : 0;
+      const PetscReal sg = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
+      tx                 = sg * ny;
+      ty                 = -sg * nx;
+      /* the slip is the node's move relative to the bar's material point it touches: |e| dlambda
+         (a bar stretching under a resting node, or a rigid motion of both, is no slip) */
+      xi                  = h.live ? h.xi + (lam - h.lam_ref) * L2 * std::sqrt(iL2) : 0;
       ft                  = -kt * xi;
       const PetscReal cap = mu * fn;
       if (std::fabs(ft) > cap) ft = ft > 0 ? cap : -cap;
     }
     if (MODE <= 1 && tangential) {
-      trial_xi_[j] = -ft / kt;
-      trial_s_[j]  = sc;
+      trial_xi_[j]   = -ft / kt;
+      trial_s_[j]    = lam;
+      trial_slip_[j] = std::fabs(ft) * std::fabs(xi + ft / kt); /* Coulomb force x the slip beyond the elastic cap */
     }
     if (MODE == 2) {
-      if (tangential) h = {-ft / kt, sc, true}; /* the capped (slipped) elastic displacement */
+      if (tangential) {
+        h = {-ft / kt, lam, true}; /* the capped (slipped) elastic displacement */
+        dissipated_ += std::fabs(ft) * std::fabs(xi + ft / kt);
+      }
       continue;
     }
     if (MODE == 3) {
@@ -246,6 +253,7 @@ PetscErrorCode Contact::AddForces(const ForceInput &in, PetscReal *f, PetscReal 
   if (friction > 0 && kt_ > 0) { /* AcceptStep at this same state commits these trial values */
     trial_xi_.resize(near_.size());
     trial_s_.resize(near_.size());
+    trial_slip_.resize(near_.size());
     trial_builds_ = near_builds_;
   }
   if (virial) Kernel<1>(in, f, virial);
@@ -281,7 +289,10 @@ PetscErrorCode Contact::AcceptStep(const ForceInput &in)
     for (size_t j = 0; j < near_.size(); j++) {
       History &h = hist_[near_[j]];
       if (trial_xi_[j] == PETSC_MAX_REAL) h.live = false;
-      else h = {trial_xi_[j], trial_s_[j], true};
+      else {
+        h = {trial_xi_[j], trial_s_[j], true};
+        dissipated_ += trial_slip_[j];
+      }
     }
   } else {
     PetscCall(Refresh(in));
@@ -319,6 +330,7 @@ void Contact::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) 
   stats.push_back({"contact_pair_lists", (PetscReal)list_builds_});
   stats.push_back({"contact_near_lists", (PetscReal)near_builds_});
   stats.push_back({"contact_history_entries", (PetscReal)HistoryEntries()});
+  if (friction > 0) stats.push_back({"contact_friction_dissipation", dissipated_});
 }
 
 PetscErrorCode Contact::View(PetscViewer viewer) const

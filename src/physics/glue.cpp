@@ -391,6 +391,28 @@ PetscErrorCode Glue::OutputFields(const ForceInput &in, std::vector<TermField> &
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void Glue::RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const
+{
+  files.push_back({
+    "breaks.csv", {"time", "bond", "cell_node", "cell_bar", "node", "bar", "x", "y", "mode", "energy_released", "length_share"}
+  });
+}
+
+void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
+{
+  char buf[64];
+  auto num = [&](PetscReal v) {
+    PetscCallAbort(PETSC_COMM_SELF, PetscSNPrintf(buf, sizeof buf, "%.17g", (double)v));
+    return std::string(buf);
+  };
+  for (const Break &b : TakeBreaks())
+    rows.push_back({
+      "breaks.csv",
+      {num(b.time), std::to_string(b.bond), std::to_string(b.cell_node), std::to_string(b.cell_bar), std::to_string(b.node), std::to_string(b.bar), num(b.x),
+        num(b.y), b.mode, num(b.energy), num(b.length)}
+    });
+}
+
 void Glue::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
 {
   PetscReal L = 0;

@@ -106,6 +106,7 @@ PetscErrorCode TimeRun::SetUp()
     }
   }
   if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
+  if (out_.ready) PetscCall(OpenOutputs());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -31,6 +31,7 @@ public:
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   bool           HasInternalState() const override { return friction > 0 && tangential_stiffness > 0; }
   PetscErrorCode AcceptStep(const ForceInput &in) override;
+  PetscReal      Dissipation() const override { return dissipated_; } /* by frictional slip: |f_t| x the slip at each accepted step */
   PetscErrorCode View(PetscViewer viewer) const override;
   void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
 
@@ -48,9 +49,9 @@ public:
 
 private:
   struct History {
-    PetscReal xi    = 0;     /* committed elastic tangential displacement [µm] */
-    PetscReal s_ref = 0;     /* node's coordinate along the bar at the last accepted step */
-    bool      live  = false; /* the pair was in contact at the last accepted step */
+    PetscReal xi      = 0;     /* committed elastic tangential displacement [µm] */
+    PetscReal lam_ref = 0;     /* the contact point's material coordinate on the bar at the last accepted step */
+    bool      live    = false; /* the pair was in contact at the last accepted step */
   };
   template <int MODE>
   PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
@@ -65,14 +66,14 @@ private:
   struct Candidate {
     PetscInt p, a, b, s; /* node, bar ends, bar */
   };
-  std::vector<Candidate> cand_;               /* eligible pairs of the neighbour list */
-  std::vector<History>   hist_;               /* beside cand_ */
-  std::vector<PetscInt>  near_;               /* indices into cand_ of the near pairs */
-  std::vector<PetscReal> trial_xi_, trial_s_; /* per near pair, from the last evaluation (friction) */
-  PetscInt               trial_builds_  = -1; /* near_builds_ of the trial values */
+  std::vector<Candidate> cand_;                            /* eligible pairs of the neighbour list */
+  std::vector<History>   hist_;                            /* beside cand_ */
+  std::vector<PetscInt>  near_;                            /* indices into cand_ of the near pairs */
+  std::vector<PetscReal> trial_xi_, trial_s_, trial_slip_; /* per near pair, from the last evaluation (friction) */
+  PetscInt               trial_builds_  = -1;              /* near_builds_ of the trial values */
   PetscInt               seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
-  PetscInt               evaluations_ = 0, max_active_ = 0; /* AddForces calls, most contacts in one */
-  PetscReal              sum_active_ = 0, sum_near_ = 0;    /* over AddForces calls */
+  PetscInt               evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
+  PetscReal              sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
   size_t                 n_springs_ = 0;
 };
 

@@ -100,6 +100,10 @@ public:
   virtual PetscReal Dissipation() const { return 0; }
   /* A purely dissipative force (global viscosity): its work is its dissipation. */
   virtual bool Dissipative() const { return false; }
+  /* Log files a term writes (e.g. glue's breaks.csv): their names and columns, known before the
+     run; TakeRecords moves out the rows made since the last call, as (file, cells). */
+  virtual void RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const { }
+  virtual void TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows) { }
   /* Segments for the snapshots (TermSegments). */
   virtual PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) { return PETSC_SUCCESS; }
   /* Fields for the snapshots at the state of `in` (TermField). */

@@ -63,6 +63,8 @@ public:
   PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
   PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) override;
   void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
+  void           RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const override;
+  void           TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows) override;
 
   /* Make the bonds at positions X (without a call, at the first evaluation's positions). */
   PetscErrorCode CreateBonds(const ParticleSet &P, const PetscReal *X);
