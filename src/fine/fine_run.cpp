@@ -332,6 +332,15 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   Constrained(t, u, u + 2 * n_local_, &x, &v);
   PetscCall(model_.ComputeForces(x, v, force.values.data(), NULL));
   PetscCall(model_.OutputFields(x, v, terms));
+  {
+    std::vector<TermSegments> segs;
+    PetscCall(model_.OutputSegments(x, v, segs));
+    for (TermSegments &g : segs) {
+      ParticleSnapshotWriter::Segments w{g.name, std::move(g.xy), {}};
+      for (TermField &f : g.fields) w.fields.push_back({f.name, f.unit, std::move(f.values), 1});
+      fields.segments.push_back(std::move(w));
+    }
+  }
   PetscCall(VecRestoreArrayRead(U, &u));
   fields.nodes.push_back(std::move(force));
   for (TermField &f : terms) {
