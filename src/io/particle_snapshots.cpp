@@ -227,6 +227,7 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fie
       SegmentsMeta m;
       m.name  = g.name;
       m.count = ntot;
+      m.first = times_.size();
       segment_meta_.push_back(m);
       it = segment_meta_.end() - 1;
     }
@@ -368,7 +369,7 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
   for (const SegmentsMeta &m : segment_meta_) { /* line segments with their own end points (the glue bonds) */
     const long long M = m.count;
     PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", m.name.c_str()));
-    for (size_t k = 0; k < times_.size(); k++) {
+    for (size_t k = m.first; k < times_.size(); k++) {
       PetscCall(PetscFPrintf(comm_, fp,
                              "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n"
                              "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "

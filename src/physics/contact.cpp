@@ -147,6 +147,15 @@ void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n
   near_builds_++;
 }
 
+/* Energy dissipated by a step of a pair whose tangential spring went from xi_old (committed) through
+   the trial xi_trial = xi_old + slip increment to xi_new (the capped value): the work of the
+   tangential force on the relative motion (trapezoidal, as the energy balance sums works) less the
+   spring's energy change, k_t (xi_old + xi_new)/2 (xi_trial - xi_new); 0 while it sticks. */
+static inline PetscReal SlipDissipation(PetscReal kt, PetscReal xi_old, PetscReal xi_trial, PetscReal xi_new)
+{
+  return 0.5 * kt * (xi_old + xi_new) * (xi_trial - xi_new);
+}
+
 /* MODE 0: forces, 1: forces and virial, 2: accept (commit the history), 3: energy (returned).
    Geometry: e = x_b - x_a, lambda = clamp((x_p - x_a).e / |e|^2, 0, 1), c = x_a + lambda e,
    d = x_p - c, delta = 2 r - |d|, n = d / |d|. The tangential direction t is n turned a quarter,
@@ -179,13 +188,19 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       far                = cr * cr >= R2 * L2;
     }
     if (far) {
-      if (MODE == 2) h.live = false;
+      if (MODE == 2 && h.live) { /* the pair opened: its tangential spring's energy is lost */
+        dissipated_ += 0.5 * kt * h.xi * h.xi;
+        h.live = false;
+      }
       continue;
     }
     const PetscReal iL2 = 1 / L2, lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * iL2;
     const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
     if (d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
-      if (MODE == 2) h.live = false;
+      if (MODE == 2 && h.live) {
+        dissipated_ += 0.5 * kt * h.xi * h.xi;
+        h.live = false;
+      }
       continue;
     }
     active++;
@@ -209,12 +224,12 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     if (MODE <= 1 && tangential) {
       trial_xi_[j]   = -ft / kt;
       trial_s_[j]    = lam;
-      trial_slip_[j] = std::fabs(ft) * std::fabs(xi + ft / kt); /* Coulomb force x the slip beyond the elastic cap */
+      trial_slip_[j] = SlipDissipation(kt, h.live ? h.xi : 0, xi, -ft / kt);
     }
     if (MODE == 2) {
       if (tangential) {
+        dissipated_ += SlipDissipation(kt, h.live ? h.xi : 0, xi, -ft / kt);
         h = {-ft / kt, lam, true}; /* the capped (slipped) elastic displacement */
-        dissipated_ += std::fabs(ft) * std::fabs(xi + ft / kt);
       }
       continue;
     }
@@ -288,8 +303,10 @@ PetscErrorCode Contact::AcceptStep(const ForceInput &in)
   if (in.same_x && trial_builds_ == near_builds_ && trial_xi_.size() == near_.size()) {
     for (size_t j = 0; j < near_.size(); j++) {
       History &h = hist_[near_[j]];
-      if (trial_xi_[j] == PETSC_MAX_REAL) h.live = false;
-      else {
+      if (trial_xi_[j] == PETSC_MAX_REAL) {
+        if (h.live) dissipated_ += 0.5 * kt_ * h.xi * h.xi; /* opened: the tangential spring's energy is lost */
+        h.live = false;
+      } else {
         h = {trial_xi_[j], trial_s_[j], true};
         dissipated_ += trial_slip_[j];
       }

@@ -1,3 +1,4 @@
+#include <turgor/core/options.h>
 #include <turgor/physics/glue.h>
 #include <algorithm>
 #include <cmath>
@@ -9,8 +10,10 @@ static const char *const kLaws[] = {"energy", "strength", "softening", "Glue::La
 
 PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
-  PetscEnum e  = (PetscEnum)law;
-  PetscBool oc = open_cells ? PETSC_TRUE : PETSC_FALSE;
+  PetscEnum e      = (PetscEnum)law;
+  PetscBool oc     = open_cells ? PETSC_TRUE : PETSC_FALSE, set_box;
+  PetscReal box[5] = {0, 0, 0, 0, 0};
+  PetscInt  nbox   = 5;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "glue_", "Glue bonds between polygonal cells, and their fracture", "turgor");
   PetscCall(PetscOptionsEnum("-law", "Rupture: energy (G_c reached), strength (quadratic sigma_c, tau_c interaction), softening (bilinear, G_c dissipated)",
@@ -27,9 +30,25 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscCall(PetscOptionsReal("-shear_strength", "tau_c, shear strength [N/m] (law strength); negative: sigma_c sqrt(k_t/k_n)", "Glue", shear_strength,
                              &shear_strength, NULL));
   PetscCall(PetscOptionsBool("-open_cells", "Glue open cells (plates, walls) too", "Glue", oc, &oc, NULL));
+  PetscCall(PetscOptionsReal("-start_time",
+                             "The bonds are made at the first accepted state at or after this time [µs] (0: the first evaluation, the reference geometry)",
+                             "Glue", start_time, &start_time, NULL));
+  PetscCall(PetscOptionsRealArray("-unbonded_box", "xmin,ymin,xmax,ymax [µm]: no bond whose bond point is inside (a pre-crack or notch)", "Glue", box, &nbox,
+                                  &set_box));
   PetscOptionsEnd();
+  PetscCall(CheckNotEmpty(comm, "-glue_unbonded_box", "xmin,ymin,xmax,ymax"));
+  if (set_box) {
+    PetscCheck(nbox == 4, comm, PETSC_ERR_ARG_SIZ, "Option -glue_unbonded_box: %" PetscInt_FMT " values given, expected 4 (xmin,ymin,xmax,ymax)", nbox);
+    PetscCheck(std::isfinite(box[0]) && std::isfinite(box[1]) && std::isfinite(box[2]) && std::isfinite(box[3]) && box[0] <= box[2] && box[1] <= box[3], comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_unbonded_box = %g,%g,%g,%g: needs finite values with xmin <= xmax and ymin <= ymax", (double)box[0],
+               (double)box[1], (double)box[2], (double)box[3]);
+    has_unbonded_box = true;
+    for (int k = 0; k < 4; k++) unbonded_box[k] = box[k];
+  }
   law        = (Law)e;
   open_cells = oc;
+  PetscCheck(std::isfinite(start_time) && start_time >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_start_time = %g: must be finite and >= 0",
+             (double)start_time);
   PetscCheck(std::isfinite(distance) && distance >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_distance = %g: must be finite and >= 0", (double)distance);
   PetscCheck(std::isfinite(normal_stiffness) && normal_stiffness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -glue_normal_stiffness = %g: must be finite and > 0", (double)normal_stiffness);
@@ -300,7 +319,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 PetscErrorCode Glue::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && start_time == 0) PetscCall(CreateBonds(*in.P, in.x));
   if (virial) Kernel<1>(in, f, virial);
   else Kernel<0>(in, f, NULL);
   PetscCall(PetscLogFlops(60.0 * intact_));
@@ -310,7 +329,7 @@ PetscErrorCode Glue::AddForces(const ForceInput &in, PetscReal *f, PetscReal *vi
 PetscErrorCode Glue::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && start_time == 0) PetscCall(CreateBonds(*in.P, in.x));
   *E   = Kernel<3>(in, NULL, NULL);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -319,7 +338,10 @@ PetscErrorCode Glue::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 PetscErrorCode Glue::AcceptStep(const ForceInput &in)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && in.t >= start_time * (1 - 1e-12)) {
+    PetscCall(CreateBonds(*in.P, in.x));
+    PetscFunctionReturn(PETSC_SUCCESS); /* made at this state: nothing to commit yet */
+  }
   Kernel<2>(in, NULL, NULL);
   accepted_++;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -337,6 +359,7 @@ std::vector<Glue::Break> Glue::TakeBreaks()
 PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
 {
   PetscFunctionBeginUser;
+  const bool provisional = !have_bonds_ && start_time > 0; /* the bonds this state would have bound the step; made for real later */
   if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
   std::vector<PetscReal> row(in.P->n, 0.0);
   const PetscReal        k = std::max(normal_stiffness, kt_);
@@ -353,6 +376,11 @@ PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
     PetscCall(PetscSNPrintf(why, sizeof why, "glue: omega_max <= %.4g /µs (%" PetscInt_FMT " bonds, Gershgorin)", (double)std::sqrt(w2), intact_));
     limits.push_back({2.0 / std::sqrt(w2), why});
   }
+  if (provisional) {
+    bonds_.clear();
+    intact_     = 0;
+    have_bonds_ = false;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -360,7 +388,8 @@ PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
 PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && start_time == 0) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_) PetscFunctionReturn(PETSC_SUCCESS); /* not yet made (-glue_start_time): no segments yet */
   segments->name = "bonds";
   segments->xy.resize(4 * bonds_.size());
   TermField intact{TermField::BAR, "intact", "1 intact, 0 broken", {}}, damage{TermField::BAR, "damage", "1", {}}, opening{TermField::BAR, "opening", "µm", {}},
@@ -387,7 +416,6 @@ PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments
 PetscErrorCode Glue::OutputFields(const ForceInput &in, std::vector<TermField> &fields)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

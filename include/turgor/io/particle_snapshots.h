@@ -73,6 +73,7 @@ private:
   struct SegmentsMeta {
     std::string        name;
     PetscInt           count = 0; /* global */
+    size_t             first = 0; /* the first snapshot that has them (a term may make them later) */
     std::vector<Field> fields;    /* names and units */
   };
   std::vector<SegmentsMeta> segment_meta_;

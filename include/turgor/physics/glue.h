@@ -2,7 +2,8 @@
 /* Glue bonds between neighbouring polygonal cells, and their fracture (issue 11; the middle lamella
    of the L-hyphen seed, ../shared/seeds/004_b974c0f68c63d63f.txt, "Details of the model").
 
-   Bonds are made once, at the first evaluation (the reference geometry): every node within the
+   Bonds are made once, at the first evaluation (the reference geometry; with -glue_start_time T, at
+   the first accepted state at or after T, e.g. once the cells are inflated): every node within the
    gluing distance eps (-glue_distance: surface gap, i.e. closer than 2 r + eps to the bar's centre
    line) of a bar of another cell is bonded to the closest point of the closest such bar of that
    cell, c = (1 - lambda) x_a + lambda x_b with lambda fixed. A bond carries a length share L of its
@@ -88,6 +89,9 @@ public:
   PetscReal strength             = -1;    /* sigma_c [N/m]; < 0: sqrt(2 G_c k_n), where the energy law breaks in opening */
   PetscReal shear_strength       = -1;    /* tau_c [N/m]; < 0: sigma_c sqrt(k_t / k_n) */
   bool      open_cells           = false; /* glue open cells (plates, walls) too */
+  PetscReal start_time           = 0;     /* bonds made at the first evaluation (0), or at the first accepted state at or after this time [µs] */
+  bool      has_unbonded_box     = false; /* -glue_unbonded_box: no bond whose bond point is inside (a pre-crack, a notch) */
+  PetscReal unbonded_box[4]      = {0, 0, 0, 0};
 
 private:
   struct Bond {
