@@ -21,9 +21,11 @@ PetscErrorCode EnergyBalance::SetUp(ForceModel &model, const Controls &controls,
     else {
       stored_.push_back(t);
       if (T.HasInternalState()) counting_.push_back(t); /* plasticity, friction, fracture */
+      if (T.TimeDependent()) timed_.push_back(t);       /* a turgor ramp */
     }
   }
   W_.assign(model.NumTerms(), 0.0);
+  W_time_.assign(model.NumTerms(), 0.0);
   W_controls_ = 0, worst_relative_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -34,6 +36,7 @@ std::vector<std::string> EnergyBalance::Columns() const
   for (size_t t : stored_) c.push_back(std::string("energy_") + model_->TermAt(t).Name());
   c.push_back("work_controls");
   for (size_t t : loads_) c.push_back(std::string("work_") + model_->TermAt(t).Name());
+  for (size_t t : timed_) c.push_back(std::string("work_") + model_->TermAt(t).Name() + "_ramp");
   for (size_t t : dissipative_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name());
   for (size_t t : counting_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name());
   c.push_back("residual");
@@ -83,7 +86,10 @@ PetscErrorCode EnergyBalance::Start(MPI_Comm comm, PetscReal t, const PetscReal 
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, comm));
   K0_ = s[0], E0_ = s[1];
   std::fill(W_.begin(), W_.end(), 0.0);
+  std::fill(W_time_.begin(), W_time_.end(), 0.0);
   W_controls_ = 0;
+  model_->SetTime(t);
+  PetscCall(model_->ExplicitTimePower(x, P_time_prev_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -102,6 +108,13 @@ PetscErrorCode EnergyBalance::Step(PetscReal t, const PetscReal *x, const PetscR
   PetscReal w = 0;
   for (PetscInt k = 0; k < n2; k++) w += (R_prev_[k] + R_work_[k]) * (v_prev_[k] + v[k]);
   W_controls_ += 0.25 * h * w;
+  if (!timed_.empty()) { /* the work of the explicit time dependence, trapezoidal */
+    std::vector<PetscReal> P;
+    model_->SetTime(t);
+    PetscCall(model_->ExplicitTimePower(x, P));
+    for (size_t q : timed_) W_time_[q] += 0.5 * h * (P_time_prev_[q] + P[q]);
+    P_time_prev_ = P;
+  }
   std::swap(F_prev_, F_work_);
   std::swap(R_prev_, R_work_);
   v_prev_.assign(v, v + n2);
@@ -112,6 +125,7 @@ PetscReal EnergyBalance::ExternalWork() const
 {
   PetscReal w = W_controls_;
   for (size_t q : loads_) w += W_[q];
+  for (size_t q : timed_) w += W_time_[q];
   return w;
 }
 
@@ -127,6 +141,7 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   for (size_t q : stored_) s.push_back(has[q] ? E[q] : 0);
   s.push_back(W_controls_);
   for (size_t q : loads_) s.push_back(W_[q]);
+  for (size_t q : timed_) s.push_back(W_time_[q]);
   for (size_t q : dissipative_) s.push_back(-W_[q]);
   for (size_t q : counting_) s.push_back(model_->TermAt(q).Dissipation());
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s.data(), (PetscMPIInt)s.size(), MPIU_REAL, MPIU_SUM, comm));
@@ -134,7 +149,7 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   PetscReal K = s[k++], Es = 0, Wext = 0, D = 0, Etot_abs = std::fabs(s[0]);
   for (size_t q = 0; q < stored_.size(); q++) Es += s[k], Etot_abs += std::fabs(s[k]), k++;
   Wext += s[k++];
-  for (size_t q = 0; q < loads_.size(); q++) Wext += s[k++];
+  for (size_t q = 0; q < loads_.size() + timed_.size(); q++) Wext += s[k++];
   for (size_t q = 0; q < dissipative_.size() + counting_.size(); q++) D += s[k++];
   const PetscReal residual = (K + Es) - (K0_ + E0_) - Wext + D;
   /* relative to the external work done, or (none done) to the energies in play */

@@ -330,6 +330,7 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   PetscCall(SyncSwarm(t, U));
   PetscCall(VecGetArrayRead(U, &u));
   Constrained(t, u, u + 2 * n_local_, &x, &v);
+  model_.SetTime(t);
   PetscCall(model_.ComputeForces(x, v, force.values.data(), NULL));
   PetscCall(model_.OutputFields(x, v, terms));
   {
@@ -380,6 +381,7 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     PetscCall(VecGetArrayRead(U, &u));
     PetscCall(VecGetArray(F, &f));
     const std::vector<char> &fixed = run->tissue_.particles.fixed;
+    run->model_.SetTime(t);
     if (!run->controls_.Active()) {
       for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
       PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
@@ -434,6 +436,7 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     PetscCall(CheckStopNow());
     PetscCall(VecGetArrayRead(X, &x));
     PetscCall(VecGetArray(Vdot, &a));
+    run->model_.SetTime(t);
     if (!run->controls_.Active()) PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
     else {
       const PetscReal *xc, *vc;
@@ -571,6 +574,7 @@ PetscErrorCode FineRun::ObserveSeries(PetscReal t, Vec U, std::vector<std::vecto
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U, &u));
   Constrained(t, u, u + 2 * n_local_, &x, &v);
+  model_.SetTime(t);
   PetscCall(model_.ComputeForces(x, v, f.data(), NULL));
   PetscCall(controls_.Observe(comm_, t, x, f.data(), rows[0]));
   PetscCall(VecRestoreArrayRead(U, &u));

@@ -141,7 +141,8 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
     last_x_.assign(x, x + 2 * P_->n);
     last_rebuilds_ = nb_.Rebuilds();
   }
-  const ForceInput in = {P_, x, v, &nb_, &images_};
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
   if (keep_term_forces_) term_f_.resize(terms_.size());
   for (size_t t = 0; t < terms_.size(); t++) {
     PetscCall(PetscLogEventBegin(events_[t], 0, 0, 0, 0));
@@ -171,6 +172,7 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
 PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t)
 {
   PetscFunctionBeginUser;
+  t_              = t;
   const size_t n2 = 2 * (size_t)P_->n;
   ForceInput   in = {P_, x, v, &nb_, &images_};
   in.t            = t;
@@ -242,12 +244,25 @@ PetscErrorCode ForceModel::OutputFields(const PetscReal *x, const PetscReal *v, 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode ForceModel::ExplicitTimePower(const PetscReal *x, std::vector<PetscReal> &P)
+{
+  PetscFunctionBeginUser;
+  std::vector<PetscReal> v(2 * P_->n, 0.0);
+  ForceInput             in = {P_, x, v.data(), &nb_, &images_};
+  in.t                      = t_;
+  P.assign(terms_.size(), 0.0);
+  for (size_t t = 0; t < terms_.size(); t++)
+    if (terms_[t]->TimeDependent()) P[t] = terms_[t]->ExplicitTimePower(in);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode ForceModel::TermEnergies(const PetscReal *x, std::vector<PetscReal> &E, std::vector<bool> &has)
 {
   PetscFunctionBeginUser;
   PetscCall(nb_.Update(*P_, x, images_));
   std::vector<PetscReal> v(2 * P_->n, 0.0);
-  const ForceInput       in = {P_, x, v.data(), &nb_, &images_};
+  ForceInput             in = {P_, x, v.data(), &nb_, &images_};
+  in.t                      = t_;
   E.assign(terms_.size(), 0.0);
   has.assign(terms_.size(), false);
   for (size_t t = 0; t < terms_.size(); t++) {

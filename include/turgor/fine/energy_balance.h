@@ -43,8 +43,9 @@ private:
   ForceModel                         *model_    = nullptr;
   const Controls                     *controls_ = nullptr;
   const ParticleSet                  *P_        = nullptr;
-  std::vector<size_t>                 stored_, loads_, dissipative_, counting_; /* terms by role */
-  std::vector<PetscReal>              W_;                                       /* per term */
+  std::vector<size_t>                 stored_, loads_, dissipative_, counting_, timed_; /* terms by role */
+  std::vector<PetscReal>              W_time_, P_time_prev_;                            /* per term: the work of dE/dt */
+  std::vector<PetscReal>              W_;                                               /* per term */
   PetscReal                           W_controls_ = 0, K0_ = 0, E0_ = 0, t_ = 0, worst_relative_ = 0;
   std::vector<std::vector<PetscReal>> F_prev_;
   std::vector<PetscReal>              v_prev_, R_prev_, F_work_total_, R_work_;

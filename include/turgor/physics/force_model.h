@@ -59,6 +59,11 @@ public:
 
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;
+  /* The time of the states evaluated next (time-dependent terms; 0 by default). */
+  void      SetTime(PetscReal t) { t_ = t; }
+  PetscReal Time() const { return t_; }
+  /* sum of the time-dependent terms' dE/dt at x (ForceTerm::ExplicitTimePower), at the model's time */
+  PetscErrorCode ExplicitTimePower(const PetscReal *x, std::vector<PetscReal> &P);
   /* Keep each term's own force of every ComputeForces (TermForce(t), [2n]), for the energy balance;
      it costs a zeroing and a sum per term and evaluation. */
   void                          KeepTermForces(bool keep) { keep_term_forces_ = keep; }
@@ -99,6 +104,7 @@ private:
   bool                                    has_state_ = false, keep_term_forces_ = false;
   std::vector<std::vector<PetscReal>>     term_f_; /* per term, with KeepTermForces */
   PetscInt                                evaluations_ = 0;
+  PetscReal                               t_           = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;
 };
 
