@@ -37,3 +37,23 @@ turgor_add_test(traction_16_v3 COMMAND turgor_app ${TRACTION16} -control_top_vel
   -control_bottom_ramp_time 20 -ts_max_time 80 -output_dir traction16_v3 LABELS fine SETUP traction16_v3)
 turgor_add_test(traction_16_quasistatic COMMAND ${FRACTURE} peaks 0.3 0.02 traction16_v1 traction16_v2 traction16_v3 LABELS fine
   REQUIRES "traction16_v1;traction16_v2;traction16_v3")
+
+# The crushing scene (config/voronoi_crushing.yaml) on 64 cells: the turgor builds up over 10 µs,
+# then 4 µm of crushing; the balance (the ramp's work included) closes within 1e-2 (penalty contact
+# at half the stability limit), every bond is accounted for, and the snapshots show the cells with
+# their pressure (the gas law, p0 = 5 N/m at the end) and the bonds in ParaView.
+turgor_add_test(crushing_64 COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_crushing.yaml -tissue_voronoi_cells 64
+  -tissue_box 0,0,200,200 -ts_max_time 14 -fine_snapshots 2 -fine_progress_interval 0 -output_dir crushing64 -output_overwrite LABELS fine SETUP crushing64)
+turgor_add_test(crushing_64_energy COMMAND ${FRACTURE} energy crushing64 1e-2 LABELS fine REQUIRES crushing64)
+turgor_add_test(crushing_64_bonds COMMAND ${FRACTURE} bonds crushing64 LABELS fine REQUIRES crushing64)
+turgor_add_test(crushing_64_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py crushing64/particles.xmf LABELS fine REQUIRES crushing64)
+if(TURGOR_PVPYTHON)
+  foreach(reader default XDMFReader)
+    set(R "")
+    if(NOT reader STREQUAL default)
+      set(R --reader ${reader})
+    endif()
+    turgor_add_test(paraview_crushing_64_${reader} COMMAND ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py
+      polygons crushing64 --gas-p0 5 ${R} LABELS paraview fine REQUIRES crushing64 TIMEOUT 120)
+  endforeach()
+endif()

@@ -197,7 +197,8 @@ PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, Pet
   PetscFunctionBeginUser;
   PetscCall(nb_.Update(*P_, x, images_));
   std::vector<PetscReal> v(2 * P_->n, 0.0);
-  const ForceInput       in = {P_, x, v.data(), &nb_, &images_};
+  ForceInput             in = {P_, x, v.data(), &nb_, &images_};
+  in.t                      = t_;
   *E                        = 0;
   *complete                 = PETSC_TRUE;
   for (auto &t : terms_) {
@@ -221,6 +222,7 @@ PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v
   }
   PetscCall(nb_.Update(*P_, x, images_));
   ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
   in.a          = a.empty() ? nullptr : a.data();
   limits.clear();
   for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));
@@ -238,7 +240,8 @@ PetscErrorCode ForceModel::OutputFields(const PetscReal *x, const PetscReal *v, 
 {
   PetscFunctionBeginUser;
   PetscCall(nb_.Update(*P_, x, images_));
-  const ForceInput in = {P_, x, v, &nb_, &images_};
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
   fields.clear();
   for (auto &t : terms_) PetscCall(t->OutputFields(in, fields));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -287,7 +290,8 @@ PetscErrorCode ForceModel::OutputSegments(const PetscReal *x, const PetscReal *v
 {
   PetscFunctionBeginUser;
   PetscCall(nb_.Update(*P_, x, images_));
-  const ForceInput in = {P_, x, v, &nb_, &images_};
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
   segments.clear();
   for (auto &t : terms_) {
     TermSegments s;
