@@ -3,14 +3,15 @@
 
 namespace turgor {
 
-static const char *const kLaws[] = {"constant", "gas", "elastic", "CellPressure::Law", "", NULL};
+/* Names in the order of CellPressure::Law (read as a PetscInt: PETSc 3.18's PetscEnum holds only 0 and 1). */
+static const char *const kLaws[] = {"constant", "gas", "elastic"};
 
 PetscErrorCode CellPressure::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
-  PetscEnum e = (PetscEnum)law;
+  PetscInt e = (PetscInt)law;
   PetscOptionsBegin(comm, "pressure_", "Pressure of closed polygonal cells", "turgor");
-  PetscCall(PetscOptionsEnum("-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, e, &e, NULL));
+  PetscCall(PetscOptionsEList("-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, 3, kLaws[e], &e, NULL));
   PetscCall(PetscOptionsReal("-p0", "Reference pressure p0 [N/m]", "CellPressure", p0, &p0, NULL));
   PetscCall(PetscOptionsReal("-bulk_modulus", "Bulk modulus K of the elastic law [N/m]", "CellPressure", bulk_modulus, &bulk_modulus, NULL));
   PetscCall(PetscOptionsReal("-ramp_time", "The turgor builds up linearly over this time [µs]; 0: at once", "CellPressure", ramp_time, &ramp_time, NULL));

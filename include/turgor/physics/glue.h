@@ -94,25 +94,34 @@ public:
   PetscReal unbonded_box[4]      = {0, 0, 0, 0};
 
 private:
-  struct Bond {
-    PetscInt  p, a, b, s, cell_p, cell_s;
+  struct Bond {        /* what every evaluation reads */
+    PetscInt  p, a, b; /* node, bar ends */
+    PetscInt  intact = 1;
     PetscReal lam, gn0, gt0, sign, L; /* bond point, reference opening components, side of n, length share */
-    PetscReal lmax   = 0;             /* committed largest equivalent opening (softening: D = D(lmax)) */
-    bool      intact = true;
+    PetscReal lmax = 0;               /* committed largest equivalent opening, from the peak on (softening: D = D(lmax)) */
+  };
+  struct BondInfo { /* what only set-up and the break records read */
+    PetscInt s, cell_p, cell_s;
+  };
+  struct Trial {
+    PetscReal dnp, dt; /* <delta_n>, delta_t of the last evaluation */
   };
   template <int MODE>
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  void      Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
   PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
   PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
   void Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt, PetscReal *gn) const;
 
-  PetscReal          kt_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, lf_ = 0;
-  std::vector<Bond>  bonds_;
-  std::vector<Break> breaks_;
-  PetscInt           intact_ = 0, accepted_ = 0;
-  PetscReal          dissipated_ = 0, time_ = 0;
-  bool               have_bonds_ = false;
-  const ParticleSet *P_          = nullptr;
+  PetscReal             kt_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* l02_ = l0_^2 */
+  std::vector<Bond>     bonds_;
+  std::vector<BondInfo> info_;
+  std::vector<Trial>    trial_;
+  std::vector<Break>    breaks_;
+  PetscInt              intact_ = 0, accepted_ = 0;
+  PetscReal             dissipated_ = 0, time_ = 0;
+  bool                  have_bonds_ = false;
+  const ParticleSet    *P_          = nullptr;
 };
 
 } // namespace turgor
