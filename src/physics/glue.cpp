@@ -268,6 +268,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_, beta2 = kt_ / normal_stiffness;
   PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
   if (MODE <= 1) trial_.resize(bonds_.size());
+  if (MODE <= 1) push_.resize(bonds_.size());
   for (size_t k = 0; k < bonds_.size(); k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
@@ -291,20 +292,29 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     }
     const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnp, Ft = s * kt * dt;
     const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-    const PetscReal ax = l1 * Fx + q * nx, ay = l1 * Fy + q * ny, bx = B.lam * Fx - q * nx, by = B.lam * Fy - q * ny;
-    f[2 * B.p] -= Fx;
-    f[2 * B.p + 1] -= Fy;
-    f[2 * B.a] += ax;
-    f[2 * B.a + 1] += ay;
+    push_[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
+  }
+  if (MODE >= 2) return E;
+  /* Scatter apart from the evaluation: consecutive bonds share bar nodes, and adding into f inside the
+     loop above chains every bond's square root and division behind the previous bond's stores. */
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    const Bond &B = bonds_[k];
+    if (!B.intact) continue;
+    const Push     &P  = push_[k];
+    const PetscReal bx = P.Fx - P.ax, by = P.Fy - P.ay; /* lambda F - q n = F - (1 - lambda) F - q n */
+    f[2 * B.p] -= P.Fx;
+    f[2 * B.p + 1] -= P.Fy;
+    f[2 * B.a] += P.ax;
+    f[2 * B.a + 1] += P.ay;
     f[2 * B.b] += bx;
     f[2 * B.b + 1] += by;
     if (MODE == 1) { /* -sum f (x) x, relative to the node: a at x_a - x_p, b at x_b - x_p */
       const PetscReal rax = x[2 * B.a] - x[2 * B.p], ray = x[2 * B.a + 1] - x[2 * B.p + 1], rbx = x[2 * B.b] - x[2 * B.p],
                       rby = x[2 * B.b + 1] - x[2 * B.p + 1];
-      w[0] -= ax * rax + bx * rbx;
-      w[1] -= ax * ray + bx * rby;
-      w[2] -= ay * rax + by * rbx;
-      w[3] -= ay * ray + by * rby;
+      w[0] -= P.ax * rax + bx * rbx;
+      w[1] -= P.ax * ray + bx * rby;
+      w[2] -= P.ay * rax + by * rbx;
+      w[3] -= P.ay * ray + by * rby;
     }
   }
   if (MODE == 1)

@@ -106,6 +106,9 @@ private:
   struct Trial {
     PetscReal dnp, dt; /* <delta_n>, delta_t of the last evaluation */
   };
+  struct Push {
+    PetscReal Fx, Fy, ax, ay; /* force of the bond on its bar (minus: on its node), the share of bar end a */
+  };
   template <int MODE>
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   void      Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
@@ -117,6 +120,7 @@ private:
   std::vector<Bond>     bonds_;
   std::vector<BondInfo> info_;
   std::vector<Trial>    trial_;
+  std::vector<Push>     push_; /* per bond, the last evaluation's forces, scattered after the loop */
   std::vector<Break>    breaks_;
   PetscInt              intact_ = 0, accepted_ = 0;
   PetscReal             dissipated_ = 0, time_ = 0;
