@@ -15,9 +15,9 @@ set(TRACTION64 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.
   -control_top_box -1,180,201,201 -control_bottom_box -1,-1,201,20 -control_top_velocity 0,0.2 -control_bottom_velocity 0,-0.2
   -control_top_ramp_time 2.5 -control_bottom_ramp_time 2.5 -ts_max_time 10 -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
 set(FRACTURE ${CMAKE_CURRENT_SOURCE_DIR}/check_fracture.py)
-turgor_add_test(traction_64 COMMAND turgor_app ${TRACTION64} -output_dir traction64 LABELS fine SETUP traction64)
-turgor_add_test(traction_64_energy COMMAND ${FRACTURE} energy traction64 1e-3 LABELS fine REQUIRES traction64)
-turgor_add_test(traction_64_bonds COMMAND ${FRACTURE} bonds traction64 LABELS fine REQUIRES traction64)
+turgor_add_test(traction_64 COMMAND turgor_app ${TRACTION64} -output_dir traction64 LABELS fine hard SETUP traction64)
+turgor_add_test(traction_64_energy COMMAND ${FRACTURE} energy traction64 1e-3 LABELS fine hard REQUIRES traction64)
+turgor_add_test(traction_64_bonds COMMAND ${FRACTURE} bonds traction64 LABELS fine hard REQUIRES traction64)
 # The same with a notch cut out of the left side at mid-height (80 µm deep, 30 high): its smoothed
 # peak force (the grips' force averaged over 0.3 µm of pull) is below 0.8 of the plain one's.
 turgor_add_test(traction_64_notched COMMAND turgor_app ${TRACTION64} -tissue_cut_box -1,85,80,115 -fine_energy 0 -output_dir traction64_notched
@@ -43,9 +43,9 @@ turgor_add_test(traction_16_quasistatic COMMAND ${FRACTURE} peaks 0.3 0.02 tract
 # at half the stability limit), every bond is accounted for, and the snapshots show the cells with
 # their pressure (the gas law, p0 = 5 N/m at the end) and the bonds in ParaView.
 turgor_add_test(crushing_64 COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_crushing.yaml -tissue_voronoi_cells 64
-  -tissue_box 0,0,200,200 -ts_max_time 14 -fine_snapshots 2 -fine_progress_interval 0 -output_dir crushing64 -output_overwrite LABELS fine SETUP crushing64)
-turgor_add_test(crushing_64_energy COMMAND ${FRACTURE} energy crushing64 1e-2 LABELS fine REQUIRES crushing64)
-turgor_add_test(crushing_64_bonds COMMAND ${FRACTURE} bonds crushing64 LABELS fine REQUIRES crushing64)
+  -tissue_box 0,0,200,200 -ts_max_time 14 -fine_snapshots 2 -fine_progress_interval 0 -output_dir crushing64 -output_overwrite LABELS fine hard SETUP crushing64)
+turgor_add_test(crushing_64_energy COMMAND ${FRACTURE} energy crushing64 1e-2 LABELS fine hard REQUIRES crushing64)
+turgor_add_test(crushing_64_bonds COMMAND ${FRACTURE} bonds crushing64 LABELS fine hard REQUIRES crushing64)
 turgor_add_test(crushing_64_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py crushing64/particles.xmf LABELS fine REQUIRES crushing64)
 if(TURGOR_PVPYTHON)
   foreach(reader default XDMFReader)

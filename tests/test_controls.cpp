@@ -7,6 +7,7 @@ static const char help[] = "Load controls of the fine run against closed forms, 
                            "4. the reaction of a node pulling a spring chain equals the last spring's tension k (l - l0);\n"
                            "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy, _mz and one row per sample.\n";
 #include "test_util.h"
+#include <string>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/wall_springs.h>
 #include <fstream>
@@ -135,11 +136,11 @@ int main(int argc, char **argv)
       PetscCall(Run(free3, {}, {a, c}, type, T, dt, 28, {"none"}, &r));
       const PetscReal ramp = 0.4 * 2.5 / 2 + 0.4 * (T - 2.5);
       TG_CHECK_CLOSE(r.rows.back()[1], ramp, 1e-13, 1, "ramp displacement (groups.csv)");
-      TG_CHECK_CLOSE(r.x[0] - free3.X[0], ramp, type == TSRK ? 1e-7 : 1e-12, 1, "ramp displacement (state)");
+      TG_CHECK_CLOSE(r.x[0] - free3.X[0], ramp, std::string(type) == TSRK ? 1e-7 : 1e-12, 1, "ramp displacement (state)");
       TG_CHECK_CLOSE(r.rows[4][1], 0.4 * 1.0 / (2 * 2.5), 1e-13, 1, "ramp displacement at t = 1 < T (v t^2 / 2T)");
       TG_CHECK_CLOSE(r.rows[7][7], 0.3 * 1.75, 1e-13, 1, "cyclic displacement after a half period");
       TG_CHECK(std::fabs(r.rows[14][7]) < 1e-13 && std::fabs(r.rows.back()[7]) < 1e-13, "cyclic: not back at the start after full periods");
-      TG_CHECK(std::fabs(r.x[5] - free3.X[5]) < (type == TSRK ? 1e-7 : 1e-12), "cyclic (state): %g", (double)(r.x[5] - free3.X[5]));
+      TG_CHECK(std::fabs(r.x[5] - free3.X[5]) < (std::string(type) == TSRK ? 1e-7 : 1e-12), "cyclic (state): %g", (double)(r.x[5] - free3.X[5]));
       TG_CHECK_CLOSE(r.rows[4][3], m * 0.4 / 2.5, 1e-12, 1, "ramp reaction: m a_c");
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-16s ramp: state error %.2e µm; cyclic after 2 periods: state %.2e µm\n", type,
                             (double)(r.x[0] - free3.X[0] - ramp), (double)(r.x[5] - free3.X[5])));
@@ -150,8 +151,9 @@ int main(int argc, char **argv)
       a.delay = 2.0, f.delay = 3.0;
       PetscCall(Run(free3, {}, {a, f}, type, T, dt, 7, {"none"}, &r));
       TG_CHECK(r.rows[2][1] == 0, "a delayed velocity control moved before its delay: %g", (double)r.rows[2][1]);
-      TG_CHECK_CLOSE(r.x[0] - free3.X[0], 0.5 * (T - 2.0), type == TSRK ? 1e-7 : 1e-12, 1, "delayed velocity control: v (t - delay)");
-      TG_CHECK_CLOSE(r.x[2] - free3.X[2], 0.02 * (T - 3.0) * (T - 3.0) / (2 * m), type == TSRK ? 1e-6 : 1e-3, 1, "delayed force control: F (t - d)^2 / 2m");
+      TG_CHECK_CLOSE(r.x[0] - free3.X[0], 0.5 * (T - 2.0), std::string(type) == TSRK ? 1e-7 : 1e-12, 1, "delayed velocity control: v (t - delay)");
+      TG_CHECK_CLOSE(r.x[2] - free3.X[2], 0.02 * (T - 3.0) * (T - 3.0) / (2 * m), std::string(type) == TSRK ? 1e-6 : 1e-3, 1,
+                     "delayed force control: F (t - d)^2 / 2m");
       TG_CHECK(r.rows[2][8] == 0 && r.rows[4][8] == 0.02, "groups.csv: the delayed force is 0 before the delay, F after");
     }
     { /* 3. force control on one node, no other force */

@@ -84,6 +84,31 @@ static PetscErrorCode TestShares()
     TG_CHECK_CLOSE(sum, W, 1e-12, 0, "the length shares of an interface sum to its length");
     TG_CHECK(smallest > 0, "a bond without a length share");
   }
+  { /* -glue_unbonded_box: a pre-crack over the lower half of the interface (7 bars per side: nodes at
+       y = 10 k/7; those at k = 0..3, y <= 4.29, lie in the box) */
+    PolygonBuilder B;
+    AddSquare(B, 0, W, 7);
+    AddSquare(B, W + 2 * r, W, 7);
+    Tissue &T = B.Finish(r);
+    Glue    g = *MakeGlue(Glue::ENERGY, 1e3, 1e3, 1);
+    PetscCall(PetscOptionsSetValue(NULL, "-glue_unbonded_box", "-1,-1,25,5"));
+    PetscCall(Configure(g));
+    PetscCall(PetscOptionsClearValue(NULL, "-glue_unbonded_box"));
+    NeighbourSearch nb;
+    PetscCall(g.SetUp(T.particles, nb));
+    PetscCall(g.CreateBonds(T.particles, T.X.data()));
+    PetscReal sum = 0;
+    for (PetscInt b = 0; b < g.Created(); b++) sum += g.LengthShare(b);
+    std::vector<std::pair<std::string, PetscReal>> stats;
+    g.Statistics(stats);
+    PetscReal unbonded = -1;
+    for (auto &kv : stats)
+      if (kv.first == "bonds_unbonded_box") unbonded = kv.second;
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "unbonded box over y <= 5: %" PetscInt_FMT " bonds (8 outside the box), %g left out, sum of shares %g\n",
+                          g.Created(), (double)unbonded, (double)sum));
+    TG_CHECK(g.Created() == 8 && unbonded == 8, "expected 8 bonds made and 8 left out by the box, got %" PetscInt_FMT " and %g", g.Created(), (double)unbonded);
+    TG_CHECK(sum > 0 && sum < W, "the bonded part of the interface is shorter than the face: sum of shares %g", (double)sum);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

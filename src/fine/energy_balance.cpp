@@ -146,18 +146,18 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   for (size_t q : counting_) s.push_back(model_->TermAt(q).Dissipation());
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s.data(), (PetscMPIInt)s.size(), MPIU_REAL, MPIU_SUM, comm));
   size_t    k = 0;
-  PetscReal K = s[k++], Es = 0, Wext = 0, D = 0, Etot_abs = std::fabs(s[0]);
+  PetscReal K = s[k++], Es = 0, Wext = 0, Wabs = 0, D = 0, Etot_abs = std::fabs(s[0]);
   for (size_t q = 0; q < stored_.size(); q++) Es += s[k], Etot_abs += std::fabs(s[k]), k++;
-  Wext += s[k++];
-  for (size_t q = 0; q < loads_.size() + timed_.size(); q++) Wext += s[k++];
+  for (size_t q = 0; q < 1 + loads_.size() + timed_.size(); q++) Wext += s[k], Wabs += std::fabs(s[k]), k++;
   for (size_t q = 0; q < dissipative_.size() + counting_.size(); q++) D += s[k++];
   const PetscReal residual = (K + Es) - (K0_ + E0_) - Wext + D;
-  /* relative to the external work done, or (none done) to the energies in play */
-  PetscReal scale = std::max(std::fabs(Wext), Etot_abs);
-  if (std::fabs(Wext) > 0) scale = std::fabs(Wext);
-  *relative       = scale > 0 ? residual / scale : 0;
-  worst_relative_ = std::max(worst_relative_, std::fabs(*relative));
-  row             = s;
+  /* relative to the external works' magnitudes summed (the controls' and a turgor ramp's works may
+     have opposite signs: their sum could cancel and inflate the ratio), or (none done) to the
+     energies in play */
+  const PetscReal scale = Wabs > 0 ? Wabs : Etot_abs;
+  *relative             = scale > 0 ? residual / scale : 0;
+  worst_relative_       = std::max(worst_relative_, std::fabs(*relative));
+  row                   = s;
   row.push_back(residual);
   row.push_back(*relative);
   PetscFunctionReturn(PETSC_SUCCESS);

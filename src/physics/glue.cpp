@@ -129,6 +129,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
   bonds_.clear();
   info_.clear();
   trial_.clear();
+  unbonded_         = 0;
   const PetscReal R = 2 * P.bar_radius + distance, R2 = R * R;
   PetscReal       lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
   for (PetscInt i = 0; i < P.n; i++)
@@ -185,6 +186,13 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     const PetscInt s = kv.second.s;
     B.p = kv.first.first, I.cell_p = P.node_polygon[B.p], I.cell_s = kv.first.second, I.s = s;
     B.a = P.springs[s].i, B.b = P.springs[s].j, B.lam = kv.second.lam, B.sign = 1, B.L = 0;
+    if (has_unbonded_box) { /* a pre-crack: no bond whose bond point is in the box */
+      const PetscReal cx = (1 - B.lam) * X[2 * B.a] + B.lam * X[2 * B.b], cy = (1 - B.lam) * X[2 * B.a + 1] + B.lam * X[2 * B.b + 1];
+      if (cx >= unbonded_box[0] && cx <= unbonded_box[2] && cy >= unbonded_box[1] && cy <= unbonded_box[3]) {
+        unbonded_++;
+        continue;
+      }
+    }
     PetscReal tx, ty, nx, ny, il, gt, gn;
     Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
     B.sign = gn >= 0 ? 1 : -1; /* n points from the bar to the node */
@@ -486,17 +494,23 @@ void Glue::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) con
   stats.push_back({"bonds_intact", (PetscReal)intact_});
   stats.push_back({"bonds_broken", (PetscReal)(bonds_.size() - intact_)});
   stats.push_back({"glue_interface_length", L});
+  if (has_unbonded_box) stats.push_back({"bonds_unbonded_box", (PetscReal)unbonded_});
   stats.push_back({"glue_fracture_dissipation", dissipated_});
 }
 
 PetscErrorCode Glue::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer,
-                                   "glue: law %s, eps = %g µm, k_n = %g, k_t = %g N/m per µm, G_c = %g µN, sigma_c = %g N/m, tau_c = %g N/m%s (bonds made at "
-                                   "the first evaluation)\n",
-                                   kLaws[law], (double)distance, (double)normal_stiffness, (double)kt_, (double)fracture_energy, (double)sigma_, (double)tau_,
-                                   open_cells ? ", open cells glued" : ""));
+  char when[64] = "the first evaluation", box[160] = "";
+  if (start_time > 0) PetscCall(PetscSNPrintf(when, sizeof when, "the first accepted state at t >= %g µs", (double)start_time));
+  if (has_unbonded_box)
+    PetscCall(PetscSNPrintf(box, sizeof box, "; none in the box %g,%g,%g,%g (-glue_unbonded_box)", (double)unbonded_box[0], (double)unbonded_box[1],
+                            (double)unbonded_box[2], (double)unbonded_box[3]));
+  PetscCall(
+    PetscViewerASCIIPrintf(viewer,
+                           "glue: law %s, eps = %g µm, k_n = %g, k_t = %g N/m per µm, G_c = %g µN, sigma_c = %g N/m, tau_c = %g N/m%s (bonds made at %s%s)\n",
+                           kLaws[law], (double)distance, (double)normal_stiffness, (double)kt_, (double)fracture_energy, (double)sigma_, (double)tau_,
+                           open_cells ? ", open cells glued" : "", when, box));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

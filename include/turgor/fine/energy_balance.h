@@ -12,7 +12,7 @@
    the accepted positions (the last evaluation of velocity Verlet and of DOPRI), per step
    W = (F_n + F_n+1)/2 . (v_n + v_n+1)/2 h. With velocity Verlet the works of all forces then sum
    to the kinetic energy's change exactly, so the residual is the conservative terms' integration
-   error (O(h^2)) plus whatever dissipation no term counts (dashpots are not counted). */
+   error (O(h^2)) plus whatever dissipation no term counts (contact's normal damping is not counted). */
 #include <turgor/fine/controls.h>
 #include <turgor/physics/force_model.h>
 #include <string>

@@ -122,7 +122,7 @@ private:
   std::vector<Trial>    trial_;
   std::vector<Push>     push_; /* per bond, the last evaluation's forces, scattered after the loop */
   std::vector<Break>    breaks_;
-  PetscInt              intact_ = 0, accepted_ = 0;
+  PetscInt              intact_ = 0, accepted_ = 0, unbonded_ = 0; /* unbonded_: pairs left unbonded by -glue_unbonded_box */
   PetscReal             dissipated_ = 0, time_ = 0;
   bool                  have_bonds_ = false;
   const ParticleSet    *P_          = nullptr;
