@@ -19,3 +19,8 @@ turgor_add_test(fine_partition_cut COMMAND ${CHECK} between partition_small part
 turgor_add_test(fine_partition_np2_same COMMAND ${CHECK} samekey partition_small_np2 partition_small partition_edge_cut 0 LABELS fine mpi
   REQUIRES "partition_small;partition_small_np2")
 
+# -coarse_partitioner metis: the FE^2 run of fe2_mpi1/fe2_mpi2 on 2 ranks with the coarse mesh
+# distributed by METIS agrees with 1 rank to the same tolerance.
+turgor_add_test(fe2_mpi2_metis COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${FE2MPI} -coarse_partitioner metis -output_dir fe2_mpi2_metis
+  LABELS fe2 mpi SETUP fe2_mpi2_metis)
+turgor_add_test(fe2_mpi_metis_agrees COMMAND ${CHECK} tip fe2_mpi1 fe2_mpi2_metis 1e-10 LABELS fe2 mpi REQUIRES "fe2_mpi1;fe2_mpi2_metis")
