@@ -21,7 +21,7 @@ struct MetisOptions {
   PetscInt seed       = 0;    /* METIS_OPTION_SEED: the same graph and seed give the same parts */
   bool     contiguous = true; /* METIS_OPTION_CONTIG: each part one connected piece (when the graph is connected) */
   /* METIS_OPTION_NCUTS: partitionings tried, the smallest cut kept. 16, not METIS's 1: a 64 x 64 grid
-     on 4 parts cut 1.03-1.23 times the 128 walls of a 2 x 2 split with one try over 20 seeds, and
+     on 4 parts cut 1.05-1.23 times the 128 walls of a 2 x 2 split with one try over 20 seeds, and
      1.02-1.09 times with 16 (docs/scaling.md), for 16 times the METIS time (50 ms there) */
   PetscInt ncuts = 16;
 };
