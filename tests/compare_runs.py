@@ -17,6 +17,7 @@
                                              shrinks from third to third of the history, and the
                                              thirds' means agree within RELTOL of their size
   compare_runs.py samekey A_DIR B_DIR KEY RELTOL  summary.json[KEY] of the two runs agree within RELTOL (relative)
+  compare_runs.py between DIR KEY LO HI      LO <= summary.json[KEY] <= HI
   compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
                                              CSV[ROW][NAME] (minus CSV[BASE_ROW][NAME]) is EXPECTED
                                              within RELTOL (relative); ROW -1 is the last row
@@ -127,6 +128,11 @@ def main(argv):
         print(f"{argv[4]}: {a:.10g} vs {b:.10g}, relative difference {rel:.3e}")
         if not rel <= float(argv[5]):
             sys.exit(f"FAIL: relative difference above {argv[5]}")
+    elif mode == "between":
+        v, lo, hi = json.load(open(f"{argv[2]}/summary.json"))[argv[3]], float(argv[4]), float(argv[5])
+        print(f"{argv[3]} = {v} (expected {lo:g} .. {hi:g})")
+        if not lo <= v <= hi:
+            sys.exit(f"FAIL: {argv[3]} outside {lo:g} .. {hi:g}")
     elif mode == "column":
         rows = list(csv.DictReader(open(argv[2])))
         name, row, expected, tol = argv[3], int(argv[4]), float(argv[5]), float(argv[6])

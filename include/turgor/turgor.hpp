@@ -7,6 +7,7 @@
 #include <turgor/fine/fine_run.h>
 #include <turgor/io/output.h>
 #include <turgor/particles/neighbour_search.h>
+#include <turgor/parallel/cell_partition.h>
 #include <turgor/particles/particles.h>
 #include <turgor/run/simulation.h>
 #include <turgor/tissue/node_file.h>

@@ -6,6 +6,7 @@
 #include <turgor/material/acoustic_tensor.h>
 #include <turgor/core/memory.h>
 #include <turgor/core/log.h>
+#include <turgor/parallel/metis_partition.h>
 #include <petscsf.h>
 #include <cmath>
 #include <cstring>
@@ -26,12 +27,13 @@ CoarseModel::~CoarseModel()
 
 PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
 {
-  char      label[64], rule[64];
+  char      label[64], rule[64], partitioner[64];
   PetscInt  values[8], n = 8;
   PetscBool set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE, acoustic = acoustic_field ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
   PetscCall(PetscStrncpy(rule, q1::kRules[(int)quadrature].name, sizeof rule));
+  PetscCall(PetscStrncpy(partitioner, metis ? "metis" : "petsc", sizeof partitioner));
   for (const char *o : {"-coarse_faces", "-coarse_lower", "-coarse_upper"}) {
     PetscBool gone;
     PetscCall(PetscOptionsHasName(NULL, NULL, o, &gone));
@@ -61,7 +63,17 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
                              "material points (loss of ellipticity where <= 0); needs the material tangents at every snapshot (3 more material "
                              "evaluations per point, counted as output solves)",
                              "CoarseSpec", acoustic, &acoustic, NULL));
+  PetscCall(PetscOptionsString("-partitioner",
+                               "How the coarse mesh is distributed over the ranks: petsc (DMSetFromOptions with PETSc's partitioner, "
+                               "-coarse_petscpartitioner_type) or metis (the serial mesh's cell dual graph partitioned by METIS_PartGraphKway and "
+                               "distributed through a PETSCPARTITIONERSHELL; PETSc's own distribution and -coarse_dm_distribute are then not used, "
+                               "and -coarse_dm_refine refines before the distribution)",
+                               "CoarseSpec", partitioner, partitioner, sizeof partitioner, NULL));
   PetscOptionsEnd();
+  PetscCall(CheckNotEmpty(comm, "-coarse_partitioner", "petsc or metis"));
+  PetscCheck(!std::strcmp(partitioner, "petsc") || !std::strcmp(partitioner, "metis"), comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+             "Option -coarse_partitioner = %s: unknown partitioner (known: petsc, metis)", partitioner);
+  metis = !std::strcmp(partitioner, "metis");
   {
     bool known = false;
     for (int r = 0; r < 2; r++)
@@ -155,7 +167,9 @@ PetscErrorCode CoarseModel::CreateMesh()
   }
   PetscCall(PetscObjectSetName((PetscObject)dm_, "coarse"));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)dm_, "coarse_"));
+  if (spec_.metis) PetscCall(DMPlexDistributeSetDefault(dm_, PETSC_FALSE)); /* DistributeWithMetis does it */
   PetscCall(DMSetFromOptions(dm_));
+  if (spec_.metis) PetscCall(DistributeWithMetis());
   PetscCall(DMViewFromOptions(dm_, NULL, "-dm_view"));
   PetscInt dim;
   PetscCall(DMGetDimension(dm_, &dim));
@@ -184,6 +198,60 @@ PetscErrorCode CoarseModel::CreateMesh()
     PetscCall(ISRestoreIndices(cells, &g));
   }
   PetscCallMPI(MPI_Comm_rank(comm_, &rank_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -coarse_partitioner metis: the cell dual graph (cells sharing an edge) of the mesh, still whole on
+   the rank that built or read it, partitioned into one part per rank by METIS_PartGraphKway and
+   handed to DMPlexDistribute through a PETSCPARTITIONERSHELL (Debian's PETSc has no ParMETIS). */
+PetscErrorCode CoarseModel::DistributeWithMetis()
+{
+  const char *option = "-coarse_partitioner metis";
+  PetscMPIInt size;
+  PetscBool   distributed;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  if (size == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DMPlexIsDistributed(dm_, &distributed));
+  PetscCheck(!distributed, comm_, PETSC_ERR_ARG_WRONG,
+             "Option %s: the coarse mesh is already distributed (-coarse_dm_distribute, or a mesh given through the API); METIS partitions a serial mesh",
+             option);
+  PetscInt cStart, cEnd, ncells;
+  PetscCall(DMPlexGetHeightStratum(dm_, 0, &cStart, &cEnd));
+  ncells = cEnd - cStart;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCheck(ncells >= size, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option %s: %" PetscInt_FMT " coarse elements cannot be split over %d ranks", option, ncells,
+             (int)size);
+  PetscInt nv = 0, *offsets = nullptr, *adjacency = nullptr;
+  CSRGraph graph;
+  PetscCall(DMPlexCreateNeighborCSR(dm_, 0, &nv, &offsets, &adjacency));
+  if (nv > 0) {
+    graph.xadj.assign(offsets, offsets + nv + 1);
+    graph.adjncy.assign(adjacency, adjacency + offsets[nv]);
+  }
+  PetscCall(PetscFree(offsets));
+  PetscCall(PetscFree(adjacency));
+  std::vector<PetscInt> part, sizes((size_t)size, 0), points;
+  if (nv > 0) { /* the rank holding the serial mesh; METIS_OPTION_SEED fixed: the same mesh, the same parts */
+    MetisOptions opt;
+    PetscCall(MetisPartGraphKway(PETSC_COMM_SELF, graph, size, opt, option, &part));
+    for (PetscInt c = 0; c < nv; c++) sizes[part[c]]++;
+    for (PetscMPIInt r = 0; r < size; r++)
+      for (PetscInt c = 0; c < nv; c++)
+        if (part[c] == r) points.push_back(cStart + c);
+  }
+  PetscPartitioner partitioner;
+  DM               pdm = nullptr;
+  PetscCall(DMPlexGetPartitioner(dm_, &partitioner));
+  PetscCall(PetscPartitionerSetType(partitioner, PETSCPARTITIONERSHELL));
+  PetscCall(PetscPartitionerShellSetPartition(partitioner, size, sizes.data(), points.empty() ? nullptr : points.data()));
+  PetscCall(DMPlexDistribute(dm_, 0, NULL, &pdm));
+  if (pdm) {
+    PetscCall(DMDestroy(&dm_));
+    dm_ = pdm;
+    PetscCall(PetscObjectSetName((PetscObject)dm_, "coarse"));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)dm_, "coarse_"));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

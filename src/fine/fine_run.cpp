@@ -12,7 +12,7 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
 {
   char     *sides[8];
   PetscInt  nsides = 8;
-  PetscBool set;
+  PetscBool set, pset;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
   PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec",
@@ -25,7 +25,14 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
                                "FineRunSpec", e, &e, NULL));
     energy = e;
   }
+  PetscCall(PetscOptionsInt("-partition_report",
+                            "Partition the tissue's cells into N parts with METIS (cell graph weighted by particles per cell and shared wall length) and "
+                            "report the edge cut and imbalance in summary.json and the particles' part in the snapshots; a preparation for distributed "
+                            "runs: the particles still all live on rank 0 (0: no partition)",
+                            "FineRunSpec", partition, &partition, &pset));
   PetscOptionsEnd();
+  PetscCheck(!pset || partition >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_partition_report = %" PetscInt_FMT ": the number of parts must be >= 1",
+             partition);
   PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
   PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
   if (set) {
@@ -156,6 +163,42 @@ PetscErrorCode FineRun::SyncSwarm(PetscReal t, Vec U)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The METIS partition of the whole tissue on rank 0 (every rank holds the tissue here; the other
+   ranks drop it after SetUp), its statistics broadcast to every rank. */
+PetscErrorCode FineRun::PartitionCellsReport()
+{
+  const char *option = "-fine_partition_report";
+  PetscMPIInt rank;
+  PetscInt    ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.polygons.size();
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCallMPI(MPI_Bcast(&ncells, 1, MPIU_INT, 0, comm_));
+  PetscCheck(spec_.partition <= ncells, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option %s = %" PetscInt_FMT ": more parts than the tissue's %" PetscInt_FMT " cells",
+             option, spec_.partition, ncells);
+  PetscErrorCode failed = PETSC_SUCCESS; /* a failure on rank 0 ends every rank */
+  PetscReal     *stats  = partition_stats_;
+  if (rank == 0) {
+    CellGraph graph;
+    failed = BuildCellGraph(PETSC_COMM_SELF, tissue_, &graph);
+    if (!failed) failed = PartitionCells(PETSC_COMM_SELF, graph, spec_.partition, MetisOptions(), option, &partition_);
+    if (!failed) {
+      std::vector<PetscInt> part;
+      ParticleParts(tissue_, partition_, &part);
+      particle_part_.assign(part.begin(), part.end());
+      stats[0] = (PetscReal)partition_.edge_cut;
+      stats[1] = partition_.edge_cut_length;
+      stats[2] = partition_.imbalance;
+      stats[3] = partition_.metis_seconds;
+      stats[4] = (PetscReal)*std::min_element(partition_.part_particles.begin(), partition_.part_particles.end());
+      stats[5] = (PetscReal)*std::max_element(partition_.part_particles.begin(), partition_.part_particles.end());
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&failed, 1, MPI_INT, 0, comm_));
+  PetscCheck(!failed, comm_, PETSC_ERR_LIB, "Option %s = %" PetscInt_FMT ": the cell partition failed on rank 0", option, spec_.partition);
+  PetscCallMPI(MPI_Bcast(stats, 6, MPIU_REAL, 0, comm_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FineRun::SetUpModel()
 {
   PetscMPIInt rank;
@@ -171,6 +214,7 @@ PetscErrorCode FineRun::SetUpModel()
   }
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
   PetscCall(controls_.SetUp(comm_, tissue_, rank == 0));
+  if (spec_.partition > 0) PetscCall(PartitionCellsReport());
   /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
   tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
@@ -300,6 +344,12 @@ PetscErrorCode FineRun::Report()
   PetscCall(PetscPrintf(comm_, "Explicit stability limits at t = 0 (smallest first):\n"));
   for (const TimeStepLimit &l : limits_) PetscCall(PetscPrintf(comm_, "  dt <= %-11.4g %s\n", (double)l.dt, l.why.c_str()));
   PetscCall(controls_.View(comm_));
+  if (spec_.partition > 0)
+    PetscCall(PetscPrintf(comm_,
+                          "Cell partition (METIS, -fine_partition_report; reported only, the particles stay on rank 0): %" PetscInt_FMT
+                          " parts, edge cut %.0f walls (%.4g µm), particles per part %.0f..%.0f, imbalance %.4f, METIS %.3g s\n",
+                          spec_.partition, (double)partition_stats_[0], (double)partition_stats_[1], (double)partition_stats_[4], (double)partition_stats_[5],
+                          (double)partition_stats_[2], (double)partition_stats_[3]));
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTimeStep(ts_, &dt));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &fixed, TSBASICSYMPLECTIC, TSVERLET, ""));
@@ -344,6 +394,7 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   }
   PetscCall(VecRestoreArrayRead(U, &u));
   fields.nodes.push_back(std::move(force));
+  if (spec_.partition > 0) fields.nodes.push_back({"part", "", particle_part_, 1}); /* -fine_partition_report: the part of the particle's cell */
   for (TermField &f : terms) {
     if (f.where == TermField::CELL && tissue_.particles.polygons.empty()) continue; /* the square grid has no polygon grid */
     (f.where == TermField::CELL ? fields.cells : fields.bars).push_back({f.name, f.unit, std::move(f.values), 1});
@@ -618,6 +669,15 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
     js.Set("stability_limits_dt", dts);
     js.Set("stability_limits", why);
     js.Set("controls", controls_.Names());
+  }
+  if (spec_.partition > 0) { /* -fine_partition_report (the same numbers on every rank) */
+    js.Set("partition_parts", spec_.partition);
+    js.Set("partition_edge_cut", (PetscInt)partition_stats_[0]);
+    js.Set("partition_edge_cut_length", partition_stats_[1]);
+    js.Set("partition_imbalance", partition_stats_[2]);
+    js.Set("partition_metis_seconds", partition_stats_[3]);
+    js.Set("partition_particles_min", (PetscInt)partition_stats_[4]);
+    js.Set("partition_particles_max", (PetscInt)partition_stats_[5]);
   }
   if (spec_.energy) {
     PetscReal worst = energy_.LargestRelativeResidual(), wext = energy_.ExternalWork();

@@ -46,7 +46,8 @@ struct CoarseSpec {
   std::vector<PetscInt> dirichlet_values = {4}; /* box: 1 bottom, 2 right, 3 top, 4 left */
   bool                  lumped_mass      = false;
   CoarseQuadrature      quadrature       = CoarseQuadrature::SRI;
-  bool                  acoustic_field   = true; /* snapshots carry the acoustic-tensor field (material tangents at output) */
+  bool                  acoustic_field   = true;  /* snapshots carry the acoustic-tensor field (material tangents at output) */
+  bool                  metis            = false; /* -coarse_partitioner metis: the serial mesh distributed by METIS (a PETSCPARTITIONERSHELL) */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -152,6 +153,7 @@ public:
 private:
   static PetscErrorCode BoundaryValues(PetscInt dim, PetscReal time, const PetscReal X[], PetscInt Nc, PetscScalar *u, void *ctx);
   PetscErrorCode        CreateMesh();
+  PetscErrorCode        DistributeWithMetis(); /* -coarse_partitioner metis */
   /* for failure reports: point m of the evaluation (F, Fdot, r) */
   PetscErrorCode DescribePoint(PetscInt m, const std::vector<Tensor2> &F, const std::vector<Tensor2> &Fdot, const std::vector<MaterialResponse> &r,
                                std::string *text) const;

@@ -10,6 +10,7 @@
 #include <turgor/fine/controls.h>
 #include <turgor/fine/energy_balance.h>
 #include <turgor/io/particle_snapshots.h>
+#include <turgor/parallel/cell_partition.h>
 #include <turgor/physics/force_model.h>
 #include <turgor/run/time_run.h>
 #include <turgor/tissue/tissue_generator.h>
@@ -23,6 +24,7 @@ struct FineRunSpec {
   PetscReal                dt_safety = 0.5;      /* fixed steps: this fraction of the stability limit */
   PetscReal                dt        = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
   bool                     energy    = false;    /* energy.csv (-fine_energy) */
+  PetscInt                 partition = 0;        /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -89,6 +91,7 @@ private:
      without: the state's own arrays. */
   void           Constrained(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc);
   PetscErrorCode ChooseTimeStep();
+  PetscErrorCode PartitionCellsReport(); /* -fine_partition_report: before the tissue leaves the ranks other than 0 */
 
   FineRunSpec                spec_;
   LoadSpec                   load_;
@@ -114,6 +117,13 @@ private:
   std::vector<std::string>                record_names_;
   std::vector<std::unique_ptr<CsvWriter>> record_csv_;
   PetscErrorCode                          EnergyRow(PetscReal t, const PetscReal *x, const PetscReal *v);
+
+  /* -fine_partition_report (the particles stay on rank 0): the partition and the part of each
+     particle (snapshots) on rank 0; on every rank the edge cut (walls), its length (µm), the
+     imbalance, the METIS time (s), the smallest and largest part (particles) */
+  CellPartition          partition_;
+  std::vector<PetscReal> particle_part_;
+  PetscReal              partition_stats_[6] = {0, 0, 0, 0, 0, 0};
 
   /* observation */
   PetscInt               tip_    = -1; /* local index of the tip particle on rank 0 */
