@@ -116,7 +116,7 @@ PetscErrorCode FE2Run::Report()
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
   PetscCall(PetscPrintf(comm_,
-                        "turgor fe2: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
+                        "turgor fe2: %" PetscInt_FMT " elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
                         " material-point groups\n",
                         model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), model_.QuadratureDescription(), size,
                         model_.Pool().NumGroups()));
@@ -259,6 +259,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   const PetscInt npts = model_.NumMaterialPoints();
   js.Set("jacobian_evals", cc.tangent_evals);
   js.Set("material", model_.Pool().MaterialName());
+  js.Set("element", model_.ElementName());
   js.Set("quadrature", model_.QuadratureName());
   js.Set("n_elements", model_.NumElements());
   js.Set("n_material_points", npts);
