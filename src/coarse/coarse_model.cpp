@@ -820,6 +820,8 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
     PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscLogDouble t0, t1;
+  PetscCall(PetscTime(&t0));
   PetscCall(InternalForce(Floc_));
   PetscCall(VecZeroEntries(F));
   PetscCall(DMLocalToGlobal(dm_, Floc_, ADD_VALUES, F));
@@ -835,6 +837,8 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
   }
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecRestoreArray(F, &f));
+  PetscCall(PetscTime(&t1));
+  coarse_time_ += t1 - t0;
   PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -849,8 +853,12 @@ PetscErrorCode CoarseModel::RHSFunction(Vec U, Vec G, PetscBool *ok)
   }
   PetscCall(IFunction(U, rhs_z_, rhs_r_, ok)); /* R = -[v; f_ext - f_int] */
   if (*ok) {
+    PetscLogDouble t0, t1;
+    PetscCall(PetscTime(&t0));
     PetscCall(VecScale(rhs_r_, -1.0));
     PetscCall(KSPSolve(mass_ksp_, rhs_r_, G));
+    PetscCall(PetscTime(&t1));
+    coarse_time_ += t1 - t0;
     KSPConvergedReason reason;
     PetscCall(KSPGetConvergedReason(mass_ksp_, &reason));
     PetscCheck(reason > 0, comm_, PETSC_ERR_NOT_CONVERGED, "Mass matrix solve failed (%s)", KSPConvergedReasons[reason]);
@@ -954,11 +962,15 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
   counters_.jacobians++;
+  PetscLogDouble t0, t1;
   if (!refresh && KC_) { /* modified Newton: the last K, C with the new shift */
     *ok = PETSC_TRUE;
     tangent_age_++;
+    PetscCall(PetscTime(&t0));
     PetscCall(MatCopy(KC_, J, SAME_NONZERO_PATTERN));
     PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+    PetscCall(PetscTime(&t1));
+    coarse_time_ += t1 - t0;
     PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -971,11 +983,14 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
     PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscCall(PetscTime(&t0));
   PetscCall(AssembleKC(F_, response_, tangent_, J));
   if (!KC_) PetscCall(MatDuplicate(J, MAT_COPY_VALUES, &KC_));
   else PetscCall(MatCopy(J, KC_, SAME_NONZERO_PATTERN));
   tangent_age_ = 0;
   PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+  PetscCall(PetscTime(&t1));
+  coarse_time_ += t1 - t0;
   PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

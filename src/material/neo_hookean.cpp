@@ -35,6 +35,29 @@ PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, Evalu
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* d sigma = -mu dJ/J^2 (b - I) + (mu/J) db + lambda (1 - ln J) dJ/J^2 I + eta (dl + dl^T), with
+   dJ = J tr(dF F^-1), db = dF F^T + F dF^T, dl = dFdot F^-1 - l dF F^-1. */
+PetscErrorCode NeoHookean::StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind,
+                                             Tensor2 *dsigma, MaterialResponse *status)
+{
+  PetscFunctionBeginUser;
+  *status           = MaterialResponse();
+  const PetscReal J = F.Det();
+  if (!(J > 0)) {
+    status->ok     = false;
+    status->reason = "inverted element (det F = " + std::to_string(J) + ")";
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  const Tensor2 Fi = F.Inverse(), l = Fdot * Fi, I = Tensor2::Identity(), bI = F * F.T() - I;
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscReal dJ = J * (dF[k] * Fi).Trace();
+    const Tensor2   db = dF[k] * F.T() + F * dF[k].T();
+    const Tensor2   dl = dFdot[k] * Fi - l * dF[k] * Fi;
+    dsigma[k]          = (-p.mu * dJ / (J * J)) * bI + (p.mu / J) * db + (p.lambda * (1 - std::log(J)) * dJ / (J * J)) * I + p.viscosity * (dl + dl.T());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* c_ijkl = (lambda/J) d_ij d_kl + ((mu - lambda ln J)/J)(d_ik d_jl + d_il d_jk): D^e(11,11) = lambda/J
    + 2(mu - lambda ln J)/J, D^e(11,22) = lambda/J, D^e(12,12) = (mu - lambda ln J)/J; viscosity
    eta (l + l^T) gives D^v = diag(2 eta, 2 eta, eta). */

@@ -95,6 +95,10 @@ public:
      counted as output solves. *ok = false when a material point failed, *why says where. Also
      fills CellAcoustic() at U. */
   PetscErrorCode AssembleTangentAt(Vec U, bool damping, Mat J, PetscBool *ok, std::string *why);
+  /* Seconds this rank spent in the coarse model's own work inside IFunction, IJacobian and
+     RHSFunction: the assembly of f_int, K, C and the explicit integrators' mass solves (the
+     material points excluded: MaterialPointPool::GlobalTimes). */
+  PetscReal CoarseAssemblyTime() const { return (PetscReal)coarse_time_; }
   /* Jacobians assembled from the same K, C since they were last computed. */
   PetscInt TangentAge() const { return tangent_age_; }
   /* Udot = Mt^{-1} G(U) (explicit integrators). */
@@ -232,6 +236,7 @@ private:
   std::vector<Tangents>         out_tangent_;
   std::vector<PetscReal>        cell_acoustic_;
   CoarseCounters                counters_;
+  PetscLogDouble                coarse_time_ = 0; /* CoarseAssemblyTime() */
   PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0, ev_tangent_at_ = 0;
 };
 
