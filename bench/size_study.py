@@ -335,6 +335,7 @@ def main():
     ap.add_argument("--predict", default="128", help="sizes to predict with the cost model")
     ap.add_argument("--reuse", action="store_true", help="keep completed runs with the same command")
     ap.add_argument("--replot", action="store_true")
+    ap.add_argument("--check-max-error", type=float, default=0, help="exit 1 if an FE^2 run failed or its max error is above this (the ctest)")
     a = ap.parse_args()
     a.sizes = [int(s) for s in a.sizes.split(",")]
     a.meshes = [m for m in a.meshes.split(",") if m]
@@ -349,6 +350,14 @@ def main():
         st.study()
     st.report()
     st.plots()
+    if a.check_max_error > 0:
+        bad = [r for r in st.rows if r["run"] == "fe2" and (not r.get("ok") or not r.get("max_error", 1e9) <= a.check_max_error)]
+        for r in bad:
+            print(f"FAIL: FE^2 {r['element']} {r['mesh']}² at {r['size']}²: " + ("failed" if not r.get("ok") else f"max error {r['max_error']:.3f}") +
+                  f" (limit {a.check_max_error:g})", file=sys.stderr)
+        if bad:
+            sys.exit(1)
+        print(f"size_study.py: every FE^2 run within a max error of {a.check_max_error:g}")
 
 
 if __name__ == "__main__":
