@@ -36,6 +36,9 @@ Outputs in --out: size_study.csv, size_speedup.png, size_tips.png (and error_cos
 """
 import argparse, bisect, csv, json, math, os, resource, subprocess, sys, time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from study import write_rows  # noqa: E402 (bench/study.py's CSV writer)
+
 COLUMNS = ["size", "run", "element", "mesh", "t_final", "ok", "wall_s", "cpu_s", "steps", "rhs_evals", "jacobian_evals", "rve_solves",
            "n_material_points", "n_particles", "speedup_wall", "speedup_cpu", "max_error", "period_error", "phase_error", "amplitude_error",
            "offset_error", "bending_error", "higher_modes_error", "period", "amplitude", "decay", "time_material_points_s", "time_tangents_s",
@@ -197,11 +200,7 @@ class SizeStudy:
         self.write_csv()
 
     def write_csv(self):
-        with open(os.path.join(self.a.out, "size_study.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=COLUMNS)
-            w.writeheader()
-            for r in self.rows:
-                w.writerow({k: ("" if r.get(k) is None else r.get(k, "")) for k in COLUMNS})
+        write_rows(os.path.join(self.a.out, "size_study.csv"), COLUMNS, self.rows)
 
     def load(self):
         num = lambda v: float(v) if v not in ("", None) else None
@@ -229,17 +228,18 @@ class SizeStudy:
         print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         f = lambda v, fmt: "—" if v is None or v != v else fmt.format(v)
         for r in self.rows:
+            pct = lambda k, fmt: f(None if r.get(k) is None else 100 * r[k], fmt)
             label = "fine (DOPRI, 1 rank)" if r["run"] == "fine" else f"FE² {r['element'].upper()} {r['mesh']}×{r['mesh']}"
             print(f"| {r['size']}² | {label} | {f(r.get('wall_s'), '{:.1f}')} | {f(r.get('cpu_s'), '{:.1f}')} | "
                   f"{'—' if r['run'] == 'fine' else f(r.get('speedup_wall'), '{:.0f}×') + ' / ' + f(r.get('speedup_cpu'), '{:.0f}×')} | "
                   f"{f(r.get('steps'), '{:.0f}')} | {f(r.get('rhs_evals'), '{:.0f}')} | {f(r.get('rve_solves'), '{:.0f}')} | "
-                  f"{'—' if r['run'] == 'fine' else f(100 * r['max_error'], '{:.1f}%')} | "
-                  f"{f(r.get('period'), '{:.2f} µs') if r['run'] == 'fine' else f(100 * r['period_error'], '{:+.2f}%')} | "
+                  f"{'—' if r['run'] == 'fine' else pct('max_error', '{:.1f}%')} | "
+                  f"{f(r.get('period'), '{:.2f} µs') if r['run'] == 'fine' else pct('period_error', '{:+.2f}%')} | "
                   f"{'—' if r['run'] == 'fine' else f(r.get('phase_error'), '{:+.0f}°')} | "
-                  f"{f(r.get('amplitude'), '{:.2f} µm') if r['run'] == 'fine' else f(100 * r['amplitude_error'], '{:+.1f}%')} | "
-                  f"{'—' if r['run'] == 'fine' else f(100 * r['offset_error'], '{:+.1f}%')} | "
-                  f"{'—' if r['run'] == 'fine' else f(100 * r['bending_error'], '{:.1f}%')} | "
-                  f"{'—' if r['run'] == 'fine' else f(100 * r['higher_modes_error'], '{:.1f}%')} |")
+                  f"{f(r.get('amplitude'), '{:.2f} µm') if r['run'] == 'fine' else pct('amplitude_error', '{:+.1f}%')} | "
+                  f"{'—' if r['run'] == 'fine' else pct('offset_error', '{:+.1f}%')} | "
+                  f"{'—' if r['run'] == 'fine' else pct('bending_error', '{:.1f}%')} | "
+                  f"{'—' if r['run'] == 'fine' else pct('higher_modes_error', '{:.1f}%')} |")
         print(f"\ncost model: fine CPU = {cf:.3e} s x particles x µs simulated; FE² CPU = {crve:.3e} s x RVE solves")
         for n in self.a.predict:
             particles = 16 * n * n + (n + 1) ** 2 + 2 * n * (n + 1)  # 16 fluid per cell, the corners, one midpoint per wall

@@ -19,16 +19,21 @@ PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A fresh response; a failed one (and true) when det F <= 0. */
+static bool Inverted(PetscReal J, MaterialResponse *r)
+{
+  *r = MaterialResponse();
+  if (J > 0) return false;
+  r->ok     = false;
+  r->reason = "inverted element (det F = " + std::to_string(J) + ")";
+  return true;
+}
+
 PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out)
 {
   PetscFunctionBeginUser;
-  *out              = MaterialResponse();
   const PetscReal J = F.Det();
-  if (!(J > 0)) {
-    out->ok     = false;
-    out->reason = "inverted element (det F = " + std::to_string(J) + ")";
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
+  if (Inverted(J, out)) PetscFunctionReturn(PETSC_SUCCESS);
   const Tensor2 b = F * F.T(), l = Fdot * F.Inverse();
   out->sigma = (p.mu / J) * (b - Tensor2::Identity()) + (p.lambda * std::log(J) / J) * Tensor2::Identity() + p.viscosity * (l + l.T());
   out->rho   = p.density / J;
@@ -41,13 +46,8 @@ PetscErrorCode NeoHookean::StressDerivatives(const Tensor2 &F, const Tensor2 &Fd
                                              Tensor2 *dsigma, MaterialResponse *status)
 {
   PetscFunctionBeginUser;
-  *status           = MaterialResponse();
   const PetscReal J = F.Det();
-  if (!(J > 0)) {
-    status->ok     = false;
-    status->reason = "inverted element (det F = " + std::to_string(J) + ")";
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
+  if (Inverted(J, status)) PetscFunctionReturn(PETSC_SUCCESS);
   const Tensor2 Fi = F.Inverse(), l = Fdot * Fi, I = Tensor2::Identity(), bI = F * F.T() - I;
   for (PetscInt k = 0; k < n; k++) {
     const PetscReal dJ = J * (dF[k] * Fi).Trace();

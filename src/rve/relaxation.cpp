@@ -56,11 +56,7 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
     PetscCall(KSPSetType(ksp, KSPPREONLY));
     PetscCall(KSPGetPC(ksp, &pc));
     /* the pseudo steps and the warm Newton iterations share one LU factor of J, kept here */
-    PetscCall(PCSetType(pc, PCSHELL));
-    PetscCall(PCShellSetContext(pc, this));
-    PetscCall(PCShellSetName(pc, "LU factors of G' + shift I, kept by the RVE relaxation"));
-    PetscCall(PCShellSetSetUp(pc, FactorSetUp));
-    PetscCall(PCShellSetApply(pc, FactorApply));
+    PetscCall(FactorAsPC(pc));
   }
   PetscCall(BuildJacobianPattern());
   PetscCall(TSSetFromOptions(ts_));
@@ -336,6 +332,17 @@ PetscErrorCode RVERelaxation::Factor(bool *ok)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode RVERelaxation::FactorAsPC(PC pc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, this));
+  PetscCall(PCShellSetName(pc, "LU factors of G' + shift I, kept by the RVE relaxation"));
+  PetscCall(PCShellSetSetUp(pc, FactorSetUp));
+  PetscCall(PCShellSetApply(pc, FactorApply));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode RVERelaxation::FactorSetUp(PC pc)
 {
   return TURGOR_GUARDED({
@@ -473,11 +480,7 @@ PetscErrorCode RVERelaxation::SolveLinearized(Vec W, Vec b, Vec z, PetscInt *its
     PetscCall(KSPSetPCSide(tangent_ksp_, PC_RIGHT));
     PetscCall(KSPSetTolerances(tangent_ksp_, 1e-8, 1e-30, PETSC_DEFAULT, 100));
     PetscCall(KSPGetPC(tangent_ksp_, &pc));
-    PetscCall(PCSetType(pc, PCSHELL));
-    PetscCall(PCShellSetContext(pc, this));
-    PetscCall(PCShellSetName(pc, "LU factors of G' + shift I, kept by the RVE relaxation"));
-    PetscCall(PCShellSetSetUp(pc, FactorSetUp));
-    PetscCall(PCShellSetApply(pc, FactorApply));
+    PetscCall(FactorAsPC(pc));
     PetscCall(KSPSetOperators(tangent_ksp_, tangent_op_, tangent_op_));
     PetscCall(KSPSetFromOptions(tangent_ksp_));
   }

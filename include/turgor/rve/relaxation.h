@@ -49,8 +49,9 @@ private:
 
   PetscErrorCode        BuildJacobianPattern();
   PetscErrorCode        PatternStale(PetscBool *stale);
-  PetscErrorCode        Refresh(Vec W);   /* K = G'(W) by colouring */
-  PetscErrorCode        Factor(bool *ok); /* J's LU factors, up to date */
+  PetscErrorCode        Refresh(Vec W);    /* K = G'(W) by colouring */
+  PetscErrorCode        Factor(bool *ok);  /* J's LU factors, up to date */
+  PetscErrorCode        FactorAsPC(PC pc); /* pc applies factor_ (a shell) */
   static PetscErrorCode FactorSetUp(PC pc);
   static PetscErrorCode FactorApply(PC pc, Vec x, Vec y);
   static PetscErrorCode LinearizedMult(Mat A, Vec x, Vec y); /* y = G_w(lin_W_) x, central differences */
