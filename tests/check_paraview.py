@@ -243,7 +243,8 @@ def check_polygons(run, reader, gas_p0=None):
     r, times = open_reader(os.path.join(run, "particles.xmf"), reader)
     check_times(times, summary)
     first, last = fetch(r, times[0]), fetch(r, times[-1])
-    check(len(last) == 3, f"{len(last)} blocks at the last time step, expected 3 (particles, walls, cells)")
+    bonded = "bonds_created" in summary
+    check(len(last) == (4 if bonded else 3), f"{len(last)} blocks at the last time step, expected {4 if bonded else 3} (particles, walls, cells{', bonds' if bonded else ''})")
     cells, walls = last[2], last[1]
     nc = summary.get("n_closed_cells", summary["n_cells"])
     types, ids = cells_of(cells)
@@ -266,6 +267,13 @@ def check_polygons(run, reader, gas_p0=None):
         nf = array(last[0], "point", "force", 3, False)
         check(len(nf) == summary["n_nodes"] and all(abs(v[2]) == 0 for v in nf), "force: not a 3-component vector (z = 0) per particle")
         extra += f", axial forces {min(force):.4g} .. {max(force):.4g} µN, node forces up to {max(abs(v[0]) + abs(v[1]) for v in nf):.4g} µN"
+    if bonded:  # the glue bonds: one line per bond, intact = 1 for the bonds still intact at the end
+        bonds = last[3]
+        btypes, _ = cells_of(bonds)
+        intact = array(bonds, "cell", "intact", 1, False)
+        check(len(btypes) == summary["bonds_created"] and set(btypes) <= {VTK_LINE, VTK_POLY_LINE}, f"bonds: {len(btypes)} cells, expected {summary['bonds_created']} lines")
+        check(int(sum(intact)) == summary["bonds_intact"], f"bonds: {int(sum(intact))} intact in the last snapshot, summary says {summary['bonds_intact']}")
+        extra += f", {len(btypes)} bonds ({int(sum(intact))} intact)"
     if gas_p0 is not None:
         p = array(cells, "cell", "pressure", 1, False)
         check(all(close(a * q, gas_p0, 1e-9) for a, q in zip(ratio, p)), "pressure is not p0 / area_ratio (the gas law)")

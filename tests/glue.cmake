@@ -1,3 +1,59 @@
 # Glue bonds and fracture (issue 11).
 turgor_test_program(test_glue)
 turgor_add_test(test_glue COMMAND test_glue LABELS unit fine)
+
+# A refused option over an earlier run's output directory (-output_overwrite): the directory is
+# cleared first, so that the summary left behind says "failed", not the earlier run's "completed".
+turgor_add_test(output_refused_option_overwrites COMMAND sh -c
+  "$<TARGET_FILE:turgor_app> -mode fine -tissue_cells_x 2 -tissue_cells_y 2 -ts_max_time 0.1 -fine_progress_interval 0 -output_dir refused_over -output_overwrite > /dev/null && ! $<TARGET_FILE:turgor_app> -mode fine -tissue_cells_x 2 -tissue_cells_y 2 -wall_stiffness -1 -output_dir refused_over -output_overwrite > /dev/null 2>&1 && grep -q '\"status\": \"failed\"' refused_over/summary.json && ! test -e refused_over/tip.csv"
+  LABELS badinput)
+
+# The traction scene (config/voronoi_traction.yaml) on 64 cells (200 x 200 µm, grips in the top and
+# bottom 20 µm) pulled at 0.2 µm/µs for 10 µs: the bonds break (every one accounted for), and the
+# energy balance closes to 1e-3 of the controls' work through the breaks.
+set(TRACTION64 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.yaml -tissue_voronoi_cells 64 -tissue_box 0,0,200,200
+  -control_top_box -1,180,201,201 -control_bottom_box -1,-1,201,20 -control_top_velocity 0,0.2 -control_bottom_velocity 0,-0.2
+  -control_top_ramp_time 2.5 -control_bottom_ramp_time 2.5 -ts_max_time 10 -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
+set(FRACTURE ${CMAKE_CURRENT_SOURCE_DIR}/check_fracture.py)
+turgor_add_test(traction_64 COMMAND turgor_app ${TRACTION64} -output_dir traction64 LABELS fine SETUP traction64)
+turgor_add_test(traction_64_energy COMMAND ${FRACTURE} energy traction64 1e-3 LABELS fine REQUIRES traction64)
+turgor_add_test(traction_64_bonds COMMAND ${FRACTURE} bonds traction64 LABELS fine REQUIRES traction64)
+# The same with a notch cut out of the left side at mid-height (80 µm deep, 30 high): its smoothed
+# peak force (the grips' force averaged over 0.3 µm of pull) is below 0.8 of the plain one's.
+turgor_add_test(traction_64_notched COMMAND turgor_app ${TRACTION64} -tissue_cut_box -1,85,80,115 -fine_energy 0 -output_dir traction64_notched
+  LABELS fine SETUP traction64_notched)
+turgor_add_test(traction_64_notch_weakens COMMAND ${FRACTURE} weaker 0.3 0.8 traction64_notched traction64 LABELS fine
+  REQUIRES "traction64;traction64_notched")
+# The quasi-static limit, on 16 cells (100 x 100 µm): pulled at 0.05, 0.025 and 0.0125 µm/µs, the
+# smoothed peak force of the two slowest within 2%.
+set(TRACTION16 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -control_top_box -1,87.5,101,101 -control_bottom_box -1,-1,101,12.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy 0 -fine_dt_safety 0.25
+  -output_overwrite)
+turgor_add_test(traction_16_v1 COMMAND turgor_app ${TRACTION16} -control_top_velocity 0,0.05 -control_bottom_velocity 0,-0.05 -control_top_ramp_time 5
+  -control_bottom_ramp_time 5 -ts_max_time 20 -output_dir traction16_v1 LABELS fine SETUP traction16_v1)
+turgor_add_test(traction_16_v2 COMMAND turgor_app ${TRACTION16} -control_top_velocity 0,0.025 -control_bottom_velocity 0,-0.025 -control_top_ramp_time 10
+  -control_bottom_ramp_time 10 -ts_max_time 40 -output_dir traction16_v2 LABELS fine SETUP traction16_v2)
+turgor_add_test(traction_16_v3 COMMAND turgor_app ${TRACTION16} -control_top_velocity 0,0.0125 -control_bottom_velocity 0,-0.0125 -control_top_ramp_time 20
+  -control_bottom_ramp_time 20 -ts_max_time 80 -output_dir traction16_v3 LABELS fine SETUP traction16_v3)
+turgor_add_test(traction_16_quasistatic COMMAND ${FRACTURE} peaks 0.3 0.02 traction16_v1 traction16_v2 traction16_v3 LABELS fine
+  REQUIRES "traction16_v1;traction16_v2;traction16_v3")
+
+# The crushing scene (config/voronoi_crushing.yaml) on 64 cells: the turgor builds up over 10 µs,
+# then 4 µm of crushing; the balance (the ramp's work included) closes within 1e-2 (penalty contact
+# at half the stability limit), every bond is accounted for, and the snapshots show the cells with
+# their pressure (the gas law, p0 = 5 N/m at the end) and the bonds in ParaView.
+turgor_add_test(crushing_64 COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_crushing.yaml -tissue_voronoi_cells 64
+  -tissue_box 0,0,200,200 -ts_max_time 14 -fine_snapshots 2 -fine_progress_interval 0 -output_dir crushing64 -output_overwrite LABELS fine SETUP crushing64)
+turgor_add_test(crushing_64_energy COMMAND ${FRACTURE} energy crushing64 1e-2 LABELS fine REQUIRES crushing64)
+turgor_add_test(crushing_64_bonds COMMAND ${FRACTURE} bonds crushing64 LABELS fine REQUIRES crushing64)
+turgor_add_test(crushing_64_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py crushing64/particles.xmf LABELS fine REQUIRES crushing64)
+if(TURGOR_PVPYTHON)
+  foreach(reader default XDMFReader)
+    set(R "")
+    if(NOT reader STREQUAL default)
+      set(R --reader ${reader})
+    endif()
+    turgor_add_test(paraview_crushing_64_${reader} COMMAND ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py
+      polygons crushing64 --gas-p0 5 ${R} LABELS paraview fine REQUIRES crushing64 TIMEOUT 120)
+  endforeach()
+endif()

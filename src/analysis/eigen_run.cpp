@@ -74,6 +74,8 @@ EigenRun::~EigenRun()
 PetscErrorCode EigenRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
+  /* the output directory first: an option refused below then leaves a summary.json that says so */
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
   PetscCall(spec_.SetFromOptions(comm_));
   if (spec_.state == EigenState::Relaxed) {
     /* the relaxed state is -mode fe2_static's answer: its run, options and outputs (tip.csv, the
@@ -91,7 +93,6 @@ PetscErrorCode EigenRun::SetFromOptions()
   }
   /* D^v only for the damped modes */
   model_->Pool().Tangent().viscosity = spec_.damping;
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
   /* the solvers and their options (defaults through the API: residuals well below 1e-8) */
   PetscCall(lowest_.SetFromOptions("eigen_", PencilEnd::Lowest, spec_.modes, 1e-10));
   if (spec_.largest) PetscCall(largest_.SetFromOptions("eigen_max_", PencilEnd::Largest, 1, 1e-10));

@@ -42,6 +42,8 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
   KSP         ksp;
   PC          pc;
   PetscFunctionBeginUser;
+  /* the output directory first: an option refused below then leaves a summary.json that says so */
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_)); /* not prepared under -help */
   /* as -mode fe2: an RVE's Psi-tc tolerance 1e-9 unless -rve_psi_atol says otherwise */
   model_.Pool().SetDefaultTolerance(1e-9);
   /* v = 0: the damping C (from D^v) never enters the static system, so its 3 perturbed
@@ -52,7 +54,6 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
   PetscCall(model_.SetFromOptions());
   PetscCall(spec_.SetFromOptions(comm_));
   PetscCall(monitor_.SetFromOptions("fe2_static_", "converged load levels", "load_factor"));
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_)); /* not prepared under -help */
   /* the nonlinear solver, with defaults through the API (the user's -fe2_static_snes_* win at
      SNESSetFromOptions in SetUp): Newton with full steps, the load cut-back being its
      globalisation -- a line search on |R| (bt, PETSc's default) takes steps of 0.1 on a bending

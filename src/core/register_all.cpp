@@ -11,6 +11,7 @@
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/cell_pressure.h>
 #include <turgor/physics/contact.h>
+#include <turgor/physics/dashpots.h>
 #include <turgor/physics/glue.h>
 #include <turgor/physics/hinges.h>
 #include <turgor/physics/repulsion.h>
@@ -54,6 +55,7 @@ PetscErrorCode RegisterAll(void)
   PetscCall(ForceTermRegister("pressure", CreateInstance<ForceTerm, CellPressure>));
   PetscCall(ForceTermRegister("viscosity", CreateInstance<ForceTerm, Viscosity>));
   PetscCall(ForceTermRegister("glue", CreateInstance<ForceTerm, Glue>));
+  PetscCall(ForceTermRegister("dashpots", CreateInstance<ForceTerm, Dashpots>));
   /* materials (-material) */
   PetscCall(MaterialModelRegister("rve", CreateInstance<MaterialModel, RVEMaterial>));
   PetscCall(MaterialModelRegister("neo_hookean", CreateInstance<MaterialModel, NeoHookeanMaterial>));

@@ -62,10 +62,11 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   PetscInt          nn = 0, nc = 0, nbox = 4, nf = 2, nv = 2, np = 5;
   PetscBool         set_nodes = PETSC_FALSE, set_cells = PETSC_FALSE, set_plates = PETSC_FALSE, set_box = PETSC_FALSE, set_v = PETSC_FALSE, set_f = PETSC_FALSE,
             set_ramp, set_half;
-  char             *vel[3]     = {NULL, NULL, NULL};
-  char             *plates[5]  = {NULL, NULL, NULL, NULL, NULL};
-  const char *const profiles[] = {"step", "ramp", "cyclic", "ControlProfile", "CONTROL_", NULL};
-  PetscEnum         profile    = (PetscEnum)g->profile;
+  char *vel[3]    = {NULL, NULL, NULL};
+  char *plates[5] = {NULL, NULL, NULL, NULL, NULL};
+  /* In the order of ControlProfile, read as a PetscInt (PETSc 3.18's PetscEnum holds only 0 and 1). */
+  const char *const profiles[] = {"step", "ramp", "cyclic"};
+  PetscInt          profile    = (PetscInt)g->profile;
   PetscReal         box[5] = {0, 0, 0, 0, 0}, force[3] = {0, 0, 0};
   PetscFunctionBeginUser;
   PetscCall(CountValues(pre + "nodes", &nn));
@@ -83,8 +84,8 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
                                   &set_box));
   PetscCall(PetscOptionsStringArray("-velocity", "vx,vy imposed velocity [µm/µs]; a component may be 'free'", "Controls", vel, &nv, &set_v));
   PetscCall(PetscOptionsRealArray("-force", "fx,fy total force on the group [µN], shared by mass", "Controls", force, &nf, &set_f));
-  PetscCall(PetscOptionsEnum("-profile", "Time profile: step (constant), ramp (0 to full over -ramp_time), cyclic (sign reverses every -half_period)",
-                             "Controls", profiles, profile, &profile, NULL));
+  PetscCall(PetscOptionsEList("-profile", "Time profile: step (constant), ramp (0 to full over -ramp_time), cyclic (sign reverses every -half_period)",
+                              "Controls", profiles, 3, profiles[profile], &profile, NULL));
   PetscCall(PetscOptionsReal("-ramp_time", "Ramp duration [µs] (profile ramp)", "Controls", g->ramp_time, &g->ramp_time, &set_ramp));
   PetscCall(PetscOptionsReal("-half_period", "Half period [µs] (profile cyclic)", "Controls", g->half_period, &g->half_period, &set_half));
   PetscCall(PetscOptionsReal("-delay", "The profile starts at this time [µs]; before it a velocity group holds still and a force group pushes nothing",
@@ -307,6 +308,18 @@ void Controls::AdjustAccelerations(PetscReal t, PetscReal *a) const
     for (PetscInt i : G.nodes)
       for (int d = 0; d < 2; d++) a[2 * i + d] += G.value[d] * s;
   }
+}
+
+void Controls::ControlForces(PetscReal t, const PetscReal *f, PetscReal *r, PetscInt n) const
+{
+  for (PetscInt k = 0; k < 2 * n; k++) r[k] = 0;
+  for (const ControlGroup &G : groups_)
+    for (PetscInt i : G.nodes)
+      for (int d = 0; d < 2; d++) {
+        const PetscInt c = 2 * i + d;
+        if (!G.velocity) r[c] = G.value[d] * G.Scale(t) * node_mass_[i] / G.mass;
+        else if (!G.free[d]) r[c] = node_mass_[i] * G.value[d] * G.Rate(t) - f[c];
+      }
 }
 
 PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const

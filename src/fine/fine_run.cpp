@@ -19,6 +19,12 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
                                     sides, &nsides, &set));
   PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec",
                              dt_safety, &dt_safety, NULL));
+  {
+    PetscBool e = energy ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(PetscOptionsBool("-energy", "Write the energy balance energy.csv (kinetic, stored, work of controls and loads, dissipated, residual)",
+                               "FineRunSpec", e, &e, NULL));
+    energy = e;
+  }
   PetscOptionsEnd();
   PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
   PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
@@ -194,6 +200,15 @@ PetscErrorCode FineRun::SetUpModel()
   controls_.Impose(0, u, u + 2 * n_local_);
   PetscCall(VecRestoreArray(U_, &u));
   v_stale_.assign(2 * n_local_, 0);
+  if (spec_.energy) {
+    const PetscScalar *u0;
+    const PetscReal   *x0, *v0;
+    PetscCall(energy_.SetUp(model_, controls_, tissue_.particles));
+    PetscCall(VecGetArrayRead(U_, &u0));
+    Constrained(0, u0, u0 + 2 * n_local_, &x0, &v0);
+    PetscCall(energy_.Start(comm_, 0, x0, v0));
+    PetscCall(VecRestoreArrayRead(U_, &u0));
+  }
 
   PetscCall(TSSetRHSFunction(ts_, NULL, RHSFunction, this));
   PetscCall(TSRHSSplitSetIS(ts_, "position", is_x_));
@@ -315,8 +330,18 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   PetscCall(SyncSwarm(t, U));
   PetscCall(VecGetArrayRead(U, &u));
   Constrained(t, u, u + 2 * n_local_, &x, &v);
+  model_.SetTime(t);
   PetscCall(model_.ComputeForces(x, v, force.values.data(), NULL));
   PetscCall(model_.OutputFields(x, v, terms));
+  {
+    std::vector<TermSegments> segs;
+    PetscCall(model_.OutputSegments(x, v, segs));
+    for (TermSegments &g : segs) {
+      ParticleSnapshotWriter::Segments w{g.name, std::move(g.xy), {}};
+      for (TermField &f : g.fields) w.fields.push_back({f.name, f.unit, std::move(f.values), 1});
+      fields.segments.push_back(std::move(w));
+    }
+  }
   PetscCall(VecRestoreArrayRead(U, &u));
   fields.nodes.push_back(std::move(force));
   for (TermField &f : terms) {
@@ -356,6 +381,7 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     PetscCall(VecGetArrayRead(U, &u));
     PetscCall(VecGetArray(F, &f));
     const std::vector<char> &fixed = run->tissue_.particles.fixed;
+    run->model_.SetTime(t);
     if (!run->controls_.Active()) {
       for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
       PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
@@ -410,6 +436,7 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     PetscCall(CheckStopNow());
     PetscCall(VecGetArrayRead(X, &x));
     PetscCall(VecGetArray(Vdot, &a));
+    run->model_.SetTime(t);
     if (!run->controls_.Active()) PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
     else {
       const PetscReal *xc, *vc;
@@ -429,17 +456,74 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
   });
 }
 
-/* The terms' internal state (plastic angles, contact history) at the accepted state. */
+/* After every accepted step: the terms' internal state (plastic angles, contact history, bonds) at
+   the accepted state, their log rows (breaks.csv), and the energy balance. */
 PetscErrorCode FineRun::AfterStep(PetscReal t, Vec U)
 {
   const PetscScalar *u;
   const PetscReal   *x, *v;
   PetscFunctionBeginUser;
-  if (!model_.HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!model_.HasInternalState() && !spec_.energy) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(VecGetArrayRead(U, &u));
   Constrained(t, u, u + 2 * n_local_, &x, &v);
-  PetscCall(model_.AcceptStep(x, v));
+  if (model_.HasInternalState()) PetscCall(model_.AcceptStep(x, v, t));
+  if (!record_csv_.empty()) {
+    std::vector<std::pair<std::string, std::vector<std::string>>> rows;
+    model_.TakeRecords(rows);
+    for (auto &r : rows)
+      for (size_t k = 0; k < record_names_.size(); k++)
+        if (record_names_[k] == r.first && record_csv_[k]->IsOpen()) PetscCall(record_csv_[k]->RowText(r.second));
+  }
+  if (spec_.energy) {
+    PetscCall(energy_.Step(t, x, v));
+    if (t >= energy_next_ * (1 - 1e-12) || t >= t_final_ * (1 - 1e-12)) {
+      PetscCall(EnergyRow(t, x, v));
+      while (energy_next_ <= t * (1 + 1e-12)) energy_next_ += energy_every_;
+    }
+  }
   PetscCall(VecRestoreArrayRead(U, &u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::EnergyRow(PetscReal t, const PetscReal *x, const PetscReal *v)
+{
+  std::vector<PetscReal> row;
+  PetscReal              rel;
+  PetscFunctionBeginUser;
+  PetscCall(energy_.Row(comm_, x, v, row, &rel));
+  row.insert(row.begin(), t);
+  if (energy_csv_.IsOpen()) PetscCall(energy_csv_.Row(row));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* energy.csv (with its first row, the initial state) and the terms' log files. */
+PetscErrorCode FineRun::OpenOutputs()
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  std::vector<std::pair<std::string, std::vector<std::string>>> files;
+  model_.RecordFiles(files);
+  record_names_.clear();
+  record_csv_.clear();
+  for (auto &f : files) {
+    record_names_.push_back(f.first);
+    record_csv_.push_back(std::make_unique<CsvWriter>());
+    if (rank == 0) PetscCall(record_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + f.first, f.second));
+  }
+  if (spec_.energy) {
+    std::vector<std::string> columns = {"time"};
+    for (const std::string &c : energy_.Columns()) columns.push_back(c);
+    if (rank == 0) PetscCall(energy_csv_.Open(PETSC_COMM_SELF, out_.dir + "/energy.csv", columns));
+    energy_every_ = t_final_ / std::max<PetscInt>(out_.samples, 1);
+    energy_next_  = energy_every_;
+    const PetscScalar *u;
+    const PetscReal   *x, *v;
+    PetscCall(VecGetArrayRead(U_, &u));
+    Constrained(0, u, u + 2 * n_local_, &x, &v);
+    PetscCall(EnergyRow(0, x, v));
+    PetscCall(VecRestoreArrayRead(U_, &u));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -490,6 +574,7 @@ PetscErrorCode FineRun::ObserveSeries(PetscReal t, Vec U, std::vector<std::vecto
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U, &u));
   Constrained(t, u, u + 2 * n_local_, &x, &v);
+  model_.SetTime(t);
   PetscCall(model_.ComputeForces(x, v, f.data(), NULL));
   PetscCall(controls_.Observe(comm_, t, x, f.data(), rows[0]));
   PetscCall(VecRestoreArrayRead(U, &u));
@@ -533,6 +618,12 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
     js.Set("stability_limits_dt", dts);
     js.Set("stability_limits", why);
     js.Set("controls", controls_.Names());
+  }
+  if (spec_.energy) {
+    PetscReal worst = energy_.LargestRelativeResidual(), wext = energy_.ExternalWork();
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &wext, 1, MPIU_REAL, MPIU_SUM, comm_));
+    js.Set("energy_residual_max", worst);
+    js.Set("energy_external_work", wext);
   }
   for (auto &kv : model_.Statistics()) { /* the terms' counters (contacts, plastic dissipation) */
     PetscReal v = kv.second;

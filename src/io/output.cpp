@@ -8,9 +8,9 @@ namespace turgor {
 
 /* The files turgor writes into an output directory (any mode): the only ones -output_overwrite
    removes. */
-static const char *const kOutputFiles[] = {"summary.json",  "tip.csv",       "groups.csv",   "rve.csv",       "particles.h5",
-                                           "particles.xmf", "coarse.h5",     "coarse.xmf",   "eigen.csv",     "modes.h5",
-                                           "modes.xmf",     "stability.csv", "stability.h5", "stability.xmf", "spectrum.png"};
+static const char *const kOutputFiles[] = {"summary.json", "tip.csv",       "groups.csv",   "rve.csv",    "particles.h5", "particles.xmf",
+                                           "coarse.h5",    "coarse.xmf",    "eigen.csv",    "modes.h5",   "modes.xmf",    "stability.csv",
+                                           "stability.h5", "stability.xmf", "spectrum.png", "energy.csv", "breaks.csv"};
 
 PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite, bool *prepared)
 {
@@ -98,6 +98,16 @@ PetscErrorCode CsvWriter::Row(const std::vector<PetscReal> &values)
     std::snprintf(num, sizeof num, "%.17g", (double)values[k]);
     line += (k ? "," : "") + std::string(num);
   }
+  PetscCall(PetscFPrintf(comm_, fp_, "%s\n", line.c_str()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CsvWriter::RowText(const std::vector<std::string> &cells)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(cells.size() == ncol_, comm_, PETSC_ERR_ARG_SIZ, "CSV row has %zu cells for %zu columns", cells.size(), ncol_);
+  std::string line;
+  for (size_t k = 0; k < cells.size(); k++) line += (k ? "," : "") + cells[k];
   PetscCall(PetscFPrintf(comm_, fp_, "%s\n", line.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

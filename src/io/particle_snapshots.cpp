@@ -1,5 +1,6 @@
 #include <turgor/io/particle_snapshots.h>
 #include <turgor/tissue/tissue.h>
+#include <algorithm>
 #include <cmath>
 #include <petscdmswarm.h>
 #include <petscviewerhdf5.h>
@@ -207,6 +208,40 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fie
   }
   for (const Field &f : fields.nodes) PetscCall(WriteVector(f.name, f.values, f.components));
   for (const Field &f : fields.bars) PetscCall(WriteVector(f.name, f.values, 1));
+  for (const Segments &g : fields.segments) { /* end points (2 per segment, n x 2 as the geometry), then the fields */
+    PetscInt nloc = (PetscInt)g.xy.size() / 4, ntot, start = 0;
+    PetscCallMPI(MPI_Allreduce(&nloc, &ntot, 1, MPIU_INT, MPI_SUM, comm_));
+    PetscCallMPI(MPI_Exscan(&nloc, &start, 1, MPIU_INT, MPI_SUM, comm_));
+    auto it = std::find_if(segment_meta_.begin(), segment_meta_.end(), [&](const SegmentsMeta &m) { return m.name == g.name; });
+    if (it == segment_meta_.end()) { /* the first snapshot: the static connectivity, point pairs 2k, 2k + 1 */
+      std::vector<PetscInt> conn(2 * nloc);
+      for (PetscInt k = 0; k < 2 * nloc; k++) conn[k] = 2 * start + k;
+      IS is;
+      PetscCall(PetscViewerHDF5PushGroup(viewer_, "/static"));
+      PetscCall(ISCreateGeneral(comm_, 2 * nloc, conn.data(), PETSC_COPY_VALUES, &is));
+      PetscCall(ISSetBlockSize(is, 2));
+      PetscCall(PetscObjectSetName((PetscObject)is, (g.name + "_segments").c_str()));
+      PetscCall(ISView(is, viewer_));
+      PetscCall(ISDestroy(&is));
+      PetscCall(PetscViewerHDF5PopGroup(viewer_));
+      SegmentsMeta m;
+      m.name  = g.name;
+      m.count = ntot;
+      m.first = times_.size();
+      segment_meta_.push_back(m);
+      it = segment_meta_.end() - 1;
+    }
+    PetscCheck(it->count == ntot, comm_, PETSC_ERR_ARG_SIZ, "Segments %s: %" PetscInt_FMT " in this snapshot, %" PetscInt_FMT " in the first", g.name.c_str(),
+               ntot, it->count);
+    it->fields.clear();
+    PetscCall(WriteVector(g.name + "_xy", g.xy, 2)); /* (2 n) x 3, z = 0: an XYZ geometry */
+    for (const Field &f : g.fields) {
+      PetscCheck((PetscInt)f.values.size() == nloc, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Segment field %s: %zu values for %" PetscInt_FMT " segments",
+                 f.name.c_str(), f.values.size(), nloc);
+      PetscCall(WriteVector(g.name + "_" + f.name, f.values, 1));
+      it->fields.push_back({f.name, f.unit, {}, 1});
+    }
+  }
   if (n_polys_ > 0) {
     PetscReal *pos;
     PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
@@ -327,6 +362,27 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
                        "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n     <Information Name=\"values\" Value=\"%s\"/>\n"
                        "     <DataItem Dimensions=\"%lld 1\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/%s</DataItem>\n    </Attribute>\n",
                        a[0], a[1], N, ip, h5, a[0]));
+      PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+    }
+    PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n"));
+  }
+  for (const SegmentsMeta &m : segment_meta_) { /* line segments with their own end points (the glue bonds) */
+    const long long M = m.count;
+    PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", m.name.c_str()));
+    for (size_t k = m.first; k < times_.size(); k++) {
+      PetscCall(PetscFPrintf(comm_, fp,
+                             "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n"
+                             "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "
+                             "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/%s_segments</DataItem>\n    </Topology>\n"
+                             "    <Geometry GeometryType=\"XYZ\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 3\" "
+                             "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s_xy</DataItem>\n    </Geometry>\n",
+                             m.name.c_str(), k, (double)times_[k], M, M, ip, h5, m.name.c_str(), 2 * M, h5, k, m.name.c_str()));
+      for (const Field &f : m.fields)
+        PetscCall(PetscFPrintf(comm_, fp,
+                               "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
+                               "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s_%s</DataItem>\n"
+                               "    </Attribute>\n",
+                               f.name.c_str(), f.unit.c_str(), M, h5, k, m.name.c_str(), f.name.c_str()));
       PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
     }
     PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n"));

@@ -9,6 +9,8 @@ static const char *const kPaths[] = {"uniaxial", "biaxial", "shear", "rotation",
 PetscErrorCode StrainPathRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
+  /* the output directory first: an option refused below then leaves a summary.json that says so */
+  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
   PetscOptionsBegin(comm_, NULL, "Renamed options of -mode rve", "turgor");
   for (const char *o : {"type", "rate", "t_final", "steps", "tangents"}) {
     const std::string old_name = std::string("-rve_") + (std::string(o) == "type" ? "path" : o), new_name = std::string("-path_") + o;
@@ -31,7 +33,6 @@ PetscErrorCode StrainPathRun::SetFromOptions()
   PetscCheck(t_final_ > 0 && std::isfinite(t_final_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_t_final = %g: must be > 0 and finite", (double)t_final_);
   PetscCheck(std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_rate = %g: must be finite", (double)rate_);
   PetscCall(pool_.SetFromOptions());
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -3,20 +3,24 @@
 
 namespace turgor {
 
-static const char *const kLaws[] = {"constant", "gas", "elastic", "CellPressure::Law", "", NULL};
+/* Names in the order of CellPressure::Law (read as a PetscInt: PETSc 3.18's PetscEnum holds only 0 and 1). */
+static const char *const kLaws[] = {"constant", "gas", "elastic"};
 
 PetscErrorCode CellPressure::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
-  PetscEnum e = (PetscEnum)law;
+  PetscInt e = (PetscInt)law;
   PetscOptionsBegin(comm, "pressure_", "Pressure of closed polygonal cells", "turgor");
-  PetscCall(PetscOptionsEnum("-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, e, &e, NULL));
+  PetscCall(PetscOptionsEList("-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, 3, kLaws[e], &e, NULL));
   PetscCall(PetscOptionsReal("-p0", "Reference pressure p0 [N/m]", "CellPressure", p0, &p0, NULL));
   PetscCall(PetscOptionsReal("-bulk_modulus", "Bulk modulus K of the elastic law [N/m]", "CellPressure", bulk_modulus, &bulk_modulus, NULL));
+  PetscCall(PetscOptionsReal("-ramp_time", "The turgor builds up linearly over this time [µs]; 0: at once", "CellPressure", ramp_time, &ramp_time, NULL));
   PetscOptionsEnd();
   law = (Law)e;
   PetscCheck(std::isfinite(p0), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_p0 = %g: must be finite", (double)p0);
   PetscCheck(law != GAS || p0 >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_p0 = %g: a gas pressure must be >= 0", (double)p0);
+  PetscCheck(ramp_time >= 0 && std::isfinite(ramp_time), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_ramp_time = %g: must be finite and >= 0",
+             (double)ramp_time);
   PetscCheck(bulk_modulus >= 0 && std::isfinite(bulk_modulus), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_bulk_modulus = %g: must be finite and >= 0",
              (double)bulk_modulus);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -74,7 +78,7 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
     const PetscReal    A = PolygonCellArea(C, x);
     PetscCheck(law != GAS || A > 0, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Cell %" PetscInt_FMT " has area %g: the gas law needs A > 0 (inverted cell)", c,
                (double)A);
-    const PetscReal hp = 0.5 * Pressure(A, A0_[c]);
+    const PetscReal hp = 0.5 * Scale(in.t) * Pressure(A, A0_[c]);
     const size_t    N  = C.nodes.size();
     for (size_t k = 0; k < N; k++) { /* bar i -> j, CCW: outward normal x length = (dy, -dx) */
       const PetscInt  i = C.nodes[k], j = C.nodes[(k + 1) % N];
@@ -117,8 +121,21 @@ PetscErrorCode CellPressure::Energy(const ForceInput &in, PetscReal *E, PetscBoo
       *E -= p0 * dA;
     }
   }
+  *E *= Scale(in.t);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* dE/dt at fixed positions during the ramp: E0(x) / T (E0 the energy at the full turgor). */
+PetscReal CellPressure::ExplicitTimePower(const ForceInput &in)
+{
+  if (!(ramp_time > 0 && in.t < ramp_time)) return 0;
+  ForceInput full = in;
+  full.t          = ramp_time;
+  PetscReal E;
+  PetscBool has;
+  PetscCallAbort(PETSC_COMM_SELF, Energy(full, &E, &has));
+  return E / ramp_time;
 }
 
 /* The pressure of every closed polygon (0 for one with fewer than 3 nodes, which has none). */
@@ -130,7 +147,7 @@ PetscErrorCode CellPressure::OutputFields(const ForceInput &in, std::vector<Term
   for (size_t c = 0; c < in.P->polygons.size(); c++) {
     const PolygonCell &C = in.P->polygons[c];
     if (C.open) continue;
-    F.values.push_back(C.nodes.size() >= 3 ? Pressure(PolygonCellArea(C, in.x), A0_[c]) : 0.0);
+    F.values.push_back(C.nodes.size() >= 3 ? Scale(in.t) * Pressure(PolygonCellArea(C, in.x), A0_[c]) : 0.0);
   }
   fields.push_back(std::move(F));
   PetscFunctionReturn(PETSC_SUCCESS);

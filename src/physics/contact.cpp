@@ -52,8 +52,12 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   cand_.clear();
   near_.clear();
   hist_.clear();
+  live_.clear();
+  trial_.clear();
+  trial_lists_   = -1;
   seen_rebuilds_ = -1;
   evaluations_ = max_active_ = 0;
+  dissipated_                = 0;
   sum_active_ = sum_near_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -112,6 +116,9 @@ PetscErrorCode Contact::Refresh(const ForceInput &in)
       auto it = keep.find(Key(P, L.p[k], L.s[k]));
       hist_.push_back(it == keep.end() ? History() : it->second);
     }
+    live_.clear();
+    for (size_t k = 0; k < hist_.size(); k++)
+      if (hist_[k].live) live_.push_back((PetscInt)k);
     seen_rebuilds_ = in.nb->Rebuilds();
     list_builds_++;
     near_skin_ = 0.25 * in.nb->Skin();
@@ -146,11 +153,22 @@ void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n
   near_builds_++;
 }
 
-/* MODE 0: forces, 1: forces and virial, 2: accept (commit the history), 3: energy (returned).
+/* Energy dissipated by a step of a pair whose tangential spring went from xi_old (committed) through
+   the trial xi_trial = xi_old + slip increment to xi_new (the capped value): the work of the
+   tangential force on the relative motion (trapezoidal, as the energy balance sums works) less the
+   spring's energy change, k_t (xi_old + xi_new)/2 (xi_trial - xi_new); 0 while it sticks. */
+static inline PetscReal SlipDissipation(PetscReal kt, PetscReal xi_old, PetscReal xi_trial, PetscReal xi_new)
+{
+  return 0.5 * kt * (xi_old + xi_new) * (xi_trial - xi_new);
+}
+
+/* MODE 0: forces, 1: forces and virial, 2: trial values only (the accepted state), 3: energy (returned).
    Geometry: e = x_b - x_a, lambda = clamp((x_p - x_a).e / |e|^2, 0, 1), c = x_a + lambda e,
    d = x_p - c, delta = 2 r - |d|, n = d / |d|. The tangential direction t is n turned a quarter,
-   with the sense of the bar; the slip is measured by the node's coordinate along the bar
-   s = (x_p - x_a).e/|e| (a rigid motion of node and bar together does not change it). */
+   with the sense of the bar; the slip is the change of the contact's material coordinate on the bar,
+   |e| d(lambda) (a rigid motion of node and bar together, or the bar stretching under a node that
+   rests on it, does not change it). With friction, every touching pair leaves its trial values
+   (the capped tangential displacement, lambda, the slip's dissipation) for CommitTrial. */
 template <int MODE>
 PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
@@ -160,57 +178,52 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   const bool         tangential = mu > 0 && kt > 0;
   PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
   PetscInt           active = 0;
+  /* pass 1, branch-free (most near pairs do not touch, and a branch per pair mispredicts): the
+     pairs closer than 2 r, by |(x_p - x_a)|e|^2 - t e|^2 < (2 r)^2 |e|^4 with t = clamp(proj, 0, |e|^2) */
+  touch_.resize(near_.size());
+  size_t nt = 0;
   for (size_t j = 0; j < near_.size(); j++) {
-    const Candidate &C = cand_[near_[j]];
+    const Candidate &C  = cand_[near_[j]];
+    const PetscReal  ex = x[2 * C.b] - x[2 * C.a], ey = x[2 * C.b + 1] - x[2 * C.a + 1];
+    const PetscReal  px = x[2 * C.p] - x[2 * C.a], py = x[2 * C.p + 1] - x[2 * C.a + 1];
+    const PetscReal  L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
+    const PetscReal  dx = px * L2 - t * ex, dy = py * L2 - t * ey;
+    touch_[nt] = near_[j];
+    nt += (dx * dx + dy * dy < R2 * L2 * L2);
+  }
+  if (MODE <= 2 && tangential) trial_.clear();
+  /* pass 2: the touching pairs */
+  for (size_t i = 0; i < nt; i++) {
+    const PetscInt   k = touch_[i];
+    const Candidate &C = cand_[k];
     const PetscInt   p = C.p, s = C.s, a = C.a, b = C.b;
     const PetscReal  ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
     const PetscReal  px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
     const PetscReal  L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
-    History         &h = hist_[near_[j]];
-    if (MODE <= 1 && tangential) trial_xi_[j] = PETSC_MAX_REAL; /* not in contact */
-    /* reject without a division: interior |p x e|^2 >= (2r)^2 |e|^2, or the end distances */
-    bool far;
-    if (proj <= 0) far = px * px + py * py >= R2;
-    else if (proj >= L2) far = (px - ex) * (px - ex) + (py - ey) * (py - ey) >= R2;
-    else {
-      const PetscReal cr = px * ey - py * ex;
-      far                = cr * cr >= R2 * L2;
-    }
-    if (far) {
-      if (MODE == 2) h.live = false;
-      continue;
-    }
-    const PetscReal iL2 = 1 / L2, lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * iL2;
-    const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
-    if (d2 == 0 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) {
-      if (MODE == 2) h.live = false;
-      continue;
-    }
+    const PetscReal  iL2 = 1 / L2, lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * iL2;
+    const PetscReal  dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
+    if (d2 == 0 || d2 >= R2 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) continue;
     active++;
+    const History  &h    = hist_[k];
     const PetscReal dist = std::sqrt(d2), id = 1 / dist, nx = dx * id, ny = dy * id, delta = R - dist;
     const PetscReal l  = 1 - lam;
     const PetscReal vx = v[2 * p] - l * v[2 * a] - lam * v[2 * b], vy = v[2 * p + 1] - l * v[2 * a + 1] - lam * v[2 * b + 1];
     PetscReal       fn = kn * delta - cn * (vx * nx + vy * ny);
     if (fn < 0) fn = 0;
-    PetscReal ft = 0, tx = 0, ty = 0, xi = 0, sc = 0;
+    PetscReal ft = 0, tx = 0, ty = 0, xi = 0;
     if (tangential) {
-      const PetscReal sg  = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
-      tx                  = sg * ny;
-      ty                  = -sg * nx;
-      sc                  = proj * std::sqrt(iL2);
-      xi                  = h.live ? h.xi + (sc - h.s_ref) : 0;
+      const PetscReal sg = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
+      tx                 = sg * ny;
+      ty                 = -sg * nx;
+      /* the slip is the node's move relative to the bar's material point it touches: |e| dlambda
+         (a bar stretching under a resting node, or a rigid motion of both, is no slip) */
+      xi                  = h.live ? h.xi + (lam - h.lam_ref) * L2 * std::sqrt(iL2) : 0;
       ft                  = -kt * xi;
       const PetscReal cap = mu * fn;
       if (std::fabs(ft) > cap) ft = ft > 0 ? cap : -cap;
+      if (MODE <= 2) trial_.push_back({k, -ft / kt, lam, SlipDissipation(kt, h.live ? h.xi : 0, xi, -ft / kt)});
     }
-    if (MODE <= 1 && tangential) {
-      trial_xi_[j] = -ft / kt;
-      trial_s_[j]  = sc;
-    }
-    if (MODE == 2) {
-      if (tangential) h = {-ft / kt, sc, true}; /* the capped (slipped) elastic displacement */
-      continue;
-    }
+    if (MODE == 2) continue;
     if (MODE == 3) {
       E += 0.5 * kn * delta * delta + (tangential ? 0.5 * ft * ft / kt : 0);
       continue;
@@ -233,21 +246,39 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       w[3] -= Fy * dy + qy * ey;
     }
   }
+  if (MODE <= 2 && tangential) trial_lists_ = list_builds_;
   active_ = active;
   if (MODE == 1)
     for (int q = 0; q < 4; q++) virial[q] += w[q];
   return E;
 }
 
+/* The history at the accepted state, from the trial values of an evaluation there: touching pairs
+   take their capped tangential displacement (and the slip's dissipation); a pair that was live and
+   touches no more opened, and its tangential spring's energy is lost (dissipated). Cost: the
+   touching pairs and the previously live ones, not the near list. */
+void Contact::CommitTrial()
+{
+  stamp_++;
+  for (const Trial &T : trial_) {
+    hist_[T.k] = {T.xi, T.lam, true, stamp_};
+    dissipated_ += T.slip;
+  }
+  for (PetscInt k : live_) {
+    History &h = hist_[k];
+    if (h.live && h.stamp != stamp_) {
+      dissipated_ += 0.5 * kt_ * h.xi * h.xi;
+      h.live = false;
+    }
+  }
+  live_.clear();
+  for (const Trial &T : trial_) live_.push_back(T.k);
+}
+
 PetscErrorCode Contact::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
   PetscCall(Refresh(in));
-  if (friction > 0 && kt_ > 0) { /* AcceptStep at this same state commits these trial values */
-    trial_xi_.resize(near_.size());
-    trial_s_.resize(near_.size());
-    trial_builds_ = near_builds_;
-  }
   if (virial) Kernel<1>(in, f, virial);
   else Kernel<0>(in, f, NULL);
   evaluations_++;
@@ -277,16 +308,11 @@ PetscErrorCode Contact::AcceptStep(const ForceInput &in)
      trial values (what the step used) instead of recomputing the geometry. The velocities may differ
      (Verlet's last evaluation saw the half-step velocity, which enters the normal force through the
      damping): the history is that of the forces the integrator applied. */
-  if (in.same_x && trial_builds_ == near_builds_ && trial_xi_.size() == near_.size()) {
-    for (size_t j = 0; j < near_.size(); j++) {
-      History &h = hist_[near_[j]];
-      if (trial_xi_[j] == PETSC_MAX_REAL) h.live = false;
-      else h = {trial_xi_[j], trial_s_[j], true};
-    }
-  } else {
+  if (!(in.same_x && trial_lists_ == list_builds_)) { /* evaluate the trial values at this state */
     PetscCall(Refresh(in));
     Kernel<2>(in, NULL, NULL);
   }
+  CommitTrial();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -319,6 +345,7 @@ void Contact::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) 
   stats.push_back({"contact_pair_lists", (PetscReal)list_builds_});
   stats.push_back({"contact_near_lists", (PetscReal)near_builds_});
   stats.push_back({"contact_history_entries", (PetscReal)HistoryEntries()});
+  if (friction > 0) stats.push_back({"contact_friction_dissipation", dissipated_});
 }
 
 PetscErrorCode Contact::View(PetscViewer viewer) const

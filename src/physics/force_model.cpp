@@ -137,14 +137,21 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   for (PetscInt k = 0; k < 2 * P_->n; k++) f[k] = 0;
   if (virial)
     for (int k = 0; k < 4; k++) virial[k] = 0;
-  if (has_state_) { /* AcceptStep tells its terms whether it is called at these positions */
+  if (has_state_ || keep_term_forces_) { /* AcceptStep tells its terms whether it is called at these positions */
     last_x_.assign(x, x + 2 * P_->n);
     last_rebuilds_ = nb_.Rebuilds();
   }
-  const ForceInput in = {P_, x, v, &nb_, &images_};
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
+  if (keep_term_forces_) term_f_.resize(terms_.size());
   for (size_t t = 0; t < terms_.size(); t++) {
     PetscCall(PetscLogEventBegin(events_[t], 0, 0, 0, 0));
-    PetscCall(terms_[t]->AddForces(in, f, virial));
+    if (keep_term_forces_) { /* the term's own force, then added to the total */
+      std::vector<PetscReal> &ft = term_f_[t];
+      ft.assign(2 * P_->n, 0.0);
+      PetscCall(terms_[t]->AddForces(in, ft.data(), virial));
+      for (PetscInt k = 0; k < 2 * P_->n; k++) f[k] += ft[k];
+    } else PetscCall(terms_[t]->AddForces(in, f, virial));
     PetscCall(PetscLogEventEnd(events_[t], 0, 0, 0, 0));
   }
   PetscCall(PetscLogEventEnd(ev_forces_, 0, 0, 0, 0));
@@ -165,6 +172,7 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
 PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t)
 {
   PetscFunctionBeginUser;
+  t_              = t;
   const size_t n2 = 2 * (size_t)P_->n;
   ForceInput   in = {P_, x, v, &nb_, &images_};
   in.t            = t;
@@ -189,7 +197,8 @@ PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, Pet
   PetscFunctionBeginUser;
   PetscCall(nb_.Update(*P_, x, images_));
   std::vector<PetscReal> v(2 * P_->n, 0.0);
-  const ForceInput       in = {P_, x, v.data(), &nb_, &images_};
+  ForceInput             in = {P_, x, v.data(), &nb_, &images_};
+  in.t                      = t_;
   *E                        = 0;
   *complete                 = PETSC_TRUE;
   for (auto &t : terms_) {
@@ -213,6 +222,7 @@ PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v
   }
   PetscCall(nb_.Update(*P_, x, images_));
   ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
   in.a          = a.empty() ? nullptr : a.data();
   limits.clear();
   for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));
@@ -230,9 +240,64 @@ PetscErrorCode ForceModel::OutputFields(const PetscReal *x, const PetscReal *v, 
 {
   PetscFunctionBeginUser;
   PetscCall(nb_.Update(*P_, x, images_));
-  const ForceInput in = {P_, x, v, &nb_, &images_};
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
   fields.clear();
   for (auto &t : terms_) PetscCall(t->OutputFields(in, fields));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ForceModel::ExplicitTimePower(const PetscReal *x, std::vector<PetscReal> &P)
+{
+  PetscFunctionBeginUser;
+  std::vector<PetscReal> v(2 * P_->n, 0.0);
+  ForceInput             in = {P_, x, v.data(), &nb_, &images_};
+  in.t                      = t_;
+  P.assign(terms_.size(), 0.0);
+  for (size_t t = 0; t < terms_.size(); t++)
+    if (terms_[t]->TimeDependent()) P[t] = terms_[t]->ExplicitTimePower(in);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ForceModel::TermEnergies(const PetscReal *x, std::vector<PetscReal> &E, std::vector<bool> &has)
+{
+  PetscFunctionBeginUser;
+  PetscCall(nb_.Update(*P_, x, images_));
+  std::vector<PetscReal> v(2 * P_->n, 0.0);
+  ForceInput             in = {P_, x, v.data(), &nb_, &images_};
+  in.t                      = t_;
+  E.assign(terms_.size(), 0.0);
+  has.assign(terms_.size(), false);
+  for (size_t t = 0; t < terms_.size(); t++) {
+    PetscBool h;
+    PetscCall(terms_[t]->Energy(in, &E[t], &h));
+    has[t] = h;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void ForceModel::RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const
+{
+  for (const auto &t : terms_) t->RecordFiles(files);
+}
+
+void ForceModel::TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
+{
+  for (auto &t : terms_) t->TakeRecords(rows);
+}
+
+PetscErrorCode ForceModel::OutputSegments(const PetscReal *x, const PetscReal *v, std::vector<TermSegments> &segments)
+{
+  PetscFunctionBeginUser;
+  PetscCall(nb_.Update(*P_, x, images_));
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t_;
+  segments.clear();
+  for (auto &t : terms_) {
+    TermSegments s;
+    PetscCall(t->OutputSegments(in, &s));
+    if (!s.name.empty()) segments.push_back(std::move(s));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

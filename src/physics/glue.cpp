@@ -1,3 +1,4 @@
+#include <turgor/core/options.h>
 #include <turgor/physics/glue.h>
 #include <algorithm>
 #include <cmath>
@@ -5,16 +6,20 @@
 
 namespace turgor {
 
-static const char *const kLaws[] = {"energy", "strength", "softening", "Glue::Law", "", NULL};
+/* Names in the order of Glue::Law. Read with PetscOptionsEList into a PetscInt: PETSc 3.18's
+   PetscEnum has only the values 0 and 1, so a third law held in one is undefined behaviour. */
+static const char *const kLaws[] = {"energy", "strength", "softening"};
 
 PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
-  PetscEnum e  = (PetscEnum)law;
-  PetscBool oc = open_cells ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt  e      = (PetscInt)law;
+  PetscBool oc     = open_cells ? PETSC_TRUE : PETSC_FALSE, set_box;
+  PetscReal box[5] = {0, 0, 0, 0, 0};
+  PetscInt  nbox   = 5;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "glue_", "Glue bonds between polygonal cells, and their fracture", "turgor");
-  PetscCall(PetscOptionsEnum("-law", "Rupture: energy (G_c reached), strength (quadratic sigma_c, tau_c interaction), softening (bilinear, G_c dissipated)",
-                             "Glue", kLaws, e, &e, NULL));
+  PetscCall(PetscOptionsEList("-law", "Rupture: energy (G_c reached), strength (quadratic sigma_c, tau_c interaction), softening (bilinear, G_c dissipated)",
+                              "Glue", kLaws, 3, kLaws[e], &e, NULL));
   PetscCall(PetscOptionsReal("-distance", "Gluing distance eps [µm]: a node this close (surface gap) to a bar of another cell is bonded to it", "Glue",
                              distance, &distance, NULL));
   PetscCall(PetscOptionsReal("-normal_stiffness", "k_n [N/m per µm of interface]", "Glue", normal_stiffness, &normal_stiffness, NULL));
@@ -27,9 +32,25 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscCall(PetscOptionsReal("-shear_strength", "tau_c, shear strength [N/m] (law strength); negative: sigma_c sqrt(k_t/k_n)", "Glue", shear_strength,
                              &shear_strength, NULL));
   PetscCall(PetscOptionsBool("-open_cells", "Glue open cells (plates, walls) too", "Glue", oc, &oc, NULL));
+  PetscCall(PetscOptionsReal("-start_time",
+                             "The bonds are made at the first accepted state at or after this time [µs] (0: the first evaluation, the reference geometry)",
+                             "Glue", start_time, &start_time, NULL));
+  PetscCall(PetscOptionsRealArray("-unbonded_box", "xmin,ymin,xmax,ymax [µm]: no bond whose bond point is inside (a pre-crack or notch)", "Glue", box, &nbox,
+                                  &set_box));
   PetscOptionsEnd();
+  PetscCall(CheckNotEmpty(comm, "-glue_unbonded_box", "xmin,ymin,xmax,ymax"));
+  if (set_box) {
+    PetscCheck(nbox == 4, comm, PETSC_ERR_ARG_SIZ, "Option -glue_unbonded_box: %" PetscInt_FMT " values given, expected 4 (xmin,ymin,xmax,ymax)", nbox);
+    PetscCheck(std::isfinite(box[0]) && std::isfinite(box[1]) && std::isfinite(box[2]) && std::isfinite(box[3]) && box[0] <= box[2] && box[1] <= box[3], comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_unbonded_box = %g,%g,%g,%g: needs finite values with xmin <= xmax and ymin <= ymax", (double)box[0],
+               (double)box[1], (double)box[2], (double)box[3]);
+    has_unbonded_box = true;
+    for (int k = 0; k < 4; k++) unbonded_box[k] = box[k];
+  }
   law        = (Law)e;
   open_cells = oc;
+  PetscCheck(std::isfinite(start_time) && start_time >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_start_time = %g: must be finite and >= 0",
+             (double)start_time);
   PetscCheck(std::isfinite(distance) && distance >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_distance = %g: must be finite and >= 0", (double)distance);
   PetscCheck(std::isfinite(normal_stiffness) && normal_stiffness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -glue_normal_stiffness = %g: must be finite and > 0", (double)normal_stiffness);
@@ -45,6 +66,7 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   sigma_ = strength > 0 ? strength : std::sqrt(2 * fracture_energy * normal_stiffness);
   tau_   = shear_strength > 0 ? shear_strength : sigma_ * std::sqrt(kt_ / normal_stiffness);
   l0_    = sigma_ / normal_stiffness;
+  l02_   = l0_ * l0_;
   lf_    = 2 * fracture_energy / sigma_;
   PetscCheck(law != SOFTENING || lf_ > l0_ * (1 + 1e-12), comm, PETSC_ERR_ARG_INCOMP,
              "Options -glue_law softening, -glue_strength = %g, -glue_fracture_energy = %g, -glue_normal_stiffness = %g: the softening branch needs G_c > "
@@ -105,6 +127,8 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
 {
   PetscFunctionBeginUser;
   bonds_.clear();
+  info_.clear();
+  trial_.clear();
   const PetscReal R = 2 * P.bar_radius + distance, R2 = R * R;
   PetscReal       lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
   for (PetscInt i = 0; i < P.n; i++)
@@ -157,8 +181,9 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
   }
   for (const auto &kv : best) { /* ordered by (node, cell): the same bonds in the same order on every run */
     Bond           B;
+    BondInfo       I;
     const PetscInt s = kv.second.s;
-    B.p = kv.first.first, B.cell_p = P.node_polygon[B.p], B.cell_s = kv.first.second, B.s = s;
+    B.p = kv.first.first, I.cell_p = P.node_polygon[B.p], I.cell_s = kv.first.second, I.s = s;
     B.a = P.springs[s].i, B.b = P.springs[s].j, B.lam = kv.second.lam, B.sign = 1, B.L = 0;
     PetscReal tx, ty, nx, ny, il, gt, gn;
     Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
@@ -166,10 +191,11 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
     B.gn0 = gn, B.gt0 = gt;
     bonds_.push_back(B);
+    info_.push_back(I);
   }
   /* length shares: runs of consecutive nodes of cell A bonded to cell B, in A's ring order */
   std::map<std::pair<PetscInt, PetscInt>, std::vector<PetscInt>> by_node; /* (node, cell B) -> bond */
-  for (size_t k = 0; k < bonds_.size(); k++) by_node[{bonds_[k].p, bonds_[k].cell_s}].push_back((PetscInt)k);
+  for (size_t k = 0; k < bonds_.size(); k++) by_node[{bonds_[k].p, info_[k].cell_s}].push_back((PetscInt)k);
   std::map<std::pair<PetscInt, PetscInt>, PetscReal> span; /* directed (A, B) -> sum of shares */
   std::vector<PetscReal>                             share(bonds_.size(), 0);
   auto                                               point = [&](const Bond &B, PetscReal *c) {
@@ -220,13 +246,13 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     }
   }
   for (size_t k = 0; k < bonds_.size(); k++) { /* both sides bonded: each counts half */
-    const Bond &B    = bonds_[k];
-    const bool  both = span.count({B.cell_s, B.cell_p}) && span[{B.cell_s, B.cell_p}] > 0;
-    bonds_[k].L      = share[k] * (both ? 0.5 : 1.0);
+    const BondInfo &I    = info_[k];
+    const bool      both = span.count({I.cell_s, I.cell_p}) && span[{I.cell_s, I.cell_p}] > 0;
+    bonds_[k].L          = share[k] * (both ? 0.5 : 1.0);
   }
   for (size_t k = 0; k < bonds_.size(); k++)
     PetscCheck(bonds_[k].L > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: bond %zu (node %" PetscInt_FMT ", bar %" PetscInt_FMT ") got no length share", k,
-               bonds_[k].p, bonds_[k].s);
+               bonds_[k].p, info_[k].s);
   intact_     = (PetscInt)bonds_.size();
   have_bonds_ = true;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -241,33 +267,22 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_, beta2 = kt_ / normal_stiffness;
   PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
+  if (MODE <= 1) trial_.resize(bonds_.size());
   for (size_t k = 0; k < bonds_.size(); k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
-    PetscReal tx, ty, nx, ny, il, gt, gn;
-    Frame(B, x, &tx, &ty, &nx, &ny, &il, &gt, &gn);
-    const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = dn > 0 ? dn : 0;
-    const PetscReal l2 = dnp * dnp + beta2 * dt * dt, lm = std::max(B.lmax, std::sqrt(l2)), D = Damage(lm);
+    /* the bar's frame (inline: this loop is the term's cost) */
+    const PetscReal ex = x[2 * B.b] - x[2 * B.a], ey = x[2 * B.b + 1] - x[2 * B.a + 1];
+    const PetscReal il = 1 / std::sqrt(ex * ex + ey * ey), tx = ex * il, ty = ey * il, nx = -B.sign * ty, ny = B.sign * tx;
+    const PetscReal l1 = 1 - B.lam;
+    const PetscReal gx = x[2 * B.p] - l1 * x[2 * B.a] - B.lam * x[2 * B.b], gy = x[2 * B.p + 1] - l1 * x[2 * B.a + 1] - B.lam * x[2 * B.b + 1];
+    const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
+    const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = std::max(dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
+    /* damage only past the peak: below it (most bonds, most of the time) no square root */
+    const PetscReal l2 = dnp * dnp + beta2 * dt * dt, D = law == SOFTENING && (B.lmax > l0_ || l2 > l02_) ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
+    if (MODE <= 1) trial_[k] = {dnp, dt}; /* AcceptStep at this state commits from these */
     if (MODE == 2) {
-      const PetscReal e = 0.5 * kn * l2; /* stored energy per length, undamaged */
-      bool            breaks;
-      if (law == SOFTENING) {
-        dissipated_ += B.L * (Dissipated(lm) - Dissipated(B.lmax));
-        B.lmax = lm;
-        breaks = D >= 1;
-      } else if (law == ENERGY) breaks = e >= fracture_energy;
-      else breaks = (kn * dnp / sigma_) * (kn * dnp / sigma_) + (kt * dt / tau_) * (kt * dt / tau_) >= 1;
-      if (breaks) {
-        const PetscReal en = 0.5 * kn * dnp * dnp, et = 0.5 * kt * dt * dt, released = law == SOFTENING ? fracture_energy * B.L : e * B.L;
-        if (law != SOFTENING) dissipated_ += released;
-        B.intact = false;
-        intact_--;
-        PetscReal c[2] = {(1 - B.lam) * x[2 * B.a] + B.lam * x[2 * B.b], (1 - B.lam) * x[2 * B.a + 1] + B.lam * x[2 * B.b + 1]};
-        breaks_.push_back({in.t, 0.5 * (c[0] + x[2 * B.p]), 0.5 * (c[1] + x[2 * B.p + 1]), released, B.L, (PetscInt)k, B.cell_p, B.cell_s, in.P->gid[B.p], B.s,
-                           en >= 9 * et   ? "tension"
-                           : et >= 9 * en ? "shear"
-                                          : "mixed"});
-      }
+      Commit(in, k, dnp, dt);
       continue;
     }
     if (MODE == 3) {
@@ -276,7 +291,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     }
     const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnp, Ft = s * kt * dt;
     const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-    const PetscReal l = 1 - B.lam, ax = l * Fx + q * nx, ay = l * Fy + q * ny, bx = B.lam * Fx - q * nx, by = B.lam * Fy - q * ny;
+    const PetscReal ax = l1 * Fx + q * nx, ay = l1 * Fy + q * ny, bx = B.lam * Fx - q * nx, by = B.lam * Fy - q * ny;
     f[2 * B.p] -= Fx;
     f[2 * B.p + 1] -= Fy;
     f[2 * B.a] += ax;
@@ -297,10 +312,38 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   return E;
 }
 
+/* Commit bond k at the accepted state where its opening is (<delta_n>, delta_t): the softening law's
+   largest opening and dissipation, the break and its record. */
+void Glue::Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt)
+{
+  Bond           &B  = bonds_[k];
+  const PetscReal kn = normal_stiffness, kt = kt_, l2 = dnp * dnp + (kt / kn) * dt * dt, e = 0.5 * kn * l2; /* stored energy per length, undamaged */
+  bool            breaks;
+  if (law == SOFTENING) {
+    if (l2 <= l02_ && B.lmax <= l0_) return; /* before the peak: no damage (lmax is recorded from the peak on) */
+    const PetscReal lm = std::max(B.lmax, std::sqrt(l2));
+    dissipated_ += B.L * (Dissipated(lm) - Dissipated(B.lmax));
+    B.lmax = lm;
+    breaks = Damage(lm) >= 1;
+  } else if (law == ENERGY) breaks = e >= fracture_energy;
+  else breaks = (kn * dnp / sigma_) * (kn * dnp / sigma_) + (kt * dt / tau_) * (kt * dt / tau_) >= 1;
+  if (!breaks) return;
+  const PetscReal *x = in.x, en = 0.5 * kn * dnp * dnp, et = 0.5 * kt * dt * dt, released = law == SOFTENING ? fracture_energy * B.L : e * B.L;
+  if (law != SOFTENING) dissipated_ += released;
+  B.intact = false;
+  intact_--;
+  const PetscReal c[2] = {(1 - B.lam) * x[2 * B.a] + B.lam * x[2 * B.b], (1 - B.lam) * x[2 * B.a + 1] + B.lam * x[2 * B.b + 1]};
+  const BondInfo &I    = info_[k];
+  breaks_.push_back({in.t, 0.5 * (c[0] + x[2 * B.p]), 0.5 * (c[1] + x[2 * B.p + 1]), released, B.L, (PetscInt)k, I.cell_p, I.cell_s, in.P->gid[B.p], I.s,
+                     en >= 9 * et   ? "tension"
+                     : et >= 9 * en ? "shear"
+                                    : "mixed"});
+}
+
 PetscErrorCode Glue::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && start_time == 0) PetscCall(CreateBonds(*in.P, in.x));
   if (virial) Kernel<1>(in, f, virial);
   else Kernel<0>(in, f, NULL);
   PetscCall(PetscLogFlops(60.0 * intact_));
@@ -310,7 +353,7 @@ PetscErrorCode Glue::AddForces(const ForceInput &in, PetscReal *f, PetscReal *vi
 PetscErrorCode Glue::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && start_time == 0) PetscCall(CreateBonds(*in.P, in.x));
   *E   = Kernel<3>(in, NULL, NULL);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -319,8 +362,14 @@ PetscErrorCode Glue::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 PetscErrorCode Glue::AcceptStep(const ForceInput &in)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
-  Kernel<2>(in, NULL, NULL);
+  if (!have_bonds_ && in.t >= start_time * (1 - 1e-12)) {
+    PetscCall(CreateBonds(*in.P, in.x));
+    PetscFunctionReturn(PETSC_SUCCESS); /* made at this state: nothing to commit yet */
+  }
+  if (in.same_x && trial_.size() == bonds_.size()) { /* the openings of the evaluation at these positions */
+    for (size_t k = 0; k < bonds_.size(); k++)
+      if (bonds_[k].intact) Commit(in, k, trial_[k].dnp, trial_[k].dt);
+  } else Kernel<2>(in, NULL, NULL);
   accepted_++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -337,6 +386,7 @@ std::vector<Glue::Break> Glue::TakeBreaks()
 PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
 {
   PetscFunctionBeginUser;
+  const bool provisional = !have_bonds_ && start_time > 0; /* the bonds this state would have bound the step; made for real later */
   if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
   std::vector<PetscReal> row(in.P->n, 0.0);
   const PetscReal        k = std::max(normal_stiffness, kt_);
@@ -353,6 +403,11 @@ PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
     PetscCall(PetscSNPrintf(why, sizeof why, "glue: omega_max <= %.4g /µs (%" PetscInt_FMT " bonds, Gershgorin)", (double)std::sqrt(w2), intact_));
     limits.push_back({2.0 / std::sqrt(w2), why});
   }
+  if (provisional) {
+    bonds_.clear();
+    intact_     = 0;
+    have_bonds_ = false;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -360,7 +415,8 @@ PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
 PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_ && start_time == 0) PetscCall(CreateBonds(*in.P, in.x));
+  if (!have_bonds_) PetscFunctionReturn(PETSC_SUCCESS); /* not yet made (-glue_start_time): no segments yet */
   segments->name = "bonds";
   segments->xy.resize(4 * bonds_.size());
   TermField intact{TermField::BAR, "intact", "1 intact, 0 broken", {}}, damage{TermField::BAR, "damage", "1", {}}, opening{TermField::BAR, "opening", "µm", {}},
@@ -387,8 +443,29 @@ PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments
 PetscErrorCode Glue::OutputFields(const ForceInput &in, std::vector<TermField> &fields)
 {
   PetscFunctionBeginUser;
-  if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Glue::RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const
+{
+  files.push_back({
+    "breaks.csv", {"time", "bond", "cell_node", "cell_bar", "node", "bar", "x", "y", "mode", "energy_released", "length_share"}
+  });
+}
+
+void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
+{
+  char buf[64];
+  auto num = [&](PetscReal v) {
+    PetscCallAbort(PETSC_COMM_SELF, PetscSNPrintf(buf, sizeof buf, "%.17g", (double)v));
+    return std::string(buf);
+  };
+  for (const Break &b : TakeBreaks())
+    rows.push_back({
+      "breaks.csv",
+      {num(b.time), std::to_string(b.bond), std::to_string(b.cell_node), std::to_string(b.cell_bar), std::to_string(b.node), std::to_string(b.bar), num(b.x),
+        num(b.y), b.mode, num(b.energy), num(b.length)}
+    });
 }
 
 void Glue::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const

@@ -61,8 +61,10 @@ PetscErrorCode TimeRun::SetFromOptions()
     PetscCall(TSSetErrorIfStepFails(ts_, PETSC_FALSE)); /* a failed solve is reported by Solve() */
     PetscCall(SetTSDefaults());
   }
-  PetscCall(ModeSetFromOptions());
+  /* the output directory first: a mode option refused below then leaves a summary.json that says
+     so, not the previous run's files (with -output_overwrite) */
   PetscCall(out_.SetFromOptions(comm_, mode_ + "_"));
+  PetscCall(ModeSetFromOptions());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -106,6 +108,7 @@ PetscErrorCode TimeRun::SetUp()
     }
   }
   if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
+  if (out_.ready) PetscCall(OpenOutputs());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,5 +1,6 @@
 /* Shared pieces of the polygonal tissues: the bar radius, node mass and subdivision options, the
    builder from rings of points to nodes and bars, and the planar geometry of their checks. */
+#include <turgor/core/options.h>
 #include <turgor/tissue/polygon_tissue.h>
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,9 @@ namespace turgor {
 
 PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide)
 {
+  PetscReal box[5] = {0, 0, 0, 0, 0};
+  PetscInt  nbox   = 5;
+  PetscBool set_box;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Polygonal cells of nodes and bars (node_file, voronoi, polyline; units µm, ng)", "turgor");
   PetscCall(PetscOptionsReal("-bar_radius", "Bar radius r [µm]: nodes are disks and bars capsules of radius r; neighbouring polygons are 2 r apart",
@@ -16,7 +20,18 @@ PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide)
   if (subdivide)
     PetscCall(PetscOptionsReal("-bar_length", "Longest bar [µm]: polygon edges are cut into equal bars no longer than this (0: one bar per edge)",
                                "PolygonTissueSpec", bar_length, &bar_length, NULL));
+  PetscCall(PetscOptionsRealArray("-cut_box", "xmin,ymin,xmax,ymax [µm]: the closed cells whose centroid is inside are removed (a notch cut out of the tissue)",
+                                  "PolygonTissueSpec", box, &nbox, &set_box));
   PetscOptionsEnd();
+  PetscCall(CheckNotEmpty(comm, "-tissue_cut_box", "xmin,ymin,xmax,ymax"));
+  if (set_box) {
+    PetscCheck(nbox == 4, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_cut_box: %" PetscInt_FMT " values given, expected 4 (xmin,ymin,xmax,ymax)", nbox);
+    PetscCheck(std::isfinite(box[0]) && std::isfinite(box[1]) && std::isfinite(box[2]) && std::isfinite(box[3]) && box[0] <= box[2] && box[1] <= box[3], comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cut_box = %g,%g,%g,%g: needs finite values with xmin <= xmax and ymin <= ymax", (double)box[0],
+               (double)box[1], (double)box[2], (double)box[3]);
+    has_cut_box = true;
+    for (int k = 0; k < 4; k++) cut_box[k] = box[k];
+  }
   PetscCheck(std::isfinite(bar_radius) && bar_radius >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_bar_radius = %g: must be finite and >= 0",
              (double)bar_radius);
   PetscCheck(std::isfinite(node_mass) && node_mass > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_node_mass = %g: a node mass must be finite and > 0",
@@ -46,7 +61,14 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h)
 
 void BuildPolygonTissue(const std::vector<PolygonRing> &cells, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
 {
-  std::vector<PolygonRing>                      rings = cells;
+  std::vector<PolygonRing> rings;
+  for (const PolygonRing &R : cells) { /* the notch: closed cells whose centroid is in the cut box are left out */
+    if (spec.has_cut_box && !R.open && R.points.size() >= 3) {
+      const Point2 c = RingCentroid(R.points);
+      if (c[0] >= spec.cut_box[0] && c[0] <= spec.cut_box[2] && c[1] >= spec.cut_box[1] && c[1] <= spec.cut_box[3]) continue;
+    }
+    rings.push_back(R);
+  }
   std::vector<std::pair<std::string, PetscInt>> names;
   AddPlateRings(spec.plates, spec.bar_radius, &rings, &names);
   *tissue        = Tissue();

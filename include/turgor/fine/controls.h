@@ -70,6 +70,10 @@ public:
   /* Accelerations: the velocity-controlled components are not integrated (set to 0); force groups
      add F s(t) / M. */
   void AdjustAccelerations(PetscReal t, PetscReal *a) const;
+  /* r[2n] = the force every control applies to its nodes at time t, given the other forces f on them:
+     the reaction m v rate(t) - f on a velocity-controlled component, the applied share F s(t) m_i/M
+     of a force group; 0 elsewhere. */
+  void ControlForces(PetscReal t, const PetscReal *f, PetscReal *r, PetscInt n) const;
   /* Per group (ux, uy, fx, fy, mz): the mean displacement, the reaction (velocity components:
      M a_c - sum of the other forces f on the group) or the applied force, and the moment of those
      forces about the group's centre of mass. Collective. */

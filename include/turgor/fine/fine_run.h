@@ -8,6 +8,7 @@
    Integrators (options only): -ts_type rk -ts_rk_type 5dp (default, adaptive, rtol = atol = 1e-3)
    or -ts_type basicsymplectic (PETSc's velocity Verlet, fixed step from the stability limits). */
 #include <turgor/fine/controls.h>
+#include <turgor/fine/energy_balance.h>
 #include <turgor/io/particle_snapshots.h>
 #include <turgor/physics/force_model.h>
 #include <turgor/run/time_run.h>
@@ -21,6 +22,7 @@ struct FineRunSpec {
   std::vector<std::string> clamp     = {"left"}; /* sides whose wall particles are fixed */
   PetscReal                dt_safety = 0.5;      /* fixed steps: this fraction of the stability limit */
   PetscReal                dt        = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
+  bool                     energy    = false;    /* energy.csv (-fine_energy) */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -61,6 +63,7 @@ protected:
   std::vector<Series>      ObservedSeries() const override;
   PetscErrorCode           ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) override;
   PetscErrorCode           OpenSnapshots() override;
+  PetscErrorCode           OpenOutputs() override;
   PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) override;
   PetscInt                 SnapshotCount() const override { return snapshots_writer_.Count(); }
   const char              *SnapshotFiles() const override { return "particles.h5 + particles.xmf"; }
@@ -103,6 +106,14 @@ private:
   PetscReal                  drift_fraction_ = 0; /* splitting integrators: a position update's share of the step */
   std::vector<TimeStepLimit> limits_;
   PetscReal                  dt_stable_ = 0, dt_initial_ = 0;
+
+  /* energy balance (-fine_energy) and the terms' logs (breaks.csv) */
+  EnergyBalance                           energy_;
+  CsvWriter                               energy_csv_;
+  PetscReal                               energy_next_ = 0, energy_every_ = 0;
+  std::vector<std::string>                record_names_;
+  std::vector<std::unique_ptr<CsvWriter>> record_csv_;
+  PetscErrorCode                          EnergyRow(PetscReal t, const PetscReal *x, const PetscReal *v);
 
   /* observation */
   PetscInt               tip_    = -1; /* local index of the tip particle on rank 0 */

@@ -21,6 +21,7 @@ class CsvWriter {
 public:
   PetscErrorCode Open(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns);
   PetscErrorCode Row(const std::vector<PetscReal> &values);
+  PetscErrorCode RowText(const std::vector<std::string> &cells); /* cells written as they are (a word, a number already formatted) */
   PetscErrorCode Close();
   bool           IsOpen() const { return comm_ != MPI_COMM_NULL; }
   ~CsvWriter() { PetscCallVoid(Close()); }

@@ -36,8 +36,17 @@ public:
   /* nodes: one item per local particle; cells: per closed polygon (ParticleSet::polygons order,
      closed cells only: a pressure); bars: per spring (ParticleSet::springs order: a bar's force).
      Every snapshot of a file has the same fields. */
+  /* Line segments with their own end points (the glue bonds, node to bar point), x0 y0 x1 y1 each,
+     and per-segment scalar fields; a fourth grid named `name`, with the same segments (count and
+     order) in every snapshot. */
+  struct Segments {
+    std::string            name;
+    std::vector<PetscReal> xy;
+    std::vector<Field>     fields;
+  };
   struct Fields {
-    std::vector<Field> nodes, cells, bars;
+    std::vector<Field>    nodes, cells, bars;
+    std::vector<Segments> segments;
   };
   PetscErrorCode Write(DM swarm, PetscReal time, const Fields &fields = {});
   PetscErrorCode Close();
@@ -61,7 +70,14 @@ private:
   PetscInt                           n_polys_ = 0, mixed_size_ = 0, nodes_per_poly_ = 0; /* global; 0: mixed */
   std::vector<std::string>           field_names_, field_units_;                         /* the callers' cell fields */
   std::vector<Field>                 node_meta_, bar_meta_;                              /* names, units, components of the node and bar fields (no values) */
-  std::vector<PetscReal>             times_;
+  struct SegmentsMeta {
+    std::string        name;
+    PetscInt           count = 0; /* global */
+    size_t             first = 0; /* the first snapshot that has them (a term may make them later) */
+    std::vector<Field> fields;    /* names and units */
+  };
+  std::vector<SegmentsMeta> segment_meta_;
+  std::vector<PetscReal>    times_;
 };
 
 } // namespace turgor

@@ -31,6 +31,7 @@ public:
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   bool           HasInternalState() const override { return friction > 0 && tangential_stiffness > 0; }
   PetscErrorCode AcceptStep(const ForceInput &in) override;
+  PetscReal      Dissipation() const override { return dissipated_; } /* by frictional slip: |f_t| x the slip at each accepted step */
   PetscErrorCode View(PetscViewer viewer) const override;
   void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
 
@@ -48,15 +49,21 @@ public:
 
 private:
   struct History {
-    PetscReal xi    = 0;     /* committed elastic tangential displacement [µm] */
-    PetscReal s_ref = 0;     /* node's coordinate along the bar at the last accepted step */
-    bool      live  = false; /* the pair was in contact at the last accepted step */
+    PetscReal xi      = 0;     /* committed elastic tangential displacement [µm] */
+    PetscReal lam_ref = 0;     /* the contact point's material coordinate on the bar at the last accepted step */
+    bool      live    = false; /* the pair was in contact at the last accepted step */
+    PetscInt  stamp   = 0;     /* the commit that last set it */
+  };
+  struct Trial {             /* a touching pair's values at the last evaluation (friction) */
+    PetscInt  k;             /* index into cand_ */
+    PetscReal xi, lam, slip; /* capped tangential displacement, contact point, the slip's dissipation */
   };
   template <int MODE>
   PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   PetscErrorCode Refresh(const ForceInput &in);
   void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
+  void           CommitTrial();
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
 
@@ -65,14 +72,16 @@ private:
   struct Candidate {
     PetscInt p, a, b, s; /* node, bar ends, bar */
   };
-  std::vector<Candidate> cand_;               /* eligible pairs of the neighbour list */
-  std::vector<History>   hist_;               /* beside cand_ */
-  std::vector<PetscInt>  near_;               /* indices into cand_ of the near pairs */
-  std::vector<PetscReal> trial_xi_, trial_s_; /* per near pair, from the last evaluation (friction) */
-  PetscInt               trial_builds_  = -1; /* near_builds_ of the trial values */
+  std::vector<Candidate> cand_;                         /* eligible pairs of the neighbour list */
+  std::vector<History>   hist_;                         /* beside cand_ */
+  std::vector<PetscInt>  near_;                         /* indices into cand_ of the near pairs */
+  std::vector<PetscInt>  touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
+  std::vector<Trial>     trial_;                        /* from the last evaluation (friction) */
+  std::vector<PetscInt>  live_;                         /* indices into cand_ of the pairs with a live history */
+  PetscInt               trial_lists_ = -1, stamp_ = 0; /* list_builds_ of the trial values; commits made */
   PetscInt               seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
-  PetscInt               evaluations_ = 0, max_active_ = 0; /* AddForces calls, most contacts in one */
-  PetscReal              sum_active_ = 0, sum_near_ = 0;    /* over AddForces calls */
+  PetscInt               evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
+  PetscReal              sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
   size_t                 n_springs_ = 0;
 };
 

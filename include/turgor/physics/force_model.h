@@ -5,6 +5,7 @@
    its own, built from one PhysicsSpec shared by all of them. */
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/physics/force_term.h>
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,27 @@ public:
 
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;
+  /* The time of the states evaluated next (time-dependent terms; 0 by default). */
+  void      SetTime(PetscReal t) { t_ = t; }
+  PetscReal Time() const { return t_; }
+  /* sum of the time-dependent terms' dE/dt at x (ForceTerm::ExplicitTimePower), at the model's time */
+  PetscErrorCode ExplicitTimePower(const PetscReal *x, std::vector<PetscReal> &P);
+  /* Keep each term's own force of every ComputeForces (TermForce(t), [2n]), for the energy balance;
+     it costs a zeroing and a sum per term and evaluation. */
+  void                          KeepTermForces(bool keep) { keep_term_forces_ = keep; }
+  const std::vector<PetscReal> &TermForce(size_t t) const { return term_f_[t]; }
+  /* Was the last ComputeForces at these positions (bit for bit)? Known when a term has internal
+     state or the term forces are kept; false otherwise. */
+  bool             EvaluatedAt(const PetscReal *x) const { return !last_x_.empty() && std::equal(last_x_.begin(), last_x_.end(), x); }
+  size_t           NumTerms() const { return terms_.size(); }
+  const ForceTerm &TermAt(size_t t) const { return *terms_[t]; }
+  /* Each term's energy at x (has[t] false for a term without one). */
+  PetscErrorCode TermEnergies(const PetscReal *x, std::vector<PetscReal> &E, std::vector<bool> &has);
+  /* Every term's log rows since the last call, and the files they go to. */
+  void RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const;
+  void TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows);
+  /* Every term's snapshot segments at (x, v) (those that draw any). */
+  PetscErrorCode OutputSegments(const PetscReal *x, const PetscReal *v, std::vector<TermSegments> &segments);
   /* Every term's snapshot fields at (x, v). */
   PetscErrorCode OutputFields(const PetscReal *x, const PetscReal *v, std::vector<TermField> &fields);
   /* Every term's Statistics(), in term order. */
@@ -79,8 +101,10 @@ private:
   std::vector<PetscReal>                  inv_mass_;           /* 0 for fixed particles */
   std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
   PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
-  bool                                    has_state_     = false;
-  PetscInt                                evaluations_   = 0;
+  bool                                    has_state_ = false, keep_term_forces_ = false;
+  std::vector<std::vector<PetscReal>>     term_f_; /* per term, with KeepTermForces */
+  PetscInt                                evaluations_ = 0;
+  PetscReal                               t_           = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;
 };
 

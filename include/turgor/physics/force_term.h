@@ -25,7 +25,7 @@ struct ForceInput {
      commit what that evaluation computed instead of recomputing it (ForceModel compares once for all
      terms; the velocities may differ: Verlet's last evaluation saw the half-step ones). */
   bool same_x = false;
-  /* AcceptStep only: the time of the accepted state (break records). */
+  /* The time of the state (ForceModel::SetTime; break records, a turgor that builds up). */
   PetscReal t = 0;
 };
 
@@ -98,8 +98,16 @@ public:
   /* Energy dissipated so far by the term's internal state (plastic rotation, frictional slip,
      fracture), counted in AcceptStep; the energy balance (energy.csv) sets it against the work. */
   virtual PetscReal Dissipation() const { return 0; }
+  /* A term whose energy depends on time explicitly (a turgor ramp): dE/dt at fixed positions, which
+     the energy balance counts as work done on the tissue from outside. */
+  virtual bool      TimeDependent() const { return false; }
+  virtual PetscReal ExplicitTimePower(const ForceInput &in) { return 0; }
   /* A purely dissipative force (global viscosity): its work is its dissipation. */
   virtual bool Dissipative() const { return false; }
+  /* Log files a term writes (e.g. glue's breaks.csv): their names and columns, known before the
+     run; TakeRecords moves out the rows made since the last call, as (file, cells). */
+  virtual void RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const { }
+  virtual void TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows) { }
   /* Segments for the snapshots (TermSegments). */
   virtual PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) { return PETSC_SUCCESS; }
   /* Fields for the snapshots at the state of `in` (TermField). */

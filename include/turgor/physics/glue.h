@@ -2,7 +2,8 @@
 /* Glue bonds between neighbouring polygonal cells, and their fracture (issue 11; the middle lamella
    of the L-hyphen seed, ../shared/seeds/004_b974c0f68c63d63f.txt, "Details of the model").
 
-   Bonds are made once, at the first evaluation (the reference geometry): every node within the
+   Bonds are made once, at the first evaluation (the reference geometry; with -glue_start_time T, at
+   the first accepted state at or after T, e.g. once the cells are inflated): every node within the
    gluing distance eps (-glue_distance: surface gap, i.e. closer than 2 r + eps to the bar's centre
    line) of a bar of another cell is bonded to the closest point of the closest such bar of that
    cell, c = (1 - lambda) x_a + lambda x_b with lambda fixed. A bond carries a length share L of its
@@ -63,6 +64,8 @@ public:
   PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
   PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) override;
   void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
+  void           RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const override;
+  void           TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows) override;
 
   /* Make the bonds at positions X (without a call, at the first evaluation's positions). */
   PetscErrorCode CreateBonds(const ParticleSet &P, const PetscReal *X);
@@ -86,27 +89,39 @@ public:
   PetscReal strength             = -1;    /* sigma_c [N/m]; < 0: sqrt(2 G_c k_n), where the energy law breaks in opening */
   PetscReal shear_strength       = -1;    /* tau_c [N/m]; < 0: sigma_c sqrt(k_t / k_n) */
   bool      open_cells           = false; /* glue open cells (plates, walls) too */
+  PetscReal start_time           = 0;     /* bonds made at the first evaluation (0), or at the first accepted state at or after this time [µs] */
+  bool      has_unbonded_box     = false; /* -glue_unbonded_box: no bond whose bond point is inside (a pre-crack, a notch) */
+  PetscReal unbonded_box[4]      = {0, 0, 0, 0};
 
 private:
-  struct Bond {
-    PetscInt  p, a, b, s, cell_p, cell_s;
+  struct Bond {        /* what every evaluation reads */
+    PetscInt  p, a, b; /* node, bar ends */
+    PetscInt  intact = 1;
     PetscReal lam, gn0, gt0, sign, L; /* bond point, reference opening components, side of n, length share */
-    PetscReal lmax   = 0;             /* committed largest equivalent opening (softening: D = D(lmax)) */
-    bool      intact = true;
+    PetscReal lmax = 0;               /* committed largest equivalent opening, from the peak on (softening: D = D(lmax)) */
+  };
+  struct BondInfo { /* what only set-up and the break records read */
+    PetscInt s, cell_p, cell_s;
+  };
+  struct Trial {
+    PetscReal dnp, dt; /* <delta_n>, delta_t of the last evaluation */
   };
   template <int MODE>
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  void      Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
   PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
   PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
   void Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt, PetscReal *gn) const;
 
-  PetscReal          kt_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, lf_ = 0;
-  std::vector<Bond>  bonds_;
-  std::vector<Break> breaks_;
-  PetscInt           intact_ = 0, accepted_ = 0;
-  PetscReal          dissipated_ = 0, time_ = 0;
-  bool               have_bonds_ = false;
-  const ParticleSet *P_          = nullptr;
+  PetscReal             kt_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* l02_ = l0_^2 */
+  std::vector<Bond>     bonds_;
+  std::vector<BondInfo> info_;
+  std::vector<Trial>    trial_;
+  std::vector<Break>    breaks_;
+  PetscInt              intact_ = 0, accepted_ = 0;
+  PetscReal             dissipated_ = 0, time_ = 0;
+  bool                  have_bonds_ = false;
+  const ParticleSet    *P_          = nullptr;
 };
 
 } // namespace turgor

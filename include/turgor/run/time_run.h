@@ -76,10 +76,12 @@ protected:
   };
   virtual std::vector<Series> ObservedSeries() const { return {}; }
   virtual PetscErrorCode      ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) { return PETSC_SUCCESS; }
-  virtual PetscErrorCode      OpenSnapshots()                   = 0;
-  virtual PetscErrorCode      WriteSnapshot(PetscReal t, Vec U) = 0;
-  virtual PetscInt            SnapshotCount() const             = 0;
-  virtual const char         *SnapshotFiles() const             = 0; /* for the final report */
+  virtual PetscErrorCode      OpenSnapshots() = 0;
+  /* The mode's own further output files (after tip.csv; only when the directory is ready). */
+  virtual PetscErrorCode OpenOutputs() { return PETSC_SUCCESS; }
+  virtual PetscErrorCode WriteSnapshot(PetscReal t, Vec U) = 0;
+  virtual PetscInt       SnapshotCount() const             = 0;
+  virtual const char    *SnapshotFiles() const             = 0; /* for the final report */
   /* The right-hand-side / residual evaluations so far (this rank). */
   virtual PetscInt FunctionEvaluations() const = 0;
   /* After every accepted step, at the accepted state (internal state committed, RVE states kept). */

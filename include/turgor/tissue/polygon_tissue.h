@@ -11,10 +11,12 @@ namespace turgor {
 
 /* Options -tissue_bar_radius, -tissue_node_mass, -tissue_bar_length (prefix tissue_). Units µm, ng. */
 struct PolygonTissueSpec {
-  PetscReal bar_radius = 0.5; /* µm: a node is a disk, a bar a capsule of this radius */
-  PetscReal node_mass  = 0.5; /* ng, every node */
-  PetscReal bar_length = 0;   /* µm: each polygon edge is cut into bars of at most this length; 0: one bar per edge */
-  PlateSpec plates;           /* -tissue_plates: plates along the sides, added after the tissue's cells */
+  PetscReal bar_radius = 0.5;    /* µm: a node is a disk, a bar a capsule of this radius */
+  PetscReal node_mass  = 0.5;    /* ng, every node */
+  PetscReal bar_length = 0;      /* µm: each polygon edge is cut into bars of at most this length; 0: one bar per edge */
+  PlateSpec plates;              /* -tissue_plates: plates along the sides, added after the tissue's cells */
+  bool      has_cut_box = false; /* -tissue_cut_box: cells whose centroid is inside are removed (a notch) */
+  PetscReal cut_box[4]  = {0, 0, 0, 0};
 
   /* `subdivide`: the generator honours -tissue_bar_length (the polyline, whose node count is given,
      leaves it unread so that a stray one is reported as unused). */

@@ -1,0 +1,166 @@
+#include <turgor/fine/energy_balance.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+PetscErrorCode EnergyBalance::SetUp(ForceModel &model, const Controls &controls, const ParticleSet &P)
+{
+  PetscFunctionBeginUser;
+  model_    = &model;
+  controls_ = &controls;
+  P_        = &P;
+  model.KeepTermForces(true);
+  stored_.clear(), loads_.clear(), dissipative_.clear(), counting_.clear();
+  /* roles: a load does work from outside (the body force); a dissipative term only removes energy
+     (its work is its dissipation); the others store energy, and may count their own dissipation */
+  for (size_t t = 0; t < model.NumTerms(); t++) {
+    const ForceTerm &T = model.TermAt(t);
+    if (T.IsLoad()) loads_.push_back(t);
+    else if (T.Dissipative()) dissipative_.push_back(t);
+    else {
+      stored_.push_back(t);
+      if (T.HasInternalState()) counting_.push_back(t); /* plasticity, friction, fracture */
+      if (T.TimeDependent()) timed_.push_back(t);       /* a turgor ramp */
+    }
+  }
+  W_.assign(model.NumTerms(), 0.0);
+  W_time_.assign(model.NumTerms(), 0.0);
+  W_controls_ = 0, worst_relative_ = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::vector<std::string> EnergyBalance::Columns() const
+{
+  std::vector<std::string> c = {"kinetic"};
+  for (size_t t : stored_) c.push_back(std::string("energy_") + model_->TermAt(t).Name());
+  c.push_back("work_controls");
+  for (size_t t : loads_) c.push_back(std::string("work_") + model_->TermAt(t).Name());
+  for (size_t t : timed_) c.push_back(std::string("work_") + model_->TermAt(t).Name() + "_ramp");
+  for (size_t t : dissipative_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name());
+  for (size_t t : counting_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name());
+  c.push_back("residual");
+  c.push_back("residual_relative");
+  return c;
+}
+
+PetscReal EnergyBalance::Kinetic(const PetscReal *v) const
+{
+  PetscReal K = 0;
+  for (PetscInt i = 0; i < P_->n; i++) K += 0.5 * P_->mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+  return K;
+}
+
+/* Every term's force at (x, v): the model's last evaluation where it was at these positions (the
+   forces the integrator used), otherwise a new evaluation; and the controls' forces. */
+PetscErrorCode EnergyBalance::Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<PetscReal> &reaction)
+{
+  const PetscInt n2 = 2 * P_->n;
+  PetscFunctionBeginUser;
+  if (!model_->EvaluatedAt(x)) {
+    F_work_total_.resize(n2);
+    PetscCall(model_->ComputeForces(x, v, F_work_total_.data(), NULL));
+  }
+  F.resize(model_->NumTerms());
+  std::vector<PetscReal> total(n2, 0.0);
+  for (size_t t = 0; t < model_->NumTerms(); t++) {
+    F[t] = model_->TermForce(t);
+    for (PetscInt k = 0; k < n2; k++) total[k] += F[t][k];
+  }
+  reaction.resize(n2);
+  controls_->ControlForces(t_, total.data(), reaction.data(), P_->n);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode EnergyBalance::Start(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *v)
+{
+  std::vector<PetscReal> E;
+  std::vector<bool>      has;
+  PetscFunctionBeginUser;
+  t_ = t;
+  PetscCall(Forces(x, v, F_prev_, R_prev_));
+  v_prev_.assign(v, v + 2 * P_->n);
+  PetscCall(model_->TermEnergies(x, E, has));
+  PetscReal s[2] = {Kinetic(v), 0};
+  for (size_t q : stored_) s[1] += has[q] ? E[q] : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, comm));
+  K0_ = s[0], E0_ = s[1];
+  std::fill(W_.begin(), W_.end(), 0.0);
+  std::fill(W_time_.begin(), W_time_.end(), 0.0);
+  W_controls_ = 0;
+  model_->SetTime(t);
+  PetscCall(model_->ExplicitTimePower(x, P_time_prev_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode EnergyBalance::Step(PetscReal t, const PetscReal *x, const PetscReal *v)
+{
+  const PetscInt  n2 = 2 * P_->n;
+  const PetscReal h  = t - t_;
+  PetscFunctionBeginUser;
+  t_ = t;
+  PetscCall(Forces(x, v, F_work_, R_work_));
+  for (size_t q = 0; q < F_work_.size(); q++) {
+    PetscReal w = 0;
+    for (PetscInt k = 0; k < n2; k++) w += (F_prev_[q][k] + F_work_[q][k]) * (v_prev_[k] + v[k]);
+    W_[q] += 0.25 * h * w;
+  }
+  PetscReal w = 0;
+  for (PetscInt k = 0; k < n2; k++) w += (R_prev_[k] + R_work_[k]) * (v_prev_[k] + v[k]);
+  W_controls_ += 0.25 * h * w;
+  if (!timed_.empty()) { /* the work of the explicit time dependence, trapezoidal */
+    std::vector<PetscReal> P;
+    model_->SetTime(t);
+    PetscCall(model_->ExplicitTimePower(x, P));
+    for (size_t q : timed_) W_time_[q] += 0.5 * h * (P_time_prev_[q] + P[q]);
+    P_time_prev_ = P;
+  }
+  std::swap(F_prev_, F_work_);
+  std::swap(R_prev_, R_work_);
+  v_prev_.assign(v, v + n2);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscReal EnergyBalance::ExternalWork() const
+{
+  PetscReal w = W_controls_;
+  for (size_t q : loads_) w += W_[q];
+  for (size_t q : timed_) w += W_time_[q];
+  return w;
+}
+
+PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const PetscReal *v, std::vector<PetscReal> &row, PetscReal *relative)
+{
+  std::vector<PetscReal> E;
+  std::vector<bool>      has;
+  PetscFunctionBeginUser;
+  PetscCall(model_->TermEnergies(x, E, has));
+  /* rank sums: kinetic, energies, works, dissipations (the term counters are each rank's own) */
+  std::vector<PetscReal> s;
+  s.push_back(Kinetic(v));
+  for (size_t q : stored_) s.push_back(has[q] ? E[q] : 0);
+  s.push_back(W_controls_);
+  for (size_t q : loads_) s.push_back(W_[q]);
+  for (size_t q : timed_) s.push_back(W_time_[q]);
+  for (size_t q : dissipative_) s.push_back(-W_[q]);
+  for (size_t q : counting_) s.push_back(model_->TermAt(q).Dissipation());
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s.data(), (PetscMPIInt)s.size(), MPIU_REAL, MPIU_SUM, comm));
+  size_t    k = 0;
+  PetscReal K = s[k++], Es = 0, Wext = 0, D = 0, Etot_abs = std::fabs(s[0]);
+  for (size_t q = 0; q < stored_.size(); q++) Es += s[k], Etot_abs += std::fabs(s[k]), k++;
+  Wext += s[k++];
+  for (size_t q = 0; q < loads_.size() + timed_.size(); q++) Wext += s[k++];
+  for (size_t q = 0; q < dissipative_.size() + counting_.size(); q++) D += s[k++];
+  const PetscReal residual = (K + Es) - (K0_ + E0_) - Wext + D;
+  /* relative to the external work done, or (none done) to the energies in play */
+  PetscReal scale = std::max(std::fabs(Wext), Etot_abs);
+  if (std::fabs(Wext) > 0) scale = std::fabs(Wext);
+  *relative       = scale > 0 ? residual / scale : 0;
+  worst_relative_ = std::max(worst_relative_, std::fabs(*relative));
+  row             = s;
+  row.push_back(residual);
+  row.push_back(*relative);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
