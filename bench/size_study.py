@@ -25,9 +25,10 @@ both are reported because this machine is shared), the speed-up fine / FE^2 in e
 
 Cost model (docs/accuracy-cost.md): fine CPU = c_f x particles x simulated time (DOPRI's step is
 set by the cell walls' dashpots, which do not change with the tissue size); FE^2 CPU = c_rve x RVE
-solves (material points x function evaluations; Radau IIA's steps per period do not change with
-the size either). c_f and c_rve are fitted to the runs here; the model then predicts the speed-up
-at other sizes (--predict).
+solves (material points x function evaluations). Radau IIA's steps per period grow slowly with the
+size (the larger bar's higher modes ring with more amplitude): the solves of each mesh are fitted as
+N^beta over the sizes run. c_f and c_rve are fitted to the runs here; the model then predicts the
+speed-up at other sizes (--predict).
 
   bench/size_study.py --sizes 16,32,64 --meshes q1:4,q1:8,q2:2,q2:4 --fine 16=DIR --fine 32=DIR ...
   bench/size_study.py --sizes 16 --window 300 --meshes q1:4,q1:8,q1:16,q2:2,q2:4,q2:8 --fine 16=DIR --tag q1q2
@@ -124,7 +125,8 @@ class SizeStudy:
         os.makedirs(d, exist_ok=True)
         cmd = cmd + ["-output_dir", d, "-output_overwrite"]
         done = os.path.join(d, "cpu_s.txt")
-        if self.a.reuse and os.path.isfile(done) and open(os.path.join(d, "command.txt")).read().strip() == " ".join(cmd):
+        same = lambda c: c.split(" -output_dir ")[0]  # a run copied from another --out is the same run
+        if self.a.reuse and os.path.isfile(done) and same(open(os.path.join(d, "command.txt")).read().strip()) == same(" ".join(cmd)):
             s = json.load(open(os.path.join(d, "summary.json")))
             return s, d, float(open(done).read().split()[0]), float(open(done).read().split()[1])
         with open(os.path.join(d, "command.txt"), "w") as f:
@@ -212,6 +214,20 @@ class SizeStudy:
             if r["mesh"] is not None:
                 r["mesh"] = int(r["mesh"])
 
+    @staticmethod
+    def solves_at(rs, n):
+        """RVE solves of one FE^2 mesh at size n: the largest size's count times (n / N)^beta, beta the
+        slope of log(solves) against log(N) over the sizes run (0 with one size): the steps per
+        period grow with the bar, whose higher modes ring with more amplitude and less damping."""
+        rs = sorted(rs, key=lambda r: r["size"])
+        beta = 0.0
+        if len(rs) >= 2:
+            x = [math.log(r["size"]) for r in rs]
+            y = [math.log(r["rve_solves"]) for r in rs]
+            mx, my = sum(x) / len(x), sum(y) / len(y)
+            beta = sum((a - mx) * (b - my) for a, b in zip(x, y)) / sum((a - mx) ** 2 for a in x)
+        return rs[-1]["rve_solves"] * (n / rs[-1]["size"]) ** beta, beta
+
     def model(self):
         """c_f [CPU s per particle per µs simulated] and c_rve [CPU s per RVE solve], least squares
         through the origin over the runs."""
@@ -245,10 +261,9 @@ class SizeStudy:
             particles = 16 * n * n + (n + 1) ** 2 + 2 * n * (n + 1)  # 16 fluid per cell, the corners, one midpoint per wall
             fe2 = [r for r in self.rows if r["run"] == "fe2" and r.get("ok") and r.get("rve_solves")]
             for r in sorted({(r["element"], r["mesh"]) for r in fe2}):
-                same = [x for x in fe2 if (x["element"], x["mesh"]) == r]
-                solves = max(same, key=lambda x: x["size"])["rve_solves"]  # the largest size's count: the steps per period do not change
-                print(f"predicted at {n}²: fine {cf * particles * 4 * n:.0f} s CPU, FE² {r[0]} {r[1]}² {crve * solves:.1f} s, speed-up "
-                      f"{cf * particles * 4 * n / (crve * solves):.0f}×")
+                solves, beta = self.solves_at([x for x in fe2 if (x["element"], x["mesh"]) == r], n)
+                print(f"predicted at {n}²: fine {cf * particles * 4 * n:.0f} s CPU, FE² {r[0]} {r[1]}² {crve * solves:.1f} s (RVE solves ∝ N^{beta:.2f}), "
+                      f"speed-up {cf * particles * 4 * n / (crve * solves):.0f}×")
 
     def plots(self):
         import matplotlib
@@ -268,11 +283,11 @@ class SizeStudy:
                 for r in rs:
                     ax.annotate(f"{100 * r['max_error']:.0f}% / {100 * r['bending_error']:.1f}%", (r["size"] ** 2, r["speedup_cpu"]), fontsize=7, xytext=(4, -10),
                                 textcoords="offset points")
-                # the cost model: fine ∝ particles x time, FE^2 ∝ RVE solves (the largest size's)
-                solves = rs[-1]["rve_solves"]
+                # the cost model: fine ∝ particles x time, FE^2 ∝ RVE solves (∝ N^beta, fitted)
                 ns = [16 * 2**k for k in range(0, 5)]
                 part = [16 * n * n + (n + 1) ** 2 + 2 * n * (n + 1) for n in ns]
-                ax.loglog([n * n for n in ns], [cf * p * 4 * n / (crve * solves) for n, p in zip(ns, part)], "--", color=line.get_color(), lw=0.8)
+                ax.loglog([n * n for n in ns], [cf * p * 4 * n / (crve * self.solves_at(rs, n)[0]) for n, p in zip(ns, part)], "--",
+                          color=line.get_color(), lw=0.8)
             ax.axhline(200, color="k", lw=0.6, ls="-.")
             ax.annotate("200×", (256, 200), fontsize=8, xytext=(2, 3), textcoords="offset points")
             ax.set_xlabel("cells in the tissue (N × N)")
@@ -334,7 +349,7 @@ def main():
     ap.add_argument("--out", default="out/size_study")
     ap.add_argument("--sizes", default="16,32,64")
     ap.add_argument("--meshes", default="q1:4,q1:8,q2:2,q2:4", help="element:faces,...")
-    ap.add_argument("--fine", action="append", default=[], metavar="N=DIR", help="an existing fine run of size N (else it is run here)")
+    ap.add_argument("--fine", action="append", default=[], metavar="N=DIR", help="an existing fine run of size N (else it is run here); its CPU time from DIR/cpu_s.txt or the /usr/bin/time -v file DIR.time, prorated to the window if it ran longer")
     ap.add_argument("--window", type=float, default=0, help="µs (default 4 N: three periods)")
     ap.add_argument("--tag", default="", help="a name for the runs of this study (and the error-per-cost plot)")
     ap.add_argument("--extra", default="", help="more turgor options for the FE^2 runs (one string)")
