@@ -243,11 +243,12 @@ class SizeStudy:
               "| amplitude error | offset error | bending error | higher modes |")
         print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         f = lambda v, fmt: "—" if v is None or v != v else fmt.format(v)
+        times = lambda v: f(v, "{:.0f}×" if v is not None and v >= 9.5 else "{:.2g}×")  # below 10: two digits (0.26×, not 0×)
         for r in self.rows:
             pct = lambda k, fmt: f(None if r.get(k) is None else 100 * r[k], fmt)
             label = "fine (DOPRI, 1 rank)" if r["run"] == "fine" else f"FE² {r['element'].upper()} {r['mesh']}×{r['mesh']}"
             print(f"| {r['size']}² | {label} | {f(r.get('wall_s'), '{:.1f}')} | {f(r.get('cpu_s'), '{:.1f}')} | "
-                  f"{'—' if r['run'] == 'fine' else f(r.get('speedup_wall'), '{:.0f}×') + ' / ' + f(r.get('speedup_cpu'), '{:.0f}×')} | "
+                  f"{'—' if r['run'] == 'fine' else times(r.get('speedup_wall')) + ' / ' + times(r.get('speedup_cpu'))} | "
                   f"{f(r.get('steps'), '{:.0f}')} | {f(r.get('rhs_evals'), '{:.0f}')} | {f(r.get('rve_solves'), '{:.0f}')} | "
                   f"{'—' if r['run'] == 'fine' else pct('max_error', '{:.1f}%')} | "
                   f"{f(r.get('period'), '{:.2f} µs') if r['run'] == 'fine' else pct('period_error', '{:+.2f}%')} | "
