@@ -1,14 +1,18 @@
 #!/usr/bin/python3
 """Independent reference for turgor's static cantilever (-mode fe2_static, config/cantilever_static.yaml).
 
-Linear-elastic plane-strain Q1 elements, assembled and solved here with numpy alone (no turgor, no
-PETSc), on the same structured mesh: a beam L x H on nx x ny bilinear quadrilaterals, clamped at
-x = 0 (both displacement components of every vertex there), loaded by a body force rho g. Two rules:
+Linear-elastic plane-strain Q1 or Q2 elements (--element), assembled and solved here with numpy
+alone (no turgor, no PETSc), on the same structured mesh: a beam L x H on nx x ny quadrilaterals,
+clamped at x = 0 (both displacement components of every node there), loaded by a body force rho g.
+Q2's nodes are a (2 nx + 1) x (2 ny + 1) grid and its shape functions products of the 1D quadratic
+Lagrange polynomials on -1, 0, 1 (written out here, independently of turgor's PetscFE tabulation).
+Two rules:
 
-  full  the whole stress at the 2 x 2 Gauss points;
-  sri   selective reduced integration as turgor does it: the deviatoric part at the 2 x 2 Gauss
-        points, the pressure part tr(sigma)/2 at the centre (weight 4), i.e. in Voigt form
-        D_vol = (lambda + mu) m m^T with m = [1, 1, 0] at the centre, D - D_vol at the Gauss points.
+  full  the whole stress at the full Gauss points (Q1: 2 x 2, Q2: 3 x 3);
+  sri   selective reduced integration as turgor does it: the deviatoric part at the full Gauss
+        points, the pressure part tr(sigma)/2 at fewer (Q1: the centre, weight 4; Q2: the 2 x 2
+        Gauss points), i.e. in Voigt form D_vol = (lambda + mu) m m^T with m = [1, 1, 0] there and
+        D - D_vol at the full points.
 
 Prints the tip deflection (vertical displacement of the vertex at (L, H/2)) and Timoshenko's for
 plane strain: q L^4 / (8 E' I) + q L^2 / (2 kappa G A), E' = E / (1 - nu^2), G = mu, q = rho g H,
@@ -16,9 +20,10 @@ I = H^3 / 12, A = H, kappa = 10 (1 + nu') / (12 + 11 nu') with nu' = nu / (1 - n
 beam is the plane-stress one with E', nu').
 
   cantilever_reference.py --faces 16,4 --rule sri --g=-1e-8
+  cantilever_reference.py --faces 8,2 --element q2 --rule sri --g=-1e-8
   cantilever_reference.py --faces 16,4 --rule full --g=-1e-8 --check DIR --rtol 1e-4
         compare DIR/summary.json (a turgor -mode fe2_static run of the same beam) with the reference
-  cantilever_reference.py --table --turgor build/turgor [--g=-1e-7] [--meshes 8,2 16,4 32,8 64,16]
+  cantilever_reference.py --table --turgor build/turgor [--g=-1e-7] [--meshes 8,2 16,4 32,8 64,16] [--element q2]
         run turgor on each mesh with both rules and print the docs/benchmarks.md table
 """
 import argparse, json, math, os, subprocess, sys, time
@@ -83,6 +88,62 @@ def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule):
     return u[2 * node(nx, ny // 2) + 1]
 
 
+def quadratic(t):
+    """The 1D quadratic Lagrange polynomials on the nodes -1, 0, 1 at t, and their derivatives."""
+    return (np.array([0.5 * t * (t - 1), 1 - t * t, 0.5 * t * (t + 1)]), np.array([t - 0.5, -2 * t, t + 0.5]))
+
+
+def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule):
+    """The same beam on biquadratic 9-node elements: nodes on the (2 nx + 1) x (2 ny + 1) grid."""
+    D = np.array([[lam + 2 * mu, lam, 0], [lam, lam + 2 * mu, 0], [0, 0, mu]])
+    m = np.array([1.0, 1.0, 0.0])
+    Dvol = (lam + mu) * np.outer(m, m)
+    nyn = 2 * ny + 1
+    node = lambda i, j: i * nyn + j  # grid node (i, j), column by column
+    n = (2 * nx + 1) * nyn
+    K = np.zeros((2 * n, 2 * n))
+    f = np.zeros(2 * n)
+    t3, w3 = np.polynomial.legendre.leggauss(3)
+    t2, w2 = np.polynomial.legendre.leggauss(2)
+    hx, hy = L / nx, H / ny  # a rectangle: dX/dxi = diag(hx / 2, hy / 2)
+    det = hx * hy / 4
+
+    def bmat(xi, eta):
+        (Nx, dNx), (Ny, dNy) = quadratic(xi), quadratic(eta)
+        B = np.zeros((3, 18))
+        N = np.zeros(9)
+        for a in range(3):
+            for b in range(3):
+                k = 3 * a + b  # local node (a along x, b along y)
+                gx, gy = dNx[a] * Ny[b] * 2 / hx, Nx[a] * dNy[b] * 2 / hy
+                B[0, 2 * k], B[1, 2 * k + 1], B[2, 2 * k], B[2, 2 * k + 1] = gx, gy, gy, gx
+                N[k] = Nx[a] * Ny[b]
+        return B, N
+
+    for i in range(nx):
+        for j in range(ny):
+            nodes = [node(2 * i + a, 2 * j + b) for a in range(3) for b in range(3)]
+            Ke = np.zeros((18, 18))
+            fe = np.zeros(18)
+            for xi, wx in zip(t3, w3):
+                for eta, wy in zip(t3, w3):
+                    B, N = bmat(xi, eta)
+                    Ke += B.T @ (D if rule == "full" else D - Dvol) @ B * wx * wy * det
+                    fe[1::2] += rho * g * N * wx * wy * det
+            if rule == "sri":
+                for xi, wx in zip(t2, w2):
+                    for eta, wy in zip(t2, w2):
+                        B, _ = bmat(xi, eta)
+                        Ke += B.T @ Dvol @ B * wx * wy * det
+            dofs = [2 * v + d for v in nodes for d in range(2)]
+            K[np.ix_(dofs, dofs)] += Ke
+            f[dofs] += fe
+    free = np.array([d for d in range(2 * n) if d // 2 // nyn != 0])  # not on x = 0
+    u = np.zeros(2 * n)
+    u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free])
+    return u[2 * node(2 * nx, ny) + 1]
+
+
 def timoshenko(L, H, mu, lam, rho, g):
     E = mu * (3 * lam + 2 * mu) / (lam + mu)
     nu = lam / (2 * (lam + mu))
@@ -94,7 +155,7 @@ def timoshenko(L, H, mu, lam, rho, g):
 def turgor_run(turgor, nx, ny, rule, a, out):
     cmd = [turgor, "-mode", "fe2_static", "-material", "neo_hookean", "-nh_mu", repr(a.mu), "-nh_lambda", repr(a.lam), "-nh_density", repr(a.density),
            "-nh_viscosity", "0", "-coarse_dm_plex_simplex", "0", "-coarse_dm_plex_box_faces", f"{nx},{ny}", "-coarse_dm_plex_box_upper", f"{a.L},{a.H}",
-           "-coarse_dirichlet_values", "4", "-coarse_quadrature", rule, "-body_force", f"0,{a.g!r}", "-fe2_static_load_steps", str(a.load_steps),
+           "-coarse_dirichlet_values", "4", "-coarse_element", a.element, "-coarse_quadrature", rule, "-body_force", f"0,{a.g!r}", "-fe2_static_load_steps", str(a.load_steps),
            "-fe2_static_snapshots", "0", "-output_dir", out, "-output_overwrite"]
     t = time.time()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
@@ -112,6 +173,7 @@ def main():
     p.add_argument("--density", type=float, default=1.0, help="rho0 (-nh_density)")
     p.add_argument("--g", type=float, default=-1e-8, help="vertical body force (acceleration, -body_force 0,g)")
     p.add_argument("--rule", choices=["sri", "full", "both"], default="both")
+    p.add_argument("--element", choices=["q1", "q2"], default="q1")
     p.add_argument("--check", metavar="DIR", help="compare DIR/summary.json's tip_displacement_final")
     p.add_argument("--rtol", type=float, default=1e-4)
     p.add_argument("--table", action="store_true")
@@ -124,17 +186,19 @@ def main():
     a.lam = a.E * a.nu / ((1 + a.nu) * (1 - 2 * a.nu))
     theory = -timoshenko(a.L, a.H, a.mu, a.lam, a.density, -a.g)
     rules = ["sri", "full"] if a.rule == "both" else [a.rule]
+    deflection = tip_deflection_q2 if a.element == "q2" else tip_deflection
     if a.table:
         print(f"Cantilever {a.L:g} x {a.H:g}, plane strain, E = {a.E:g}, nu = {a.nu:g} (mu = {a.mu!r}, lambda = {a.lam!r}), rho g = {a.density * a.g:g}; "
               f"Timoshenko {theory:.6g} (deflection / length {abs(theory) / a.L:.2g})\n")
+        print(f"element {a.element}\n")
         print("| mesh | rule | tip (turgor, neo-Hookean) | tip (numpy, linear) | turgor vs numpy | turgor vs Timoshenko | Newton iterations | wall time |")
         print("|---|---|---|---|---|---|---|---|")
         tips = {rule: [] for rule in rules}
         for mesh in a.meshes:
             nx, ny = map(int, mesh.split(","))
             for rule in rules:
-                ref = tip_deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule)
-                s, wall = turgor_run(a.turgor, nx, ny, rule, a, os.path.join(a.out, f"{rule}_{nx}x{ny}"))
+                ref = deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule)
+                s, wall = turgor_run(a.turgor, nx, ny, rule, a, os.path.join(a.out, f"{a.element}_{rule}_{nx}x{ny}"))
                 tip = s["tip_displacement_final"]
                 tips[rule].append(tip)
                 print(f"| {nx} × {ny} | {rule} | {tip:.7g} | {ref:.7g} | {(tip - ref) / ref:+.1e} | {100 * (tip - theory) / theory:+.2f}% | "
@@ -150,12 +214,13 @@ def main():
         return
     nx, ny = map(int, a.faces.split(","))
     for rule in rules:
-        ref = tip_deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule)
-        print(f"{rule}: {nx} x {ny} elements, tip deflection {ref:.10g} (Timoshenko {theory:.6g}, {100 * (ref - theory) / theory:+.2f}%)")
+        ref = deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule)
+        print(f"{a.element} {rule}: {nx} x {ny} elements, tip deflection {ref:.10g} (Timoshenko {theory:.6g}, {100 * (ref - theory) / theory:+.2f}%)")
         if a.check:
             s = json.load(open(os.path.join(a.check, "summary.json")))
-            if s.get("quadrature") != rule or s.get("n_elements") != nx * ny or s.get("status") != "completed":
-                sys.exit(f"FAIL: {a.check} is not a completed {rule} run on {nx} x {ny} elements: {s.get('status')}, {s.get('quadrature')}, {s.get('n_elements')}")
+            if s.get("quadrature") != rule or s.get("element", "q1") != a.element or s.get("n_elements") != nx * ny or s.get("status") != "completed":
+                sys.exit(f"FAIL: {a.check} is not a completed {a.element} {rule} run on {nx} x {ny} elements: {s.get('status')}, {s.get('element')}, "
+                         f"{s.get('quadrature')}, {s.get('n_elements')}")
             tip = s["tip_displacement_final"]
             rel = abs(tip - ref) / abs(ref)
             print(f"turgor ({a.check}): {tip:.10g}, relative difference {rel:.2e} (tolerance {a.rtol:g})")

@@ -69,6 +69,15 @@ def error(run, ref):
     return max(errs) / scale if len(errs) >= 100 else None
 
 
+def write_rows(path, columns, rows):
+    """rows (dicts) as CSV with these columns, empty where a row has no value."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("" if r.get(k) is None else r.get(k, "")) for k in columns})
+
+
 class Study:
     def __init__(self, a):
         self.a = a
@@ -116,11 +125,7 @@ class Study:
         self.write_csv()
 
     def write_csv(self):
-        with open(os.path.join(self.a.out, "study.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=COLUMNS)
-            w.writeheader()
-            for r in self.rows:
-                w.writerow({k: ("" if r.get(k) is None else r.get(k, "")) for k in COLUMNS})
+        write_rows(os.path.join(self.a.out, "study.csv"), COLUMNS, self.rows)
 
     def integration(self):
         a = self.a

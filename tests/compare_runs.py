@@ -18,6 +18,8 @@
                                              thirds' means agree within RELTOL of their size
   compare_runs.py samekey A_DIR B_DIR KEY RELTOL  summary.json[KEY] of the two runs agree within RELTOL (relative)
   compare_runs.py between DIR KEY LO HI      LO <= summary.json[KEY] <= HI
+  compare_runs.py notmore A_DIR B_DIR KEY RELTOL  summary.json[KEY] of A is at most (1 + RELTOL) x B's (strictly
+                                             less when RELTOL < 0)
   compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
                                              CSV[ROW][NAME] (minus CSV[BASE_ROW][NAME]) is EXPECTED
                                              within RELTOL (relative); ROW -1 is the last row
@@ -133,6 +135,12 @@ def main(argv):
         print(f"{argv[3]} = {v} (expected {lo:g} .. {hi:g})")
         if not lo <= v <= hi:
             sys.exit(f"FAIL: {argv[3]} outside {lo:g} .. {hi:g}")
+    elif mode == "notmore":
+        a, b = json.load(open(f"{argv[2]}/summary.json"))[argv[4]], json.load(open(f"{argv[3]}/summary.json"))[argv[4]]
+        tol = float(argv[5])
+        print(f"{argv[4]}: {a} ({argv[2]}) vs {b} ({argv[3]})")
+        if not (a <= (1 + tol) * b if tol >= 0 else a < b):
+            sys.exit(f"FAIL: {argv[4]} of {argv[2]} is {'not less than' if tol < 0 else 'more than (1 + ' + argv[5] + ') x'} {argv[3]}'s")
     elif mode == "column":
         rows = list(csv.DictReader(open(argv[2])))
         name, row, expected, tol = argv[3], int(argv[4]), float(argv[5]), float(argv[6])

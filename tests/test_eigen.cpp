@@ -150,7 +150,7 @@ static PetscErrorCode DeformedState(CoarseModel &model, Vec U, PetscReal a, Pets
 {
   std::string missing;
   PetscFunctionBeginUser;
-  PetscCall(model.VertexState(
+  PetscCall(model.NodeState(
     U,
     [&](const PetscReal X[2], PetscReal state[4]) {
       const PetscReal x = X[0] / 400, y = X[1] / 400;

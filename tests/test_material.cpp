@@ -1,5 +1,6 @@
 static const char help[] = "Tangent machinery (TW 562 eqs 46-53) on the closed-form neo-Hookean material:\n"
-                           "forward- and central-difference D^e and D^v against the analytic tangents (1e-6),\n"
+                           "forward- and central-difference D^e and D^v against the analytic tangents (1e-6), and the exact\n"
+                           "ones of -material_tangent implicit (1e-13),\n"
                            "for several deformations including shear and rotation; inverted F is a failed evaluation.\n";
 #include "test_util.h"
 #include <turgor/material/neo_hookean.h>
@@ -42,15 +43,23 @@ int main(int argc, char **argv)
     TangentOptions opt;
     PetscCall(ComputeTangents(nh, F, Tensor2::Zero(), base, opt, &fd, &status));
     TG_CHECK(status.ok, "tangent evaluation failed: %s", status.reason.c_str());
-    opt.central = true;
-    opt.U       = 1e-10; /* central differences tolerate a larger step */
+    opt.method = TangentMethod::Central;
+    opt.U      = 1e-10; /* central differences tolerate a larger step */
     PetscCall(ComputeTangents(nh, F, Tensor2::Zero(), base, opt, &cd, &status));
+    Tangents id; /* -material_tangent implicit: the closed form's own derivatives */
+    opt.method = TangentMethod::Implicit;
+    PetscCall(ComputeTangents(nh, F, Tensor2::Zero(), base, opt, &id, &status));
+    TG_CHECK(status.ok, "exact tangents failed: %s", status.reason.c_str());
     const PetscReal efe = MaxRelDiff(fd.De, exact.De), efv = MaxRelDiff(fd.Dv, exact.Dv), ece = MaxRelDiff(cd.De, exact.De), ecv = MaxRelDiff(cd.Dv, exact.Dv);
+    const PetscReal eie = MaxRelDiff(id.De, exact.De), eiv = MaxRelDiff(id.Dv, exact.Dv);
     PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                          "F = [%5.3f %5.3f; %5.3f %5.3f]: D^e forward %.2e central %.2e, D^v forward %.2e central %.2e (relative to max entry)\n",
-                          (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)efe, (double)ece, (double)efv, (double)ecv));
+                          "F = [%5.3f %5.3f; %5.3f %5.3f]: D^e forward %.2e central %.2e implicit %.2e, D^v forward %.2e central %.2e implicit %.2e "
+                          "(relative to max entry)\n",
+                          (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)efe, (double)ece, (double)eie, (double)efv, (double)ecv,
+                          (double)eiv));
     TG_CHECK(efe < 1e-6 && ece < 1e-6, "D^e differs from the analytic tangent");
     TG_CHECK(efv < 1e-6 && ecv < 1e-6, "D^v differs from the analytic tangent");
+    TG_CHECK(eie < 1e-13 && eiv < 1e-13, "the exact (implicit) tangents differ from the analytic ones");
   }
   {
     MaterialResponse r;

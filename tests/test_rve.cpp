@@ -6,7 +6,9 @@ static const char help[] = "RVE material point (TW 562 §3.2, eq 30, eqs 46-53):
                            " 5. a springs-only square lattice against its analytic stiffness diag(k/s, k/s, 0);\n"
                            " 6. relaxed vs Cauchy-Born stress: equal for the lattice, different for the turgid cell;\n"
                            " 7. failures (inverted F, no convergence) are reported, not aborted;\n"
-                           " 8. a large shear path with a rate (a corner element of the 8 x 8 FE^2 bar) converges at every point.\n";
+                           " 8. a large shear path with a rate (a corner element of the 8 x 8 FE^2 bar) converges at every point;\n"
+                           " 9. exact tangents (implicit differentiation of the relaxed state, -material_tangent implicit) against\n"
+                           "    central differences of tightly relaxed RVEs, on a sheared and a stretched RVE with rates: 1e-6.\n";
 #include "test_util.h"
 #include <turgor/rve/rve.h>
 #include <turgor/physics/repulsion.h>
@@ -213,7 +215,7 @@ static PetscErrorCode ForwardVsCentral()
   PetscCall(Eval(*rve, F, Fd, &r));
   PetscCall(ComputeTangents(*rve, F, Fd, r, opt, &fwd, &status));
   TG_CHECK(status.ok, "forward tangents failed: %s", status.reason.c_str());
-  opt.central = true;
+  opt.method = TangentMethod::Central;
   PetscCall(ComputeTangents(*rve, F, Fd, r, opt, &cen, &status));
   TG_CHECK(status.ok, "central tangents failed: %s", status.reason.c_str());
   const PetscReal de = MaxRel(fwd.De, cen.De, MaxAbs(cen.De)), dv = MaxRel(fwd.Dv, cen.Dv, MaxAbs(cen.Dv));
@@ -368,6 +370,62 @@ static PetscErrorCode LargeShearPath()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* 9. Implicit (exact) tangents against central differences: the reference relaxes to 1e-14 and
+   differences with eps = 1e-5 (truncation ~eps^2, noise ~1e-14 / eps), so that it is itself
+   accurate to ~1e-8 of the largest entry; the exact tangents come from an RVE at the default
+   Psi-tc tolerance (1e-12), whose relaxed w enters only through the state differentiated. Both
+   D^e and D^v, each relative to its largest entry. */
+static PetscErrorCode ExactVsCentral()
+{
+  const struct {
+    const char *name;
+    Tensor2     F, Fd;
+  } states[] = {
+    {"sheared 10%",           {{{1.0, 0.1}, {0.0, 1.0}}},      {{{0.0, 0.01}, {0.0, 0.0}}}    },
+    {"stretched 5% / -3%",    {{{1.05, 0.0}, {0.0, 0.97}}},    {{{0.01, 0.0}, {0.0, -0.005}}} },
+    {"stretched and sheared", {{{1.03, 0.04}, {-0.02, 0.98}}}, {{{0.005, 0.01}, {0.0, 0.002}}}}
+  };
+  PetscFunctionBeginUser;
+  for (const auto &st : states) {
+    RVEMaterial          tight;
+    std::unique_ptr<RVE> exact, ref;
+    MaterialResponse     r, rr, status;
+    Tangents             De, Dc, Df;
+    TangentOptions       opt;
+    MaterialCounters     c0, c1, c2;
+    tight.spec.psi_atol = tight.spec.psi_steptol = 1e-14;
+    PetscCall(MakeRVE(&exact));
+    PetscCall(MakeRVE(tight, &ref));
+    PetscCall(Eval(*exact, st.F, st.Fd, &r));
+    exact->AddCounters(c0);
+    opt.method = TangentMethod::Implicit;
+    PetscCall(ComputeTangents(*exact, st.F, st.Fd, r, opt, &De, &status));
+    TG_CHECK(status.ok, "exact tangents failed: %s", status.reason.c_str());
+    exact->AddCounters(c1);
+    opt.method = TangentMethod::Forward; /* the seed's, for the cost */
+    PetscCall(ComputeTangents(*exact, st.F, st.Fd, r, opt, &Df, &status));
+    TG_CHECK(status.ok, "forward tangents failed: %s", status.reason.c_str());
+    exact->AddCounters(c2);
+    PetscCall(Eval(*ref, st.F, st.Fd, &rr));
+    opt.method = TangentMethod::Central;
+    opt.U      = 1e-10;
+    PetscCall(ComputeTangents(*ref, st.F, st.Fd, rr, opt, &Dc, &status));
+    TG_CHECK(status.ok, "central tangents failed: %s", status.reason.c_str());
+    const PetscReal de = MaxRel(De.De, Dc.De, MaxAbs(Dc.De)), dv = MaxRel(De.Dv, Dc.Dv, MaxAbs(Dc.Dv));
+    const PetscReal fe = MaxRel(Df.De, Dc.De, MaxAbs(Dc.De)), fv = MaxRel(Df.Dv, Dc.Dv, MaxAbs(Dc.Dv));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "9. exact vs central tangents, %s: D^e %.2e, D^v %.2e (forward differences: %.2e, %.2e); exact: %" PetscInt_FMT
+                          " force evaluations, %" PetscInt_FMT " Krylov iterations, 0 RVE solves; forward: %" PetscInt_FMT
+                          " force evaluations in %" PetscInt_FMT " RVE solves (%" PetscInt_FMT " Psi-tc iterations)\n",
+                          st.name, (double)de, (double)dv, (double)fe, (double)fv, c1.tangent_force_evals - c0.tangent_force_evals,
+                          c1.tangent_linear_its - c0.tangent_linear_its, c2.force_evals - c1.force_evals, c2.solves - c1.solves,
+                          c2.iterations - c1.iterations));
+    TG_CHECK(c1.solves == c0.solves, "exact tangents made RVE solves");
+    TG_CHECK(de < 1e-6 && dv < 1e-6, "exact tangents differ from central differences (%.2e, %.2e)", (double)de, (double)dv);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
@@ -381,6 +439,7 @@ int main(int argc, char **argv)
   PetscCall(TurgidRelaxation());
   PetscCall(Failures());
   PetscCall(LargeShearPath());
+  PetscCall(ExactVsCentral());
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_rve: all checks passed\n"));
   PetscCall(PetscFinalize());
   return 0;

@@ -133,7 +133,7 @@ PetscErrorCode EigenRun::SetUp()
     PetscMPIInt size;
     PetscCallMPI(MPI_Comm_size(comm_, &size));
     PetscCall(PetscPrintf(comm_,
-                          "turgor eigen: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, %s), %" PetscInt_FMT
+                          "turgor eigen: %" PetscInt_FMT " elements, %" PetscInt_FMT " material points (%s, %s), %" PetscInt_FMT
                           " free displacement dofs, %d MPI ranks; state %s%s\n",
                           model_->NumElements(), model_->NumMaterialPoints(), model_->Pool().MaterialName(), model_->QuadratureDescription(), ops_->Size(),
                           size, kStates[(int)spec_.state], spec_.state == EigenState::Snapshot ? (" of " + spec_.snapshot_file).c_str() : ""));
@@ -299,6 +299,7 @@ PetscErrorCode EigenRun::Summary(JsonObject &js, const char *status)
   }
   if (spec_.state == EigenState::Relaxed) js.Set("load_factor", state_time_);
   js.Set("material", model_ ? model_->Pool().MaterialName() : "");
+  js.Set("element", model_ ? model_->ElementName() : "");
   js.Set("quadrature", model_ ? model_->QuadratureName() : "");
   js.Set("lumped_mass", model_ ? model_->LumpedMass() : false);
   js.Set("n_elements", model_ ? model_->NumElements() : 0);

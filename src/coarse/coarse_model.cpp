@@ -1,6 +1,7 @@
 #include <turgor/core/options.h>
 #include <turgor/core/errors.h>
 #include "q1_element.h"
+#include "reference_element.h"
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/coarse/gmsh_check.h>
 #include <turgor/material/acoustic_tensor.h>
@@ -12,6 +13,8 @@
 #include <cstring>
 
 namespace turgor {
+
+CoarseModel::CoarseModel(MPI_Comm comm) : comm_(comm), pool_(comm) { }
 
 CoarseModel::~CoarseModel()
 {
@@ -27,12 +30,14 @@ CoarseModel::~CoarseModel()
 
 PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
 {
-  char      label[64], rule[64], partitioner[64];
-  PetscInt  values[8], n = 8;
-  PetscBool set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE, acoustic = acoustic_field ? PETSC_TRUE : PETSC_FALSE;
+  const char *const elements[] = {"q1", "q2"};
+  PetscInt          element    = (PetscInt)this->element;
+  char              label[64], rule[64], partitioner[64];
+  PetscInt          values[8], n = 8;
+  PetscBool         set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE, acoustic = acoustic_field ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
-  PetscCall(PetscStrncpy(rule, q1::kRules[(int)quadrature].name, sizeof rule));
+  PetscCall(PetscStrncpy(rule, quadrature == CoarseQuadrature::SRI ? "sri" : "full", sizeof rule));
   PetscCall(PetscStrncpy(partitioner, metis ? "metis" : "petsc", sizeof partitioner));
   for (const char *o : {"-coarse_faces", "-coarse_lower", "-coarse_upper"}) {
     PetscBool gone;
@@ -54,9 +59,12 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(
     PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
   PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
+  PetscCall(PetscOptionsEList("-element", "Coarse element: q1 (bilinear, 4 nodes: the seed's) or q2 (biquadratic, 9 nodes, bends without locking)",
+                              "CoarseSpec", elements, 2, elements[element], &element, NULL));
   PetscCall(PetscOptionsString("-quadrature",
-                               "Material points of an element: sri (deviatoric stress at the 2 x 2 Gauss points, pressure at the centre: 5 points) or "
-                               "full (the whole stress at the 2 x 2 Gauss points: 4 points)",
+                               "Material points of an element: sri (selective reduced: the deviatoric stress at the full Gauss points, the pressure at "
+                               "fewer; q1: 2 x 2 and the centre, 5 points; q2: 3 x 3 and 2 x 2, 13 points) or full (the whole stress at the full Gauss "
+                               "points; q1: 2 x 2, 4 points; q2: 3 x 3, 9 points)",
                                "CoarseSpec", rule, rule, sizeof rule, NULL));
   PetscCall(PetscOptionsBool("-acoustic_field",
                              "Snapshots carry acoustic_min_det, per element the smallest det of the acoustic tensor of D^e and the stress over directions and "
@@ -70,18 +78,22 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
                                "and -coarse_dm_refine refines before the distribution)",
                                "CoarseSpec", partitioner, partitioner, sizeof partitioner, NULL));
   PetscOptionsEnd();
+  this->element = (CoarseElement)element;
   PetscCall(CheckNotEmpty(comm, "-coarse_partitioner", "petsc or metis"));
   PetscCheck(!std::strcmp(partitioner, "petsc") || !std::strcmp(partitioner, "metis"), comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
              "Option -coarse_partitioner = %s: unknown partitioner (known: petsc, metis)", partitioner);
   metis = !std::strcmp(partitioner, "metis");
   {
-    bool known = false;
+    /* every element defines both rules; a rule of another name is refused naming the element's */
+    const char *const rules[] = {"sri", "full"};
+    bool              known   = false;
     for (int r = 0; r < 2; r++)
-      if (!std::strcmp(rule, q1::kRules[r].name)) {
+      if (!std::strcmp(rule, rules[r])) {
         quadrature = (CoarseQuadrature)r;
         known      = true;
       }
-    PetscCheck(known, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option -coarse_quadrature = %s: unknown quadrature rule (known: sri, full)", rule);
+    PetscCheck(known, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Option -coarse_quadrature = %s: not a quadrature rule of -coarse_element %s (its rules: sri, full)",
+               rule, elements[element]);
   }
   PetscCheck(!set || n < 8, comm, PETSC_ERR_ARG_SIZ, "Option -coarse_dirichlet_values: more than 7 label values listed");
   PetscCall(CheckNotEmpty(comm, "-coarse_dirichlet_values", "label values, e.g. 4 (the left side of a box)"));
@@ -284,17 +296,26 @@ PetscErrorCode CoarseModel::BoundaryValues(PetscInt dim, PetscReal time, const P
   });
 }
 
-/* Four dofs per vertex [ux, uy, vx, vy]: a Q1 Lagrange field of 4 components (PetscFE) gives the
-   section; the essential condition on the Dirichlet label values constrains all four, so they drop
-   out of the global vectors and matrices, and DMPlexInsertBoundaryValues fills them in local ones. */
+/* Four dofs per node [ux, uy, vx, vy]: a Lagrange field of 4 components and the element's degree
+   (PetscFE: Q1 puts a node on every vertex, Q2 also on every edge and cell) gives the section; the
+   essential condition on the Dirichlet label values constrains all four on the label's closure
+   (its vertices, and for Q2 its edges), so they drop out of the global vectors and matrices, and
+   DMPlexInsertBoundaryValues fills them in local ones (for Q2 by the dual basis: the values at the
+   nodes). */
 PetscErrorCode CoarseModel::CreateSection()
 {
-  DMLabel label;
-  PetscFE fe;
+  DMLabel  label;
+  PetscFE  fe;
+  PetscInt depth;
   PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepth(dm_, &depth));
+  PetscCheck(ref_->degree == 1 || depth == 2, comm_, PETSC_ERR_ARG_WRONG,
+             "Option -coarse_element = %s: the coarse mesh has no edges (it is not interpolated: -coarse_dm_plex_interpolate 0?), so it cannot carry the "
+             "nodes of Q2 at the edge midpoints; interpolate it or use -coarse_element q1",
+             ref_->element.c_str());
   PetscCall(DMGetLabel(dm_, spec_.dirichlet_label.c_str(), &label));
   PetscCheck(label, comm_, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_label = %s: the mesh has no such label", spec_.dirichlet_label.c_str());
-  PetscCall(PetscFECreateLagrange(comm_, 2, 4, PETSC_FALSE, 1, PETSC_DETERMINE, &fe));
+  PetscCall(PetscFECreateLagrange(comm_, 2, 4, PETSC_FALSE, ref_->degree, PETSC_DETERMINE, &fe));
   PetscCall(PetscObjectSetName((PetscObject)fe, "state"));
   PetscCall(DMSetField(dm_, 0, NULL, (PetscObject)fe));
   PetscCall(PetscFEDestroy(&fe));
@@ -314,14 +335,18 @@ PetscErrorCode CoarseModel::CreateSection()
   PetscCall(DMCreateLocalVector(dm_, &Uloc_));
   PetscCall(VecDuplicate(Uloc_, &Floc_));
   PetscCall(InsertBoundaryValues(Uloc_));
-  /* the rows the residual and Jacobian touch vertex by vertex (udot - v), found once */
+  /* the rows the residual and Jacobian touch node by node (udot - v), found once: every point with
+     a node (Q1: the vertices; Q2: also the edges and cells), in chart order */
   PetscCall(DMGetGlobalSection(dm_, &gs));
   free_rows_.clear();
-  for (PetscInt v = v_start_; v < v_end_; v++) {
+  PetscInt p_start, p_end;
+  PetscCall(PetscSectionGetChart(gs, &p_start, &p_end));
+  for (PetscInt p = p_start; p < p_end; p++) {
     PetscInt off, dof, cdof;
-    PetscCall(PetscSectionGetOffset(gs, v, &off));
-    PetscCall(PetscSectionGetDof(gs, v, &dof));
-    PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+    PetscCall(PetscSectionGetDof(gs, p, &dof));
+    if (!dof) continue;
+    PetscCall(PetscSectionGetOffset(gs, p, &off));
+    PetscCall(PetscSectionGetConstraintDof(gs, p, &cdof));
     if (off >= 0 && dof - cdof == 4) free_rows_.push_back(off); /* owned and not clamped */
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -354,7 +379,7 @@ PetscErrorCode CoarseModel::PrecomputeElements()
   PetscCall(DMGetCoordinatesLocal(dm_, &coords));
   PetscCall(DMGetLocalSection(cdm, &cs));
   Xref_.resize(8 * nc);
-  dN_.resize(nc * npts_ * 8);
+  dN_.resize(nc * npts_ * nn_ * 2);
   wdet_.resize(nc * npts_);
   std::string bad; /* the first bad element of this rank */
   for (PetscInt c = c_start_; c < c_end_; c++) {
@@ -390,11 +415,13 @@ PetscErrorCode CoarseModel::PrecomputeElements()
         }
     }
     for (int q = 0; q < npts_; q++) {
-      PetscReal       dN[4][2];
-      const PetscReal det = q1::Gradients(X, rule_->xi[q][0], rule_->xi[q][1], dN);
-      for (int a = 0; a < 4; a++)
-        for (int i = 0; i < 2; i++) dN_[(k * npts_ + q) * 8 + 2 * a + i] = dN[a][i];
-      wdet_[k * npts_ + q] = rule_->w[q] * PetscAbsReal(det);
+      PetscReal        Ji[2][2];
+      const PetscReal  det = GeometryMap(X, ref_->xi[2 * q], ref_->xi[2 * q + 1], Ji);
+      const PetscReal *dNr = &ref_->dN[q * nn_ * 2];
+      PetscReal       *dN  = &dN_[(k * npts_ + q) * nn_ * 2];
+      for (PetscInt a = 0; a < nn_; a++) /* dN/dX = dN/dxi (dX/dxi)^-1 */
+        for (int i = 0; i < 2; i++) dN[2 * a + i] = dNr[2 * a] * Ji[0][i] + dNr[2 * a + 1] * Ji[1][i];
+      wdet_[k * npts_ + q] = ref_->w[q] * PetscAbsReal(det);
     }
   }
   std::string msg;
@@ -435,29 +462,33 @@ PetscErrorCode CoarseModel::AssembleMass()
   PetscFunctionBeginUser;
   PetscCall(DMCreateMatrix(dm_, &Mt_));
   PetscCall(MatSetOption(Mt_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  const PetscInt nc = c_end_ - c_start_;
-  f_ext_.assign(8 * nc, 0);
+  const PetscInt nc = c_end_ - c_start_, ne = 4 * nn_;
+  f_ext_.assign(2 * nn_ * nc, 0);
+  std::vector<PetscReal> m(nn_ * nn_);
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt k        = c - c_start_;
-    const PetscReal(*X)[2]  = (const PetscReal(*)[2]) & Xref_[8 * k];
-    PetscScalar me[16 * 16] = {0};
-    PetscReal   m[4][4]     = {{0}};
-    for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++) {
-        PetscReal       N[4], dN[4][2];
-        const PetscReal det = q1::Gradients(X, q1::kG3[i], q1::kG3[j], dN);
-        q1::Shape(q1::kG3[i], q1::kG3[j], N);
-        const PetscReal w = q1::kW3[i] * q1::kW3[j] * PetscAbsReal(det) * rho0_;
-        for (int a = 0; a < 4; a++) {
-          for (int b = 0; b < 4; b++) m[a][b] += w * N[a] * N[b];
-          for (int d = 0; d < 2; d++) f_ext_[8 * k + 2 * a + d] += w * N[a] * g_[d];
-        }
+    const PetscInt k       = c - c_start_;
+    const PetscReal(*X)[2] = (const PetscReal(*)[2]) & Xref_[8 * k];
+    PetscScalar *me        = work_.data();
+    std::fill(work_.begin(), work_.begin() + ne * ne, 0.0);
+    std::fill(m.begin(), m.end(), 0.0);
+    for (PetscInt p = 0; p < ref_->mass_points; p++) {
+      PetscReal        Ji[2][2];
+      const PetscReal  det = GeometryMap(X, ref_->mass_xi[2 * p], ref_->mass_xi[2 * p + 1], Ji);
+      const PetscReal *N   = &ref_->mass_N[p * nn_];
+      const PetscReal  w   = ref_->mass_w[p] * PetscAbsReal(det) * rho0_;
+      for (PetscInt a = 0; a < nn_; a++) {
+        for (PetscInt b = 0; b < nn_; b++) m[a * nn_ + b] += w * N[a] * N[b];
+        for (int d = 0; d < 2; d++) f_ext_[2 * nn_ * k + 2 * a + d] += w * N[a] * g_[d];
       }
-    for (int a = 0; a < 4; a++)
-      for (int b = 0; b < 4; b++) {
-        const PetscReal mab = spec_.lumped_mass ? (a == b ? m[a][0] + m[a][1] + m[a][2] + m[a][3] : 0.0) : m[a][b];
-        for (int d = 0; d < 2; d++) me[(4 * a + 2 + d) * 16 + 4 * b + 2 + d] = mab;
+    }
+    for (PetscInt a = 0; a < nn_; a++) {
+      PetscReal row = 0;
+      for (PetscInt b = 0; b < nn_; b++) row += m[a * nn_ + b];
+      for (PetscInt b = 0; b < nn_; b++) {
+        const PetscReal mab = spec_.lumped_mass ? (a == b ? row : 0.0) : m[a * nn_ + b];
+        for (int d = 0; d < 2; d++) me[(4 * a + 2 + d) * ne + 4 * b + 2 + d] = mab;
       }
+    }
     PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, Mt_, c, me, ADD_VALUES));
   }
   for (PetscInt off : free_rows_)
@@ -484,8 +515,11 @@ PetscErrorCode CoarseModel::SetUp()
   PetscCall(PetscLogEventRegister("TgCoarseResidual", PETSC_OBJECT_CLASSID, &ev_residual_));
   PetscCall(PetscLogEventRegister("TgCoarseJacobian", PETSC_OBJECT_CLASSID, &ev_jacobian_));
   PetscCall(PetscLogEventRegister("TgCoarseTangentAt", PETSC_OBJECT_CLASSID, &ev_tangent_at_));
-  rule_ = &q1::kRules[(int)spec_.quadrature];
-  npts_ = rule_->points;
+  ref_ = std::make_unique<ReferenceElement>();
+  PetscCall(CreateReferenceElement(spec_.element, spec_.quadrature, ref_.get()));
+  npts_ = ref_->points;
+  nn_   = ref_->nodes;
+  work_.assign(16 * nn_ * nn_ + 4 * nn_, 0.0);
   PetscCall(CreateMesh());
   {
     PetscInt n = c_end_ - c_start_;
@@ -523,13 +557,14 @@ PetscErrorCode CoarseModel::SetUp()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseModel::VertexState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing)
+PetscErrorCode CoarseModel::NodeState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing)
 {
   DM                 cdm;
   Vec                coords, Uloc;
   PetscSection       cs, ls;
   const PetscScalar *xc;
   PetscScalar       *u;
+  PetscInt           p_start, p_end;
   std::string        mine;
   PetscFunctionBeginUser;
   PetscCall(DMGetCoordinateDM(dm_, &cdm));
@@ -540,15 +575,29 @@ PetscErrorCode CoarseModel::VertexState(Vec U, const std::function<bool(const Pe
   PetscCall(VecZeroEntries(Uloc));
   PetscCall(VecGetArrayRead(coords, &xc));
   PetscCall(VecGetArray(Uloc, &u));
-  for (PetscInt v = v_start_; v < v_end_ && mine.empty(); v++) {
-    PetscInt  coff, off, dof, cdof;
-    PetscReal state[4] = {0, 0, 0, 0};
-    PetscCall(PetscSectionGetOffset(cs, v, &coff));
-    PetscCall(PetscSectionGetOffset(ls, v, &off));
-    PetscCall(PetscSectionGetDof(ls, v, &dof));
-    PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
-    if (dof - cdof != 4) continue; /* clamped */
-    const PetscReal X[2] = {PetscRealPart(xc[coff]), PetscRealPart(xc[coff + 1])};
+  PetscCall(PetscSectionGetChart(ls, &p_start, &p_end));
+  for (PetscInt p = p_start; p < p_end && mine.empty(); p++) {
+    PetscInt  off, dof, cdof, n = 0, *cl = NULL;
+    PetscReal state[4] = {0, 0, 0, 0}, X[2] = {0, 0};
+    PetscCall(PetscSectionGetDof(ls, p, &dof));
+    PetscCall(PetscSectionGetConstraintDof(ls, p, &cdof));
+    if (dof - cdof != 4) continue; /* no node, or clamped */
+    PetscCall(PetscSectionGetOffset(ls, p, &off));
+    /* the node's reference position: the vertex, or the mean of the point's vertices (an edge's
+       midpoint, a cell's centre: the bilinear map at the node's reference coordinates) */
+    PetscCall(DMPlexGetTransitiveClosure(dm_, p, PETSC_TRUE, &n, &cl));
+    PetscInt nv = 0;
+    for (PetscInt r = 0; r < n; r++)
+      if (cl[2 * r] >= v_start_ && cl[2 * r] < v_end_) {
+        PetscInt coff;
+        PetscCall(PetscSectionGetOffset(cs, cl[2 * r], &coff));
+        X[0] += PetscRealPart(xc[coff]);
+        X[1] += PetscRealPart(xc[coff + 1]);
+        nv++;
+      }
+    PetscCall(DMPlexRestoreTransitiveClosure(dm_, p, PETSC_TRUE, &n, &cl));
+    X[0] /= nv;
+    X[1] /= nv;
     if (!f(X, state)) {
       char where[96];
       PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g)", (double)X[0], (double)X[1]));
@@ -586,8 +635,8 @@ PetscErrorCode CoarseModel::DescribePoint(PetscInt m, const std::vector<Tensor2>
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf,
                           "element %" PetscInt_FMT " (%s), F = [%.6g %.6g; %.6g %.6g] (det %.4g), Fdot = [%.4g %.4g; %.4g %.4g] /µs, residual %.3g: %s",
-                          cell_gid_[m / npts_], rule_->where[m % npts_], (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1), (double)F.Det(),
-                          (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)r[m].residual, r[m].reason.c_str()));
+                          cell_gid_[m / npts_], ref_->where[m % npts_].c_str(), (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1),
+                          (double)F.Det(), (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)r[m].residual, r[m].reason.c_str()));
   *text = buf;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -619,10 +668,12 @@ PetscErrorCode CoarseModel::DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std
     PetscInt       nx = 0;
     const PetscInt k  = c - c_start_;
     PetscCall(DMPlexVecGetClosure(dm_, NULL, Uloc, c, &nx, &x));
+    PetscCheck(nx == 4 * nn_, PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %" PetscInt_FMT ": %" PetscInt_FMT " closure values, expected %" PetscInt_FMT, c, nx,
+               4 * nn_);
     for (int q = 0; q < npts_; q++) {
-      const PetscReal *dN = &dN_[(k * npts_ + q) * 8];
+      const PetscReal *dN = &dN_[(k * npts_ + q) * nn_ * 2];
       Tensor2          Fq = Tensor2::Identity(), Fd;
-      for (int a = 0; a < 4; a++)
+      for (PetscInt a = 0; a < nn_; a++)
         for (int i = 0; i < 2; i++)
           for (int j = 0; j < 2; j++) {
             Fq(i, j) += PetscRealPart(x[4 * a + i]) * dN[2 * a + j];
@@ -661,26 +712,26 @@ PetscErrorCode CoarseModel::EvaluateCellStress(Vec U, PetscBool *ok)
   /* each part (pressure, deviator, whole stress) averaged over the points that carry it, weighted
      as the rule weighs them; the pressure first (sri: p + the mean deviator of the Gauss points) */
   PetscReal wpart[3] = {0, 0, 0};
-  for (int q = 0; q < npts_; q++) wpart[(int)rule_->part[q]] += rule_->w[q];
+  for (int q = 0; q < npts_; q++) wpart[(int)ref_->part[q]] += ref_->w[q];
   for (PetscInt k = 0; k < c_end_ - c_start_; k++) {
     PetscReal mean[3] = {0, 0, 0};
     for (int pass = 0; pass < 2; pass++)
       for (int q = 0; q < npts_; q++) {
-        const q1::PointPart part = rule_->part[q];
-        if ((part == q1::PointPart::Pressure) != (pass == 0)) continue;
+        const PointPart part = ref_->part[q];
+        if ((part == PointPart::Pressure) != (pass == 0)) continue;
         const Tensor2   sg = (*r)[k * npts_ + q].sigma.Sym(); /* as InternalForce takes it */
-        const PetscReal f  = rule_->w[q] / wpart[(int)part];
+        const PetscReal f  = ref_->w[q] / wpart[(int)part];
         switch (part) {
-        case q1::PointPart::Pressure:
+        case PointPart::Pressure:
           mean[0] += f * (0.5 * sg.Trace());
           mean[1] += f * (0.5 * sg.Trace());
           break;
-        case q1::PointPart::Deviatoric:
+        case PointPart::Deviatoric:
           mean[0] += f * (0.5 * (sg(0, 0) - sg(1, 1)));
           mean[1] += f * (0.5 * (sg(1, 1) - sg(0, 0)));
           mean[2] += f * sg(0, 1);
           break;
-        case q1::PointPart::Whole:
+        case PointPart::Whole:
           mean[0] += f * sg(0, 0);
           mean[1] += f * sg(1, 1);
           mean[2] += f * sg(0, 1);
@@ -749,12 +800,12 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
 
 /* The part of a material point's (symmetric) stress that its rule integrates there: the whole
    stress, its deviator sigma - tr(sigma)/2 I, or its pressure tr(sigma)/2 I. */
-static Tensor2 StressPart(q1::PointPart part, const Tensor2 &sg)
+static Tensor2 StressPart(PointPart part, const Tensor2 &sg)
 {
   switch (part) {
-  case q1::PointPart::Pressure:
+  case PointPart::Pressure:
     return (0.5 * sg.Trace()) * Tensor2::Identity();
-  case q1::PointPart::Deviatoric:
+  case PointPart::Deviatoric:
     return sg - (0.5 * sg.Trace()) * Tensor2::Identity();
   default:
     return sg;
@@ -791,24 +842,25 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(Floc));
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt k      = c - c_start_;
-    PetscScalar    fe[16] = {0};
+    const PetscInt k  = c - c_start_;
+    PetscScalar   *fe = work_.data();
+    std::fill(work_.begin(), work_.begin() + 4 * nn_, 0.0);
     for (int q = 0; q < npts_; q++) {
       const PetscInt   m  = k * npts_ + q;
       const Tensor2   &F  = F_[m];
       const Tensor2    Fi = F.Inverse();
       const PetscReal  W  = wdet_[m] * F.Det();
-      const PetscReal *dN = &dN_[m * 8];
-      const Tensor2    s  = StressPart(rule_->part[q], response_[m].sigma.Sym());
-      for (int a = 0; a < 4; a++) {
+      const PetscReal *dN = &dN_[m * nn_ * 2];
+      const Tensor2    s  = StressPart(ref_->part[q], response_[m].sigma.Sym());
+      for (PetscInt a = 0; a < nn_; a++) {
         const PetscReal gx = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1]; /* grad_x N = F^-T grad_X N */
         const PetscReal gy = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
         fe[4 * a + 2] += W * (s(0, 0) * gx + s(0, 1) * gy);
         fe[4 * a + 3] += W * (s(1, 0) * gx + s(1, 1) * gy);
       }
     }
-    for (int a = 0; a < 4; a++)
-      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= load_factor_ * f_ext_[8 * k + 2 * a + d];
+    for (PetscInt a = 0; a < nn_; a++)
+      for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= load_factor_ * f_ext_[2 * nn_ * k + 2 * a + d];
     PetscCall(DMPlexVecSetClosure(dm_, NULL, Floc, c, fe, ADD_VALUES));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -836,6 +888,8 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
     PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscLogDouble t0, t1;
+  PetscCall(PetscTime(&t0));
   PetscCall(InternalForce(Floc_));
   PetscCall(VecZeroEntries(F));
   PetscCall(DMLocalToGlobal(dm_, Floc_, ADD_VALUES, F));
@@ -851,6 +905,8 @@ PetscErrorCode CoarseModel::IFunction(Vec U, Vec Udot, Vec F, PetscBool *ok)
   }
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecRestoreArray(F, &f));
+  PetscCall(PetscTime(&t1));
+  coarse_time_ += t1 - t0;
   PetscCall(PetscLogEventEnd(ev_residual_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -865,8 +921,12 @@ PetscErrorCode CoarseModel::RHSFunction(Vec U, Vec G, PetscBool *ok)
   }
   PetscCall(IFunction(U, rhs_z_, rhs_r_, ok)); /* R = -[v; f_ext - f_int] */
   if (*ok) {
+    PetscLogDouble t0, t1;
+    PetscCall(PetscTime(&t0));
     PetscCall(VecScale(rhs_r_, -1.0));
     PetscCall(KSPSolve(mass_ksp_, rhs_r_, G));
+    PetscCall(PetscTime(&t1));
+    coarse_time_ += t1 - t0;
     KSPConvergedReason reason;
     PetscCall(KSPGetConvergedReason(mass_ksp_, &reason));
     PetscCheck(reason > 0, comm_, PETSC_ERR_NOT_CONVERGED, "Mass matrix solve failed (%s)", KSPConvergedReasons[reason]);
@@ -882,19 +942,19 @@ PetscErrorCode CoarseModel::RHSFunction(Vec U, Vec G, PetscBool *ok)
      pressure:  e e^T D / 2 + e sv^T - tr(sigma) diag(1, 1, 1/2)
    (the Truesdell rates of dev(sigma) and of tr(sigma)/2 I; the two add up to D); the viscous D^v
    splits without the geometric terms. */
-static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, q1::PointPart part, bool viscous, PetscReal out[3][3])
+static void SplitTangent(const PetscReal D[3][3], const Tensor2 &s, PointPart part, bool viscous, PetscReal out[3][3])
 {
   const PetscReal e[3] = {1, 1, 0}, sv[3] = {s(0, 0), s(1, 1), 0.5 * (s(0, 1) + s(1, 0))}, tr = s.Trace();
   const PetscReal diag[3] = {1, 1, 0.5};
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
-      if (part == q1::PointPart::Whole) {
+      if (part == PointPart::Whole) {
         out[i][j] = D[i][j];
         continue;
       }
       const PetscReal vol = 0.5 * e[i] * (D[0][j] + D[1][j]);
       PetscReal       geo = viscous ? 0.0 : e[i] * sv[j] - (i == j ? tr * diag[i] : 0.0);
-      out[i][j]           = part == q1::PointPart::Pressure ? vol + geo : D[i][j] - vol - geo;
+      out[i][j]           = part == PointPart::Pressure ? vol + geo : D[i][j] - vol - geo;
     }
 }
 
@@ -905,39 +965,43 @@ PetscErrorCode CoarseModel::AssembleKC(const std::vector<Tensor2> &Fs, const std
 {
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(J));
+  const PetscInt         ne = 4 * nn_;
+  std::vector<PetscReal> g(2 * nn_); /* grad_x N_a at a point */
   for (PetscInt c = c_start_; c < c_end_; c++) {
-    const PetscInt k           = c - c_start_;
-    PetscScalar    ke[16 * 16] = {0};
+    const PetscInt k  = c - c_start_;
+    PetscScalar   *ke = work_.data();
+    std::fill(work_.begin(), work_.begin() + ne * ne, 0.0);
     for (int q = 0; q < npts_; q++) {
-      const PetscInt      m     = k * npts_ + q;
-      const Tensor2      &F     = Fs[m];
-      const Tensor2       Fi    = F.Inverse();
-      const PetscReal     W     = wdet_[m] * F.Det();
-      const PetscReal    *dN    = &dN_[m * 8];
-      const q1::PointPart part  = rule_->part[q];
-      const Tensor2       sigma = r[m].sigma.Sym();
-      const Tensor2       s     = StressPart(part, sigma);
-      PetscReal           De[3][3], Dv[3][3], g[4][2];
+      const PetscInt   m     = k * npts_ + q;
+      const Tensor2   &F     = Fs[m];
+      const Tensor2    Fi    = F.Inverse();
+      const PetscReal  W     = wdet_[m] * F.Det();
+      const PetscReal *dN    = &dN_[m * nn_ * 2];
+      const PointPart  part  = ref_->part[q];
+      const Tensor2    sigma = r[m].sigma.Sym();
+      const Tensor2    s     = StressPart(part, sigma);
+      PetscReal        De[3][3], Dv[3][3];
       SplitTangent(D[m].De, sigma, part, false, De);
       SplitTangent(D[m].Dv, sigma, part, true, Dv);
-      for (int a = 0; a < 4; a++) {
-        g[a][0] = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1];
-        g[a][1] = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
+      for (PetscInt a = 0; a < nn_; a++) {
+        g[2 * a]     = Fi(0, 0) * dN[2 * a] + Fi(1, 0) * dN[2 * a + 1];
+        g[2 * a + 1] = Fi(0, 1) * dN[2 * a] + Fi(1, 1) * dN[2 * a + 1];
       }
-      for (int a = 0; a < 4; a++)
-        for (int b = 0; b < 4; b++) {
+      for (PetscInt a = 0; a < nn_; a++)
+        for (PetscInt b = 0; b < nn_; b++) {
           /* B_a^T D B_b with B = [[Nx, 0], [0, Ny], [Ny, Nx]] */
+          const PetscReal ax = g[2 * a], ay = g[2 * a + 1], bx = g[2 * b], by = g[2 * b + 1];
           const PetscReal Ba[3][2] = {
-            {g[a][0], 0      },
-            {0,       g[a][1]},
-            {g[a][1], g[a][0]}
+            {ax, 0 },
+            {0,  ay},
+            {ay, ax}
           };
           const PetscReal Bb[3][2] = {
-            {g[b][0], 0      },
-            {0,       g[b][1]},
-            {g[b][1], g[b][0]}
+            {bx, 0 },
+            {0,  by},
+            {by, bx}
           };
-          const PetscReal geo = g[a][0] * (s(0, 0) * g[b][0] + s(0, 1) * g[b][1]) + g[a][1] * (s(1, 0) * g[b][0] + s(1, 1) * g[b][1]);
+          const PetscReal geo = ax * (s(0, 0) * bx + s(0, 1) * by) + ay * (s(1, 0) * bx + s(1, 1) * by);
           for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) {
               PetscReal kij = i == j ? geo : 0.0, cij = 0;
@@ -946,14 +1010,14 @@ PetscErrorCode CoarseModel::AssembleKC(const std::vector<Tensor2> &Fs, const std
                   kij += Ba[r][i] * De[r][t] * Bb[t][j];
                   cij += Ba[r][i] * Dv[r][t] * Bb[t][j];
                 }
-              ke[(4 * a + 2 + i) * 16 + 4 * b + j] += W * kij;     /* d f_int / d u */
-              ke[(4 * a + 2 + i) * 16 + 4 * b + 2 + j] += W * cij; /* d f_int / d v */
+              ke[(4 * a + 2 + i) * ne + 4 * b + j] += W * kij;     /* d f_int / d u */
+              ke[(4 * a + 2 + i) * ne + 4 * b + 2 + j] += W * cij; /* d f_int / d v */
             }
         }
     }
     PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, J, c, ke, ADD_VALUES));
   }
-  /* -I: d(udot - v)/dv, per owned free vertex */
+  /* -I: d(udot - v)/dv, per owned free node */
   for (PetscInt off : free_rows_)
     for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(J, off + d, off + 2 + d, -1.0, ADD_VALUES));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
@@ -966,11 +1030,15 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_jacobian_, 0, 0, 0, 0));
   counters_.jacobians++;
+  PetscLogDouble t0, t1;
   if (!refresh && KC_) { /* modified Newton: the last K, C with the new shift */
     *ok = PETSC_TRUE;
     tangent_age_++;
+    PetscCall(PetscTime(&t0));
     PetscCall(MatCopy(KC_, J, SAME_NONZERO_PATTERN));
     PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+    PetscCall(PetscTime(&t1));
+    coarse_time_ += t1 - t0;
     PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -983,11 +1051,14 @@ PetscErrorCode CoarseModel::IJacobian(Vec U, PetscReal shift, Mat J, PetscBool *
     PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscCall(PetscTime(&t0));
   PetscCall(AssembleKC(F_, response_, tangent_, J));
   if (!KC_) PetscCall(MatDuplicate(J, MAT_COPY_VALUES, &KC_));
   else PetscCall(MatCopy(J, KC_, SAME_NONZERO_PATTERN));
   tangent_age_ = 0;
   PetscCall(MatAXPY(J, shift, Mt_, SAME_NONZERO_PATTERN));
+  PetscCall(PetscTime(&t1));
+  coarse_time_ += t1 - t0;
   PetscCall(PetscLogEventEnd(ev_jacobian_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -1049,17 +1120,27 @@ PetscErrorCode CoarseModel::AssembleTangentAt(Vec U, bool damping, Mat J, PetscB
 
 PetscInt CoarseModel::PointsPerElement() const
 {
-  return q1::kRules[(int)spec_.quadrature].points;
+  return npts_;
+}
+
+PetscInt CoarseModel::NodesPerElement() const
+{
+  return nn_;
+}
+
+const char *CoarseModel::ElementName() const
+{
+  return spec_.element == CoarseElement::Q2 ? "q2" : "q1";
 }
 
 const char *CoarseModel::QuadratureName() const
 {
-  return q1::kRules[(int)spec_.quadrature].name;
+  return spec_.quadrature == CoarseQuadrature::SRI ? "sri" : "full";
 }
 
 const char *CoarseModel::QuadratureDescription() const
 {
-  return q1::kRules[(int)spec_.quadrature].description;
+  return ref_ ? ref_->description.c_str() : "";
 }
 
 PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy)

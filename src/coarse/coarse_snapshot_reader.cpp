@@ -139,6 +139,12 @@ PetscErrorCode ReadCoarseSnapshot(CoarseModel &model, const CoarseSnapshotReques
   std::string            problem;
   PetscReal              found = 0;
   PetscFunctionBeginUser;
+  /* a snapshot stores the vertices' displacement: a Q2 state also has nodes at the edge midpoints
+     and cell centres, which interpolating the vertices would not reproduce */
+  PetscCheck(model.NodesPerElement() == 4, comm, PETSC_ERR_ARG_INCOMP,
+             "Option %s = %s: a coarse.h5 snapshot holds the displacement at the vertices only, which does not determine a state of -coarse_element %s "
+             "(nodes also at the edge midpoints and cell centres); analyse snapshots with -coarse_element q1",
+             req.file_option, req.path.c_str(), model.ElementName());
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) PetscCall(ReadOnRankZero(req, xy, disp, &found, &problem));
   PetscCall(BroadcastString(comm, &problem));
@@ -172,7 +178,7 @@ PetscErrorCode ReadCoarseSnapshot(CoarseModel &model, const CoarseSnapshotReques
              "Option %s = %s: a snapshot of another mesh (%" PetscInt_FMT " vertices; this run's mesh has %" PetscInt_FMT ")", req.file_option,
              req.path.c_str(), nfile, nmodel);
   std::string missing;
-  PetscCall(model.VertexState(
+  PetscCall(model.NodeState(
     U,
     [&](const PetscReal X[2], PetscReal state[4]) {
       auto it = std::lower_bound(order.begin(), order.end(), X[0] - tol, [&](PetscInt a, PetscReal val) { return xy[2 * a] < val; });

@@ -116,7 +116,7 @@ PetscErrorCode FE2Run::Report()
   PetscCall(TSGetType(ts_, &type));
   PetscCall(TSGetTolerances(ts_, &atol, NULL, &rtol, NULL));
   PetscCall(PetscPrintf(comm_,
-                        "turgor fe2: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
+                        "turgor fe2: %" PetscInt_FMT " elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
                         " material-point groups\n",
                         model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), model_.QuadratureDescription(), size,
                         model_.Pool().NumGroups()));
@@ -259,6 +259,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   const PetscInt npts = model_.NumMaterialPoints();
   js.Set("jacobian_evals", cc.tangent_evals);
   js.Set("material", model_.Pool().MaterialName());
+  js.Set("element", model_.ElementName());
   js.Set("quadrature", model_.QuadratureName());
   js.Set("n_elements", model_.NumElements());
   js.Set("n_material_points", npts);
@@ -269,6 +270,10 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("physics", model_.Pool().Model().Physics());
   js.Set("rve_solves", rc.solves);
   js.Set("rve_tangent_solves", rc.tangent_solves);
+  js.Set("material_tangent", TangentMethodName(model_.Pool().Tangent().method));
+  js.Set("rve_exact_tangents", rc.exact_tangents);
+  js.Set("rve_tangent_linear_its", rc.tangent_linear_its);
+  js.Set("rve_tangent_force_evals", rc.tangent_force_evals);
   js.Set("rve_output_solves", rc.output_solves);
   js.Set("psi_tc_iterations", rc.iterations);
   js.Set("rve_failures", rc.failures);
@@ -277,14 +282,17 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("snes_its", snes_its);
   js.Set("ksp_its", ksp_its);
   {
-    /* where the time went: material points (trial), their tangents, and the rest (integrator,
-       coarse assembly and linear algebra, output) */
-    PetscReal       trial, tangents;
+    /* where the time went: material points (trial), their tangents, the coarse assembly (f_int, K,
+       C; explicit: the mass solves), and the rest (integrator, the coarse LU factorisations and
+       solves, output) */
+    PetscReal       trial, tangents, coarse = model_.CoarseAssemblyTime();
     const PetscReal wall = WallTime();
     PetscCall(model_.Pool().GlobalTimes(&trial, &tangents));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &coarse, 1, MPIU_REAL, MPIU_MAX, comm_));
     js.Set("time_material_points_s", trial);
     js.Set("time_tangents_s", tangents);
-    js.Set("time_integrator_and_linear_algebra_s", wall - trial - tangents);
+    js.Set("time_coarse_assembly_s", coarse);
+    js.Set("time_integrator_and_linear_algebra_s", wall - trial - tangents - coarse);
   }
   js.Set("pool_remote_bytes_per_evaluation", model_.Pool().RemoteBytesPerEvaluation());
   if (monitor_.Active()) monitor_.AddSummary(js);
@@ -299,6 +307,8 @@ PetscErrorCode FE2Run::DoneDetails(std::string *details)
   PetscCall(model_.Pool().GlobalCounters(&rc));
   *details = std::to_string(cc.residuals) + " function and " + std::to_string(cc.tangent_evals) + " Jacobian evaluations, " + std::to_string(rc.solves) +
              " RVE solves (" + std::to_string(rc.tangent_solves) + " for tangents)";
+  if (rc.exact_tangents)
+    *details += ", " + std::to_string(rc.exact_tangents) + " exact tangents (" + std::to_string(rc.tangent_linear_its) + " Krylov iterations)";
   if (monitor_.Active()) *details += "; stability monitor: " + monitor_.Report();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -160,7 +160,7 @@ PetscErrorCode FE2StaticRun::SetUp()
     PetscCall(SNESGetType(snes_, &type));
     PetscCall(SNESGetTolerances(snes_, &atol, &rtol, NULL, NULL, NULL));
     PetscCall(PetscPrintf(comm_,
-                          "turgor fe2_static: %" PetscInt_FMT " Q1 elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
+                          "turgor fe2_static: %" PetscInt_FMT " elements, %" PetscInt_FMT " material points (%s, %s), %d MPI ranks in %" PetscInt_FMT
                           " material-point groups\n",
                           model_.NumElements(), model_.NumMaterialPoints(), model_.Pool().MaterialName(), model_.QuadratureDescription(), size,
                           model_.Pool().NumGroups()));
@@ -404,6 +404,7 @@ PetscErrorCode FE2StaticRun::Summary(JsonObject &js, const char *status)
   js.Set("mode", "fe2_static");
   js.Set("status", status);
   js.Set("material", model_.Pool().MaterialName());
+  js.Set("element", model_.ElementName());
   js.Set("quadrature", model_.QuadratureName());
   js.Set("n_elements", model_.NumElements());
   js.Set("n_material_points", model_.NumMaterialPoints());

@@ -1,8 +1,10 @@
 #pragma once
 /* Bilinear quadrilateral (Q1) element on the reference square [-1, 1]^2: shape functions, their
-   reference-configuration gradients at a point, and the quadrature rules of the coarse model.
-   Vertices come counter-clockwise from DMPlex's closure: (-1,-1), (1,-1), (1,1), (-1,1). */
-#include <turgor/core/tensor2.h>
+   reference-configuration gradients at a point, and its quadrature rules. Vertices come
+   counter-clockwise from DMPlex's closure: (-1,-1), (1,-1), (1,1), (-1,1). The formulas are the
+   textbook ones, written out (rather than tabulated from a PetscFE as Q2 is) so that the seed's
+   element keeps its bit-for-bit results. */
+#include "reference_element.h"
 #include <cmath>
 
 namespace turgor {
@@ -20,48 +22,25 @@ inline void Shape(PetscReal xi, PetscReal eta, PetscReal N[4])
   for (int a = 0; a < 4; a++) N[a] = 0.25 * (1 + kXi[a][0] * xi) * (1 + kXi[a][1] * eta);
 }
 
-/* Gradients dN_a/dX at (xi, eta) for vertex coordinates X[4][2]; returns det(dX/dxi). */
-inline PetscReal Gradients(const PetscReal X[4][2], PetscReal xi, PetscReal eta, PetscReal dN[4][2])
+/* dN_a/dxi at (xi, eta). */
+inline void ReferenceGradients(PetscReal xi, PetscReal eta, PetscReal dNr[4][2])
 {
-  PetscReal dNr[4][2], J[2][2] = {
-                         {0, 0},
-                         {0, 0}
-  };
   for (int a = 0; a < 4; a++) {
     dNr[a][0] = 0.25 * kXi[a][0] * (1 + kXi[a][1] * eta);
     dNr[a][1] = 0.25 * kXi[a][1] * (1 + kXi[a][0] * xi);
-    for (int i = 0; i < 2; i++)
-      for (int j = 0; j < 2; j++) J[i][j] += X[a][i] * dNr[a][j]; /* J_ij = dX_i / dxi_j */
   }
-  const PetscReal det      = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-  const PetscReal Ji[2][2] = {
-    {J[1][1] / det,  -J[0][1] / det},
-    {-J[1][0] / det, J[0][0] / det }
-  };
+}
+
+/* Gradients dN_a/dX at (xi, eta) for vertex coordinates X[4][2]; returns det(dX/dxi). */
+inline PetscReal Gradients(const PetscReal X[4][2], PetscReal xi, PetscReal eta, PetscReal dN[4][2])
+{
+  PetscReal       dNr[4][2], Ji[2][2];
+  const PetscReal det = GeometryMap(X, xi, eta, Ji);
+  ReferenceGradients(xi, eta, dNr);
   for (int a = 0; a < 4; a++)
     for (int i = 0; i < 2; i++) dN[a][i] = dNr[a][0] * Ji[0][i] + dNr[a][1] * Ji[1][i];
   return det;
 }
-
-/* What a material point contributes to its element's internal force: its whole Cauchy stress, its
-   deviator sigma - tr(sigma)/2 I, or its pressure part tr(sigma)/2 I. */
-enum class PointPart {
-  Whole,
-  Deviatoric,
-  Pressure
-};
-
-/* A quadrature rule of the coarse element: its material points on the reference square, their
-   weights and parts, and their names for failure reports. */
-struct Rule {
-  const char *name;        /* the -coarse_quadrature value */
-  const char *description; /* for reports */
-  int         points;      /* material points per element */
-  const PetscReal (*xi)[2];
-  const PetscReal   *w;
-  const PointPart   *part;
-  const char *const *where;
-};
 
 static const PetscReal kG = 0.57735026918962576451; /* 1/sqrt(3) */
 
@@ -76,18 +55,49 @@ static const PetscReal kSRIXi[5][2] = {
   {0,   0  }
 };
 static const PetscReal   kSRIW[5]     = {1, 1, 1, 1, 4};
-static const PointPart   kSRIPart[5]  = {PointPart::Deviatoric, PointPart::Deviatoric, PointPart::Deviatoric, PointPart::Deviatoric, PointPart::Pressure};
 static const char *const kSRIWhere[5] = {"Gauss point 1", "Gauss point 2", "Gauss point 3", "Gauss point 4", "centre"};
-static const PointPart   kFullPart[4] = {PointPart::Whole, PointPart::Whole, PointPart::Whole, PointPart::Whole};
-
-static const Rule kRules[2] = {
-  {"sri",  "selective reduced integration", 5, kSRIXi, kSRIW, kSRIPart,  kSRIWhere},
-  {"full", "full 2 x 2 integration",        4, kSRIXi, kSRIW, kFullPart, kSRIWhere}
-};
 
 /* 3 x 3 Gauss rule for the consistent mass matrix (exact for N_a N_b det J on any quad). */
 static const PetscReal kG3[3] = {-0.77459666924148337704, 0.0, 0.77459666924148337704};
 static const PetscReal kW3[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+
+/* The element tabulated at the points of `rule` (sri or full) and of the mass rule. */
+inline void Tabulate(CoarseQuadrature rule, ReferenceElement *ref)
+{
+  const bool sri   = rule == CoarseQuadrature::SRI;
+  ref->element     = "q1";
+  ref->rule        = sri ? "sri" : "full";
+  ref->description = sri ? "Q1, selective reduced integration (deviator at the 2 x 2 Gauss points, pressure at the centre)" : "Q1, full 2 x 2 integration";
+  ref->degree      = 1;
+  ref->nodes       = 4;
+  ref->points      = sri ? 5 : 4;
+  ref->xi.clear();
+  ref->w.clear();
+  ref->part.clear();
+  ref->where.clear();
+  ref->dN.clear();
+  for (int q = 0; q < ref->points; q++) {
+    PetscReal dNr[4][2];
+    ref->xi.insert(ref->xi.end(), {kSRIXi[q][0], kSRIXi[q][1]});
+    ref->w.push_back(kSRIW[q]);
+    ref->part.push_back(!sri ? PointPart::Whole : q < 4 ? PointPart::Deviatoric : PointPart::Pressure);
+    ref->where.push_back(kSRIWhere[q]);
+    ReferenceGradients(kSRIXi[q][0], kSRIXi[q][1], dNr);
+    for (int a = 0; a < 4; a++) ref->dN.insert(ref->dN.end(), {dNr[a][0], dNr[a][1]});
+  }
+  ref->mass_points = 9;
+  ref->mass_xi.clear();
+  ref->mass_w.clear();
+  ref->mass_N.clear();
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      PetscReal N[4];
+      Shape(kG3[i], kG3[j], N);
+      ref->mass_xi.insert(ref->mass_xi.end(), {kG3[i], kG3[j]});
+      ref->mass_w.push_back(kW3[i] * kW3[j]);
+      ref->mass_N.insert(ref->mass_N.end(), N, N + 4);
+    }
+}
 
 } // namespace q1
 } // namespace turgor

@@ -58,8 +58,8 @@ MaterialPointPool::~MaterialPointPool()
 
 PetscErrorCode MaterialPointPool::SetFromOptions()
 {
-  const char *const tangents[] = {"forward", "central"};
-  PetscInt          tangent    = tangent_.central ? 1 : 0;
+  const char *const tangents[] = {"forward", "central", "implicit"};
+  PetscInt          tangent    = (PetscInt)tangent_.method;
   char              name[64];
   PetscBool         set;
   PetscFunctionBeginUser;
@@ -81,12 +81,16 @@ PetscErrorCode MaterialPointPool::SetFromOptions()
   PetscOptionsEnd();
   PetscOptionsBegin(comm_, "material_", "Material-point groups and tangents", "turgor");
   PetscCall(PetscOptionsInt("-comm_size", "MPI ranks per material-point group (sub-communicator)", "MaterialPointPool", comm_size_, &comm_size_, NULL));
-  PetscCall(
-    PetscOptionsEList("-tangent", "Finite differences of the tangents (eqs 46-53)", "MaterialPointPool", tangents, 2, tangents[tangent], &tangent, NULL));
+  PetscCall(PetscOptionsEList("-tangent",
+                              "Material tangents D^e, D^v: forward or central differences (eqs 46-53: perturbed material evaluations) or implicit (exact: "
+                              "an RVE differentiates its relaxed state, dw/dF from G_w dw/dF = -G_F with the relaxation's LU factor; no perturbed solves)",
+                              "MaterialPointPool", tangents, 3, tangents[tangent], &tangent, NULL));
   PetscCall(PetscOptionsReal("-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ,
                              &tangent_.Fdot_typ, NULL));
   PetscOptionsEnd();
-  tangent_.central = tangent == 1;
+  tangent_.method = (TangentMethod)tangent;
+  PetscCheck(tangent_.method != TangentMethod::Implicit || model_->HasStressDerivatives(), comm_, PETSC_ERR_ARG_INCOMP,
+             "Option -material_tangent = implicit: the material %s has no exact stress derivatives (use forward or central)", model_->Name());
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
   PetscCheck(comm_size_ >= 1 && size % comm_size_ == 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
@@ -277,9 +281,10 @@ PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
   PetscFunctionBeginUser;
   if (group_rank_ == 0)
     for (const auto &p : points_) p->AddCounters(k);
-  PetscInt v[9] = {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves, k.output_solves};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 9, MPIU_INT, MPI_SUM, comm_));
-  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+  PetscInt v[12] = {k.solves,        k.failures,       k.iterations,         k.snes_its,           k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves,
+                    k.output_solves, k.exact_tangents, k.tangent_linear_its, k.tangent_force_evals};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 12, MPIU_INT, MPI_SUM, comm_));
+  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

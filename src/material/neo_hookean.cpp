@@ -19,19 +19,42 @@ PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A fresh response; a failed one (and true) when det F <= 0. */
+static bool Inverted(PetscReal J, MaterialResponse *r)
+{
+  *r = MaterialResponse();
+  if (J > 0) return false;
+  r->ok     = false;
+  r->reason = "inverted element (det F = " + std::to_string(J) + ")";
+  return true;
+}
+
 PetscErrorCode NeoHookean::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out)
 {
   PetscFunctionBeginUser;
-  *out              = MaterialResponse();
   const PetscReal J = F.Det();
-  if (!(J > 0)) {
-    out->ok     = false;
-    out->reason = "inverted element (det F = " + std::to_string(J) + ")";
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
+  if (Inverted(J, out)) PetscFunctionReturn(PETSC_SUCCESS);
   const Tensor2 b = F * F.T(), l = Fdot * F.Inverse();
   out->sigma = (p.mu / J) * (b - Tensor2::Identity()) + (p.lambda * std::log(J) / J) * Tensor2::Identity() + p.viscosity * (l + l.T());
   out->rho   = p.density / J;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* d sigma = -mu dJ/J^2 (b - I) + (mu/J) db + lambda (1 - ln J) dJ/J^2 I + eta (dl + dl^T), with
+   dJ = J tr(dF F^-1), db = dF F^T + F dF^T, dl = dFdot F^-1 - l dF F^-1. */
+PetscErrorCode NeoHookean::StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind,
+                                             Tensor2 *dsigma, MaterialResponse *status)
+{
+  PetscFunctionBeginUser;
+  const PetscReal J = F.Det();
+  if (Inverted(J, status)) PetscFunctionReturn(PETSC_SUCCESS);
+  const Tensor2 Fi = F.Inverse(), l = Fdot * Fi, I = Tensor2::Identity(), bI = F * F.T() - I;
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscReal dJ = J * (dF[k] * Fi).Trace();
+    const Tensor2   db = dF[k] * F.T() + F * dF[k].T();
+    const Tensor2   dl = dFdot[k] * Fi - l * dF[k] * Fi;
+    dsigma[k]          = (-p.mu * dJ / (J * J)) * bI + (p.mu / J) * db + (p.lambda * (1 - std::log(J)) * dJ / (J * J)) * I + p.viscosity * (dl + dl.T());
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

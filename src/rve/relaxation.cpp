@@ -7,6 +7,10 @@ namespace turgor {
 
 RVERelaxation::~RVERelaxation()
 {
+  PetscCallVoid(KSPDestroy(&tangent_ksp_));
+  PetscCallVoid(MatDestroy(&tangent_op_));
+  PetscCallVoid(VecDestroy(&lin_Wp_));
+  PetscCallVoid(VecDestroy(&lin_Rp_));
   PetscCallVoid(MatDestroy(&factor_));
   PetscCallVoid(MatFDColoringDestroy(&coloring_));
   PetscCallVoid(MatDestroy(&J_));
@@ -25,6 +29,7 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
   spec_ = &spec;
   PetscCallMPI(MPI_Comm_size(comm, &size_));
   PetscCall(PetscLogEventRegister("TgRVEJacobian", PETSC_OBJECT_CLASSID, &ev_jacobian_));
+  PetscCall(PetscLogEventRegister("TgRVELinearized", PETSC_OBJECT_CLASSID, &ev_linearized_));
   PetscCall(VecCreateMPI(comm, eq.Rank() == 0 ? eq.Cell().NumUnknowns() : 0, PETSC_DETERMINE, &R_));
   PetscCall(VecDuplicate(R_, &Wprev_));
   PetscCall(VecDuplicate(R_, &D_));
@@ -51,11 +56,7 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
     PetscCall(KSPSetType(ksp, KSPPREONLY));
     PetscCall(KSPGetPC(ksp, &pc));
     /* the pseudo steps and the warm Newton iterations share one LU factor of J, kept here */
-    PetscCall(PCSetType(pc, PCSHELL));
-    PetscCall(PCShellSetContext(pc, this));
-    PetscCall(PCShellSetName(pc, "LU factors of G' + shift I, kept by the RVE relaxation"));
-    PetscCall(PCShellSetSetUp(pc, FactorSetUp));
-    PetscCall(PCShellSetApply(pc, FactorApply));
+    PetscCall(FactorAsPC(pc));
   }
   PetscCall(BuildJacobianPattern());
   PetscCall(TSSetFromOptions(ts_));
@@ -331,6 +332,17 @@ PetscErrorCode RVERelaxation::Factor(bool *ok)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode RVERelaxation::FactorAsPC(PC pc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, this));
+  PetscCall(PCShellSetName(pc, "LU factors of G' + shift I, kept by the RVE relaxation"));
+  PetscCall(PCShellSetSetUp(pc, FactorSetUp));
+  PetscCall(PCShellSetApply(pc, FactorApply));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode RVERelaxation::FactorSetUp(PC pc)
 {
   return TURGOR_GUARDED({
@@ -416,6 +428,87 @@ PetscErrorCode RVERelaxation::Warm(Vec W, MaterialResponse *out, bool *converged
     } else refresh = false;
     res = res_new;
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A hand-written matrix-free product rather than PETSc's MatMFFD: MatMFFD differences one-sided,
+   and its O(h) error (about 1e-7 relative here, the repulsion's r^-7 curvature) would leave the
+   exact tangents short of their 1e-6 check; central differences of the scaled residual with a
+   step of 1e-6 cell sizes along x / |x| are accurate to ~1e-10. */
+PetscErrorCode RVERelaxation::LinearizedMult(Mat A, Vec x, Vec y)
+{
+  return TURGOR_GUARDED({
+    RVERelaxation *rx;
+    PetscReal      nx;
+    PetscFunctionBeginUser;
+    PetscCall(MatShellGetContext(A, &rx));
+    PetscCall(VecNorm(x, NORM_2, &nx));
+    if (nx == 0) {
+      PetscCall(VecZeroEntries(y));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    const PetscReal h = 1e-6 / nx;
+    PetscCall(VecWAXPY(rx->lin_Wp_, h, x, rx->lin_W_));
+    PetscCall(rx->eq_->Residual(rx->lin_Wp_, rx->lin_Rp_));
+    PetscCall(VecWAXPY(rx->lin_Wp_, -h, x, rx->lin_W_));
+    PetscCall(rx->eq_->Residual(rx->lin_Wp_, y));
+    PetscCall(VecAYPX(y, -1.0, rx->lin_Rp_)); /* G(W + h x) - G(W - h x) */
+    PetscCall(VecScale(y, 0.5 / h));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+PetscErrorCode RVERelaxation::SolveLinearized(Vec W, Vec b, Vec z, PetscInt *its, bool *ok)
+{
+  KSPConvergedReason reason;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_linearized_, 0, 0, 0, 0));
+  *ok  = true;
+  *its = 0;
+  if (!tangent_ksp_) {
+    PetscInt n, N;
+    PC       pc;
+    PetscCall(VecGetLocalSize(R_, &n));
+    PetscCall(VecGetSize(R_, &N));
+    PetscCall(VecDuplicate(R_, &lin_Wp_));
+    PetscCall(VecDuplicate(R_, &lin_Rp_));
+    PetscCall(MatCreateShell(comm_, n, n, N, N, this, &tangent_op_));
+    PetscCall(MatShellSetOperation(tangent_op_, MATOP_MULT, (void (*)(void))LinearizedMult));
+    PetscCall(KSPCreate(comm_, &tangent_ksp_));
+    PetscCall(KSPSetOptionsPrefix(tangent_ksp_, "rve_tangent_"));
+    PetscCall(KSPSetType(tangent_ksp_, KSPGMRES));
+    PetscCall(KSPSetPCSide(tangent_ksp_, PC_RIGHT));
+    PetscCall(KSPSetTolerances(tangent_ksp_, 1e-8, 1e-30, PETSC_DEFAULT, 100));
+    PetscCall(KSPGetPC(tangent_ksp_, &pc));
+    PetscCall(FactorAsPC(pc));
+    PetscCall(KSPSetOperators(tangent_ksp_, tangent_op_, tangent_op_));
+    PetscCall(KSPSetFromOptions(tangent_ksp_));
+  }
+  if (!have_K_) { /* no G' yet (a state relaxed without a solve): compute it here */
+    PetscBool stale;
+    PetscCall(PatternStale(&stale));
+    if (stale) PetscCall(BuildJacobianPattern());
+    PetscCall(Refresh(W));
+    PetscCall(MatCopy(K_, J_, SAME_NONZERO_PATTERN));
+    PetscCall(MatShift(J_, 1.0 / spec_->warm_dt0));
+  }
+  bool fok;
+  PetscCall(Factor(&fok));
+  if (!fok) {
+    *ok = false;
+    PetscCall(PetscLogEventEnd(ev_linearized_, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  lin_W_ = W;
+  PetscCall(MatAssemblyBegin(tangent_op_, MAT_FINAL_ASSEMBLY)); /* a new state: the KSP sets its operator up again */
+  PetscCall(MatAssemblyEnd(tangent_op_, MAT_FINAL_ASSEMBLY));
+  PetscCall(VecZeroEntries(z));
+  PetscCall(KSPSolve(tangent_ksp_, b, z));
+  PetscCall(KSPGetConvergedReason(tangent_ksp_, &reason));
+  PetscCall(KSPGetIterationNumber(tangent_ksp_, its));
+  lin_W_ = nullptr;
+  *ok    = reason > 0;
+  PetscCall(PetscLogEventEnd(ev_linearized_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,10 +1,12 @@
 #pragma once
-/* The coarse (tissue) model of FE^2 (TW 562 §3.3): a DMPlex of bilinear quadrilaterals, Q1
-   displacement u and velocity v at the vertices (state per vertex [ux, uy, vx, vy]), material
-   points from a MaterialPointPool at the points of the element's quadrature rule
-   (-coarse_quadrature): sri, the seed's selective reduced integration, the deviatoric stress at the
-   2 x 2 Gauss points and the pressure tr(sigma)/2 at the element centre (5 per element, the
-   default), or full, the whole stress at the 2 x 2 Gauss points (4 per element).
+/* The coarse (tissue) model of FE^2 (TW 562 §3.3): a DMPlex of quadrilaterals carrying Lagrange
+   elements (-coarse_element): bilinear Q1 (the seed's; nodes at the vertices) or biquadratic Q2
+   (also at the edge midpoints and the cell centres), the displacement u and velocity v at every
+   node (state per node [ux, uy, vx, vy]), material points from a MaterialPointPool at the points
+   of the element's quadrature rule (-coarse_quadrature): sri, selective reduced integration, the
+   deviatoric stress at the full Gauss points and the pressure tr(sigma)/2 at fewer points (Q1: the
+   2 x 2 Gauss points and the centre, 5 per element, the seed's; Q2: 3 x 3 and 2 x 2, 13), or full,
+   the whole stress at the full Gauss points (Q1: 2 x 2, 4 per element; Q2: 3 x 3, 9).
 
    Semi-discrete system (eqs 31-33) as a linearly implicit first-order system
        F(U, Udot) = Mt Udot - G(U) = 0,   Mt = diag(I, M),   G = [v; f_ext - f_int(u, v)],
@@ -21,19 +23,24 @@
 #include <petscdmplex.h>
 #include <petscksp.h>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace turgor {
 
-namespace q1 {
-struct Rule;
-}
+struct ReferenceElement; /* src/coarse/reference_element.h */
 
-/* -coarse_quadrature: the material points of an element (src/coarse/q1_element.h) */
+/* -coarse_element: the Lagrange quadrilateral (src/coarse/q1_element.h, q2_element.h) */
+enum class CoarseElement {
+  Q1, /* bilinear, 4 nodes (the seed's) */
+  Q2  /* biquadratic, 9 nodes */
+};
+
+/* -coarse_quadrature: the material points of an element */
 enum class CoarseQuadrature {
-  SRI, /* selective reduced integration: deviator at the 2 x 2 Gauss points, pressure at the centre */
-  Full /* the whole stress at the 2 x 2 Gauss points */
+  SRI, /* selective reduced integration: deviator at the full Gauss points, pressure at fewer */
+  Full /* the whole stress at the full Gauss points */
 };
 
 struct CoarseCounters {
@@ -45,6 +52,7 @@ struct CoarseSpec {
   std::string           dirichlet_label  = "Face Sets";
   std::vector<PetscInt> dirichlet_values = {4}; /* box: 1 bottom, 2 right, 3 top, 4 left */
   bool                  lumped_mass      = false;
+  CoarseElement         element          = CoarseElement::Q1;
   CoarseQuadrature      quadrature       = CoarseQuadrature::SRI;
   bool                  acoustic_field   = true;  /* snapshots carry the acoustic-tensor field (material tangents at output) */
   bool                  metis            = false; /* -coarse_partitioner metis: the serial mesh distributed by METIS (a PETSCPARTITIONERSHELL) */
@@ -54,7 +62,7 @@ struct CoarseSpec {
 
 class CoarseModel {
 public:
-  explicit CoarseModel(MPI_Comm comm) : comm_(comm), pool_(comm) { }
+  explicit CoarseModel(MPI_Comm comm);
   ~CoarseModel();
   CoarseModel(const CoarseModel &)            = delete;
   CoarseModel &operator=(const CoarseModel &) = delete;
@@ -88,6 +96,10 @@ public:
      counted as output solves. *ok = false when a material point failed, *why says where. Also
      fills CellAcoustic() at U. */
   PetscErrorCode AssembleTangentAt(Vec U, bool damping, Mat J, PetscBool *ok, std::string *why);
+  /* Seconds this rank spent in the coarse model's own work inside IFunction, IJacobian and
+     RHSFunction: the assembly of f_int, K, C and the explicit integrators' mass solves (the
+     material points excluded: MaterialPointPool::GlobalTimes). */
+  PetscReal CoarseAssemblyTime() const { return (PetscReal)coarse_time_; }
   /* Jacobians assembled from the same K, C since they were last computed. */
   PetscInt TangentAge() const { return tangent_age_; }
   /* Udot = Mt^{-1} G(U) (explicit integrators). */
@@ -122,8 +134,11 @@ public:
   PetscReal             ReferenceDensity() const { return rho0_; }
   bool                  LumpedMass() const { return spec_.lumped_mass; }
   CoarseSpec           &Spec() { return spec_; }
-  /* The quadrature rule in use (after SetUp): material points per element, its name. */
+  /* The element and quadrature rule in use (after SetUp): material points and nodes per element,
+     their names. */
   PetscInt    PointsPerElement() const;
+  PetscInt    NodesPerElement() const;
+  const char *ElementName() const;
   const char *QuadratureName() const;
   const char *QuadratureDescription() const;
   /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
@@ -142,9 +157,10 @@ public:
   const std::vector<PetscReal> &CellAcoustic() const { return cell_acoustic_; }
   PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
   /* U (global) from a function of the reference position: f(X, state) gives [ux, uy, vx, vy] of the
-     vertex at X, or false when it has none; the clamped vertices are left out. Collective: *missing
-     is the first position without a value on any rank ("" when every vertex got one). */
-  PetscErrorCode VertexState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing);
+     node at X, or false when it has none; the clamped nodes are left out. The nodes are the
+     vertices (Q1), and also the edge midpoints and cell centres (Q2). Collective: *missing is the
+     first position without a value on any rank ("" when every node got one). */
+  PetscErrorCode NodeState(Vec U, const std::function<bool(const PetscReal X[2], PetscReal state[4])> &f, std::string *missing);
   /* Global vector with the boundary values inserted into the local constrained dofs. */
   PetscErrorCode GlobalToLocal(Vec U, Vec Uloc);
   /* The boundary values (u = g(X), v = 0) into the constrained dofs of a local vector. */
@@ -191,23 +207,24 @@ private:
   PetscReal                                                 load_factor_ = 1.0;
   std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
 
-  /* the quadrature rule and its material points per element (from spec_ at SetUp) */
-  const q1::Rule *rule_ = nullptr;
-  PetscInt        npts_ = 0;
+  /* the element tabulated at its rule: material points and nodes per element (from spec_ at SetUp) */
+  std::unique_ptr<ReferenceElement> ref_;
+  PetscInt                          npts_ = 0, nn_ = 0;
   /* per local cell: reference vertex coordinates, gradients and weights at the material points */
-  PetscInt               c_start_ = 0, c_end_ = 0;
-  std::vector<PetscReal> Xref_;      /* [cell][4][2] */
-  std::vector<PetscReal> dN_;        /* [cell][point][4][2] */
-  std::vector<PetscReal> wdet_;      /* [cell][point]: weight x det(dX/dxi) */
-  std::vector<PetscReal> f_ext_;     /* [cell][4][2] */
-  std::vector<PetscInt>  free_rows_; /* global row of ux of each owned, unclamped vertex */
-  PetscInt               v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
-  PetscReal              rho0_       = 0;
-  PetscInt               n_elements_ = 0;
-  std::vector<PetscInt>  cell_gid_; /* global element number of each local cell */
-  PetscMPIInt            rank_      = 0;
-  PetscReal              eval_time_ = 0; /* time of the state being evaluated (for reports) */
-  std::string            eval_where_;    /* or where, when not a time */
+  PetscInt                 c_start_ = 0, c_end_ = 0;
+  std::vector<PetscReal>   Xref_;      /* [cell][4][2] (the geometry: the vertices) */
+  std::vector<PetscReal>   dN_;        /* [cell][point][node][2] */
+  std::vector<PetscReal>   wdet_;      /* [cell][point]: weight x det(dX/dxi) */
+  std::vector<PetscReal>   f_ext_;     /* [cell][node][2] */
+  std::vector<PetscInt>    free_rows_; /* global row of ux of each owned, unclamped node */
+  std::vector<PetscScalar> work_;      /* an element vector and matrix, (4 nodes)^2 + 4 nodes */
+  PetscInt                 v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
+  PetscReal                rho0_       = 0;
+  PetscInt                 n_elements_ = 0;
+  std::vector<PetscInt>    cell_gid_; /* global element number of each local cell */
+  PetscMPIInt              rank_      = 0;
+  PetscReal                eval_time_ = 0; /* time of the state being evaluated (for reports) */
+  std::string              eval_where_;    /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;
@@ -221,6 +238,7 @@ private:
   std::vector<Tangents>         out_tangent_;
   std::vector<PetscReal>        cell_acoustic_;
   CoarseCounters                counters_;
+  PetscLogDouble                coarse_time_ = 0; /* CoarseAssemblyTime() */
   PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0, ev_tangent_at_ = 0;
 };
 

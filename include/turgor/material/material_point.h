@@ -2,7 +2,8 @@
 /* The material-point interface of the coarse model: given a deformation gradient F and its rate
    Fdot, return the Cauchy stress sigma and density rho (TW 562 eq 30, 41), and -- through
    ComputeTangents() -- the elasticity and viscosity matrices D^e, D^v (eqs 37, 39) by the finite
-   differences of eqs 46-53.
+   differences of eqs 46-53, or exactly from the material's StressDerivatives() (an RVE: implicit
+   differentiation of its relaxed state).
 
    A MaterialModel is a material configured once from its options (an RVE's geometry, physics and
    relaxation settings; a closed-form law's constants); it creates the material points, one per
@@ -34,8 +35,10 @@ struct MaterialResponse {
 /* Work done by material points (summed over points and ranks by the pool). */
 struct MaterialCounters {
   PetscInt solves = 0, failures = 0, iterations = 0, snes_its = 0, ksp_its = 0, jacobians = 0, force_evals = 0;
-  PetscInt tangent_solves = 0; /* perturbed solves (eqs 46-53), included in solves */
-  PetscInt output_solves  = 0; /* for snapshots, in no other counter */
+  PetscInt tangent_solves     = 0;                          /* perturbed solves (eqs 46-53), included in solves */
+  PetscInt output_solves      = 0;                          /* for snapshots, in no other counter */
+  PetscInt exact_tangents     = 0;                          /* tangents by StressDerivatives (no perturbed solves) */
+  PetscInt tangent_linear_its = 0, tangent_force_evals = 0; /* their Krylov iterations and force evaluations */
 };
 
 /* Trial: the evaluation becomes the material point's current state (later evaluations start from
@@ -57,7 +60,15 @@ public:
   virtual PetscErrorCode Revert() { return PETSC_SUCCESS; }
   /* The uncertainty U of a stress evaluation: eq 52 takes eps = sqrt(U). */
   virtual PetscReal StressUncertainty() const = 0;
-  virtual void      AddCounters(MaterialCounters &c) const { }
+  /* Exact directional derivatives of the stress at the state of the last evaluation, which was at
+     (F, Fdot) and succeeded: dsigma[k] = d/de sigma(F + e dF[k], Fdot + e dFdot[k]) at e = 0, for
+     k < n, through the material's inner unknowns (an RVE's relaxed fine structure) by implicit
+     differentiation. Leaves the material's state as it is; kind says how the work is counted. On
+     failure status->ok = false and its reason. The default has none (MaterialModel::
+     HasStressDerivatives). */
+  virtual PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
+                                           Tensor2 *dsigma, MaterialResponse *status);
+  virtual void           AddCounters(MaterialCounters &c) const { }
 };
 
 class MaterialModel {
@@ -74,7 +85,9 @@ public:
   virtual std::vector<std::string> Physics() const = 0;
   virtual void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const { *wall = *fluid = 0; }
   /* Memory of one material point (estimates before the points are created). */
-  virtual PetscReal      BytesPerPoint() const { return 256; }
+  virtual PetscReal BytesPerPoint() const { return 256; }
+  /* Its points implement MaterialPoint::StressDerivatives (-material_tangent implicit). */
+  virtual bool           HasStressDerivatives() const { return false; }
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
 };
 
@@ -88,18 +101,34 @@ struct Tangents {
   PetscReal De[3][3] = {}, Dv[3][3] = {};
 };
 
+/* -material_tangent: forward differences (eqs 46-53, the seed's), central differences (two
+   evaluations per column), or implicit: the exact derivatives of MaterialPoint::StressDerivatives
+   (for an RVE, implicit differentiation of its relaxed state: no perturbed solves). */
+enum class TangentMethod {
+  Forward,
+  Central,
+  Implicit
+};
+
+inline const char *TangentMethodName(TangentMethod m)
+{
+  return m == TangentMethod::Implicit ? "implicit" : m == TangentMethod::Central ? "central" : "forward";
+}
+
 struct TangentOptions {
-  bool      central   = false; /* central differences (two evaluations per column) */
-  PetscReal Fdot_typ  = 1.0;   /* eq 53's typical velocity gradient [1/µs] */
-  PetscReal U         = 0;     /* eq 52's U; 0 = the material's StressUncertainty() */
-  bool      viscosity = true;  /* also D^v (3 more evaluations) */
+  TangentMethod method    = TangentMethod::Forward;
+  PetscReal     Fdot_typ  = 1.0;  /* eq 53's typical velocity gradient [1/µs] */
+  PetscReal     U         = 0;    /* eq 52's U; 0 = the material's StressUncertainty() */
+  bool          viscosity = true; /* also D^v (3 more evaluations) */
 };
 
 /* Eqs 46-53: perturb F by eps (e_k (x) e_l) F for (kl) = (11), (22), (12) and Fdot likewise, and
    difference the stress with the Truesdell-rate correction of eq 48. `base` is the response at
-   (F, Fdot), already computed. On failure of a perturbed evaluation, *status says why. The
-   perturbed evaluations are of `kind` (Perturbed; Output for tangents written or analysed only,
-   counted apart like any output evaluation). */
+   (F, Fdot), already computed (the material's last evaluation). With opt.method Implicit the same
+   columns come from the exact derivatives along those directions (MaterialPoint::
+   StressDerivatives). On failure of a perturbed evaluation, *status says why. The perturbed
+   evaluations are of `kind` (Perturbed; Output for tangents written or analysed only, counted
+   apart like any output evaluation). */
 PetscErrorCode ComputeTangents(MaterialPoint &mp, const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &base, const TangentOptions &opt, Tangents *D,
                                MaterialResponse *status, EvaluationKind kind = EvaluationKind::Perturbed);
 

@@ -33,7 +33,7 @@ public:
   void            SetCommSize(PetscInt size) { comm_size_ = size; }
 
   /* -material (API default rve) and that material's options; -material_comm_size,
-     -material_tangent forward|central, -material_tangent_fdot_typ. */
+     -material_tangent forward|central|implicit, -material_tangent_fdot_typ. */
   PetscErrorCode SetFromOptions();
   /* This rank owns n_local points. Creates the groups, the points of this rank's group and the
      communication pattern. */

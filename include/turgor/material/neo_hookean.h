@@ -20,6 +20,9 @@ public:
   explicit NeoHookean(const NeoHookeanSpec &spec = NeoHookeanSpec()) : p(spec) { }
   PetscErrorCode Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out) override;
   PetscReal      StressUncertainty() const override { return 1e-16; }
+  /* The closed form's derivatives along (dF, dFdot) (no inner unknowns). */
+  PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
+                                   Tensor2 *dsigma, MaterialResponse *status) override;
   /* Analytic D^e (Truesdell rate, Fdot = 0) and D^v in the order (11, 22, 12). */
   void AnalyticTangents(const Tensor2 &F, Tangents *D) const;
 
@@ -33,6 +36,7 @@ public:
   PetscErrorCode           SetFromOptions(MPI_Comm comm) override { return spec.SetFromOptions(comm); }
   PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
   std::vector<std::string> Physics() const override { return {"neo_hookean"}; }
+  bool                     HasStressDerivatives() const override { return true; }
   PetscErrorCode           View(PetscViewer viewer) const override;
 
   NeoHookeanSpec spec;

@@ -6,7 +6,10 @@
      and its LU factors kept from the last solve (modified Newton), backtracking on a fresh G'.
    G' comes from MatFDColoring on the interaction graph, rebuilt only when new neighbours couple
    unknowns the pattern does not cover. Both solves use one LU factorisation of G' + shift I kept
-   here (the TSPSEUDO linear solve through a shell PC), so -rve_pc_* options do not apply. */
+   here (the TSPSEUDO linear solve through a shell PC), so -rve_pc_* options do not apply.
+
+   The same factor serves the exact tangents (SolveLinearized): the linearised relaxation
+   G_w z = b at a relaxed state, by GMRES preconditioned with it. */
 #include <turgor/material/material_point.h>
 #include <turgor/rve/rve_equations.h>
 #include <turgor/rve/rve_spec.h>
@@ -28,6 +31,13 @@ public:
   /* *converged = false sends the caller to a cold solve. */
   PetscErrorCode Warm(Vec W, MaterialResponse *out, bool *converged);
   PetscInt       Jacobians() const { return jacobians_; }
+  /* z = G_w(W)^-1 b at the current deformation (implicit differentiation of the relaxed state):
+     GMRES (prefix rve_tangent_: rtol 1e-8 of |b| by default, right preconditioning so that the
+     test is on the true residual) on the central-difference action of G_w, preconditioned by the
+     kept LU factor (computed at W first if there is none). The factor is usually of an older G'
+     (modified Newton), hence the Krylov iterations, each one residual pair. *its: iterations;
+     *ok = false when GMRES did not converge. */
+  PetscErrorCode SolveLinearized(Vec W, Vec b, Vec z, PetscInt *its, bool *ok);
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec W, Vec Wdot, Vec F, void *ctx);
@@ -39,10 +49,12 @@ private:
 
   PetscErrorCode        BuildJacobianPattern();
   PetscErrorCode        PatternStale(PetscBool *stale);
-  PetscErrorCode        Refresh(Vec W);   /* K = G'(W) by colouring */
-  PetscErrorCode        Factor(bool *ok); /* J's LU factors, up to date */
+  PetscErrorCode        Refresh(Vec W);    /* K = G'(W) by colouring */
+  PetscErrorCode        Factor(bool *ok);  /* J's LU factors, up to date */
+  PetscErrorCode        FactorAsPC(PC pc); /* pc applies factor_ (a shell) */
   static PetscErrorCode FactorSetUp(PC pc);
   static PetscErrorCode FactorApply(PC pc, Vec x, Vec y);
+  static PetscErrorCode LinearizedMult(Mat A, Vec x, Vec y); /* y = G_w(lin_W_) x, central differences */
 
   MPI_Comm                           comm_  = MPI_COMM_NULL;
   PetscMPIInt                        size_  = 1;
@@ -58,7 +70,10 @@ private:
   std::vector<std::vector<PetscInt>> pattern_cols_;        /* columns of each unknown pair in J_ */
   bool                               have_K_      = false; /* K_ holds G' of a recent state */
   PetscInt                           jacobians_   = 0;
-  PetscLogEvent                      ev_jacobian_ = 0;
+  PetscLogEvent                      ev_jacobian_ = 0, ev_linearized_ = 0;
+  KSP                                tangent_ksp_ = nullptr;                                 /* SolveLinearized's GMRES, made on first use */
+  Mat                                tangent_op_  = nullptr;                                 /* its operator, a shell */
+  Vec                                lin_W_ = nullptr, lin_Wp_ = nullptr, lin_Rp_ = nullptr; /* the base state and work vectors */
 };
 
 } // namespace turgor

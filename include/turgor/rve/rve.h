@@ -24,6 +24,14 @@ public:
   PetscErrorCode Commit() override;
   PetscErrorCode Revert() override;
   PetscReal      StressUncertainty() const override { return spec_.psi_atol; }
+  /* Implicit differentiation of the relaxed state (TW 562 eq 27, G(w; F, Fdot) = 0):
+       d sigma = sigma_p dp + sigma_w dw,   G_w dw = -G_p dp,   p = (F, Fdot),
+     G_p dp by central differences of the explicit G at fixed w (a step of 1e-6), dw by
+     RVERelaxation::SolveLinearized with the relaxation's LU factor, and the total derivative as one
+     central difference of the virial stress along (dp, dw). Cauchy-Born and frozen RVEs hold w:
+     only sigma_p. No perturbed RVE solve. */
+  PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
+                                   Tensor2 *dsigma, MaterialResponse *status) override;
   void           AddCounters(MaterialCounters &c) const override;
 
   const PeriodicCell &Cell() const { return cell_; }
@@ -35,6 +43,8 @@ public:
 
 private:
   PetscErrorCode FluidInside(bool *inside); /* collective */
+  /* The virial stress [4] at (F, Fdot, W) and, when R, G there (rank 0 of the group; zero elsewhere) */
+  PetscErrorCode StressAt(const Tensor2 &F, const Tensor2 &Fdot, Vec W, Vec R, PetscReal sigma[4]);
 
   MPI_Comm                 comm_;
   PetscMPIInt              rank_ = 0;
@@ -42,7 +52,10 @@ private:
   PeriodicCell             cell_;
   RVEEquations             eq_;
   RVERelaxation            relax_;
-  Vec                      W_ = nullptr;
+  Vec                      W_  = nullptr;
+  Vec                      Wd_ = nullptr, Rp_ = nullptr, Rm_ = nullptr, B_ = nullptr, Z_ = nullptr; /* StressDerivatives' work */
+  Tensor2                  last_F_, last_Fdot_;                                                     /* the last evaluation, at W_ */
+  bool                     last_ok_ = false;
   std::vector<PetscScalar> current_, committed_; /* u1 / L of the current and last accepted state */
   bool                     have_current_ = false, have_committed_ = false;
   MaterialCounters         counters_;
@@ -56,6 +69,7 @@ public:
   PetscErrorCode           SetFromOptions(MPI_Comm comm) override;
   PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
   std::vector<std::string> Physics() const override { return physics.ActiveTerms(); }
+  bool                     HasStressDerivatives() const override { return true; }
   void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const override;
   PetscReal                BytesPerPoint() const override { return BytesPerRVE((PetscReal)prototype_.GetTissue().particles.n); }
   /* Measured max RSS per RVE of 1, 2^2 and 4^2 cells (19, 76, 304 particles): its TSPSEUDO, the
