@@ -11,7 +11,7 @@ PetscErrorCode EnergyBalance::SetUp(ForceModel &model, const Controls &controls,
   controls_ = &controls;
   P_        = &P;
   model.KeepTermForces(true);
-  stored_.clear(), loads_.clear(), dissipative_.clear(), counting_.clear();
+  stored_.clear(), loads_.clear(), timed_.clear(), dissipative_.clear(), counting_.clear();
   /* roles: a load does work from outside (the body force); a dissipative term only removes energy
      (its work is its dissipation); the others store energy, and may count their own dissipation */
   for (size_t t = 0; t < model.NumTerms(); t++) {

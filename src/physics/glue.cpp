@@ -385,8 +385,13 @@ PetscErrorCode Glue::AcceptStep(const ForceInput &in)
     PetscFunctionReturn(PETSC_SUCCESS); /* made at this state: nothing to commit yet */
   }
   if (in.same_x && trial_.size() == bonds_.size()) { /* the openings of the evaluation at these positions */
-    for (size_t k = 0; k < bonds_.size(); k++)
-      if (bonds_[k].intact) Commit(in, k, trial_[k].dnp, trial_[k].dt);
+    const PetscReal beta2 = kt_ / normal_stiffness;
+    for (size_t k = 0; k < bonds_.size(); k++) {
+      const Bond &B = bonds_[k];
+      /* softening before the peak has nothing to commit: tested here, not in a call per bond */
+      if (!B.intact || (law == SOFTENING && B.lmax <= l0_ && trial_[k].dnp * trial_[k].dnp + beta2 * trial_[k].dt * trial_[k].dt <= l02_)) continue;
+      Commit(in, k, trial_[k].dnp, trial_[k].dt);
+    }
   } else Kernel<2>(in, NULL, NULL);
   accepted_++;
   PetscFunctionReturn(PETSC_SUCCESS);
