@@ -12,9 +12,11 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
                            "run starts (an error with -strict). Exit status: 0 completed, 1 failed, 130 interrupted.\n"
                            "\n"
                            "Modes:\n"
-                           "  fine   full fine-scale run: wall (DEM) + cell fluid (SPH) particles in a DMSwarm\n"
+                           "  fine   full fine-scale run in a DMSwarm: wall (DEM) + cell fluid (SPH) particles, or polygonal cells\n"
                            "  rve    one material point (RVE or closed form) along a strain path: stress, density, tangents\n"
-                           "  fe2    (default) coarse Q1 model on DMPlex whose stress comes from RVEs at the quadrature points\n\n";
+                           "  fe2    (default) coarse Q1 or Q2 model on DMPlex whose stress comes from RVEs at the quadrature points\n"
+                           "  fe2_static  the coarse model's static equilibrium under the scene's loads (SNES, load stepping)\n"
+                           "  eigen  SLEPc spectra of the coarse stiffness: frequencies, modes, the explicit stability limit\n\n";
 
 #include <turgor/turgor.hpp>
 #include <turgor/core/errors.h>
@@ -22,15 +24,17 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
 
 int main(int argc, char **argv)
 {
-  int status = 0;
+  int                 status = 0;
+  turgor::ErrorRecord errors; /* messages of ranks other than the first, printed only if needed */
   /* a scene that does not parse is reported with its line before PETSc reads it (PETSc's message
      has none) */
   if (!turgor::CheckYAMLScenes(argc, argv)) return 1;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(turgor::PushOptionValueErrorHandler());
+  PetscCall(turgor::PushErrorHandler(&errors));
   PetscCall(turgor::InstallInterruptHandler());
   PetscCall(TurgorRegisterAll()); /* TS types, physics terms, materials, tissues, modes */
   if (turgor::RunMode(PETSC_COMM_WORLD, NULL, &status)) status = 1;
+  PetscCall(turgor::FinishRanks(PETSC_COMM_WORLD, status, errors, 5.0));
   PetscCall(PetscFinalize());
   return status;
 }

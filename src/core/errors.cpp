@@ -1,5 +1,6 @@
 #include <turgor/core/errors.h>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -29,13 +30,13 @@ std::string OptionsWithValue(const std::string &value)
   return names;
 }
 
-PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess,
-                                       void *ctx)
+PetscErrorCode ErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   static const char *const patterns[][2] = {
     {"Input string ",           " has no"}, /* PetscOptionsStringToReal/Int */
     {"Unknown logical value: ", nullptr  }, /* PetscOptionsStringToBool */
   };
+  std::string better;
   if (p == PETSC_ERROR_INITIAL && mess) {
     for (const auto &pat : patterns) {
       const size_t lead = std::strlen(pat[0]);
@@ -44,11 +45,29 @@ PetscErrorCode OptionValueErrorHandler(MPI_Comm comm, int line, const char *fun,
       const std::string value = end ? std::string(mess + lead, end) : std::string(mess + lead);
       const std::string names = OptionsWithValue(value);
       if (names.empty()) break;
-      const std::string better = "Option " + names + " = " + value + ": not a valid value (" + mess + ")";
-      return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, better.c_str(), ctx);
+      better = "Option " + names + " = " + value + ": not a valid value (" + mess + ")";
+      break;
     }
   }
-  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+  const char *text = better.empty() ? mess : better.c_str();
+  PetscMPIInt size = 1, rank = 0;
+  if (comm != PETSC_COMM_SELF && comm != MPI_COMM_NULL) {
+    (void)MPI_Comm_size(comm, &size);
+    (void)MPI_Comm_rank(comm, &rank);
+  }
+  ErrorRecord *record = (ErrorRecord *)ctx;
+  if (size > 1 && rank > 0) { /* the first rank prints; PETSc's handler would sleep 10 s and exit here */
+    if (record && p == PETSC_ERROR_INITIAL) {
+      if (!record->have)
+        record->message = std::string(text ? text : "") + " (" + (fun ? fun : "?") + "() at " + (file ? file : "?") + ":" + std::to_string(line) + ")";
+      record->have = record->quiet = true;
+    }
+    return n;
+  }
+  /* the callers' frames of an error kept quiet (PetscCall passes them on PETSC_COMM_SELF) */
+  if (record && record->quiet && p == PETSC_ERROR_REPEAT) return n;
+  if (record && p == PETSC_ERROR_INITIAL) record->quiet = false;
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, text, ctx);
 }
 
 volatile std::sig_atomic_t interrupted = 0; /* signals received; written by the signal handler only */
@@ -80,10 +99,37 @@ PetscErrorCode FirstMessage(MPI_Comm comm, const std::string &mine, std::string 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PushOptionValueErrorHandler(void)
+PetscErrorCode PushErrorHandler(ErrorRecord *record)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscPushErrorHandler(OptionValueErrorHandler, NULL));
+  PetscCall(PetscPushErrorHandler(ErrorHandler, record));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FinishRanks(MPI_Comm comm, int status, const ErrorRecord &record, double timeout)
+{
+  PetscMPIInt size, rank, done = 0;
+  MPI_Request req;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Ibarrier(comm, &req));
+  if (!status) { /* a rank that completed waits for the others however long they take */
+    PetscCallMPI(MPI_Wait(&req, MPI_STATUS_IGNORE));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  const double start = MPI_Wtime();
+  while (!done && MPI_Wtime() - start < timeout) {
+    PetscCallMPI(MPI_Test(&req, &done, MPI_STATUS_IGNORE));
+    if (!done) PetscCall(PetscSleep(0.01));
+  }
+  if (done) PetscFunctionReturn(PETSC_SUCCESS);
+  /* the others are stuck in a collective call this rank left: say why, and end the job */
+  if (record.have) (void)fprintf(stderr, "[%d]turgor ERROR: %s\n", (int)rank, record.message.c_str());
+  (void)fprintf(stderr, "[%d]turgor ERROR: this rank failed and the other ranks did not finish within %g s: aborting\n", (int)rank, timeout);
+  (void)fflush(stderr);
+  PetscCallMPI(MPI_Abort(comm, status));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

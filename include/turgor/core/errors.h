@@ -4,8 +4,11 @@
    - CatchExceptions(): around the C entry points and the functions PETSc calls back (TS, SNES,
      PC, DM callbacks): std::bad_alloc and any other C++ exception become a PETSc error with a
      message instead of unwinding through PETSc's C frames.
-   - PushOptionValueErrorHandler(): PETSc's message for an option value that does not parse ("Input
-     string abc has no numeric value") does not say which option; this error handler names it.
+   - PushErrorHandler(): PETSc's message for an option value that does not parse ("Input string abc
+     has no numeric value") does not say which option; this error handler names it. On a rank other
+     than the first of a parallel communicator PETSc 3.18's own handler sleeps 10 s and exits
+     (status 0, without MPI_Finalize) so that the first rank can print; this one lets the error
+     return instead, keeping its message, and FinishRanks() ends the run on every rank at once.
    - Interrupts: SIGINT/SIGTERM set a flag that a time-dependent run checks after every step, so it
      stops after the step, writes summary.json with status "interrupted" and exits non-zero. A
      second signal stops inside the step (CheckStopNow() in the right-hand sides): the run fails
@@ -59,7 +62,21 @@ PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status);
    found on one rank, reported by a collective error on all. */
 PetscErrorCode FirstMessage(MPI_Comm comm, const std::string &mine, std::string *first);
 
-PetscErrorCode PushOptionValueErrorHandler(void);
+/* The first error a rank met on a parallel communicator where it is not the first rank (the
+   first rank prints it); printed by FinishRanks() only if the other ranks do not finish. */
+struct ErrorRecord {
+  bool        have  = false; /* a message is kept */
+  bool        quiet = false; /* the error being passed up is one kept quiet: its callers' frames too */
+  std::string message;
+};
+/* Push turgor's error handler; `record` (owned by the caller, alive until PetscFinalize) keeps the
+   messages other ranks would otherwise print. */
+PetscErrorCode PushErrorHandler(ErrorRecord *record);
+/* Collective on comm, at the end of main: every rank waits for the others. A rank that failed
+   (status != 0) waits at most `timeout` seconds: a failure met by one rank only leaves the others
+   in a collective call, and then this rank prints its message and aborts the job (MPI_Abort)
+   instead of hanging. */
+PetscErrorCode FinishRanks(MPI_Comm comm, int status, const ErrorRecord &record, double timeout);
 /* Install the SIGINT/SIGTERM handler (after PetscInitialize). */
 PetscErrorCode InstallInterruptHandler(void);
 /* True once SIGINT or SIGTERM arrived on this rank. */
