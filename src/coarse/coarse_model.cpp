@@ -427,31 +427,51 @@ PetscErrorCode CoarseModel::PrecomputeElements()
   std::string msg;
   PetscCall(FirstMessage(comm_, bad, &msg));
   PetscCheck(msg.empty(), comm_, PETSC_ERR_ARG_WRONG, "Coarse mesh: %s", msg.c_str());
-  /* the tip: the vertex nearest to the middle of the right side of the mesh's bounding box */
-  PetscReal lo[2], hi[2], best[2] = {PETSC_MAX_REAL, 0};
+  /* the tip: the middle of the right side of the mesh's bounding box (the fine run's tip particle),
+     on the mesh edge nearest to it. The displacement there is the element's interpolation along
+     that edge (linear for Q1, quadratic through the edge's middle node for Q2), so that an odd
+     number of elements along y does not move the tip off centre to the nearest vertex. */
+  PetscReal lo[2], hi[2], best = PETSC_MAX_REAL;
   PetscCall(DMGetBoundingBox(dm_, lo, hi));
+  const PetscReal    target[2] = {hi[0], 0.5 * (lo[1] + hi[1])};
   const PetscScalar *xc;
   PetscSection       vs;
+  PetscInt           e_start, e_end;
   PetscCall(DMGetLocalSection(cdm, &vs));
+  PetscCall(DMPlexGetDepthStratum(dm_, 1, &e_start, &e_end));
   PetscCall(VecGetArrayRead(coords, &xc));
   PetscMPIInt rank;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  for (PetscInt v = v_start_; v < v_end_; v++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(vs, v, &off));
-    const PetscReal d = std::hypot(xc[off] - hi[0], xc[off + 1] - 0.5 * (lo[1] + hi[1]));
-    if (d < best[0]) {
-      best[0]     = d;
-      tip_vertex_ = v;
+  for (PetscInt e = e_start; e < e_end; e++) {
+    const PetscInt *cone;
+    PetscInt        size, oa, ob;
+    PetscCall(DMPlexGetConeSize(dm_, e, &size));
+    if (size != 2) continue;
+    PetscCall(DMPlexGetCone(dm_, e, &cone));
+    PetscCall(PetscSectionGetOffset(vs, cone[0], &oa));
+    PetscCall(PetscSectionGetOffset(vs, cone[1], &ob));
+    const PetscReal ax = PetscRealPart(xc[oa]), ay = PetscRealPart(xc[oa + 1]), ex = PetscRealPart(xc[ob]) - ax, ey = PetscRealPart(xc[ob + 1]) - ay;
+    const PetscReal L2 = ex * ex + ey * ey;
+    if (!(L2 > 0)) continue;
+    PetscReal sp = std::clamp(((target[0] - ax) * ex + (target[1] - ay) * ey) / L2, (PetscReal)0, (PetscReal)1);
+    if (sp < 1e-12) sp = 0; /* at a vertex: its value, bit for bit */
+    if (sp > 1 - 1e-12) sp = 1;
+    const PetscReal d = std::hypot(ax + sp * ex - target[0], ay + sp * ey - target[1]);
+    if (d < best) {
+      best    = d;
+      tip_.a  = cone[0];
+      tip_.b  = cone[1];
+      tip_.e  = e;
+      tip_.sp = sp;
     }
   }
   PetscCall(VecRestoreArrayRead(coords, &xc));
   struct {
     PetscReal d;
     int       r;
-  } mine = {best[0], rank}, win;
+  } mine = {best, rank}, win;
   PetscCallMPI(MPI_Allreduce(&mine, &win, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm_)); /* PetscReal is double */
-  if (win.r != rank) tip_vertex_ = -1;
+  if (win.r != rank) tip_.e = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1148,14 +1168,21 @@ PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy)
   PetscReal val = 0;
   PetscFunctionBeginUser;
   PetscCall(GlobalToLocal(U, Uloc_));
-  if (tip_vertex_ >= 0) {
+  if (tip_.e >= 0) {
     PetscSection       ls;
-    PetscInt           off;
+    PetscInt           oa, ob, oe, ne;
     const PetscScalar *u;
     PetscCall(DMGetLocalSection(dm_, &ls));
-    PetscCall(PetscSectionGetOffset(ls, tip_vertex_, &off));
+    PetscCall(PetscSectionGetOffset(ls, tip_.a, &oa));
+    PetscCall(PetscSectionGetOffset(ls, tip_.b, &ob));
+    PetscCall(PetscSectionGetOffset(ls, tip_.e, &oe));
+    PetscCall(PetscSectionGetDof(ls, tip_.e, &ne));
     PetscCall(VecGetArrayRead(Uloc_, &u));
-    val = PetscRealPart(u[off + 1]);
+    const PetscReal t = tip_.sp, ua = PetscRealPart(u[oa + 1]), ub = PetscRealPart(u[ob + 1]);
+    if (t == 0) val = ua;
+    else if (t == 1) val = ub;
+    else if (ne > 0) val = ua * (1 - t) * (1 - 2 * t) + PetscRealPart(u[oe + 1]) * 4 * t * (1 - t) + ub * t * (2 * t - 1); /* Q2: the edge's middle node */
+    else val = (1 - t) * ua + t * ub;
     PetscCall(VecRestoreArrayRead(Uloc_, &u));
   }
   PetscCallMPI(MPI_Allreduce(&val, uy, 1, MPIU_REAL, MPIU_SUM, comm_));

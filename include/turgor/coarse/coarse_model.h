@@ -218,13 +218,17 @@ private:
   std::vector<PetscReal>   f_ext_;     /* [cell][node][2] */
   std::vector<PetscInt>    free_rows_; /* global row of ux of each owned, unclamped node */
   std::vector<PetscScalar> work_;      /* an element vector and matrix, (4 nodes)^2 + 4 nodes */
-  PetscInt                 v_start_ = 0, v_end_ = 0, tip_vertex_ = -1;
-  PetscReal                rho0_       = 0;
-  PetscInt                 n_elements_ = 0;
-  std::vector<PetscInt>    cell_gid_; /* global element number of each local cell */
-  PetscMPIInt              rank_      = 0;
-  PetscReal                eval_time_ = 0; /* time of the state being evaluated (for reports) */
-  std::string              eval_where_;    /* or where, when not a time */
+  PetscInt                 v_start_ = 0, v_end_ = 0;
+  struct {
+    PetscInt  a = -1, b = -1, e = -1; /* the tip's mesh edge and its end vertices (e = -1: on another rank) */
+    PetscReal sp = 0;                 /* the tip's position along it, 0 at a, 1 at b */
+  } tip_;
+  PetscReal             rho0_       = 0;
+  PetscInt              n_elements_ = 0;
+  std::vector<PetscInt> cell_gid_; /* global element number of each local cell */
+  PetscMPIInt           rank_      = 0;
+  PetscReal             eval_time_ = 0; /* time of the state being evaluated (for reports) */
+  std::string           eval_where_;    /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;
