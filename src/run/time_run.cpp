@@ -599,8 +599,7 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   ckpt_wall_last_ = t1;
   ckpt_last_step_ = step;
   ckpt_count_++;
-  if (ckpt_interval_ > 0)
-    while (ckpt_next_ <= t * (1 + 1e-12)) ckpt_next_ += ckpt_interval_;
+  if (ckpt_interval_ > 0) ckpt_next_ = ckpt_interval_ * (std::floor(t / ckpt_interval_ * (1 + 1e-12)) + 1); /* the next multiple after t */
   PetscCall(PetscInfo(ts_, "Checkpoint %s at t = %g (step %" PetscInt_FMT "): %.0f bytes in %.3f s\n", path.c_str(), (double)t, step, (double)bytes, t1 - t0));
   PetscCall(PetscLogEventEnd(ev_ckpt_write_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
