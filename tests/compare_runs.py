@@ -14,6 +14,7 @@
   compare_runs.py identical A_DIR B_DIR KEY...  tip.csv byte for byte, and summary.json[KEY] equal
   compare_runs.py samefiles A_DIR B_DIR FILE...  the files are byte for byte the same in both runs
                                              (a restarted run's energy.csv, groups.csv, breaks.csv)
+  compare_runs.py increasing DIR             tip.csv's times strictly increase (no row written twice)
   compare_runs.py freefall DIR G TOL         the tip falls freely: |tip(t) + G t^2 / 2| <= TOL (µm)
   compare_runs.py settling DIR RELTOL        a damped oscillation about a rest state: the tip's range
                                              shrinks from third to third of the history, and the
@@ -116,6 +117,12 @@ def main(argv):
                 first = next((k for k, (x, y) in enumerate(zip(la, lb)) if x != y), min(len(la), len(lb)))
                 sys.exit(f"FAIL: {name} differs from line {first + 1} ({len(la)} vs {len(lb)} lines)")
         print(f"identical: {' '.join(argv[4:])}")
+    elif mode == "increasing":
+        times = [t for t, _ in tip(argv[2])]
+        bad = [k for k in range(1, len(times)) if not times[k] > times[k - 1]]
+        if bad:
+            sys.exit(f"FAIL: tip.csv row {bad[0] + 1} at t = {times[bad[0]]} does not follow t = {times[bad[0] - 1]}")
+        print(f"{len(times)} rows, times increasing from {times[0]} to {times[-1]}")
     elif mode == "freefall":
         g, tol = float(argv[3]), float(argv[4])
         err = max(abs(y + 0.5 * g * t * t) for t, y in tip(argv[2]))

@@ -40,6 +40,13 @@ turgor_add_test(restart_bar_fresh COMMAND turgor_app ${RESTART_BAR} -output_dir 
   LABELS fine restart REQUIRES restart_bar_first SETUP restart_bar_fresh)
 turgor_add_test(restart_bar_fresh_identical COMMAND ${CHECK} samekey restart_bar_full restart_bar_fresh tip_displacement_final 0 LABELS fine restart
   REQUIRES "restart_bar_full;restart_bar_fresh")
+# ... and extended: the 4 µs run continued to 6 µs in its own directory (tip.csv: 1000 samples over
+# 4 µs, then this run's 1000 over 6 µs from t = 4 on, no row twice)
+turgor_add_test(restart_bar_extend_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_bar_full restart_bar_extend LABELS fine restart
+  REQUIRES restart_bar_full SETUP restart_bar_extend_copy)
+turgor_add_test(restart_bar_extend COMMAND turgor_app ${RESTART_BAR} -ts_max_time 6 -output_dir restart_bar_extend -restart restart_bar_extend/checkpoint.h5
+  LABELS fine restart REQUIRES restart_bar_extend_copy SETUP restart_bar_extend)
+turgor_add_test(restart_bar_extend_rows COMMAND ${CHECK} increasing restart_bar_extend LABELS fine restart REQUIRES restart_bar_extend)
 turgor_add_test(restart_bar_fresh_state COMMAND ${CHECK} between restart_bar_full checkpoints_written 2 2 LABELS fine restart REQUIRES restart_bar_full)
 
 # A 16-cell polygonal tissue under the lid (config/polygon_compression.yaml shortened): contact

@@ -532,6 +532,9 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "rejections", PETSC_INT, &rej));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "next_sample", PETSC_INT, &sample));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "next_snapshot", PETSC_INT, &snapshot));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "t_final", PETSC_REAL, &t_final_)); /* the sampling schedule */
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "samples", PETSC_INT, &out_.samples));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "snapshots", PETSC_INT, &out_.snapshots));
     std::vector<std::pair<std::string, std::string>> fp;
     PetscCall(CheckpointFingerprint(fp));
     for (auto &kv : fp) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), PETSC_STRING, kv.second.c_str()));
@@ -711,8 +714,26 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     PetscCall(TSCheckpointSetHistory(ts_, H));
     PetscCall(VecDestroy(&H));
   }
+  restart_tip_rows_ = sample; /* the rows written up to the checkpoint */
+  {
+    /* another -ts_max_time or sample count (a run extended): the samples follow this run's
+       schedule from the first one after t (the rows already written stay) */
+    PetscReal tf = t_final_;
+    PetscInt  ns = out_.samples, nsn = out_.snapshots;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "t_final", PETSC_REAL, &t_final_, &tf));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "samples", PETSC_INT, &out_.samples, &ns));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "snapshots", PETSC_INT, &out_.snapshots, &nsn));
+    if (tf != t_final_ || ns != out_.samples || nsn != out_.snapshots) {
+      const PetscReal u = (t + 1e-9 * t_final_) / t_final_; /* the sampler's tolerance */
+      sample            = (PetscInt)std::floor(u * out_.samples) + 1;
+      snapshot          = out_.snapshots > 0 ? (PetscInt)std::floor(u * out_.snapshots) + 1 : 0;
+      PetscCall(PetscPrintf(comm_,
+                            "Restart at t = %g µs: -ts_max_time or the sample counts differ from the checkpoint's run (%g µs, %" PetscInt_FMT
+                            " samples): the samples continue on this run's schedule\n",
+                            (double)t, (double)tf, ns));
+    }
+  }
   sampler_.SetPosition(sample, snapshot);
-  restart_tip_rows_ = sample;
   {
     Vec                L, B;
     const PetscScalar *l, *b;
