@@ -1,5 +1,5 @@
 # The table-driven bad-input suite (label badinput): one test per line of bad_input.txt, and a
-# second one on two MPI ranks where the line says 1,2. Each runs expect_error.py (exit status,
+# second one on two MPI ranks where the line says 1,2 (only that one where it says 2). Each runs expect_error.py (exit status,
 # no crash, the message, the output directory) with its own -output_dir in the build tree.
 set(BAD_PRESET_none "")
 set(BAD_PRESET_fine -mode fine -tissue_cells_x 2 -tissue_cells_y 2 -ts_max_time 1 -fine_snapshots 0 -fine_progress_interval 0)
@@ -23,16 +23,24 @@ foreach(line IN LISTS BAD_LINES)
   string(STRIP "${CMAKE_MATCH_4}" args)
   string(REPLACE "@DATA@" "${CMAKE_CURRENT_SOURCE_DIR}/data" args "${args}")
   string(REPLACE "@CONFIG@" "${PROJECT_SOURCE_DIR}/config" args "${args}")
+  set(requires "")
+  if(args MATCHES "@RESTART@") # a checkpoint made by tests/restart.cmake's fixture
+    set(requires REQUIRES restart_fixture)
+    string(REPLACE "@RESTART@" "${CMAKE_CURRENT_BINARY_DIR}/restart_fixture" args "${args}")
+  endif()
   separate_arguments(args UNIX_COMMAND "${args}")
   list(POP_FRONT args preset)
   if(NOT DEFINED BAD_PRESET_${preset})
     message(FATAL_ERROR "tests/bad_input.txt: case ${name}: unknown preset '${preset}' (none, fine, rve, fe2)")
   endif()
   set(run ${BAD_PRESET_${preset}} -output_dir bad_input/${name} -output_overwrite ${args})
-  turgor_add_test(bad_${name} COMMAND ${BAD} "${regex}" $<TARGET_FILE:turgor_app> ${run} LABELS badinput TIMEOUT 60)
+  if(NOT ranks STREQUAL "2") # "2": only on two ranks (a checkpoint written on one)
+    turgor_add_test(bad_${name} COMMAND ${BAD} "${regex}" $<TARGET_FILE:turgor_app> ${run} LABELS badinput TIMEOUT 60 ${requires})
+  endif()
   if(ranks MATCHES "2")
     set(run ${BAD_PRESET_${preset}} -output_dir bad_input/${name}_np2 -output_overwrite ${args})
-    turgor_add_test(bad_${name}_np2 COMMAND ${BAD} "${regex}" ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${run} LABELS badinput mpi TIMEOUT 60)
+    turgor_add_test(bad_${name}_np2 COMMAND ${BAD} "${regex}" ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${run} LABELS badinput mpi TIMEOUT 60
+                    ${requires})
   endif()
   math(EXPR BAD_COUNT "${BAD_COUNT} + 1")
 endforeach()

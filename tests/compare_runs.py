@@ -12,6 +12,9 @@
   compare_runs.py numbers A B RELTOL         two files of whitespace-separated numbers agree
                                              (|a - b| <= RELTOL * max |b|, per line)
   compare_runs.py identical A_DIR B_DIR KEY...  tip.csv byte for byte, and summary.json[KEY] equal
+  compare_runs.py samefiles A_DIR B_DIR FILE...  the files are byte for byte the same in both runs
+                                             (a restarted run's energy.csv, groups.csv, breaks.csv)
+  compare_runs.py increasing DIR             tip.csv's times strictly increase (no row written twice)
   compare_runs.py freefall DIR G TOL         the tip falls freely: |tip(t) + G t^2 / 2| <= TOL (µm)
   compare_runs.py settling DIR RELTOL        a damped oscillation about a rest state: the tip's range
                                              shrinks from third to third of the history, and the
@@ -106,6 +109,20 @@ def main(argv):
             if sa[k] != sb[k]:
                 sys.exit(f"FAIL: summary.json '{k}': {sa[k]} vs {sb[k]}")
         print(f"tip.csv identical ({len(ta)} bytes); equal: {json.dumps({k: sa[k] for k in argv[4:]})}")
+    elif mode == "samefiles":
+        for name in argv[4:]:
+            fa, fb = open(f"{argv[2]}/{name}", "rb").read(), open(f"{argv[3]}/{name}", "rb").read()
+            if fa != fb:
+                la, lb = fa.splitlines(), fb.splitlines()
+                first = next((k for k, (x, y) in enumerate(zip(la, lb)) if x != y), min(len(la), len(lb)))
+                sys.exit(f"FAIL: {name} differs from line {first + 1} ({len(la)} vs {len(lb)} lines)")
+        print(f"identical: {' '.join(argv[4:])}")
+    elif mode == "increasing":
+        times = [t for t, _ in tip(argv[2])]
+        bad = [k for k in range(1, len(times)) if not times[k] > times[k - 1]]
+        if bad:
+            sys.exit(f"FAIL: tip.csv row {bad[0] + 1} at t = {times[bad[0]]} does not follow t = {times[bad[0] - 1]}")
+        print(f"{len(times)} rows, times increasing from {times[0]} to {times[-1]}")
     elif mode == "freefall":
         g, tol = float(argv[3]), float(argv[4])
         err = max(abs(y + 0.5 * g * t * t) for t, y in tip(argv[2]))

@@ -163,4 +163,31 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void EnergyBalance::SaveState(StateBlob &state) const
+{
+  for (PetscReal v : {W_controls_, K0_, E0_, t_, worst_relative_}) state.Put(v);
+  for (const std::vector<PetscReal> *w : {&W_time_, &P_time_prev_, &W_, &v_prev_, &R_prev_, &F_work_total_, &R_work_}) state.Put(*w);
+  state.Put((PetscReal)F_prev_.size());
+  for (const auto &f : F_prev_) state.Put(f);
+  state.Put((PetscReal)F_work_.size());
+  for (const auto &f : F_work_) state.Put(f);
+}
+
+PetscErrorCode EnergyBalance::LoadState(StateBlob &state)
+{
+  PetscReal n;
+  bool      ok = state.Get(&W_controls_) && state.Get(&K0_) && state.Get(&E0_) && state.Get(&t_) && state.Get(&worst_relative_);
+  PetscFunctionBeginUser;
+  for (std::vector<PetscReal> *w : {&W_time_, &P_time_prev_, &W_, &v_prev_, &R_prev_, &F_work_total_, &R_work_}) ok = ok && state.Get(*w);
+  ok = ok && state.Get(&n) && n >= 0 && n == (PetscReal)W_.size();
+  if (ok) F_prev_.assign((size_t)n, {});
+  for (size_t k = 0; ok && k < F_prev_.size(); k++) ok = state.Get(F_prev_[k]);
+  ok = ok && state.Get(&n) && n >= 0 && n <= (PetscReal)W_.size();
+  if (ok) F_work_.assign((size_t)n, {});
+  for (size_t k = 0; ok && k < F_work_.size(); k++) ok = state.Get(F_work_[k]);
+  PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's energy balance does not fit this scene's terms (-fine_energy with other physics?)");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -4,6 +4,7 @@
 #include <turgor/fine/fine_run.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 namespace turgor {
@@ -363,6 +364,12 @@ PetscErrorCode FineRun::Report()
 PetscErrorCode FineRun::OpenSnapshots()
 {
   PetscFunctionBeginUser;
+  if (!RestartFile().empty()) { /* a restart's snapshots go beside the interrupted run's, which stay whole */
+    char base[64];
+    PetscCall(PetscSNPrintf(base, sizeof base, "particles_restart_%08" PetscInt_FMT, RestartStep()));
+    PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, out_.dir, base));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, out_.dir, "particles"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -560,14 +567,23 @@ PetscErrorCode FineRun::OpenOutputs()
   for (auto &f : files) {
     record_names_.push_back(f.first);
     record_csv_.push_back(std::make_unique<CsvWriter>());
-    if (rank == 0) PetscCall(record_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + f.first, f.second));
+    if (rank == 0 && RestartFile().empty()) PetscCall(record_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + f.first, f.second));
+    else if (rank == 0) {
+      const size_t k = record_csv_.size() - 1;
+      PetscCall(
+        record_csv_.back()->Continue(PETSC_COMM_SELF, out_.dir + "/" + f.first, f.second, k < restart_record_rows_.size() ? restart_record_rows_[k] : 0));
+    }
   }
   if (spec_.energy) {
     std::vector<std::string> columns = {"time"};
     for (const std::string &c : energy_.Columns()) columns.push_back(c);
-    if (rank == 0) PetscCall(energy_csv_.Open(PETSC_COMM_SELF, out_.dir + "/energy.csv", columns));
     energy_every_ = t_final_ / std::max<PetscInt>(out_.samples, 1);
-    energy_next_  = energy_every_;
+    if (!RestartFile().empty()) { /* continued: energy_next_ and the sums come from the checkpoint */
+      if (rank == 0) PetscCall(energy_csv_.Continue(PETSC_COMM_SELF, out_.dir + "/energy.csv", columns, restart_energy_rows_));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    if (rank == 0) PetscCall(energy_csv_.Open(PETSC_COMM_SELF, out_.dir + "/energy.csv", columns));
+    energy_next_ = energy_every_;
     const PetscScalar *u;
     const PetscReal   *x, *v;
     PetscCall(VecGetArrayRead(U_, &u));
@@ -697,6 +713,104 @@ PetscErrorCode FineRun::DoneDetails(std::string *details)
 {
   PetscFunctionBeginUser;
   *details = std::to_string(rhs_evals_) + " RHS evaluations";
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---- checkpoints ---- */
+
+PetscErrorCode FineRun::CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp)
+{
+  PetscInt n = n_local_, ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.polygons.size();
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
+  if (reference_hash_.empty()) {
+    /* FNV-1a over the reference positions and masses (rank 0 holds the tissue) */
+    std::uint64_t h   = 1469598103934665603ull;
+    auto          add = [&h](const void *p, size_t bytes) {
+      const unsigned char *b = (const unsigned char *)p;
+      for (size_t k = 0; k < bytes; k++) h = (h ^ b[k]) * 1099511628211ull;
+    };
+    add(tissue_.X.data(), tissue_.X.size() * sizeof(PetscReal));
+    add(tissue_.particles.mass.data(), tissue_.particles.mass.size() * sizeof(PetscReal));
+    PetscCallMPI(MPI_Bcast(&h, 1, MPI_UINT64_T, 0, comm_));
+    char hex[24];
+    PetscCall(PetscSNPrintf(hex, sizeof hex, "%016llx", (unsigned long long)h));
+    reference_hash_ = hex;
+  }
+  auto join = [](const std::vector<std::string> &v) {
+    std::string s;
+    for (const std::string &x : v) s += (s.empty() ? "" : ",") + x;
+    return s.empty() ? std::string("none") : s;
+  };
+  fp.push_back({"particles", std::to_string((long long)n)});
+  fp.push_back({"cells", std::to_string((long long)ncells)});
+  fp.push_back({"physics", join(model_.ActiveTerms())});
+  fp.push_back({"clamp", join(spec_.clamp)});
+  fp.push_back({"controls", join(controls_.Names())});
+  fp.push_back({"energy", spec_.energy ? "on" : "off"});
+  fp.push_back({"reference_positions_hash", reference_hash_});
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [v_stale, force model, energy: flag, balance, next row time; rows of energy.csv, n logs, their rows] */
+PetscErrorCode FineRun::SaveState(PetscReal t, Vec U, StateBlob &state)
+{
+  const PetscScalar *u;
+  const PetscReal   *x, *v;
+  PetscFunctionBeginUser;
+  state.Put(v_stale_);
+  PetscCall(VecGetArrayRead(U, &u));
+  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  model_.SetTime(t);
+  PetscCall(model_.SaveState(x, v, t, state));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  state.Put(spec_.energy ? 1.0 : 0.0);
+  if (spec_.energy) {
+    energy_.SaveState(state);
+    state.Put(energy_next_);
+  }
+  state.Put((PetscReal)energy_csv_.Rows());
+  state.Put((PetscReal)record_csv_.size());
+  for (auto &csv : record_csv_) state.Put((PetscReal)csv->Rows());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
+{
+  const PetscScalar *u;
+  const PetscReal   *x, *v;
+  PetscReal          energy, nrec;
+  PetscFunctionBeginUser;
+  {
+    /* the lazily taken references (hinge angles, cell areas, bonds at -glue_start_time 0) from the
+       initial state, where the uninterrupted run's first evaluation took them */
+    const PetscInt         n2 = 2 * n_local_;
+    std::vector<PetscReal> u0(2 * n2, 0.0), f(n2);
+    for (PetscInt k = 0; k < n2; k++) {
+      u0[k]      = tissue_.X[k];
+      u0[n2 + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
+    }
+    controls_.Impose(0, u0.data(), u0.data() + n2);
+    model_.SetTime(0);
+    PetscCall(model_.ComputeForces(u0.data(), u0.data() + n2, f.data(), NULL));
+  }
+  PetscCheck(state.Get(v_stale_) && (PetscInt)v_stale_.size() == 2 * n_local_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's velocities of the last drift do not fit this scene");
+  PetscCall(VecGetArrayRead(U, &u));
+  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  model_.SetTime(t);
+  PetscCall(model_.LoadState(x, v, t, state));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscCheck(state.Get(&energy) && (energy != 0) == spec_.energy, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint was written %s -fine_energy, this run is %s it", energy != 0 ? "with" : "without", spec_.energy ? "with" : "without");
+  if (spec_.energy) {
+    PetscCall(energy_.LoadState(state));
+    PetscCheck(state.Get(&energy_next_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's energy balance is incomplete");
+  }
+  PetscCheck(state.Get(&restart_energy_rows_) && state.Get(&nrec), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are missing");
+  restart_record_rows_.assign((size_t)nrec, 0);
+  for (PetscInt &r : restart_record_rows_) PetscCheck(state.Get(&r), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are incomplete");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,3 +1,4 @@
+#include <fstream>
 #include <turgor/io/output.h>
 #include <cmath>
 #include <filesystem>
@@ -28,6 +29,10 @@ PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite,
   PetscCall(PetscOptionsBool("-output_overwrite", "Replace the outputs of an earlier run in -output_dir (otherwise a directory that is not empty is refused)",
                              "turgor", replace, &replace, NULL));
   PetscOptionsEnd();
+  /* -restart continues the run whose outputs the directory holds: nothing is refused or removed
+     (the time series are cut back to the checkpoint and appended to) */
+  PetscBool restart;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-restart", &restart));
   PetscCheck(buf[0], comm, PETSC_ERR_ARG_WRONG, "Option -output_dir: empty");
   {
     PetscBool help;
@@ -50,11 +55,16 @@ PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite,
         const std::string name = entry.path().filename().string();
         bool              own  = false;
         for (const char *o : kOutputFiles) own = own || name == o;
+        own = own ||
+              (name.rfind("checkpoint", 0) == 0 &&
+               ((name.size() > 3 && name.compare(name.size() - 3, 3, ".h5") == 0) || (name.size() > 7 && name.compare(name.size() - 7, 7, ".h5.tmp") == 0))) ||
+              name.rfind("particles_restart", 0) == 0; /* checkpoint.h5, checkpoint_<step>.h5, a restart's snapshots */
         if (own) ours.push_back(entry.path());
         else kept += (kept.empty() ? "" : ", ") + name;
         found += (found.empty() ? "" : ", ") + name;
       }
-      if (!found.empty() && !replace) state = 2;
+      if (restart) { /* kept: the run continues them */
+      } else if (!found.empty() && !replace) state = 2;
       else
         for (const auto &f : ours) fs::remove(f, ec);
     } else {
@@ -85,6 +95,7 @@ PetscErrorCode CsvWriter::Open(MPI_Comm comm, const std::string &path, const std
   std::string header;
   for (const std::string &c : columns) header += (header.empty() ? "" : ",") + c;
   PetscCall(PetscFPrintf(comm, fp_, "%s\n", header.c_str()));
+  rows_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -99,6 +110,7 @@ PetscErrorCode CsvWriter::Row(const std::vector<PetscReal> &values)
     line += (k ? "," : "") + std::string(num);
   }
   PetscCall(PetscFPrintf(comm_, fp_, "%s\n", line.c_str()));
+  rows_++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -109,6 +121,7 @@ PetscErrorCode CsvWriter::RowText(const std::vector<std::string> &cells)
   std::string line;
   for (size_t k = 0; k < cells.size(); k++) line += (k ? "," : "") + cells[k];
   PetscCall(PetscFPrintf(comm_, fp_, "%s\n", line.c_str()));
+  rows_++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -118,6 +131,29 @@ PetscErrorCode CsvWriter::Close()
   if (comm_ != MPI_COMM_NULL) PetscCall(PetscFClose(comm_, fp_));
   comm_ = MPI_COMM_NULL;
   fp_   = nullptr;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A restarted run's file: the header and the first `rows` rows of the interrupted run's file are
+   kept (later rows, written after the checkpoint, are dropped) and new rows appended; a file that
+   is missing, or has another header, is started anew. Only the calling process (a PETSC_COMM_SELF
+   writer on rank 0) touches the file. */
+PetscErrorCode CsvWriter::Continue(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns, PetscInt rows)
+{
+  std::string header;
+  PetscFunctionBeginUser;
+  for (const std::string &c : columns) header += (header.empty() ? "" : ",") + c;
+  std::vector<std::string> kept;
+  {
+    std::ifstream in(path);
+    std::string   line;
+    if (in && std::getline(in, line) && line == header)
+      while ((PetscInt)kept.size() < rows && std::getline(in, line)) kept.push_back(line);
+    else if (in) kept.clear();
+  }
+  PetscCall(Open(comm, path, columns));
+  for (const std::string &l : kept) PetscCall(PetscFPrintf(comm_, fp_, "%s\n", l.c_str()));
+  rows_ = rows; /* counted as the uninterrupted run counts them, also when the file was missing */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -50,8 +50,10 @@ PetscErrorCode TimeSampler::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, co
   }
   PetscLogDouble now;
   PetscCall(PetscTime(&now));
-  if (step == 0) start_ = last_report_ = now;
-  else if (interval_ > 0 && now - last_report_ >= interval_) {
+  if (!started_) {
+    start_ = last_report_ = now;
+    started_              = true;
+  } else if (interval_ > 0 && now - last_report_ >= interval_) {
     const PetscReal frac = t / T, el = now - start_, eta = frac > 0 ? el * (1 - frac) / frac : 0;
     PetscInt        rej;
     MPI_Comm        comm;

@@ -233,4 +233,20 @@ PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscR
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode NeighbourSearch::Restore(const ParticleSet &P, const std::vector<PetscReal> &x_ref, PetscInt rebuilds, const PeriodicImages &images)
+{
+  PetscFunctionBeginUser;
+  Reset();
+  if (!x_ref.empty() && (WantsFluidPairs() || WantsParticleSpringPairs())) {
+    PetscCheck(x_ref.size() == (size_t)(2 * P.n), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "neighbour search: the checkpoint's list positions are for %zu particles, the scene has %" PetscInt_FMT, x_ref.size() / 2, P.n);
+    if (images.periodic) PetscCall(BuildPeriodic(P, x_ref.data(), images));
+    else PetscCall(Build(P, x_ref.data()));
+    for (int r = 0; r < 2; r++)
+      for (int d = 0; d < 2; d++) a_ref_[r][d] = images.a[r][d];
+  }
+  rebuilds_ = rebuilds;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -82,4 +82,25 @@ PetscErrorCode Bars::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Checkpoints: [dissipated, power, t_last, have_power] */
+PetscErrorCode Bars::SaveState(const ForceInput &in, StateBlob &state) const
+{
+  PetscFunctionBeginUser;
+  state.Put(dissipated_);
+  state.Put(power_);
+  state.Put(t_last_);
+  state.Put(have_power_ ? 1.0 : 0.0);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Bars::LoadState(const ForceInput &in, StateBlob &state)
+{
+  PetscReal have;
+  PetscFunctionBeginUser;
+  PetscCheck(state.Get(&dissipated_) && state.Get(&power_) && state.Get(&t_last_) && state.Get(&have), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "bars: the checkpoint's dashpot state is incomplete");
+  have_power_ = have != 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

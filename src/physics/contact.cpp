@@ -356,4 +356,58 @@ PetscErrorCode Contact::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Checkpoints: [stamp, dissipated, nlive, per live pair: node, bar, xi, lam_ref, stamp] (local
+   node indices: a restart has the same particles on the same ranks) */
+PetscErrorCode Contact::SaveState(const ForceInput &in, StateBlob &state) const
+{
+  PetscFunctionBeginUser;
+  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  state.Put((PetscReal)stamp_);
+  state.Put(dissipated_);
+  state.Put((PetscReal)HistoryEntries());
+  for (size_t k = 0; k < cand_.size(); k++)
+    if (hist_[k].live) {
+      const History &h = hist_[k];
+      for (PetscReal v : {(PetscReal)cand_[k].p, (PetscReal)cand_[k].s, h.xi, h.lam_ref, (PetscReal)h.stamp}) state.Put(v);
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Contact::LoadState(const ForceInput &in, StateBlob &state)
+{
+  PetscReal n;
+  PetscFunctionBeginUser;
+  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(state.Get(&stamp_) && state.Get(&dissipated_) && state.Get(&n) && n >= 0 && state.pos + 5 * (size_t)n <= state.data.size(), PETSC_COMM_SELF,
+             PETSC_ERR_FILE_UNEXPECTED, "contact: the checkpoint's contact histories are incomplete");
+  std::unordered_map<std::uint64_t, History> saved;
+  for (size_t e = 0; e < (size_t)n; e++) {
+    PetscReal v[5] = {0, 0, 0, 0, 0};
+    for (PetscReal &r : v) state.Get(&r);
+    PetscCheck(v[0] >= 0 && v[0] < in.P->n && v[1] >= 0 && v[1] < (PetscReal)n_springs_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "contact: the checkpoint's contact history names a node or bar outside the scene");
+    saved.emplace(Key(*in.P, (PetscInt)v[0], (PetscInt)v[1]), History{v[2], v[3], true, (PetscInt)v[4]});
+  }
+  /* the pair lists from the restored neighbour lists, then the histories by key */
+  cand_.clear();
+  hist_.clear();
+  live_.clear();
+  trial_.clear();
+  trial_lists_   = -1;
+  seen_rebuilds_ = -1;
+  PetscCall(Refresh(in));
+  size_t found = 0;
+  for (size_t k = 0; k < cand_.size(); k++) {
+    auto it = saved.find(Key(*in.P, cand_[k].p, cand_[k].s));
+    if (it == saved.end()) continue;
+    hist_[k] = it->second;
+    live_.push_back((PetscInt)k);
+    found++;
+  }
+  PetscCheck(found == saved.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "contact: %zu of the checkpoint's %zu contact histories have no pair in the neighbour lists at its state", saved.size() - found, saved.size());
+  BuildNearList(in, in.x, in.P->n); /* with the live pairs */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -327,4 +327,45 @@ PetscErrorCode ForceModel::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode ForceModel::SaveState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t;
+  state.Put((PetscReal)nb_.Rebuilds());
+  state.Put(nb_.ReferencePositions());
+  state.Put((PetscReal)terms_.size());
+  for (auto &term : terms_) {
+    StateBlob b;
+    PetscCall(term->SaveState(in, b));
+    state.Put(b.data);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ForceModel::LoadState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state)
+{
+  PetscReal              rebuilds, nterms;
+  std::vector<PetscReal> x_ref;
+  PetscFunctionBeginUser;
+  PetscCheck(state.Get(&rebuilds) && state.Get(x_ref) && state.Get(&nterms), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's force model state is incomplete");
+  PetscCheck((size_t)nterms == terms_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint holds the state of %zu terms, the scene has %zu",
+             (size_t)nterms, terms_.size());
+  PetscCall(nb_.Restore(*P_, x_ref, (PetscInt)rebuilds, images_));
+  last_x_.clear();
+  last_rebuilds_ = -1;
+  t_             = t;
+  ForceInput in  = {P_, x, v, &nb_, &images_};
+  in.t           = t;
+  for (auto &term : terms_) {
+    StateBlob b;
+    PetscCheck(state.Get(b.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s is missing", term->Name());
+    PetscCall(term->LoadState(in, b));
+    PetscCheck(b.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s has %zu numbers more than the term reads", term->Name(),
+               b.data.size() - b.pos);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -519,4 +519,51 @@ PetscErrorCode Glue::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Checkpoints: [have_bonds, nbonds, per bond p a b intact lam gn0 gt0 sign L lmax s cell_p cell_s,
+   intact, accepted, unbonded, dissipated, time] */
+PetscErrorCode Glue::SaveState(const ForceInput &in, StateBlob &state) const
+{
+  PetscFunctionBeginUser;
+  state.Put(have_bonds_ ? 1.0 : 0.0);
+  state.Put((PetscReal)bonds_.size());
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    const Bond     &B = bonds_[k];
+    const BondInfo &I = info_[k];
+    for (PetscReal v : {(PetscReal)B.p, (PetscReal)B.a, (PetscReal)B.b, (PetscReal)B.intact, B.lam, B.gn0, B.gt0, B.sign, B.L, B.lmax, (PetscReal)I.s,
+                        (PetscReal)I.cell_p, (PetscReal)I.cell_s})
+      state.Put(v);
+  }
+  for (PetscReal v : {(PetscReal)intact_, (PetscReal)accepted_, (PetscReal)unbonded_, dissipated_, time_}) state.Put(v);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Glue::LoadState(const ForceInput &in, StateBlob &state)
+{
+  PetscReal have, nb;
+  PetscFunctionBeginUser;
+  PetscCheck(state.Get(&have) && state.Get(&nb) && nb >= 0 && state.pos + 13 * (size_t)nb + 5 <= state.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "glue: the checkpoint's bond records are incomplete");
+  bonds_.assign((size_t)nb, Bond());
+  info_.assign((size_t)nb, BondInfo());
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    Bond     &B     = bonds_[k];
+    BondInfo &I     = info_[k];
+    PetscReal v[13] = {};
+    for (PetscReal &r : v) state.Get(&r);
+    B.p = (PetscInt)v[0], B.a = (PetscInt)v[1], B.b = (PetscInt)v[2], B.intact = (PetscInt)v[3];
+    B.lam = v[4], B.gn0 = v[5], B.gt0 = v[6], B.sign = v[7], B.L = v[8], B.lmax = v[9];
+    I.s = (PetscInt)v[10], I.cell_p = (PetscInt)v[11], I.cell_s = (PetscInt)v[12];
+    PetscCheck(B.p >= 0 && B.p < in.P->n && B.a >= 0 && B.a < in.P->n && B.b >= 0 && B.b < in.P->n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "glue: the checkpoint's bond %zu names a node outside the scene's %" PetscInt_FMT, k, in.P->n);
+  }
+  PetscReal v[5] = {0, 0, 0, 0, 0};
+  for (PetscReal &r : v) state.Get(&r);
+  intact_ = (PetscInt)v[0], accepted_ = (PetscInt)v[1], unbonded_ = (PetscInt)v[2], dissipated_ = v[3], time_ = v[4];
+  have_bonds_ = have != 0;
+  trial_.clear();
+  push_.clear();
+  breaks_.clear();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -248,4 +248,32 @@ PetscErrorCode Hinges::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Checkpoints: [have_ref, n, cos0, sin0, theta_p, dissipated] */
+PetscErrorCode Hinges::SaveState(const ForceInput &in, StateBlob &state) const
+{
+  PetscFunctionBeginUser;
+  state.Put(have_ref_ ? 1.0 : 0.0);
+  state.Put(cos0_);
+  state.Put(sin0_);
+  state.Put(theta_p_);
+  state.Put(dissipated_);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Hinges::LoadState(const ForceInput &in, StateBlob &state)
+{
+  PetscReal              ref;
+  std::vector<PetscReal> c, s, p;
+  PetscFunctionBeginUser;
+  if (!state.Get(&ref) || !state.Get(c) || !state.Get(s) || !state.Get(p) || !state.Get(&dissipated_) || c.size() != hinge_.size() ||
+      s.size() != hinge_.size() || p.size() != hinge_.size())
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "hinges: the checkpoint holds %zu hinges' state, the scene has %zu hinges", p.size(), hinge_.size());
+  have_ref_ = ref != 0;
+  cos0_.swap(c);
+  sin0_.swap(s);
+  theta_p_.swap(p);
+  have_angles_ = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

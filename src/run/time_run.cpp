@@ -1,7 +1,11 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/log.h>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <turgor/run/time_run.h>
+#include <turgor/ts/ts_checkpoint.h>
+#include <petscviewerhdf5.h>
 
 namespace turgor {
 
@@ -64,6 +68,32 @@ PetscErrorCode TimeRun::SetFromOptions()
   /* the output directory first: a mode option refused below then leaves a summary.json that says
      so, not the previous run's files (with -output_overwrite) */
   PetscCall(out_.SetFromOptions(comm_, mode_ + "_"));
+  {
+    char      file[PETSC_MAX_PATH_LEN] = "";
+    PetscBool set;
+    PetscOptionsBegin(comm_, NULL, "Checkpoint and restart", "turgor");
+    PetscCall(PetscOptionsReal("-checkpoint_interval",
+                               "Write a checkpoint (checkpoint_<step>.h5, and checkpoint.h5: the latest) in -output_dir every T µs of simulated time, and "
+                               "at the end or on an interrupt; 0 = off",
+                               "TimeRun", ckpt_interval_, &ckpt_interval_, NULL));
+    PetscCall(PetscOptionsReal("-checkpoint_wall_interval", "Write a checkpoint every S seconds of wall time (at the next accepted step); 0 = off", "TimeRun",
+                               ckpt_wall_, &ckpt_wall_, NULL));
+    PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint file (the same scene options and number of ranks)", "TimeRun", file, file,
+                                 sizeof file, &set));
+    PetscOptionsEnd();
+    PetscCheck(std::isfinite(ckpt_interval_) && ckpt_interval_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -checkpoint_interval = %g: must be finite and >= 0", (double)ckpt_interval_);
+    PetscCheck(std::isfinite(ckpt_wall_) && ckpt_wall_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -checkpoint_wall_interval = %g: must be finite and >= 0",
+               (double)ckpt_wall_);
+    PetscCheck(!set || file[0], comm_, PETSC_ERR_ARG_WRONG, "Option -restart: empty (give the checkpoint file to continue from)");
+    restart_file_ = set ? file : "";
+    PetscCheck(Checkpointable() || (ckpt_interval_ == 0 && ckpt_wall_ == 0 && !set), comm_, PETSC_ERR_SUP,
+               "Option %s: -mode %s has no checkpoints yet (only -mode fine; FE2's RVE states are not saved)",
+               set                  ? "-restart"
+               : ckpt_interval_ > 0 ? "-checkpoint_interval"
+                                    : "-checkpoint_wall_interval",
+               mode_.c_str());
+  }
   PetscCall(ModeSetFromOptions());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -75,6 +105,8 @@ PetscErrorCode TimeRun::SetUp()
   PetscCall(RegisterLogStage((mode_ + " setup").c_str(), &stage_setup_));
   PetscCall(RegisterLogStage((mode_ + " solve").c_str(), &stage_solve_));
   PetscCall(PetscLogEventRegister("TgOutput", PETSC_OBJECT_CLASSID, &ev_output_));
+  PetscCall(PetscLogEventRegister("TgCheckpointWrite", PETSC_OBJECT_CLASSID, &ev_ckpt_write_));
+  PetscCall(PetscLogEventRegister("TgCheckpointRead", PETSC_OBJECT_CLASSID, &ev_ckpt_read_));
   PetscCall(PetscLogStagePush(stage_setup_));
   PetscCheck(ts_, comm_, PETSC_ERR_ORDER, "SetFromOptions() must be called before SetUp()");
   PetscCall(SetUpModel());
@@ -89,12 +121,28 @@ PetscErrorCode TimeRun::SetUp()
   PetscCall(TSSetSolution(ts_, U_));
   PetscCall(TSSetUp(ts_));
   sampler_.Configure(t_final_, out_.samples, out_.snapshots, out_.progress_interval);
+  if (ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty()) {
+    PetscBool   ok;
+    const char *why;
+    PetscCall(TSCheckpointSupported(ts_, &ok, &why));
+    PetscCheck(ok, comm_, PETSC_ERR_SUP, "Option %s: %s", restart_file_.empty() ? "-checkpoint_interval" : "-restart", why);
+  }
+  if (!restart_file_.empty()) {
+    PetscCall(ReadCheckpoint());
+    PetscCall(TSSetPreStep(ts_, PreStep));
+  }
+  {
+    PetscReal t0;
+    PetscCall(TSGetTime(ts_, &t0));
+    ckpt_next_ = ckpt_interval_ > 0 ? ckpt_interval_ * (std::floor(t0 / ckpt_interval_ * (1 + 1e-12)) + 1) : 0;
+  }
   PetscCall(Report());
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   if (rank == 0 && out_.ready) {
     std::vector<std::string> columns = {"time"};
     for (const std::string &c : ObservedColumns()) columns.push_back(c);
-    PetscCall(tip_csv_.Open(PETSC_COMM_SELF, out_.dir + "/tip.csv", columns));
+    if (restart_file_.empty()) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, out_.dir + "/tip.csv", columns));
+    else PetscCall(tip_csv_.Continue(PETSC_COMM_SELF, out_.dir + "/tip.csv", columns, restart_tip_rows_));
   }
   series_csv_.clear();
   series_files_.clear();
@@ -104,7 +152,8 @@ PetscErrorCode TimeRun::SetUp()
     if (rank == 0 && out_.ready) {
       std::vector<std::string> columns = {"time"};
       for (const std::string &c : s.columns) columns.push_back(c);
-      PetscCall(series_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + s.file, columns));
+      if (restart_file_.empty()) PetscCall(series_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + s.file, columns));
+      else PetscCall(series_csv_.back()->Continue(PETSC_COMM_SELF, out_.dir + "/" + s.file, columns, restart_tip_rows_)); /* sampled with tip.csv */
     }
   }
   if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
@@ -222,6 +271,12 @@ PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *
       ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
       run->FunctionEvaluations()));
     PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
+    /* after the samples of this step: a restart continues with the next ones */
+    if (step > run->ckpt_last_step_ && step > 0 && (run->ckpt_interval_ > 0 || run->ckpt_wall_ > 0)) {
+      PetscBool due;
+      PetscCall(run->CheckpointDue(t, &due));
+      if (due) PetscCall(run->WriteCheckpoint(t, step));
+    }
     PetscFunctionReturn(PETSC_SUCCESS);
   });
 }
@@ -244,6 +299,13 @@ PetscErrorCode TimeRun::Solve()
              mode_.c_str(), (double)t, (double)stalled_, (double)dt_min_, FailureAdvice());
   PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "The %s run failed at t = %g µs (%s): %s", mode_.c_str(), (double)t, TSConvergedReasons[reason],
              FailureAdvice());
+  if ((ckpt_interval_ > 0 || ckpt_wall_ > 0) && out_.ready) { /* the end of the run (or its interrupt) */
+    PetscInt  step;
+    PetscReal tn;
+    PetscCall(TSGetStepNumber(ts_, &step));
+    PetscCall(TSGetTime(ts_, &tn));
+    if (step != ckpt_last_step_) PetscCall(WriteCheckpoint(tn, step));
+  }
   PetscCall(AfterSolve());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -290,6 +352,15 @@ PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
   js.Set("rhs_evals", FunctionEvaluations());
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("mpi_ranks", (PetscInt)size);
+  if (ckpt_interval_ > 0 || ckpt_wall_ > 0) {
+    js.Set("checkpoints_written", ckpt_count_);
+    js.Set("checkpoint_bytes", ckpt_bytes_);
+    js.Set("checkpoint_write_s", ckpt_seconds_);
+  }
+  if (!restart_file_.empty()) {
+    js.Set("restarted_from", restart_file_);
+    js.Set("restart_step", restart_step_);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -311,6 +382,28 @@ PetscErrorCode TimeRun::WriteSummary()
   js.Set("rhs_evals", evals);
   PetscCall(AddSummary(js));
   js.Set("tip_displacement_final", observed_);
+  {
+    /* FNV-1a over the final state's bytes, rank by rank: equal hashes are (all but surely) equal
+       states bit for bit (restart tests) */
+    const PetscScalar *u;
+    PetscInt           n;
+    std::uint64_t      h = 1469598103934665603ull;
+    PetscCall(VecGetLocalSize(U_, &n));
+    PetscCall(VecGetArrayRead(U_, &u));
+    const unsigned char *b = (const unsigned char *)u;
+    for (size_t k = 0; k < (size_t)n * sizeof(PetscScalar); k++) h = (h ^ b[k]) * 1099511628211ull;
+    PetscCall(VecRestoreArrayRead(U_, &u));
+    PetscMPIInt size, rank;
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+    std::vector<std::uint64_t> all(size);
+    PetscCallMPI(MPI_Gather(&h, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, 0, comm_));
+    std::uint64_t g = 1469598103934665603ull;
+    for (std::uint64_t x : all) g = (g ^ x) * 1099511628211ull;
+    char hex[24];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)g);
+    js.Set("final_state_hash", std::string(hex));
+  }
   js.Set("snapshots", SnapshotCount());
   PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
   PetscCall(TSGetSolveTime(ts_, &t));
@@ -347,6 +440,371 @@ PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
   PetscCall(tip_csv_.Close());
   for (auto &csv : series_csv_) PetscCall(csv->Close());
   PetscCall(js.Write(PETSC_COMM_SELF, out_.dir + "/summary.json"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---- checkpoints ---- */
+
+static const PetscInt kCheckpointVersion = 1;
+
+/* The integrator as a checkpoint names it: type, and the RK or ARKIMEX scheme. */
+static PetscErrorCode IntegratorName(TS ts, std::string *name)
+{
+  TSType    type;
+  PetscBool is_rk;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetType(ts, &type));
+  *name = type ? type : "";
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSRK, &is_rk));
+  if (is_rk) {
+    TSRKType rk;
+    PetscCall(TSRKGetType(ts, &rk));
+    *name += std::string(" ") + rk;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TimeRun::PreStep(TS ts)
+{
+  PetscFunctionBeginUser;
+  PetscCall(TSCheckpointPreStep(ts));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every -checkpoint_interval of simulated time, or -checkpoint_wall_interval of wall time (rank 0's
+   clock decides, for all ranks). */
+PetscErrorCode TimeRun::CheckpointDue(PetscReal t, PetscBool *due)
+{
+  PetscFunctionBeginUser;
+  *due = PETSC_FALSE;
+  if (ckpt_interval_ > 0 && t >= ckpt_next_ * (1 - 1e-12)) *due = PETSC_TRUE;
+  if (ckpt_wall_ > 0) {
+    PetscLogDouble now;
+    int            w;
+    PetscCall(PetscTime(&now));
+    if (ckpt_wall_last_ == 0) ckpt_wall_last_ = now;
+    w = now - ckpt_wall_last_ >= ckpt_wall_;
+    PetscCallMPI(MPI_Bcast(&w, 1, MPI_INT, 0, comm_));
+    if (w) *due = PETSC_TRUE;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* checkpoint_<step>.h5 in the output directory, written as a temporary file and renamed (a crash
+   while writing leaves the previous checkpoints whole), then linked as checkpoint.h5 (the latest,
+   also by a rename). Attributes of "/": the format version, mode, ranks, integrator, time, step, next
+   step size, step rejections, the sampler's position and the scene's fingerprint; datasets: state
+   (the TS solution), integrator_history (ts_checkpoint.h; with has_history), run_state_layout (per
+   rank, the length of its part of run_state) and run_state (per rank: the length, then the mode's
+   StateBlob). */
+PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
+{
+  PetscLogDouble t0, t1;
+  PetscViewer    v;
+  PetscMPIInt    rank, size;
+  char           name[64];
+  PetscFunctionBeginUser;
+  if (!out_.ready) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(ev_ckpt_write_, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t0));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(PetscSNPrintf(name, sizeof name, "checkpoint_%08" PetscInt_FMT ".h5", step));
+  const std::string path = out_.dir + "/" + name, tmp = path + ".tmp", latest = out_.dir + "/checkpoint.h5";
+  PetscCall(PetscViewerHDF5Open(comm_, tmp.c_str(), FILE_MODE_WRITE, &v));
+  {
+    std::string integrator;
+    PetscInt    ival;
+    PetscReal   dt;
+    PetscInt    sample, snapshot, rej;
+    PetscCall(IntegratorName(ts_, &integrator));
+    PetscCall(TSGetTimeStep(ts_, &dt));
+    PetscCall(TSGetStepRejections(ts_, &rej));
+    sampler_.Position(&sample, &snapshot);
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "format_version", PETSC_INT, &kCheckpointVersion));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "mode", PETSC_STRING, mode_.c_str()));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "integrator", PETSC_STRING, integrator.c_str()));
+    ival = size;
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ranks", PETSC_INT, &ival));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "time", PETSC_REAL, &t));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "step", PETSC_INT, &step));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "dt_next", PETSC_REAL, &dt));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "rejections", PETSC_INT, &rej));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "next_sample", PETSC_INT, &sample));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "next_snapshot", PETSC_INT, &snapshot));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "t_final", PETSC_REAL, &t_final_)); /* the sampling schedule */
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "samples", PETSC_INT, &out_.samples));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "snapshots", PETSC_INT, &out_.snapshots));
+    std::vector<std::pair<std::string, std::string>> fp;
+    PetscCall(CheckpointFingerprint(fp));
+    for (auto &kv : fp) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), PETSC_STRING, kv.second.c_str()));
+  }
+  PetscCall(VecView(U_, v));
+  {
+    Vec      H, Hc;
+    PetscInt has;
+    PetscCall(TSCheckpointGetHistory(ts_, &H));
+    has = H ? 1 : 0;
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "has_history", PETSC_INT, &has));
+    if (H) {
+      PetscCall(VecDuplicate(H, &Hc));
+      PetscCall(VecCopy(H, Hc));
+      PetscCall(PetscObjectSetName((PetscObject)Hc, "integrator_history"));
+      PetscCall(VecView(Hc, v));
+      PetscCall(VecDestroy(&Hc));
+    }
+  }
+  {
+    StateBlob    blob;
+    Vec          B, L;
+    PetscScalar *b;
+    PetscCall(SaveState(t, U_, blob));
+    const PetscInt n = (PetscInt)blob.data.size();
+    PetscCall(VecCreateMPI(comm_, 1, PETSC_DETERMINE, &L));
+    PetscCall(PetscObjectSetName((PetscObject)L, "run_state_layout"));
+    PetscCall(VecSetValue(L, rank, (PetscScalar)n, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(L));
+    PetscCall(VecAssemblyEnd(L));
+    PetscCall(VecView(L, v));
+    PetscCall(VecDestroy(&L));
+    PetscCall(VecCreateMPI(comm_, n + 1, PETSC_DETERMINE, &B));
+    PetscCall(PetscObjectSetName((PetscObject)B, "run_state"));
+    PetscCall(VecGetArray(B, &b));
+    b[0] = (PetscScalar)n;
+    for (PetscInt k = 0; k < n; k++) b[k + 1] = blob.data[k];
+    PetscCall(VecRestoreArray(B, &b));
+    PetscCall(VecView(B, v));
+    PetscCall(VecDestroy(&B));
+  }
+  PetscCall(PetscViewerDestroy(&v));
+  PetscReal bytes  = 0;
+  int       failed = 0;
+  if (rank == 0) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (!ec) {
+      const std::string link = latest + ".tmp";
+      fs::remove(link, ec);
+      fs::create_hard_link(path, link, ec);
+      if (ec) fs::copy_file(path, link, fs::copy_options::overwrite_existing, ec);
+      if (!ec) fs::rename(link, latest, ec);
+    }
+    failed = ec ? 1 : 0;
+    if (!failed) bytes = (PetscReal)fs::file_size(path, ec);
+  }
+  PetscCallMPI(MPI_Bcast(&failed, 1, MPI_INT, 0, comm_));
+  PetscCheck(!failed, comm_, PETSC_ERR_FILE_WRITE, "Checkpoint: cannot rename %s to %s and link it as %s", tmp.c_str(), path.c_str(), latest.c_str());
+  PetscCallMPI(MPI_Bcast(&bytes, 1, MPIU_REAL, 0, comm_));
+  PetscCall(PetscTime(&t1));
+  ckpt_seconds_ += t1 - t0;
+  ckpt_bytes_     = bytes;
+  ckpt_wall_last_ = t1;
+  ckpt_last_step_ = step;
+  ckpt_count_++;
+  if (ckpt_interval_ > 0) ckpt_next_ = ckpt_interval_ * (std::floor(t / ckpt_interval_ * (1 + 1e-12)) + 1); /* the next multiple after t */
+  PetscCall(PetscInfo(ts_, "Checkpoint %s at t = %g (step %" PetscInt_FMT "): %.0f bytes in %.3f s\n", path.c_str(), (double)t, step, (double)bytes, t1 - t0));
+  PetscCall(PetscLogEventEnd(ev_ckpt_write_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The first message of an error raised while the checkpoint is read (the read errors are
+   reported as one message naming the option and the file). */
+static PetscErrorCode KeepFirstError(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess,
+                                     void *ctx)
+{
+  std::string *first = (std::string *)ctx;
+  if (!first->empty()) return n;
+  /* a state that does not fit this run (raised by the LoadState hooks) or a file that cannot be read */
+  *first = std::string(n == PETSC_ERR_FILE_UNEXPECTED ? "U:" : "R:") + (mess && mess[0] ? mess : std::string("error in ") + (fun ? fun : "?"));
+  return n;
+}
+
+PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
+{
+  PetscInt    version = -1, ranks = 0, step = 0, rej = 0, sample = 0, snapshot = 0, has = 0;
+  PetscReal   t = 0, dt = 0;
+  PetscMPIInt size, rank;
+  char       *str = NULL;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  {
+    PetscBool has_version;
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/", "format_version", &has_version));
+    if (!has_version) {
+      *problem = "not a turgor checkpoint (no format_version)";
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "format_version", PETSC_INT, NULL, &version));
+  if (version != kCheckpointVersion) {
+    *problem = "checkpoint format version " + std::to_string((long long)version) + "; this turgor reads version " +
+               std::to_string((long long)kCheckpointVersion);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "mode", PETSC_STRING, NULL, &str));
+  std::string mode = str;
+  PetscCall(PetscFree(str));
+  if (mode != mode_) {
+    *problem = "written by -mode " + mode + ", this run is -mode " + mode_;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "ranks", PETSC_INT, NULL, &ranks));
+  if (ranks != size) {
+    *problem = "written on " + std::to_string((long long)ranks) + " MPI ranks, this run has " + std::to_string((long long)size) +
+               " (restart on the same number of ranks)";
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  {
+    std::vector<std::pair<std::string, std::string>> fp;
+    std::string                                      diff;
+    PetscCall(CheckpointFingerprint(fp));
+    for (auto &kv : fp) {
+      PetscBool   present;
+      std::string theirs = "(none)";
+      PetscCall(PetscViewerHDF5HasAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), &present));
+      if (present) {
+        PetscCall(PetscViewerHDF5ReadAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), PETSC_STRING, NULL, &str));
+        theirs = str;
+        PetscCall(PetscFree(str));
+      }
+      if (theirs != kv.second) diff += (diff.empty() ? "" : "; ") + kv.first + " " + theirs + " in the checkpoint, " + kv.second + " in this scene";
+    }
+    if (!diff.empty()) {
+      *problem = "the checkpoint is from another scene: " + diff + " (give the scene options of the run that wrote it)";
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
+  {
+    std::string ours;
+    PetscCall(IntegratorName(ts_, &ours));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "integrator", PETSC_STRING, NULL, &str));
+    std::string theirs = str;
+    PetscCall(PetscFree(str));
+    if (theirs != ours) {
+      *problem = "integrated with -ts_type " + theirs + ", this run with " + ours + " (give the same integrator)";
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "time", PETSC_REAL, NULL, &t));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "step", PETSC_INT, NULL, &step));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "dt_next", PETSC_REAL, NULL, &dt));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "rejections", PETSC_INT, NULL, &rej));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "next_sample", PETSC_INT, NULL, &sample));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "next_snapshot", PETSC_INT, NULL, &snapshot));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "has_history", PETSC_INT, NULL, &has));
+  if (!(t < t_final_)) {
+    *problem = "written at t = " + std::to_string((double)t) + " µs, not before -ts_max_time = " + std::to_string((double)t_final_) +
+               " µs: nothing to continue";
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(VecLoad(U_, v));
+  PetscCall(TSSetTime(ts_, t));
+  PetscCall(TSSetStepNumber(ts_, step));
+  PetscCall(TSSetTimeStep(ts_, dt));
+  PetscCall(TSCheckpointSetRejections(ts_, rej));
+  if (has) {
+    PetscInt n;
+    Vec      H;
+    PetscCall(TSCheckpointHistorySize(ts_, &n));
+    PetscCall(VecCreateMPI(comm_, n, PETSC_DETERMINE, &H));
+    PetscCall(PetscObjectSetName((PetscObject)H, "integrator_history"));
+    PetscCall(VecLoad(H, v));
+    PetscCall(TSCheckpointSetHistory(ts_, H));
+    PetscCall(VecDestroy(&H));
+  }
+  restart_tip_rows_ = sample; /* the rows written up to the checkpoint */
+  {
+    /* another -ts_max_time or sample count (a run extended): the samples follow this run's
+       schedule from the first one after t (the rows already written stay) */
+    PetscReal tf = t_final_;
+    PetscInt  ns = out_.samples, nsn = out_.snapshots;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "t_final", PETSC_REAL, &t_final_, &tf));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "samples", PETSC_INT, &out_.samples, &ns));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "snapshots", PETSC_INT, &out_.snapshots, &nsn));
+    if (tf != t_final_ || ns != out_.samples || nsn != out_.snapshots) {
+      const PetscReal u = (t + 1e-9 * t_final_) / t_final_; /* the sampler's tolerance */
+      sample            = (PetscInt)std::floor(u * out_.samples) + 1;
+      snapshot          = out_.snapshots > 0 ? (PetscInt)std::floor(u * out_.snapshots) + 1 : 0;
+      PetscCall(PetscPrintf(comm_,
+                            "Restart at t = %g µs: -ts_max_time or the sample counts differ from the checkpoint's run (%g µs, %" PetscInt_FMT
+                            " samples): the samples continue on this run's schedule\n",
+                            (double)t, (double)tf, ns));
+    }
+  }
+  sampler_.SetPosition(sample, snapshot);
+  {
+    Vec                L, B;
+    const PetscScalar *l, *b;
+    PetscInt           n;
+    StateBlob          blob;
+    PetscCall(VecCreateMPI(comm_, 1, PETSC_DETERMINE, &L));
+    PetscCall(PetscObjectSetName((PetscObject)L, "run_state_layout"));
+    PetscCall(VecLoad(L, v));
+    PetscCall(VecGetArrayRead(L, &l));
+    n = (PetscInt)PetscRealPart(l[0]);
+    PetscCall(VecRestoreArrayRead(L, &l));
+    PetscCall(VecDestroy(&L));
+    PetscCall(VecCreateMPI(comm_, n + 1, PETSC_DETERMINE, &B));
+    PetscCall(PetscObjectSetName((PetscObject)B, "run_state"));
+    PetscCall(VecLoad(B, v));
+    PetscCall(VecGetArrayRead(B, &b));
+    PetscCheck((PetscInt)PetscRealPart(b[0]) == n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "run_state of rank %d: length %g, layout says %" PetscInt_FMT,
+               rank, (double)PetscRealPart(b[0]), n);
+    blob.data.assign(b + 1, b + 1 + n);
+    PetscCall(VecRestoreArrayRead(B, &b));
+    PetscCall(VecDestroy(&B));
+    PetscCall(LoadState(t, U_, blob));
+    PetscCheck(blob.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "run_state of rank %d: %zu numbers more than this run reads", rank,
+               blob.data.size() - blob.pos);
+  }
+  restart_step_   = step;
+  ckpt_last_step_ = step;
+  t_last_         = t;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -restart: the file must exist, be a whole HDF5 checkpoint of this format, mode, rank count,
+   scene and integrator; anything else is refused naming the option and the file. */
+PetscErrorCode TimeRun::ReadCheckpoint()
+{
+  const char *file = restart_file_.c_str();
+  PetscMPIInt rank;
+  int         exists = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_ckpt_read_, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (rank == 0) {
+    std::error_code ec;
+    exists = std::filesystem::is_regular_file(restart_file_, ec) ? 1 : 0;
+  }
+  PetscCallMPI(MPI_Bcast(&exists, 1, MPI_INT, 0, comm_));
+  PetscCheck(exists, comm_, PETSC_ERR_FILE_OPEN, "Option -restart %s: no such checkpoint file", file);
+  std::string    first, problem;
+  PetscViewer    v = NULL;
+  PetscErrorCode ierr;
+  H5E_auto2_t    hfunc;
+  void          *hdata;
+  H5Eget_auto2(H5E_DEFAULT, &hfunc, &hdata);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's own error stack would bury the message */
+  PetscCall(PetscPushErrorHandler(KeepFirstError, &first));
+  ierr = PetscViewerHDF5Open(comm_, file, FILE_MODE_READ, &v);
+  if (!ierr) ierr = ReadCheckpointFile(v, &problem);
+  if (v) (void)PetscViewerDestroy(&v);
+  PetscCall(PetscPopErrorHandler());
+  H5Eset_auto2(H5E_DEFAULT, hfunc, hdata);
+  {
+    int bad = ierr ? 1 : 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm_));
+    const bool unfit = first.compare(0, 2, "U:") == 0;
+    PetscCheck(!bad, comm_, PETSC_ERR_FILE_READ, "Option -restart %s: %s: %s", file,
+               unfit ? "the checkpoint's state does not fit this run (another scene or other options?)"
+                     : "cannot read the checkpoint (truncated, damaged or not a turgor checkpoint)",
+               first.empty() ? "read error on another rank" : first.c_str() + 2);
+  }
+  PetscCheck(problem.empty(), comm_, PETSC_ERR_ARG_INCOMP, "Option -restart %s: %s", file, problem.c_str());
+  PetscCall(PetscLogEventEnd(ev_ckpt_read_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

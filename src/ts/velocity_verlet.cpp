@@ -197,3 +197,30 @@ PetscErrorCode TSCreate_Verlet(TS ts)
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSVerletGetCounters_C", TSVerletGetCounters_Verlet));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode TSVerletGetLastAcceleration(TS ts, Vec *A1, PetscBool *have)
+{
+  PetscBool is;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVERLET, &is));
+  PetscCheck(is, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "TSVerletGetLastAcceleration: the TS is not of type verlet");
+  Verlet *vv = (Verlet *)ts->data;
+  *A1        = vv->A1;
+  *have      = vv->have_a1 && vv->t_a1 == ts->ptime ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSVerletSetLastAcceleration(TS ts, Vec A1)
+{
+  PetscBool is;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVERLET, &is));
+  PetscCheck(is, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "TSVerletSetLastAcceleration: the TS is not of type verlet");
+  Verlet *vv = (Verlet *)ts->data;
+  PetscCheck(vv->A1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ORDER, "TSVerletSetLastAcceleration: call after TSSetUp");
+  PetscCall(VecCopy(A1, vv->A1));
+  PetscCall(PetscObjectStateGet((PetscObject)ts->vec_sol, &vv->state_a1));
+  vv->t_a1    = ts->ptime;
+  vv->have_a1 = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -35,6 +35,9 @@ public:
   PetscErrorCode Row(MPI_Comm comm, const PetscReal *x, const PetscReal *v, std::vector<PetscReal> &row, PetscReal *relative);
   PetscReal      LargestRelativeResidual() const { return worst_relative_; }
   PetscReal      ExternalWork() const; /* this rank's */
+  /* Checkpoints: the running sums (works, references, the last step's forces and velocities). */
+  void           SaveState(StateBlob &state) const;
+  PetscErrorCode LoadState(StateBlob &state);
 
 private:
   PetscErrorCode Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<PetscReal> &reaction);

@@ -77,6 +77,14 @@ protected:
   {
     return "the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters";
   }
+  /* Checkpoints: the scene's fingerprint (particles, cells, physics, clamps, controls, a hash of
+     the reference positions) and the run's state (the terms' internal state with the neighbour
+     lists, the energy balance, the velocities of Verlet's last drift, the rows of energy.csv and
+     the terms' logs). */
+  bool           Checkpointable() const override { return true; }
+  PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
+  PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
+  PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
 
 private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx);
@@ -130,6 +138,11 @@ private:
   PetscReal              tip_y0_ = 0;
   ParticleSnapshotWriter snapshots_writer_;
   PetscInt               rhs_evals_ = 0;
+
+  /* restart: the rows of energy.csv and of the terms' logs at the checkpoint; the fingerprint's hash */
+  PetscInt              restart_energy_rows_ = 0;
+  std::vector<PetscInt> restart_record_rows_;
+  std::string           reference_hash_;
 };
 
 } // namespace turgor

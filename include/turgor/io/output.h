@@ -25,11 +25,16 @@ public:
   PetscErrorCode Close();
   bool           IsOpen() const { return comm_ != MPI_COMM_NULL; }
   ~CsvWriter() { PetscCallVoid(Close()); }
+  /* Rows written since Open (with Continue: including the rows kept). */
+  PetscInt Rows() const { return rows_; }
+  /* Restart: keep the first `rows` rows of the file at `path` (if it has these columns), then append. */
+  PetscErrorCode Continue(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns, PetscInt rows);
 
 private:
   MPI_Comm comm_ = MPI_COMM_NULL;
   FILE    *fp_   = nullptr;
   size_t   ncol_ = 0;
+  PetscInt rows_ = 0;
 };
 
 /* A flat JSON object whose keys keep their insertion order. */

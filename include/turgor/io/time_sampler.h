@@ -17,7 +17,12 @@ public:
   {
     t_final_ = t_final, n_samples_ = n_samples, n_snapshots_ = n_snapshots, interval_ = progress_interval;
     next_sample_ = next_snapshot_ = 0;
+    started_                      = false;
   }
+  /* Checkpoints: the next sample and snapshot indices; a restarted run continues from them (its
+     first monitor call, at the checkpoint's step, then writes nothing twice). */
+  void Position(PetscInt *sample, PetscInt *snapshot) const { *sample = next_sample_, *snapshot = next_snapshot_; }
+  void SetPosition(PetscInt sample, PetscInt snapshot) { next_sample_ = sample, next_snapshot_ = snapshot; }
   /* Call from the TS monitor; `evals` is the caller's count of function evaluations so far. */
   PetscErrorCode Monitor(TS ts, PetscInt step, PetscReal t, Vec U, const Callback &sample, const Callback &snapshot, PetscInt evals);
   PetscLogDouble Elapsed() const;
@@ -29,7 +34,8 @@ private:
   PetscReal      t_final_ = 1, interval_ = 10;
   PetscInt       n_samples_ = 0, n_snapshots_ = 0, next_sample_ = 0, next_snapshot_ = 0;
   PetscLogDouble start_ = 0, last_report_ = 0;
-  Vec            work_ = nullptr;
+  Vec            work_    = nullptr;
+  bool           started_ = false; /* the wall clock starts at the first monitor call (step 0, or a restart's first) */
 };
 
 } // namespace turgor

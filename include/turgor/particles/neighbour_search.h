@@ -48,6 +48,11 @@ public:
   PetscInt                Rebuilds() const { return rebuilds_; }
   bool                    WantsFluidPairs() const { return fluid_cutoff_ > 0; }
   bool                    WantsParticleSpringPairs() const { return spring_cutoff_ > 0; }
+  /* Checkpoints: the positions the lists were last built at (empty: never built), and Restore,
+     which builds them there again and sets the build count, so that a restarted run rebuilds at the
+     same steps and visits the pairs in the same order as an uninterrupted one. */
+  const std::vector<PetscReal> &ReferencePositions() const { return x_ref_; }
+  PetscErrorCode                Restore(const ParticleSet &P, const std::vector<PetscReal> &x_ref, PetscInt rebuilds, const PeriodicImages &images);
 
 private:
   PetscErrorCode Build(const ParticleSet &P, const PetscReal *x);

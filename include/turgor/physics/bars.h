@@ -26,6 +26,10 @@ public:
   PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
   PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */
 
+  /* Checkpoints: the dashpot's dissipation and its last power sample. */
+  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+
 private:
   std::vector<PetscReal> gamma_; /* per bar (all `damping`) */
   PetscReal              dissipated_ = 0, power_ = 0, t_last_ = 0;

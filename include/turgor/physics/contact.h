@@ -47,6 +47,11 @@ public:
   PetscReal friction             = 0;     /* mu */
   PetscReal tangential_stiffness = -1;    /* k_t [N/m]; < 0: k_n */
 
+  /* Checkpoints: the live tangential histories by (node, bar) and the friction's dissipation; a
+     restart rebuilds the pair lists from the restored neighbour lists and re-attaches them. */
+  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+
 private:
   struct History {
     PetscReal xi      = 0;     /* committed elastic tangential displacement [µm] */

@@ -91,6 +91,11 @@ public:
   const PeriodicImages &Images() const { return images_; }
   PetscInt              Evaluations() const { return evaluations_; }
   PetscErrorCode        View(PetscViewer viewer) const;
+  /* Checkpoints (after AcceptStep at the accepted state (x, v) of time t): the neighbour lists'
+     positions and every term's SaveState, one sub-blob per term; LoadState restores them on a model
+     set up on the same scene (errors name the term). */
+  PetscErrorCode SaveState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
+  PetscErrorCode LoadState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
 
 private:
   const ParticleSet                      *P_ = nullptr;

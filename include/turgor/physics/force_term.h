@@ -7,6 +7,7 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
 #include <turgor/physics/load_spec.h>
+#include <turgor/core/state_blob.h>
 #include <petscviewer.h>
 #include <memory>
 #include <string>
@@ -115,6 +116,13 @@ public:
   /* Counters for summary.json, as (key, value) pairs summed over ranks (e.g. contact's mean number
      of contacts per evaluation); keys start with the term's name. */
   virtual void Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const { }
+  /* Checkpoints: SaveState appends the internal state at the accepted state (after AcceptStep);
+     LoadState reads it back into a term set up on the same scene, at the checkpoint's state `in`
+     (its neighbour lists already restored), so that the run continues bit for bit. A term without
+     internal state writes nothing. LoadState returns PETSC_ERR_FILE_UNEXPECTED on a blob that does
+     not fit (the caller names the file). */
+  virtual PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const { return PETSC_SUCCESS; }
+  virtual PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) { return PETSC_SUCCESS; }
 };
 
 /* Clone() for a term that is copyable while configured and not yet set up. */

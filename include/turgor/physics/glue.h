@@ -93,6 +93,12 @@ public:
   bool      has_unbonded_box     = false; /* -glue_unbonded_box: no bond whose bond point is inside (a pre-crack, a notch) */
   PetscReal unbonded_box[4]      = {0, 0, 0, 0};
 
+  /* Checkpoints: every bond as made (its geometry, intact, lmax) and the sums; a restart takes the
+     bonds from the checkpoint instead of making them again (-glue_start_time: made from the
+     positions of that time). */
+  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+
 private:
   struct Bond {        /* what every evaluation reads */
     PetscInt  p, a, b; /* node, bar ends */

@@ -36,6 +36,10 @@ public:
   PetscReal stiffness  = 1.0e4; /* k_r [µN µm / rad] */
   PetscReal max_moment = 0;     /* M_max [µN µm]; 0 = elastic */
 
+  /* Checkpoints: the plastic angles, the reference angles and the dissipation. */
+  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+
 private:
   struct Hinge {
     PetscInt a, b, c; /* previous node, hinge node, next node */

@@ -8,6 +8,7 @@
    Order: SetFromOptions() creates the TS with the defaults and reads the options; programs may
    then adjust the TS or the specs through the API; SetUp() builds the model, calls
    TSSetFromOptions() and opens the outputs. */
+#include <turgor/core/state_blob.h>
 #include <turgor/io/output.h>
 #include <turgor/io/time_sampler.h>
 #include <turgor/run/simulation.h>
@@ -96,6 +97,20 @@ protected:
   /* Refuse integrators the mode cannot use (after TSSetFromOptions; the message says why). */
   virtual PetscErrorCode CheckIntegrator() { return PETSC_SUCCESS; }
 
+  /* Checkpoints (-checkpoint_interval, -checkpoint_wall_interval, -restart). TimeRun writes the
+     state Vec, time, step, next step size, the integrator's carried derivative (ts_checkpoint.h)
+     and the outputs' sampling position; a mode that supports them returns true and adds its own
+     state and the fingerprint of its scene (name, value: a restart on another scene is refused,
+     naming the part that differs). */
+  virtual bool           Checkpointable() const { return false; }
+  virtual PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
+  /* At the restored state U of time t (after TSSetUp, before the outputs are opened). */
+  virtual PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
+  /* The checkpoint a run continues from ("" when none), and its step. */
+  const std::string &RestartFile() const { return restart_file_; }
+  PetscInt           RestartStep() const { return restart_step_; }
+
   /* Seconds of wall time in TSSolve. */
   PetscReal WallTime() const { return (PetscReal)wall_; }
 
@@ -111,6 +126,11 @@ private:
   PetscErrorCode        Sample(PetscReal t, Vec U);
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
+  static PetscErrorCode PreStep(TS ts);
+  PetscErrorCode        WriteCheckpoint(PetscReal t, PetscInt step);
+  PetscErrorCode        ReadCheckpoint(); /* -restart: every check, then the state restored */
+  PetscErrorCode        ReadCheckpointFile(PetscViewer v, std::string *problem);
+  PetscErrorCode        CheckpointDue(PetscReal t, PetscBool *due);
 
   std::string                             mode_;
   CsvWriter                               tip_csv_;
@@ -124,6 +144,16 @@ private:
   bool                                    interrupted_ = false, solving_ = false;
   PetscReal                               t_last_ = 0, stalled_ = -1, dt_min_ = 0; /* stalled_: the accepted step below dt_min_ (>= 0) */
   static constexpr PetscReal              kMinStepFraction = 1e-10;                /* default -ts_adapt_dt_min / -ts_max_time */
+
+  /* checkpoints */
+  PetscReal             ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
+  PetscLogDouble        ckpt_wall_last_ = 0;
+  PetscInt              ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
+  PetscReal             ckpt_bytes_ = 0, ckpt_seconds_ = 0;
+  std::string           restart_file_;
+  std::vector<PetscInt> restart_series_rows_;
+  PetscInt              restart_tip_rows_ = 0;
+  PetscLogEvent         ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
 };
 
 } // namespace turgor

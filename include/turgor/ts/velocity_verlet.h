@@ -23,3 +23,9 @@
    step's end (the first step evaluates twice, every later step once). Errors on a TS of another
    type. */
 PETSC_EXTERN PetscErrorCode TSVerletGetCounters(TS ts, PetscInt *evaluations, PetscInt *reused);
+
+/* Checkpoints: the acceleration of the last step's end (reused as the next step's first), and
+   setting it on a restarted TS (after TSSetUp, at the restored solution and time), so that the next
+   step reuses it as an uninterrupted run would. *have is PETSC_FALSE before the first step. */
+PETSC_EXTERN PetscErrorCode TSVerletGetLastAcceleration(TS ts, Vec *A1, PetscBool *have);
+PETSC_EXTERN PetscErrorCode TSVerletSetLastAcceleration(TS ts, Vec A1);

@@ -1,0 +1,22 @@
+#pragma once
+/* What an integrator carries from one step to the next besides the solution, time and step size,
+   for checkpoints (-checkpoint_interval, -restart): the step's reused derivative.
+     verlet: the acceleration at the last step's end (velocity_verlet.h);
+     rk with an FSAL tableau (5dp, 3bs): the last stage's derivative, the next step's first;
+     other explicit types (rk without FSAL, euler, ssp, basicsymplectic): nothing.
+   Multistep types (am) carry several steps of history and are refused. A C header (PETSC_EXTERN). */
+#include <turgor/core/petsc_compat.h>
+#include <petscts.h>
+
+/* *supported: whether a run of this TS type can be checkpointed; *why says why not. */
+PETSC_EXTERN PetscErrorCode TSCheckpointSupported(TS ts, PetscBool *supported, const char **why);
+/* The history Vec (owned by the TS; NULL when the type has none or no step was taken yet). */
+PETSC_EXTERN PetscErrorCode TSCheckpointGetHistory(TS ts, Vec *H);
+/* Local length of the history on this rank, 0 when none (a set-up TS; for the layout of a file). */
+PETSC_EXTERN PetscErrorCode TSCheckpointHistorySize(TS ts, PetscInt *n);
+/* Restore the history on a set-up TS at the restored solution and time; the next TSSolve step uses
+   it (call TSCheckpointPreStep from the TS pre-step: an RK TS restarts its FSAL otherwise). */
+PETSC_EXTERN PetscErrorCode TSCheckpointSetHistory(TS ts, Vec H);
+PETSC_EXTERN PetscErrorCode TSCheckpointPreStep(TS ts);
+/* The step rejections so far (summary.json), restored. */
+PETSC_EXTERN PetscErrorCode TSCheckpointSetRejections(TS ts, PetscInt rejections);

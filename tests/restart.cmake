@@ -1,0 +1,86 @@
+# Checkpoint and restart of fine runs (issue 13; label restart): a run of 2T in one go, and the same
+# run stopped after some steps (-ts_max_steps) with its end-of-run checkpoint, then continued with
+# -restart in the same output directory, end bit for bit the same: tip.csv (and the other time
+# series) byte for byte, without duplicated rows, and the same final_state_hash (FNV-1a of the final
+# state). Also a restart from a checkpoint written at -checkpoint_interval into a fresh directory.
+set(RESTART_HELPER ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_helper.py)
+
+# name; leg1: the steps of the first leg; INTERVAL: -checkpoint_interval of the full run (it writes
+# one checkpoint there and one at the end); FILES: further outputs that must be the same; LAUNCH:
+# mpiexec and its arguments
+function(turgor_restart_case name leg1)
+  cmake_parse_arguments(R "" "INTERVAL" "OPTIONS;FILES;LAUNCH" ${ARGN})
+  set(run ${R_LAUNCH} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite)
+  set(labels fine restart)
+  if(R_LAUNCH)
+    list(APPEND labels mpi)
+  endif()
+  turgor_add_test(restart_${name}_full COMMAND ${run} -output_dir restart_${name}_full -checkpoint_interval ${R_INTERVAL}
+    LABELS ${labels} SETUP restart_${name}_full)
+  turgor_add_test(restart_${name}_leg1 COMMAND ${run} -output_dir restart_${name}_legs -ts_max_steps ${leg1} -checkpoint_interval 1e6
+    LABELS ${labels} SETUP restart_${name}_leg1)
+  turgor_add_test(restart_${name}_leg2 COMMAND ${R_LAUNCH} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_dir restart_${name}_legs
+    -restart restart_${name}_legs/checkpoint.h5 LABELS ${labels} REQUIRES restart_${name}_leg1 SETUP restart_${name}_leg2)
+  turgor_add_test(restart_${name}_identical COMMAND ${CHECK} identical restart_${name}_full restart_${name}_legs final_state_hash tip_displacement_final
+    steps LABELS fine restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
+  if(R_FILES)
+    turgor_add_test(restart_${name}_series COMMAND ${CHECK} samefiles restart_${name}_full restart_${name}_legs ${R_FILES}
+      LABELS fine restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
+  endif()
+endfunction()
+
+# The square-grid bending bar (DOPRI, adaptive: the next step size and the FSAL derivative are
+# restored) over 4 µs, stopped after 300 steps (t = 1.19 µs).
+set(RESTART_BAR -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_max_time 4 -fine_snapshots 0 -fine_progress_interval 0)
+turgor_restart_case(bar 300 INTERVAL 2 OPTIONS ${RESTART_BAR})
+# ... and from the checkpoint written at t = 2 µs (not the end) into a fresh directory
+turgor_add_test(restart_bar_first COMMAND ${RESTART_HELPER} first restart_bar_full restart_bar_first.h5 LABELS fine restart
+  REQUIRES restart_bar_full SETUP restart_bar_first)
+turgor_add_test(restart_bar_fresh COMMAND turgor_app ${RESTART_BAR} -output_dir restart_bar_fresh -output_overwrite -restart restart_bar_first.h5
+  LABELS fine restart REQUIRES restart_bar_first SETUP restart_bar_fresh)
+turgor_add_test(restart_bar_fresh_identical COMMAND ${CHECK} samekey restart_bar_full restart_bar_fresh tip_displacement_final 0 LABELS fine restart
+  REQUIRES "restart_bar_full;restart_bar_fresh")
+# ... and extended: the 4 µs run continued to 6 µs in its own directory (tip.csv: 1000 samples over
+# 4 µs, then this run's 1000 over 6 µs from t = 4 on, no row twice)
+turgor_add_test(restart_bar_extend_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_bar_full restart_bar_extend LABELS fine restart
+  REQUIRES restart_bar_full SETUP restart_bar_extend_copy)
+turgor_add_test(restart_bar_extend COMMAND turgor_app ${RESTART_BAR} -ts_max_time 6 -output_dir restart_bar_extend -restart restart_bar_extend/checkpoint.h5
+  LABELS fine restart REQUIRES restart_bar_extend_copy SETUP restart_bar_extend)
+turgor_add_test(restart_bar_extend_rows COMMAND ${CHECK} increasing restart_bar_extend LABELS fine restart REQUIRES restart_bar_extend)
+turgor_add_test(restart_bar_fresh_state COMMAND ${CHECK} between restart_bar_full checkpoints_written 2 2 LABELS fine restart REQUIRES restart_bar_full)
+
+# A 16-cell polygonal tissue under the lid (config/polygon_compression.yaml shortened): contact
+# with friction (tangential histories), plastic hinges, cell pressure, velocity controls, the energy
+# balance, TS verlet (its last acceleration restored); stopped after 9000 of 25060 steps.
+set(RESTART_POLY -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -ts_max_time 16 -control_lid_delay 1 -control_lid_velocity 0,-3 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_tip_samples 200)
+turgor_restart_case(polygon 9000 INTERVAL 8 OPTIONS ${RESTART_POLY} FILES groups.csv energy.csv)
+
+# The glued traction scene on 16 cells (tests/glue.cmake's TRACTION16, v1): stopped after 6000 steps
+# (t = 2.74 µs), after the first four bonds broke; breaks.csv continues without duplicates.
+set(RESTART_GLUE -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -control_top_box -1,87.5,101,101 -control_bottom_box -1,-1,101,12.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy 0
+  -fine_dt_safety 0.25 -control_top_velocity 0,0.05 -control_bottom_velocity 0,-0.05 -control_top_ramp_time 5 -control_bottom_ramp_time 5
+  -ts_max_time 20)
+turgor_restart_case(glue 6000 INTERVAL 10 OPTIONS ${RESTART_GLUE} FILES groups.csv breaks.csv)
+
+# Two ranks (the fine mode keeps the particles on rank 0; the state Vec and the checkpoint are
+# parallel), the small square grid with its snapshots.
+turgor_restart_case(mpi2 150 INTERVAL 5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS -mode fine -tissue_cells_x 4 -tissue_cells_y 4 -ts_max_time 10
+  -fine_snapshots 2 -fine_progress_interval 0)
+
+# The fixture of the bad-checkpoint cases (tests/bad_input.txt, @RESTART@): a checkpoint of the
+# bad-input suite's fine preset, and a copy cut in half.
+turgor_add_test(restart_fixture COMMAND turgor_app ${BAD_PRESET_fine} -output_dir restart_fixture -output_overwrite -checkpoint_interval 0.5
+  LABELS badinput restart SETUP restart_fixture_run)
+turgor_add_test(restart_fixture_truncated COMMAND ${RESTART_HELPER} truncate restart_fixture/checkpoint.h5 restart_fixture/truncated.h5
+  LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+
+# SIGTERM: the interrupted run writes its checkpoint after the step it stops at; continued, it ends
+# as the uninterrupted one.
+turgor_add_test(restart_polygon_interrupted COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/interrupt_run.py 1 restart_polygon_int $<TARGET_FILE:turgor_app>
+  ${RESTART_POLY} -fine_progress_interval 0.2 -checkpoint_interval 1e6 LABELS fine restart SETUP restart_polygon_int)
+turgor_add_test(restart_polygon_int_continue COMMAND turgor_app ${RESTART_POLY} -output_dir restart_polygon_int -restart restart_polygon_int/checkpoint.h5
+  LABELS fine restart REQUIRES restart_polygon_int SETUP restart_polygon_int_continue)
+turgor_add_test(restart_polygon_int_identical COMMAND ${CHECK} identical restart_polygon_full restart_polygon_int final_state_hash tip_displacement_final
+  steps LABELS fine restart REQUIRES "restart_polygon_full;restart_polygon_int_continue")
