@@ -34,7 +34,7 @@ int main(int argc, char **argv)
   PetscCall(turgor::InstallInterruptHandler());
   PetscCall(TurgorRegisterAll()); /* TS types, physics terms, materials, tissues, modes */
   if (turgor::RunMode(PETSC_COMM_WORLD, NULL, &status)) status = 1;
-  PetscCall(turgor::FinishRanks(PETSC_COMM_WORLD, status, errors, 5.0));
+  PetscCall(turgor::FinishRanks(PETSC_COMM_WORLD, status, errors, 20.0)); /* long enough for the first rank to write its failure report */
   PetscCall(PetscFinalize());
   return status;
 }
