@@ -59,13 +59,4 @@ turgor_add_test(polygon_compression_snapshots COMMAND turgor_app ${BOX} -ts_max_
   SETUP box_snapshots)
 turgor_add_test(polygon_compression_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py box_snapshots/particles.xmf LABELS fine
   REQUIRES box_snapshots)
-if(TURGOR_PVPYTHON)
-  foreach(reader default XDMFReader)
-    set(R "")
-    if(NOT reader STREQUAL default)
-      set(R --reader ${reader})
-    endif()
-    turgor_add_test(paraview_polygon_compression_${reader} COMMAND ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py
-      polygons box_snapshots --gas-p0 50 ${R} LABELS paraview fine REQUIRES box_snapshots TIMEOUT 120)
-  endforeach()
-endif()
+turgor_paraview_polygons(polygon_compression box_snapshots 50)
