@@ -67,6 +67,7 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   tau_   = shear_strength > 0 ? shear_strength : sigma_ * std::sqrt(kt_ / normal_stiffness);
   l0_    = sigma_ / normal_stiffness;
   l02_   = l0_ * l0_;
+  beta2_ = kt_ / normal_stiffness;
   lf_    = 2 * fracture_energy / sigma_;
   PetscCheck(law != SOFTENING || lf_ > l0_ * (1 + 1e-12), comm, PETSC_ERR_ARG_INCOMP,
              "Options -glue_law softening, -glue_strength = %g, -glue_fracture_energy = %g, -glue_normal_stiffness = %g: the softening branch needs G_c > "
@@ -273,7 +274,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
 template <int MODE>
 PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
-  const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_, beta2 = kt_ / normal_stiffness;
+  const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_;
   PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
   if (MODE <= 1) trial_.resize(bonds_.size());
   if (MODE <= 1) push_.resize(bonds_.size());
@@ -288,7 +289,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
     const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = std::max(dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
-    const PetscReal l2 = dnp * dnp + beta2 * dt * dt, D = law == SOFTENING && (B.lmax > l0_ || l2 > l02_) ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
+    const PetscReal l2 = Opening2(dnp, dt), D = law == SOFTENING && !BeforePeak(B, l2) ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
     if (MODE <= 1) trial_[k] = {dnp, dt}; /* AcceptStep at this state commits from these */
     if (MODE == 2) {
       Commit(in, k, dnp, dt);
@@ -335,10 +336,10 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 void Glue::Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt)
 {
   Bond           &B  = bonds_[k];
-  const PetscReal kn = normal_stiffness, kt = kt_, l2 = dnp * dnp + (kt / kn) * dt * dt, e = 0.5 * kn * l2; /* stored energy per length, undamaged */
+  const PetscReal kn = normal_stiffness, kt = kt_, l2 = Opening2(dnp, dt), e = 0.5 * kn * l2; /* stored energy per length, undamaged */
   bool            breaks;
   if (law == SOFTENING) {
-    if (l2 <= l02_ && B.lmax <= l0_) return; /* before the peak: no damage (lmax is recorded from the peak on) */
+    if (BeforePeak(B, l2)) return;
     const PetscReal lm = std::max(B.lmax, std::sqrt(l2));
     dissipated_ += B.L * (Dissipated(lm) - Dissipated(B.lmax));
     B.lmax = lm;
@@ -385,11 +386,10 @@ PetscErrorCode Glue::AcceptStep(const ForceInput &in)
     PetscFunctionReturn(PETSC_SUCCESS); /* made at this state: nothing to commit yet */
   }
   if (in.same_x && trial_.size() == bonds_.size()) { /* the openings of the evaluation at these positions */
-    const PetscReal beta2 = kt_ / normal_stiffness;
     for (size_t k = 0; k < bonds_.size(); k++) {
       const Bond &B = bonds_[k];
-      /* softening before the peak has nothing to commit: tested here, not in a call per bond */
-      if (!B.intact || (law == SOFTENING && B.lmax <= l0_ && trial_[k].dnp * trial_[k].dnp + beta2 * trial_[k].dt * trial_[k].dt <= l02_)) continue;
+      /* tested here, not in a call per bond: most bonds are before their peak */
+      if (!B.intact || BeforePeak(B, Opening2(trial_[k].dnp, trial_[k].dt))) continue;
       Commit(in, k, trial_[k].dnp, trial_[k].dt);
     }
   } else Kernel<2>(in, NULL, NULL);
@@ -444,7 +444,6 @@ PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments
   segments->xy.resize(4 * bonds_.size());
   TermField intact{TermField::BAR, "intact", "1 intact, 0 broken", {}}, damage{TermField::BAR, "damage", "1", {}}, opening{TermField::BAR, "opening", "µm", {}},
     length{TermField::BAR, "length_share", "µm", {}};
-  const PetscReal beta2 = kt_ / normal_stiffness;
   for (size_t k = 0; k < bonds_.size(); k++) {
     const Bond &B = bonds_[k];
     PetscReal   dn, dt;
@@ -455,7 +454,7 @@ PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments
     segments->xy[4 * k + 2] = (1 - B.lam) * in.x[2 * B.a] + B.lam * in.x[2 * B.b];
     segments->xy[4 * k + 3] = (1 - B.lam) * in.x[2 * B.a + 1] + B.lam * in.x[2 * B.b + 1];
     intact.values.push_back(B.intact ? 1 : 0);
-    damage.values.push_back(B.intact ? Damage(std::max(B.lmax, std::sqrt(dnp * dnp + beta2 * dt * dt))) : 1.0);
+    damage.values.push_back(B.intact ? Damage(std::max(B.lmax, std::sqrt(Opening2(dnp, dt)))) : 1.0);
     opening.values.push_back(std::sqrt(dn * dn + dt * dt));
     length.values.push_back(B.L);
   }

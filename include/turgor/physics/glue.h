@@ -118,11 +118,16 @@ private:
   template <int MODE>
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   void      Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
+  /* the squared equivalent opening <delta_n>^2 + (k_t/k_n) delta_t^2 */
+  PetscReal Opening2(PetscReal dnp, PetscReal dt) const { return dnp * dnp + beta2_ * dt * dt; }
+  /* softening bond still below its peak (no damage, nothing to commit; lmax is recorded from the
+     peak on): tested without a square root */
+  bool      BeforePeak(const Bond &B, PetscReal l2) const { return law == SOFTENING && B.lmax <= l0_ && l2 <= l02_; }
   PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
   PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
   void Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt, PetscReal *gn) const;
 
-  PetscReal             kt_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* l02_ = l0_^2 */
+  PetscReal             kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
   std::vector<Bond>     bonds_;
   std::vector<BondInfo> info_;
   std::vector<Trial>    trial_;
