@@ -19,6 +19,7 @@
   compare_runs.py settling DIR RELTOL        a damped oscillation about a rest state: the tip's range
                                              shrinks from third to third of the history, and the
                                              thirds' means agree within RELTOL of their size
+  compare_runs.py csvrel A_DIR B_DIR FILE RELTOL   every column of FILE agrees within RELTOL of its largest value
   compare_runs.py samekey A_DIR B_DIR KEY RELTOL  summary.json[KEY] of the two runs agree within RELTOL (relative)
   compare_runs.py between DIR KEY LO HI      LO <= summary.json[KEY] <= HI
   compare_runs.py notmore A_DIR B_DIR KEY RELTOL  summary.json[KEY] of A is at most (1 + RELTOL) x B's (strictly
@@ -141,6 +142,24 @@ def main(argv):
             sys.exit("FAIL: the oscillation does not decay")
         if not spread <= float(argv[3]):
             sys.exit(f"FAIL: the mean moves by more than {argv[3]}")
+    elif mode == "csvrel":
+        # every column of FILE in both runs: max |a - b| over the rows, relative to the column's
+        # largest |b| (absolute where the column is all zero)
+        ra = list(csv.reader(open(f"{argv[2]}/{argv[4]}")))
+        rb = list(csv.reader(open(f"{argv[3]}/{argv[4]}")))
+        tol = float(argv[5])
+        if ra[0] != rb[0] or len(ra) != len(rb):
+            sys.exit(f"FAIL: {argv[4]}: columns or row counts differ ({len(ra)} vs {len(rb)} rows)")
+        worst, where = 0.0, ""
+        for c, name in enumerate(rb[0]):
+            a, b = [float(r[c]) for r in ra[1:]], [float(r[c]) for r in rb[1:]]
+            scale = max((abs(v) for v in b), default=0.0) or 1.0
+            err = max((abs(x - y) for x, y in zip(a, b)), default=0.0) / scale
+            if err > worst:
+                worst, where = err, name
+        print(f"{argv[4]}: {len(rb) - 1} rows, {len(rb[0])} columns, largest relative difference {worst:.3e} ({where or 'none'})")
+        if not worst <= tol:
+            sys.exit(f"FAIL: above {tol}")
     elif mode == "samekey":
         a, b = json.load(open(f"{argv[2]}/summary.json"))[argv[4]], json.load(open(f"{argv[3]}/summary.json"))[argv[4]]
         rel = abs(a - b) / max(abs(b), 1e-300)

@@ -273,7 +273,36 @@ PetscErrorCode Controls::SetUp(MPI_Comm comm, const Tissue &tissue, bool owner)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void Controls::Impose(PetscReal t, PetscReal *x, PetscReal *v) const
+void Controls::Localize(const std::vector<PetscInt> &local_of, const ParticleSet &P)
+{
+  n_owned_ = P.NumOwned();
+  node_mass_.assign(P.mass.begin(), P.mass.end());
+  comp_.clear();
+  comp_group_.clear();
+  for (size_t gi = 0; gi < groups_.size(); gi++) {
+    ControlGroup          &g = groups_[gi];
+    std::vector<PetscInt>  nodes;
+    std::vector<PetscReal> X0;
+    for (size_t k = 0; k < g.nodes.size(); k++) {
+      const PetscInt l = local_of[g.nodes[k]];
+      if (l < 0) continue;
+      nodes.push_back(l);
+      X0.push_back(g.X0[2 * k]);
+      X0.push_back(g.X0[2 * k + 1]);
+    }
+    g.nodes = std::move(nodes);
+    g.X0    = std::move(X0);
+    if (g.velocity)
+      for (PetscInt i : g.nodes)
+        for (int d = 0; d < 2; d++)
+          if (!g.free[d] && i < n_owned_) { /* the state holds the owned particles only */
+            comp_.push_back(2 * i + d);
+            comp_group_.push_back((PetscInt)gi);
+          }
+  }
+}
+
+void Controls::Impose(PetscReal t, PetscReal *x, PetscReal *v, PetscInt n) const
 {
   for (size_t g = 0; g < groups_.size(); g++) {
     const ControlGroup &G = groups_[g];
@@ -281,7 +310,7 @@ void Controls::Impose(PetscReal t, PetscReal *x, PetscReal *v) const
     const PetscReal s = G.Scale(t), S = G.Integral(t);
     for (size_t k = 0; k < G.nodes.size(); k++)
       for (int d = 0; d < 2; d++) {
-        if (G.free[d]) continue;
+        if (G.free[d] || G.nodes[k] >= n) continue;
         const PetscInt c = 2 * G.nodes[k] + d;
         if (x) x[c] = G.X0[2 * k + d] + G.value[d] * S;
         if (v) v[c] = G.value[d] * s;
@@ -306,19 +335,22 @@ void Controls::AdjustAccelerations(PetscReal t, PetscReal *a) const
     if (G.velocity) continue;
     const PetscReal s = G.Scale(t) / G.mass;
     for (PetscInt i : G.nodes)
-      for (int d = 0; d < 2; d++) a[2 * i + d] += G.value[d] * s;
+      if (i < n_owned_)
+        for (int d = 0; d < 2; d++) a[2 * i + d] += G.value[d] * s;
   }
 }
 
 void Controls::ControlForces(PetscReal t, const PetscReal *f, PetscReal *r, PetscInt n) const
 {
   for (PetscInt k = 0; k < 2 * n; k++) r[k] = 0;
+  /* a distributed run: f on a halo copy is this rank's share of its force, so that the reaction's
+     power summed over the ranks is whole; the node's own part (m a, a force group's) is its owner's */
   for (const ControlGroup &G : groups_)
     for (PetscInt i : G.nodes)
       for (int d = 0; d < 2; d++) {
         const PetscInt c = 2 * i + d;
-        if (!G.velocity) r[c] = G.value[d] * G.Scale(t) * node_mass_[i] / G.mass;
-        else if (!G.free[d]) r[c] = node_mass_[i] * G.value[d] * G.Rate(t) - f[c];
+        if (!G.velocity) r[c] = i < n_owned_ ? G.value[d] * G.Scale(t) * node_mass_[i] / G.mass : 0;
+        else if (!G.free[d]) r[c] = (i < n_owned_ ? node_mass_[i] * G.value[d] * G.Rate(t) : 0) - f[c];
       }
 }
 
@@ -333,6 +365,7 @@ PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x,
     const ControlGroup &G = groups_[g];
     for (size_t k = 0; k < G.nodes.size(); k++) {
       const PetscInt i = G.nodes[k];
+      if (i >= n_owned_) continue; /* a halo copy: its owner counts it */
       for (int d = 0; d < 2; d++) {
         sums[K * g + d] += x[2 * i + d] - G.X0[2 * k + d];
         sums[K * g + 2 + d] += f[2 * i + d];
@@ -351,6 +384,7 @@ PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x,
     if (!G.velocity) continue;
     const PetscReal cx = sums[K * g + 5] / G.mass, cy = sums[K * g + 6] / G.mass;
     for (PetscInt i : G.nodes) {
+      if (i >= n_owned_) continue;
       const PetscReal rx = G.free[0] ? 0 : -f[2 * i], ry = G.free[1] ? 0 : -f[2 * i + 1];
       mz[g] += (x[2 * i] - cx) * ry - (x[2 * i + 1] - cy) * rx;
     }

@@ -47,7 +47,7 @@ std::vector<std::string> EnergyBalance::Columns() const
 PetscReal EnergyBalance::Kinetic(const PetscReal *v) const
 {
   PetscReal K = 0;
-  for (PetscInt i = 0; i < P_->n; i++) K += 0.5 * P_->mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+  for (PetscInt i = 0; i < P_->NumOwned(); i++) K += 0.5 * P_->mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
   return K;
 }
 

@@ -13,7 +13,7 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
 {
   char     *sides[8];
   PetscInt  nsides = 8;
-  PetscBool set, pset;
+  PetscBool set, pset, hset;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
   PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec",
@@ -28,10 +28,24 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
   }
   PetscCall(PetscOptionsInt("-partition_report",
                             "Partition the tissue's cells into N parts with METIS (cell graph weighted by particles per cell and shared wall length) and "
-                            "report the edge cut and imbalance in summary.json and the particles' part in the snapshots; a preparation for distributed "
-                            "runs: the particles still all live on rank 0 (0: no partition)",
+                            "report the edge cut and imbalance in summary.json and the particles' part in the snapshots (a report only: a run on several "
+                            "ranks partitions its cells by itself, -fine_distribute; 0: no report)",
                             "FineRunSpec", partition, &partition, &pset));
+  {
+    PetscBool d = distribute ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(PetscOptionsBool("-distribute",
+                               "On several ranks, partition the cells with METIS and keep every particle on the rank of its cell, with a halo of the "
+                               "neighbouring ranks' particles (false: all particles on rank 0, the other ranks idle)",
+                               "FineRunSpec", d, &d, NULL));
+    distribute = d;
+  }
+  PetscCall(PetscOptionsReal("-halo_margin",
+                             "Distributed runs: width [µm] of the halo beyond the interactions' reach (cutoffs + neighbour skin); cells may move this "
+                             "far relative to each other before the run stops (default: the reach)",
+                             "FineRunSpec", halo_margin, &halo_margin, &hset));
   PetscOptionsEnd();
+  PetscCheck(!hset || (halo_margin >= 0 && std::isfinite(halo_margin)), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_halo_margin = %g: must be >= 0",
+             (double)halo_margin);
   PetscCheck(!pset || partition >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_partition_report = %" PetscInt_FMT ": the number of parts must be >= 1",
              partition);
   PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
@@ -97,14 +111,14 @@ PetscErrorCode FineRun::CreateSwarm()
   PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "kind", 1, PETSC_INT));
   PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "cell", 1, PETSC_INT));
   PetscCall(DMSwarmFinalizeFieldRegister(swarm_));
-  PetscCall(DMSwarmSetLocalSizes(swarm_, P.n, 0));
+  PetscCall(DMSwarmSetLocalSizes(swarm_, n_local_, 0));
   PetscCall(DMSwarmGetField(swarm_, "position", NULL, NULL, (void **)&pos));
   PetscCall(DMSwarmGetField(swarm_, "velocity", NULL, NULL, (void **)&vel));
   PetscCall(DMSwarmGetField(swarm_, "mass", NULL, NULL, (void **)&mass));
   PetscCall(DMSwarmGetField(swarm_, "kind", NULL, NULL, (void **)&kind));
   PetscCall(DMSwarmGetField(swarm_, "cell", NULL, NULL, (void **)&cell));
   PetscCall(DMSwarmGetField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
-  for (PetscInt i = 0; i < P.n; i++) {
+  for (PetscInt i = 0; i < n_local_; i++) { /* the owned particles come first */
     pos[2 * i]     = tissue_.X[2 * i];
     pos[2 * i + 1] = tissue_.X[2 * i + 1];
     vel[2 * i]     = tissue_.V.empty() ? 0 : tissue_.V[2 * i];
@@ -123,17 +137,47 @@ PetscErrorCode FineRun::CreateSwarm()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void FineRun::Constrained(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc)
+PetscErrorCode FineRun::LocalState(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc)
 {
-  if (!controls_.Active()) {
+  PetscFunctionBeginUser;
+  if (!controls_.Active() && !distributed_) {
     *xc = x, *vc = v;
-    return;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
   const PetscInt n2 = 2 * n_local_;
-  xw_.assign(x, x + n2);
-  vw_.assign(v, v + n2);
+  xw_.resize(2 * n_all_);
+  vw_.resize(2 * n_all_);
+  std::copy(x, x + n2, xw_.begin());
+  std::copy(v, v + n2, vw_.begin());
+  if (distributed_) {
+    PetscCall(dist_.Gather(xw_.data()));
+    PetscCall(dist_.Gather(vw_.data()));
+  }
   controls_.Impose(t, xw_.data(), vw_.data());
+  if (distributed_) PetscCall(dist_.Check(xw_.data()));
   *xc = xw_.data(), *vc = vw_.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f)
+{
+  PetscFunctionBeginUser;
+  PetscCall(model_.ComputeForces(x, v, f, NULL));
+  if (distributed_) PetscCall(dist_.Return(f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a)
+{
+  PetscFunctionBeginUser;
+  if (!distributed_) { /* the state's array holds every particle: no copy */
+    PetscCall(model_.ComputeAcceleration(x, v, a));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  fw_.resize(2 * n_all_);
+  PetscCall(TotalForces(x, v, fw_.data()));
+  model_.DivideByMass(fw_.data(), a, n_local_);
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FineRun::AfterSolve()
@@ -157,7 +201,7 @@ PetscErrorCode FineRun::SyncSwarm(PetscReal t, Vec U)
     pos[k] = u[k];
     vel[k] = u[2 * n_local_ + k];
   }
-  controls_.Impose(t, pos, vel);
+  controls_.Impose(t, pos, vel, n_local_);
   PetscCall(DMSwarmRestoreField(swarm_, "velocity", NULL, NULL, (void **)&vel));
   PetscCall(DMSwarmRestoreField(swarm_, "position", NULL, NULL, (void **)&pos));
   PetscCall(VecRestoreArrayRead(U, &u));
@@ -170,7 +214,7 @@ PetscErrorCode FineRun::PartitionCellsReport()
 {
   const char *option = "-fine_partition_report";
   PetscMPIInt rank;
-  PetscInt    ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.polygons.size();
+  PetscInt    ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.OwnedPolygons();
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCallMPI(MPI_Bcast(&ncells, 1, MPIU_INT, 0, comm_));
@@ -200,6 +244,52 @@ PetscErrorCode FineRun::PartitionCellsReport()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Every rank holds the whole tissue here: the cells are partitioned on rank 0 (METIS, weighted
+   as in cell_partition.h), and each rank keeps its cells' particles and its halo
+   (tissue_distribution.h). */
+PetscErrorCode FineRun::Distribute()
+{
+  const char *option = "-fine_distribute";
+  PetscMPIInt size, rank;
+  PetscInt    ncells = tissue_.NumCells();
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCheck(ncells >= size, comm_, PETSC_ERR_ARG_OUTOFRANGE,
+             "A distributed fine run needs at least one cell per rank: %d ranks for %" PetscInt_FMT " cells (use fewer ranks, or %s 0)", size, ncells, option);
+  std::vector<PetscInt> cell_rank(ncells, 0);
+  PetscErrorCode        failed = PETSC_SUCCESS;
+  if (rank == 0) {
+    CellGraph     graph;
+    CellPartition part;
+    failed = BuildCellGraph(PETSC_COMM_SELF, tissue_, &graph);
+    if (!failed) failed = PartitionCells(PETSC_COMM_SELF, graph, size, MetisOptions(), option, &part);
+    if (!failed) cell_rank = part.part;
+  }
+  PetscCallMPI(MPI_Bcast(&failed, 1, MPI_INT, 0, comm_));
+  PetscCheck(!failed, comm_, PETSC_ERR_LIB, "Option %s: the cell partition failed on rank 0", option);
+  PetscCallMPI(MPI_Bcast(cell_rank.data(), (PetscMPIInt)ncells, MPIU_INT, 0, comm_));
+  /* the halo: the farthest reach of any term into another cell, with the neighbour lists' skin */
+  halo_reach_ = 0;
+  for (const auto &t : physics_.Terms()) halo_reach_ = std::max(halo_reach_, t->Reach(tissue_.particles));
+  halo_reach_ += physics_.neighbour_skin;
+  halo_margin_ = spec_.halo_margin >= 0 ? spec_.halo_margin : halo_reach_;
+  Tissue local;
+  PetscCall(dist_.SetUp(comm_, tissue_, cell_rank, halo_reach_, halo_margin_, &local));
+  controls_.Localize(dist_.LocalIndices(), local.particles);
+  tip_ = dist_.LocalOf(tip_);
+  if (tip_ >= dist_.NumOwned()) tip_ = -1; /* observed by its owner */
+  if (spec_.partition > 0) {               /* the report's part of every owned particle (rank 0 computed them) */
+    std::vector<PetscReal> all(tissue_.particles.n);
+    if (rank == 0) all = particle_part_;
+    PetscCallMPI(MPI_Bcast(all.data(), (PetscMPIInt)all.size(), MPIU_REAL, 0, comm_));
+    particle_part_.resize(dist_.NumOwned());
+    for (PetscInt l = 0; l < dist_.NumOwned(); l++) particle_part_[l] = all[local.particles.gid[l]];
+  }
+  tissue_ = std::move(local);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FineRun::SetUpModel()
 {
   PetscMPIInt rank;
@@ -214,18 +304,22 @@ PetscErrorCode FineRun::SetUpModel()
     PetscCall(tissues_.Generate(comm_, &tissue_));
   }
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
-  PetscCall(controls_.SetUp(comm_, tissue_, rank == 0));
+  {
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    distributed_ = size > 1 && spec_.distribute;
+  }
+  PetscCall(controls_.SetUp(comm_, tissue_, rank == 0 || distributed_));
   if (spec_.partition > 0) PetscCall(PartitionCellsReport());
   /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
   tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
-  /* One rank holds the whole tissue for now; the other ranks own no particles (the state Vec and
-     the outputs are already parallel, so distributing particles later changes no interface). */
-  if (rank != 0) {
-    tissue_ = Tissue();
-    tip_    = -1;
+  if (distributed_) PetscCall(Distribute());
+  else if (rank != 0) { /* -fine_distribute 0: rank 0 holds the whole tissue, the other ranks none */ tissue_ = Tissue();
+    tip_                                                                                                      = -1;
   }
-  n_local_ = tissue_.particles.n;
+  n_all_   = tissue_.particles.n;
+  n_local_ = tissue_.particles.NumOwned();
   PetscCall(CreateSwarm());
   PetscCall(model_.SetUp(physics_, tissue_.particles));
 
@@ -242,7 +336,7 @@ PetscErrorCode FineRun::SetUpModel()
     u[k]                = tissue_.X[k];
     u[2 * n_local_ + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
   }
-  controls_.Impose(0, u, u + 2 * n_local_);
+  controls_.Impose(0, u, u + 2 * n_local_, n_local_);
   PetscCall(VecRestoreArray(U_, &u));
   v_stale_.assign(2 * n_local_, 0);
   if (spec_.energy) {
@@ -250,7 +344,7 @@ PetscErrorCode FineRun::SetUpModel()
     const PetscReal   *x0, *v0;
     PetscCall(energy_.SetUp(model_, controls_, tissue_.particles));
     PetscCall(VecGetArrayRead(U_, &u0));
-    Constrained(0, u0, u0 + 2 * n_local_, &x0, &v0);
+    PetscCall(LocalState(0, u0, u0 + 2 * n_local_, &x0, &v0));
     PetscCall(energy_.Start(comm_, 0, x0, v0));
     PetscCall(VecRestoreArrayRead(U_, &u0));
   }
@@ -333,7 +427,7 @@ PetscErrorCode FineRun::Report()
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(&nl[0], &nw, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(&nl[1], &nf, 1, MPIU_INT, MPI_SUM, comm_));
-  PetscInt ncells = tissue_.NumCells(), nsprings = (PetscInt)tissue_.particles.springs.size();
+  PetscInt ncells = tissue_.NumCells(), nsprings = (PetscInt)tissue_.particles.OwnedSprings();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nsprings, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCall(PetscPrintf(comm_,
@@ -364,13 +458,22 @@ PetscErrorCode FineRun::Report()
 PetscErrorCode FineRun::OpenSnapshots()
 {
   PetscFunctionBeginUser;
+  /* this rank's particles, bars and cells (a distributed run's halo is drawn by its owners) */
+  const ParticleSet *P = &tissue_.particles;
+  ParticleSet        mine;
+  if (distributed_) {
+    mine = tissue_.particles;
+    mine.springs.resize(mine.OwnedSprings());
+    mine.polygons.resize(mine.OwnedPolygons());
+    P = &mine;
+  }
   if (!RestartFile().empty()) { /* a restart's snapshots go beside the interrupted run's, which stay whole */
     char base[64];
     PetscCall(PetscSNPrintf(base, sizeof base, "particles_restart_%08" PetscInt_FMT, RestartStep()));
-    PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, out_.dir, base));
+    PetscCall(snapshots_writer_.Open(swarm_, *P, out_.dir, base));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, out_.dir, "particles"));
+  PetscCall(snapshots_writer_.Open(swarm_, *P, out_.dir, "particles"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -382,13 +485,14 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   const PetscReal               *x, *v;
   ParticleSnapshotWriter::Fields fields;
   std::vector<TermField>         terms;
-  ParticleSnapshotWriter::Field  force{"force", "µN", std::vector<PetscReal>(2 * n_local_), 2};
+  ParticleSnapshotWriter::Field  force{"force", "µN", std::vector<PetscReal>(2 * n_all_), 2};
   PetscFunctionBeginUser;
   PetscCall(SyncSwarm(t, U));
   PetscCall(VecGetArrayRead(U, &u));
-  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
-  PetscCall(model_.ComputeForces(x, v, force.values.data(), NULL));
+  PetscCall(TotalForces(x, v, force.values.data()));
+  force.values.resize(2 * n_local_); /* the owned particles' */
   PetscCall(model_.OutputFields(x, v, terms));
   {
     std::vector<TermSegments> segs;
@@ -399,14 +503,24 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
       fields.segments.push_back(std::move(w));
     }
   }
-  PetscCall(VecRestoreArrayRead(U, &u));
   fields.nodes.push_back(std::move(force));
-  if (spec_.partition > 0) fields.nodes.push_back({"part", "", particle_part_, 1}); /* -fine_partition_report: the part of the particle's cell */
+  if (spec_.partition > 0) fields.nodes.push_back({"part", "1", particle_part_, 1}); /* -fine_partition_report: the part of the particle's cell */
+  if (distributed_) {
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+    fields.nodes.push_back({"rank", "1", std::vector<PetscReal>(n_local_, (PetscReal)rank), 1}); /* the rank that owns the particle */
+  }
+  /* this rank's bars and closed cells (they come first: particles.h) */
+  const ParticleSet &P      = tissue_.particles;
+  size_t             closed = 0;
+  for (size_t c = 0; c < P.OwnedPolygons(); c++) closed += !P.polygons[c].open && P.polygons[c].nodes.size() >= 3;
   for (TermField &f : terms) {
-    if (f.where == TermField::CELL && tissue_.particles.polygons.empty()) continue; /* the square grid has no polygon grid */
+    if (f.where == TermField::CELL && P.polygons.empty()) continue; /* the square grid has no polygon grid */
+    f.values.resize(f.where == TermField::CELL ? closed : P.OwnedSprings());
     (f.where == TermField::CELL ? fields.cells : fields.bars).push_back({f.name, f.unit, std::move(f.values), 1});
   }
-  PetscCall(snapshots_writer_.Write(swarm_, t, fields));
+  PetscCall(snapshots_writer_.Write(swarm_, t, fields, x));
+  PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -415,9 +529,11 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
 PetscErrorCode FineRun::ChooseTimeStep()
 {
   const PetscScalar *u;
+  const PetscReal   *x, *v;
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U_, &u));
-  PetscCall(model_.TimeStepLimits(u, u + 2 * n_local_, limits_));
+  PetscCall(LocalState(0, u, u + 2 * n_local_, &x, &v));
+  PetscCall(model_.TimeStepLimits(x, v, limits_));
   PetscCall(VecRestoreArrayRead(U_, &u));
   std::sort(limits_.begin(), limits_.end(), [](const TimeStepLimit &a, const TimeStepLimit &b) { return a.dt < b.dt; });
   PetscReal dt = limits_.empty() ? PETSC_MAX_REAL : limits_[0].dt;
@@ -440,16 +556,12 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     PetscCall(VecGetArray(F, &f));
     const std::vector<char> &fixed = run->tissue_.particles.fixed;
     run->model_.SetTime(t);
-    if (!run->controls_.Active()) {
-      for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : u[n2 + k];
-      PetscCall(run->model_.ComputeAcceleration(u, u + n2, f + n2));
-    } else { /* the controlled components: x and v imposed, dx/dt = v_c(t), v not integrated */
-      const PetscReal *x, *v;
-      run->Constrained(t, u, u + n2, &x, &v);
-      for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : v[k];
-      PetscCall(run->model_.ComputeAcceleration(x, v, f + n2));
-      run->controls_.AdjustAccelerations(t, f + n2);
-    }
+    /* with controls, the controlled components: x and v imposed, dx/dt = v_c(t), v not integrated */
+    const PetscReal *x, *v;
+    PetscCall(run->LocalState(t, u, u + n2, &x, &v));
+    for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : v[k];
+    PetscCall(run->Accelerations(x, v, f + n2));
+    if (run->controls_.Active()) run->controls_.AdjustAccelerations(t, f + n2);
     PetscCall(VecRestoreArray(F, &f));
     PetscCall(VecRestoreArrayRead(U, &u));
     run->rhs_evals_++;
@@ -495,13 +607,10 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     PetscCall(VecGetArrayRead(X, &x));
     PetscCall(VecGetArray(Vdot, &a));
     run->model_.SetTime(t);
-    if (!run->controls_.Active()) PetscCall(run->model_.ComputeAcceleration(x, run->v_stale_.data(), a));
-    else {
-      const PetscReal *xc, *vc;
-      run->Constrained(t, x, run->v_stale_.data(), &xc, &vc);
-      PetscCall(run->model_.ComputeAcceleration(xc, vc, a));
-      run->controls_.AdjustAccelerations(t, a);
-    }
+    const PetscReal *xc, *vc;
+    PetscCall(run->LocalState(t, x, run->v_stale_.data(), &xc, &vc));
+    PetscCall(run->Accelerations(xc, vc, a));
+    if (run->controls_.Active()) run->controls_.AdjustAccelerations(t, a);
     for (PetscInt k = 0; k < 2 * run->n_local_; k++)
       PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
                  "Non-finite acceleration of particle %" PetscInt_FMT
@@ -514,6 +623,48 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
   });
 }
 
+/* A distributed run: every rank's log rows to rank 0 (which writes the files), rank by rank. Each
+   row travels as its file name and cells separated by unit separators, one row per line. */
+static PetscErrorCode GatherRecords(MPI_Comm comm, std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
+{
+  const char  US = '\x1f', RS = '\x1e';
+  std::string text;
+  PetscMPIInt size, rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  for (const auto &r : rows) {
+    text += r.first;
+    for (const std::string &cell : r.second) text += US + cell;
+    text += RS;
+  }
+  PetscMPIInt              len = (PetscMPIInt)text.size();
+  std::vector<PetscMPIInt> lens(size), displs(size + 1, 0);
+  PetscCallMPI(MPI_Gather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, 0, comm));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + lens[r];
+  std::string all(rank == 0 ? (size_t)displs[size] : 0, '\0');
+  PetscCallMPI(MPI_Gatherv(text.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR, 0, comm));
+  rows.clear();
+  size_t at = 0;
+  while (rank == 0 && at < all.size()) {
+    const size_t             end = all.find(RS, at);
+    std::vector<std::string> cells;
+    size_t                   p = at;
+    while (true) {
+      const size_t q = all.find(US, p);
+      if (q == std::string::npos || q > end) {
+        cells.push_back(all.substr(p, end - p));
+        break;
+      }
+      cells.push_back(all.substr(p, q - p));
+      p = q + 1;
+    }
+    rows.push_back({cells.front(), std::vector<std::string>(cells.begin() + 1, cells.end())});
+    at = end + 1;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* After every accepted step: the terms' internal state (plastic angles, contact history, bonds) at
    the accepted state, their log rows (breaks.csv), and the energy balance. */
 PetscErrorCode FineRun::AfterStep(PetscReal t, Vec U)
@@ -523,11 +674,12 @@ PetscErrorCode FineRun::AfterStep(PetscReal t, Vec U)
   PetscFunctionBeginUser;
   if (!model_.HasInternalState() && !spec_.energy) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(VecGetArrayRead(U, &u));
-  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   if (model_.HasInternalState()) PetscCall(model_.AcceptStep(x, v, t));
   if (!record_csv_.empty()) {
     std::vector<std::pair<std::string, std::vector<std::string>>> rows;
     model_.TakeRecords(rows);
+    if (distributed_) PetscCall(GatherRecords(comm_, rows));
     for (auto &r : rows)
       for (size_t k = 0; k < record_names_.size(); k++)
         if (record_names_[k] == r.first && record_csv_[k]->IsOpen()) PetscCall(record_csv_[k]->RowText(r.second));
@@ -587,7 +739,7 @@ PetscErrorCode FineRun::OpenOutputs()
     const PetscScalar *u;
     const PetscReal   *x, *v;
     PetscCall(VecGetArrayRead(U_, &u));
-    Constrained(0, u, u + 2 * n_local_, &x, &v);
+    PetscCall(LocalState(0, u, u + 2 * n_local_, &x, &v));
     PetscCall(EnergyRow(0, x, v));
     PetscCall(VecRestoreArrayRead(U_, &u));
   }
@@ -614,7 +766,7 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
   const PetscReal *x, *v;
   PetscCall(VecGetArrayRead(U, &u));
   const PetscInt n2 = 2 * n_local_;
-  Constrained(t, u, u + n2, &x, &v);
+  PetscCall(LocalState(t, u, u + n2, &x, &v));
   for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
   if (tip_ >= 0) vals[0] = x[2 * tip_ + 1] - tip_y0_;
   PetscCall(VecRestoreArrayRead(U, &u));
@@ -637,12 +789,12 @@ PetscErrorCode FineRun::ObserveSeries(PetscReal t, Vec U, std::vector<std::vecto
 {
   const PetscScalar     *u;
   const PetscReal       *x, *v;
-  std::vector<PetscReal> f(2 * n_local_);
+  std::vector<PetscReal> f(2 * n_all_);
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U, &u));
-  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
-  PetscCall(model_.ComputeForces(x, v, f.data(), NULL));
+  PetscCall(TotalForces(x, v, f.data()));
   PetscCall(controls_.Observe(comm_, t, x, f.data(), rows[0]));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -651,7 +803,7 @@ PetscErrorCode FineRun::ObserveSeries(PetscReal t, Vec U, std::vector<std::vecto
 PetscErrorCode FineRun::AddSummary(JsonObject &js)
 {
   PetscInt nw, nf, nl[2] = {tissue_.particles.Count(KIND_WALL), tissue_.particles.Count(KIND_FLUID)};
-  PetscInt nsprings = (PetscInt)tissue_.particles.springs.size(), rebuilds = model_.Neighbours().Rebuilds();
+  PetscInt nsprings = (PetscInt)tissue_.particles.OwnedSprings(), rebuilds = model_.Neighbours().Rebuilds();
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(&nl[0], &nw, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(&nl[1], &nf, 1, MPIU_INT, MPI_SUM, comm_));
@@ -667,14 +819,14 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
   js.Set("neighbour_rebuilds", rebuilds);
   {
     /* issue 10's sizes: nodes are the wall particles, bars the springs */
-    PetscInt  ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.polygons.size(), steps;
+    PetscInt  ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.OwnedPolygons(), steps;
     PetscReal wall   = WallTime();
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
     PetscCall(TSGetStepNumber(ts_, &steps));
     js.Set("n_nodes", nw);
     js.Set("n_cells", ncells);
     PetscInt nclosed = 0;
-    for (const PolygonCell &c : tissue_.particles.polygons) nclosed += !c.open;
+    for (size_t c = 0; c < tissue_.particles.OwnedPolygons(); c++) nclosed += !tissue_.particles.polygons[c].open;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nclosed, 1, MPIU_INT, MPI_SUM, comm_));
     if (!tissue_.particles.polygons.empty()) js.Set("n_closed_cells", nclosed);
     js.Set("n_bars", nsprings);
@@ -685,6 +837,27 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
     js.Set("stability_limits_dt", dts);
     js.Set("stability_limits", why);
     js.Set("controls", controls_.Names());
+  }
+  {
+    /* the distribution: particles per rank, the halo and what it moves (every Gather and Return,
+       outputs included), the full halo checks */
+    PetscReal own = (PetscReal)n_local_, mx, sum, halo[3] = {(PetscReal)dist_.NumHalo(), dist_.Bytes(), (PetscReal)dist_.FullChecks()};
+    PetscInt  steps;
+    PetscCall(TSGetStepNumber(ts_, &steps));
+    PetscCallMPI(MPI_Allreduce(&own, &mx, 1, MPIU_REAL, MPIU_MAX, comm_));
+    PetscCallMPI(MPI_Allreduce(&own, &sum, 1, MPIU_REAL, MPIU_SUM, comm_));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, halo, 3, MPIU_REAL, MPIU_MAX, comm_));
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    js.Set("distributed", distributed_);
+    js.Set("particles_per_rank_max", (PetscInt)mx);
+    js.Set("particles_per_rank_mean", sum / size);
+    js.Set("load_imbalance", sum > 0 ? mx * size / sum : 1.0);
+    js.Set("halo_particles_max", (PetscInt)halo[0]);
+    js.Set("halo_bytes_per_step", steps > 0 ? halo[1] / steps : 0.0);
+    js.Set("halo_reach", halo_reach_);
+    js.Set("halo_margin", halo_margin_);
+    js.Set("halo_full_checks", (PetscInt)halo[2]);
   }
   if (spec_.partition > 0) { /* -fine_partition_report (the same numbers on every rank) */
     js.Set("partition_parts", spec_.partition);
@@ -720,7 +893,7 @@ PetscErrorCode FineRun::DoneDetails(std::string *details)
 
 PetscErrorCode FineRun::CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp)
 {
-  PetscInt n = n_local_, ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.polygons.size();
+  PetscInt n = n_local_, ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.OwnedPolygons();
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
@@ -761,7 +934,7 @@ PetscErrorCode FineRun::SaveState(PetscReal t, Vec U, StateBlob &state)
   PetscFunctionBeginUser;
   state.Put(v_stale_);
   PetscCall(VecGetArrayRead(U, &u));
-  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
   PetscCall(model_.SaveState(x, v, t, state));
   PetscCall(VecRestoreArrayRead(U, &u));
@@ -785,7 +958,7 @@ PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
   {
     /* the lazily taken references (hinge angles, cell areas, bonds at -glue_start_time 0) from the
        initial state, where the uninterrupted run's first evaluation took them */
-    const PetscInt         n2 = 2 * n_local_;
+    const PetscInt         n2 = 2 * n_all_; /* every local particle's (a distributed run's halo too) */
     std::vector<PetscReal> u0(2 * n2, 0.0), f(n2);
     for (PetscInt k = 0; k < n2; k++) {
       u0[k]      = tissue_.X[k];
@@ -798,7 +971,7 @@ PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
   PetscCheck(state.Get(v_stale_) && (PetscInt)v_stale_.size() == 2 * n_local_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "the checkpoint's velocities of the last drift do not fit this scene");
   PetscCall(VecGetArrayRead(U, &u));
-  Constrained(t, u, u + 2 * n_local_, &x, &v);
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
   PetscCall(model_.LoadState(x, v, t, state));
   PetscCall(VecRestoreArrayRead(U, &u));

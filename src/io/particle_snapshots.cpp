@@ -24,6 +24,13 @@ static PetscErrorCode WriteIntegerField(MPI_Comm comm, PetscViewer viewer, const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A particle's row in the file: its place in the distributed state where the set says (a
+   distributed run's halo particles are other ranks' rows), else this rank's offset + its index. */
+static PetscInt FileIndex(const ParticleSet &P, PetscInt start, PetscInt i)
+{
+  return P.index.empty() ? start + i : P.index[i];
+}
+
 PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, const std::string &dir, const std::string &base)
 {
   PetscInt n, start = 0, ns = (PetscInt)P.springs.size();
@@ -58,8 +65,8 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
     /* spring connectivity in global particle numbering, as an (ns x 2) integer dataset */
     std::vector<PetscInt> conn(2 * ns);
     for (PetscInt s = 0; s < ns; s++) {
-      conn[2 * s]     = start + P.springs[s].i;
-      conn[2 * s + 1] = start + P.springs[s].j;
+      conn[2 * s]     = FileIndex(P, start, P.springs[s].i);
+      conn[2 * s + 1] = FileIndex(P, start, P.springs[s].j);
     }
     IS is;
     PetscCall(ISCreateGeneral(comm_, 2 * ns, conn.data(), PETSC_COPY_VALUES, &is));
@@ -99,8 +106,8 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
         conn.push_back(3); /* XDMF's Polygon type code in a Mixed topology */
         conn.push_back((PetscInt)P.polygons[c].nodes.size());
       }
-      for (PetscInt i : P.polygons[c].nodes) conn.push_back(start + i);
-      ids.push_back((PetscInt)c);
+      for (PetscInt i : P.polygons[c].nodes) conn.push_back(FileIndex(P, start, i));
+      ids.push_back(P.polygon_gid.empty() ? (PetscInt)c : P.polygon_gid[c]); /* the tissue's cell number (a distributed run numbers per rank) */
     }
     PetscCall(PetscViewerHDF5PushGroup(viewer_, "/static"));
     IS is;
@@ -136,7 +143,7 @@ PetscErrorCode ParticleSnapshotWriter::WriteVector(const std::string &name, cons
 }
 
 /* Per snapshot: A/A0 of every closed cell, the callers' cell fields and every bar's strain. */
-PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const std::vector<Field> &cell_fields)
+PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const PetscReal *x_bars, const std::vector<Field> &cell_fields)
 {
   PetscFunctionBeginUser;
   const PetscInt                                              np = (PetscInt)polys_.size(), nb = (PetscInt)bars_.size();
@@ -145,7 +152,8 @@ PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, co
     std::vector<PetscReal> ratio(np), strain(nb);
     for (PetscInt c = 0; c < np; c++) ratio[c] = PolygonArea(polys_[c], x) / area0_[c];
     for (PetscInt b = 0; b < nb; b++)
-      strain[b] = std::hypot(x[2 * bars_[b].j] - x[2 * bars_[b].i], x[2 * bars_[b].j + 1] - x[2 * bars_[b].i + 1]) / bars_[b].rest_length - 1;
+      strain[b] = std::hypot(x_bars[2 * bars_[b].j] - x_bars[2 * bars_[b].i], x_bars[2 * bars_[b].j + 1] - x_bars[2 * bars_[b].i + 1]) / bars_[b].rest_length -
+                  1;
     fields.push_back({"area_ratio", ratio});
     fields.push_back({"bar_strain", strain});
   }
@@ -162,7 +170,7 @@ PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fields &fields)
+PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fields &fields, const PetscReal *positions)
 {
   char     group[64];
   Vec      v;
@@ -245,7 +253,7 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fie
   if (n_polys_ > 0) {
     PetscReal *pos;
     PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
-    PetscCall(WritePolygonFields(pos, fields.cells));
+    PetscCall(WritePolygonFields(pos, positions ? positions : pos, fields.cells));
     PetscCall(DMSwarmRestoreField(swarm, "position", NULL, NULL, (void **)&pos));
   } else PetscCheck(fields.cells.empty(), comm_, PETSC_ERR_ARG_WRONG, "Cell fields given for a tissue without polygonal cells");
   PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
@@ -312,12 +320,15 @@ PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
                              "    </Attribute>\n",
                              N, h5, k));
       if (grid < 2)
-        for (const Field &f : node_meta_)
+        for (const Field &f : node_meta_) { /* a scalar is written (N), a vector (N x 3) */
+          char dims[64];
+          PetscCall(f.components == 2 ? PetscSNPrintf(dims, sizeof dims, "%lld 3", N) : PetscSNPrintf(dims, sizeof dims, "%lld", N));
           PetscCall(PetscFPrintf(comm_, fp,
                                  "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
-                                 "     <DataItem Dimensions=\"%lld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n"
+                                 "     <DataItem Dimensions=\"%s\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n"
                                  "    </Attribute>\n",
-                                 f.name.c_str(), f.components == 2 ? "Vector" : "Scalar", f.unit.c_str(), N, f.components == 2 ? 3 : 1, h5, k, f.name.c_str()));
+                                 f.name.c_str(), f.components == 2 ? "Vector" : "Scalar", f.unit.c_str(), dims, h5, k, f.name.c_str()));
+        }
       if (grid == 1)
         for (const Field &f : bar_meta_)
           PetscCall(PetscFPrintf(comm_, fp,

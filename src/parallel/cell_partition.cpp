@@ -16,8 +16,7 @@ static PetscInt CellCount(const Tissue &tissue)
   return IsPolygonal(tissue) ? (PetscInt)tissue.particles.polygons.size() : tissue.NumCells();
 }
 
-/* The cell that owns each particle (-1: none); see cell_partition.h. */
-static void OwnerCells(const Tissue &tissue, std::vector<PetscInt> *owner)
+void OwnerCells(const Tissue &tissue, std::vector<PetscInt> *owner)
 {
   const ParticleSet &P = tissue.particles;
   owner->assign((size_t)P.n, -1);

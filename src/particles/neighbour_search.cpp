@@ -158,7 +158,8 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
   }
 
   if (WantsParticleSpringPairs()) {
-    const PetscReal rs2 = rs * rs;
+    const PetscReal rs2     = rs * rs;
+    const PetscInt  n_owned = P.NumOwned();
     for (size_t s = 0; s < P.springs.size(); s++) {
       const PetscInt   a = P.springs[s].i, b = P.springs[s].j;
       const PetscReal *xa = &x[2 * a], *xb = &x[2 * b];
@@ -171,7 +172,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
           const PetscInt bb = jy * nbx_ + jx;
           for (PetscInt t = bin_start_[bb]; t < bin_start_[bb + 1]; t++) {
             const PetscInt p = bin_items_[t];
-            if (p == a || p == b) continue;
+            if (p == a || p == b || p >= n_owned) continue; /* a halo particle's pairs are its owner's */
             if (PointSegmentDistance2(&x[2 * p], xa, xb) < rs2) {
               particle_spring_.p.push_back(p);
               particle_spring_.s.push_back((PetscInt)s);

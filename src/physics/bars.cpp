@@ -43,7 +43,8 @@ PetscErrorCode Bars::AcceptStep(const ForceInput &in)
   PetscFunctionBeginUser;
   if (damping == 0) PetscFunctionReturn(PETSC_SUCCESS); /* nothing to count (the model calls every term) */
   PetscReal P = 0;
-  for (const Spring &s : in.P->springs) {
+  for (size_t q = 0, ns = in.P->OwnedSprings(); q < ns; q++) {
+    const Spring   &s  = in.P->springs[q];
     const PetscReal dx = in.x[2 * s.j] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] - in.x[2 * s.i + 1];
     const PetscReal vr = ((in.v[2 * s.j] - in.v[2 * s.i]) * dx + (in.v[2 * s.j + 1] - in.v[2 * s.i + 1]) * dy) / std::sqrt(dx * dx + dy * dy);
     P += damping * vr * vr;

@@ -14,7 +14,7 @@ PetscErrorCode BodyForce::AddForces(const ForceInput &in, PetscReal *f, PetscRea
 {
   const ParticleSet &P = *in.P;
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < P.n; i++) {
+  for (PetscInt i = 0; i < P.NumOwned(); i++) {
     f[2 * i] += P.mass[i] * g[0];
     f[2 * i + 1] += P.mass[i] * g[1];
   }
@@ -26,7 +26,7 @@ PetscErrorCode BodyForce::Energy(const ForceInput &in, PetscReal *E, PetscBool *
   const ParticleSet &P = *in.P;
   PetscFunctionBeginUser;
   *E = 0;
-  for (PetscInt i = 0; i < P.n; i++) *E -= P.mass[i] * (g[0] * in.x[2 * i] + g[1] * in.x[2 * i + 1]);
+  for (PetscInt i = 0; i < P.NumOwned(); i++) *E -= P.mass[i] * (g[0] * in.x[2 * i] + g[1] * in.x[2 * i + 1]);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

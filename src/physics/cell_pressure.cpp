@@ -41,7 +41,7 @@ PetscErrorCode CellPressure::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
   closed_.clear();
-  for (size_t c = 0; c < P.polygons.size(); c++)
+  for (size_t c = 0; c < P.OwnedPolygons(); c++) /* this rank's cells (particles.h) */
     if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3) closed_.push_back((PetscInt)c);
   A0_.assign(P.polygons.size(), 0.0);
   P_        = &P;

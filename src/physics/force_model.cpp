@@ -169,6 +169,14 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void ForceModel::DivideByMass(const PetscReal *f, PetscReal *a, PetscInt n) const
+{
+  for (PetscInt i = 0; i < n; i++) {
+    a[2 * i]     = f[2 * i] * inv_mass_[i];
+    a[2 * i + 1] = f[2 * i + 1] * inv_mass_[i];
+  }
+}
+
 PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t)
 {
   PetscFunctionBeginUser;

@@ -190,7 +190,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     if (has_unbonded_box) { /* a pre-crack: no bond whose bond point is in the box */
       const PetscReal cx = (1 - B.lam) * X[2 * B.a] + B.lam * X[2 * B.b], cy = (1 - B.lam) * X[2 * B.a + 1] + B.lam * X[2 * B.b + 1];
       if (cx >= unbonded_box[0] && cx <= unbonded_box[2] && cy >= unbonded_box[1] && cy <= unbonded_box[3]) {
-        unbonded_++;
+        unbonded_ += B.p < P.NumOwned();
         continue;
       }
     }
@@ -258,6 +258,15 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     const BondInfo &I    = info_[k];
     const bool      both = span.count({I.cell_s, I.cell_p}) && span[{I.cell_s, I.cell_p}] > 0;
     bonds_[k].L          = share[k] * (both ? 0.5 : 1.0);
+  }
+  {
+    /* a distributed run: the halo nodes' bonds were made only for the shares above (an interface
+       bonded from both sides counts each side half); each bond belongs to its node's rank */
+    size_t kept = 0;
+    for (size_t k = 0; k < bonds_.size(); k++)
+      if (bonds_[k].p < P.NumOwned()) bonds_[kept] = bonds_[k], info_[kept] = info_[k], kept++;
+    bonds_.resize(kept);
+    info_.resize(kept);
   }
   for (size_t k = 0; k < bonds_.size(); k++)
     PetscCheck(bonds_[k].L > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: bond %zu (node %" PetscInt_FMT ", bar %" PetscInt_FMT ") got no length share", k,
@@ -477,6 +486,9 @@ void Glue::RecordFiles(std::vector<std::pair<std::string, std::vector<std::strin
 
 void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
 {
+  /* the tissue's numbers of cells and bars (a distributed run numbers them per rank) */
+  auto PolygonId = [&](PetscInt c) { return P_ && !P_->polygon_gid.empty() && c >= 0 ? P_->polygon_gid[c] : c; };
+  auto SpringId  = [&](PetscInt s) { return P_ && !P_->spring_gid.empty() && s >= 0 ? P_->spring_gid[s] : s; };
   char buf[64];
   auto num = [&](PetscReal v) {
     PetscCallAbort(PETSC_COMM_SELF, PetscSNPrintf(buf, sizeof buf, "%.17g", (double)v));
@@ -485,8 +497,8 @@ void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::strin
   for (const Break &b : TakeBreaks())
     rows.push_back({
       "breaks.csv",
-      {num(b.time), std::to_string(b.bond), std::to_string(b.cell_node), std::to_string(b.cell_bar), std::to_string(b.node), std::to_string(b.bar), num(b.x),
-        num(b.y), b.mode, num(b.energy), num(b.length)}
+      {num(b.time), std::to_string(b.bond), std::to_string(PolygonId(b.cell_node)), std::to_string(PolygonId(b.cell_bar)), std::to_string(b.node),
+        std::to_string(SpringId(b.bar)), num(b.x), num(b.y), b.mode, num(b.energy), num(b.length)}
     });
 }
 

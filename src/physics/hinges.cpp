@@ -48,8 +48,9 @@ PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   PetscFunctionBeginUser;
   hinge_.clear();
   runs_.clear();
-  for (const PolygonCell &c : P.polygons) { /* one run of consecutive hinges per polygon */
-    const PetscInt N = (PetscInt)c.nodes.size(), first = (PetscInt)hinge_.size();
+  for (size_t q = 0; q < P.OwnedPolygons(); q++) { /* one run of consecutive hinges per polygon (this rank's) */
+    const PolygonCell &c = P.polygons[q];
+    const PetscInt     N = (PetscInt)c.nodes.size(), first = (PetscInt)hinge_.size();
     if (c.open)
       for (PetscInt k = 1; k + 1 < N; k++) hinge_.push_back({c.nodes[k - 1], c.nodes[k], c.nodes[k + 1]});
     else if (N >= 3)

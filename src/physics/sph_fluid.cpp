@@ -32,7 +32,7 @@ PetscErrorCode SPHFluid::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   norm_             = 10.0 / (7.0 * PETSC_PI * h * h);
   W0_               = norm_;
   fluid_.clear();
-  for (PetscInt i = 0; i < P.n; i++)
+  for (PetscInt i = 0; i < P.NumOwned(); i++) /* a distributed run keeps no halo fluid (a cell's fluid is its owner's) */
     if (P.kind[i] == KIND_FLUID) fluid_.push_back(i);
   rho_.assign(P.n, 0);
   vol_.assign(P.n, 0);

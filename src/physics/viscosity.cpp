@@ -19,7 +19,7 @@ PetscErrorCode Viscosity::AddForces(const ForceInput &in, PetscReal *f, PetscRea
 {
   PetscFunctionBeginUser;
   PetscReal       p  = 0;
-  const PetscInt  n  = 2 * in.P->n;
+  const PetscInt  n  = 2 * in.P->NumOwned();
   const PetscReal nu = coefficient;
   for (PetscInt k = 0; k < n; k++) {
     f[k] -= nu * in.v[k];

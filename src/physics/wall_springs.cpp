@@ -43,7 +43,7 @@ void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscRea
   const PetscReal *x = in.x, *v = in.v;
   const auto      &S    = in.P->springs;
   PetscReal        w[4] = {0, 0, 0, 0};
-  for (size_t s = 0; s < S.size(); s++) {
+  for (size_t s = 0, ns = in.P->OwnedSprings(); s < ns; s++) { /* this rank's springs (particles.h) */
     const PetscInt i = S[s].i, j = S[s].j;
     PetscReal      dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
     if (PERIODIC) {
@@ -108,7 +108,8 @@ std::vector<PetscReal> SpringAxialForces(const ForceInput &in, PetscReal k, cons
 PetscReal SpringEnergy(const ForceInput &in, PetscReal k)
 {
   PetscReal E = 0;
-  for (const Spring &s : in.P->springs) {
+  for (size_t q = 0, ns = in.P->OwnedSprings(); q < ns; q++) {
+    const Spring    &s  = in.P->springs[q];
     const PetscReal *sx = in.images->x[s.image];
     const PetscReal  dx = in.x[2 * s.j] + sx[0] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] + sx[1] - in.x[2 * s.i + 1];
     const PetscReal  e = std::sqrt(dx * dx + dy * dy) - s.rest_length;

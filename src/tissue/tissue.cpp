@@ -68,7 +68,7 @@ void Tissue::Finalize()
 {
   ParticleSet &P = particles;
   FindWallJoints(P, X, period);
-  P.n_owned = P.n;
+  P.n_owned = -1; /* all */
   P.gid.resize(P.n);
   for (PetscInt i = 0; i < P.n; i++) P.gid[i] = i;
   P.fixed.assign(P.n, 0);

@@ -57,13 +57,17 @@ public:
   /* Resolve the groups' nodes on the full tissue (every rank holds it at this point, so the checks
      agree on all ranks); `owner` false: this rank keeps the groups but no nodes. */
   PetscErrorCode SetUp(MPI_Comm comm, const Tissue &tissue, bool owner);
+  /* A distributed run: after SetUp on the whole tissue, keep the nodes this rank has (local_of[g]:
+     the local index of global particle g, -1 if none) in the local numbering of `P`; the first
+     P.NumOwned() are this rank's own (observed, integrated), the halo copies are only imposed. */
+  void Localize(const std::vector<PetscInt> &local_of, const ParticleSet &P);
 
   bool                             Active() const { return !groups_.empty(); }
   const std::vector<ControlGroup> &Groups() const { return groups_; }
 
   /* Overwrite the velocity-controlled components of x and v (either may be NULL) with their values
      at time t. */
-  void Impose(PetscReal t, PetscReal *x, PetscReal *v) const;
+  void Impose(PetscReal t, PetscReal *x, PetscReal *v, PetscInt n = PETSC_MAX_INT) const; /* nodes below n only (arrays of n particles) */
   /* Velocity-controlled components of xdot: the mean velocity over [t, t + tau] (tau > 0: a drift of
      a splitting integrator, exact for any profile), or the velocity at t (tau = 0). */
   void PositionRates(PetscReal t, PetscReal tau, PetscReal *xdot) const;
@@ -86,7 +90,8 @@ private:
   std::vector<ControlGroup> groups_;
   /* the velocity-controlled components: state index 2 i + d, and its group */
   std::vector<PetscInt>  comp_, comp_group_;
-  std::vector<PetscReal> node_mass_; /* of every local particle (the centre of mass of a group) */
+  std::vector<PetscReal> node_mass_;               /* of every local particle (the centre of mass of a group) */
+  PetscInt               n_owned_ = PETSC_MAX_INT; /* nodes from here on are halo copies (Localize) */
 };
 
 } // namespace turgor

@@ -11,6 +11,7 @@
 #include <turgor/fine/energy_balance.h>
 #include <turgor/io/particle_snapshots.h>
 #include <turgor/parallel/cell_partition.h>
+#include <turgor/parallel/tissue_distribution.h>
 #include <turgor/physics/force_model.h>
 #include <turgor/run/time_run.h>
 #include <turgor/tissue/tissue_generator.h>
@@ -20,11 +21,13 @@ namespace turgor {
 
 /* -fine_ options besides the outputs. */
 struct FineRunSpec {
-  std::vector<std::string> clamp     = {"left"}; /* sides whose wall particles are fixed */
-  PetscReal                dt_safety = 0.5;      /* fixed steps: this fraction of the stability limit */
-  PetscReal                dt        = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
-  bool                     energy    = false;    /* energy.csv (-fine_energy) */
-  PetscInt                 partition = 0;        /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
+  std::vector<std::string> clamp       = {"left"}; /* sides whose wall particles are fixed */
+  PetscReal                dt_safety   = 0.5;      /* fixed steps: this fraction of the stability limit */
+  PetscReal                dt          = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
+  bool                     energy      = false;    /* energy.csv (-fine_energy) */
+  PetscInt                 partition   = 0;        /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
+  bool                     distribute  = true;     /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
+  PetscReal                halo_margin = -1;       /* -fine_halo_margin [µm]: the halo's width beyond the interactions' reach; < 0: the reach */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -95,9 +98,16 @@ private:
 
   PetscErrorCode CreateSwarm();
   PetscErrorCode SyncSwarm(PetscReal t, Vec U);
-  /* With controls: x and v of the state with the controlled components imposed at t (work arrays);
-     without: the state's own arrays. */
-  void           Constrained(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc);
+  /* The model's view of a state (x, v of this rank's particles): every local particle's x and v,
+     the halo's from their owners, with the controlled components imposed at t (work arrays); a
+     serial run without controls gets the state's own arrays. Collective in a distributed run. */
+  PetscErrorCode LocalState(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc);
+  /* f[2 n_all] = the forces at the local state (x, v); on the owned particles whole (the halo's
+     shares returned by the other ranks). */
+  PetscErrorCode TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f);
+  /* a[2 n] of the owned particles at the local state (x, v) */
+  PetscErrorCode Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a);
+  PetscErrorCode Distribute(); /* -fine_distribute on several ranks: partition, halo, this rank's tissue */
   PetscErrorCode ChooseTimeStep();
   PetscErrorCode PartitionCellsReport(); /* -fine_partition_report: before the tissue leaves the ranks other than 0 */
 
@@ -110,7 +120,13 @@ private:
   ForceModel                 model_;
   DM                         swarm_ = nullptr;
   IS                         is_x_ = nullptr, is_v_ = nullptr;
-  PetscInt                   n_local_ = 0;
+  PetscInt                   n_local_     = 0; /* this rank's particles (the state's) */
+  PetscInt                   n_all_       = 0; /* with the halo copies: the model's particles */
+  bool                       distributed_ = false;
+  TissueDistribution         dist_;
+  std::vector<PetscReal>     fw_;              /* forces of the local particles */
+  PetscReal                  halo_reach_  = 0; /* the interactions' reach (with the skin) and the margin, µm */
+  PetscReal                  halo_margin_ = 0;
   std::vector<PetscReal>     v_stale_; /* velocities seen by the last position update (Verlet) */
   Controls                   controls_;
   std::vector<PetscReal>     xw_, vw_;            /* controls only: the state with the constraints imposed */

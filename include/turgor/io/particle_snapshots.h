@@ -48,14 +48,16 @@ public:
     std::vector<Field>    nodes, cells, bars;
     std::vector<Segments> segments;
   };
-  PetscErrorCode Write(DM swarm, PetscReal time, const Fields &fields = {});
+  /* positions: of all of P's particles (a distributed run: with the halo, whose bars' strains need
+     them); NULL: the swarm's */
+  PetscErrorCode Write(DM swarm, PetscReal time, const Fields &fields = {}, const PetscReal *positions = nullptr);
   PetscErrorCode Close();
   ~ParticleSnapshotWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
 
 private:
   PetscErrorCode WriteXdmf();
-  PetscErrorCode WritePolygonFields(const PetscReal *x, const std::vector<Field> &cell_fields);
+  PetscErrorCode WritePolygonFields(const PetscReal *x, const PetscReal *x_bars, const std::vector<Field> &cell_fields);
   PetscErrorCode WriteVector(const std::string &name, const std::vector<PetscReal> &values, int components);
 
   MPI_Comm    comm_   = MPI_COMM_NULL;

@@ -64,16 +64,26 @@ struct PolygonCell {
   bool                  open = false;
 };
 
-/* Constant per-particle data. Layout is ready for distribution: the first n_owned particles are
-   owned by this rank, the rest (none yet) would be halo copies; gid is the global id. */
+/* Constant per-particle data of this rank. In a distributed fine run (tissue_distribution.h) the
+   first n_owned particles are owned by this rank (its cells' particles) and the rest are halo copies
+   of other ranks' particles; gid is the global id (the tissue's numbering). Every interaction is
+   computed once, by the rank that owns its anchor: a spring or bar by the owner of its end i (the
+   first n_springs_owned springs), a hinge or a cell's pressure by the owner of the polygon (the
+   first n_polygons_owned polygons), a particle–spring pair, a contact or a glue bond by the owner
+   of its particle or node. The other springs and polygons are there as geometry (contact,
+   repulsion, glue). A serial run owns everything (the counts stay -1: all). */
 struct ParticleSet {
-  PetscInt               n       = 0; /* local particles (owned + halo) */
-  PetscInt               n_owned = 0;
-  std::vector<PetscReal> mass;  /* [n] */
-  std::vector<PetscInt>  kind;  /* [n] ParticleKind */
-  std::vector<PetscInt>  cell;  /* [n] cell id for fluid particles, -1 for walls */
-  std::vector<PetscInt>  gid;   /* [n] global id */
-  std::vector<char>      fixed; /* [n] 1 if clamped (position and velocity held) */
+  PetscInt               n                = 0;  /* local particles (owned + halo) */
+  PetscInt               n_owned          = -1; /* -1: all n */
+  PetscInt               n_springs_owned  = -1; /* -1: all springs */
+  PetscInt               n_polygons_owned = -1; /* -1: all polygons */
+  std::vector<PetscInt>  index;                 /* [n] the particle's position in the distributed state (output connectivity); empty: this rank's offset + i */
+  std::vector<PetscInt>  spring_gid, polygon_gid; /* the tissue's numbers of the springs and polygons (records); empty: the same as here */
+  std::vector<PetscReal> mass;                    /* [n] */
+  std::vector<PetscInt>  kind;                    /* [n] ParticleKind */
+  std::vector<PetscInt>  cell;                    /* [n] cell id for fluid particles, -1 for walls */
+  std::vector<PetscInt>  gid;                     /* [n] global id */
+  std::vector<char>      fixed;                   /* [n] 1 if clamped (position and velocity held) */
   std::vector<Spring>    springs;
   /* Polygonal tissues only (empty for the square grid, whose walls are shared by two cells): the
      cells, the cell of every node (-1 for a particle in none), and the bar radius (a node is a disk
@@ -82,12 +92,16 @@ struct ParticleSet {
   std::vector<PetscInt>    node_polygon; /* [n] when polygons is not empty */
   PetscReal                bar_radius = 0;
 
+  /* owned particles of kind k */
   PetscInt Count(ParticleKind k) const
   {
     PetscInt c = 0;
-    for (PetscInt i = 0; i < n; i++) c += (kind[i] == k);
+    for (PetscInt i = 0; i < NumOwned(); i++) c += (kind[i] == k);
     return c;
   }
+  PetscInt NumOwned() const { return n_owned < 0 ? n : n_owned; }
+  size_t   OwnedSprings() const { return n_springs_owned < 0 ? springs.size() : (size_t)n_springs_owned; }
+  size_t   OwnedPolygons() const { return n_polygons_owned < 0 ? polygons.size() : (size_t)n_polygons_owned; }
 };
 
 } // namespace turgor

@@ -26,6 +26,7 @@ public:
   const char    *Name() const override { return "contact"; }
   PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscReal      Reach(const ParticleSet &P) const override { return 2 * P.bar_radius; }
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;

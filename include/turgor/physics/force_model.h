@@ -49,6 +49,9 @@ public:
   PetscErrorCode ComputeForces(const PetscReal *x, const PetscReal *v, PetscReal *f, PetscReal *virial);
   /* a[2n] = f / m, zero for fixed particles (whose flags are read at SetUp). */
   PetscErrorCode ComputeAcceleration(const PetscReal *x, const PetscReal *v, PetscReal *a);
+  /* a[2i] = f[2i] / m_i for the first n particles, zero for fixed ones (a distributed run divides
+     once the halo's forces have come back). */
+  void DivideByMass(const PetscReal *f, PetscReal *a, PetscInt n) const;
   /* Sum of the conservative terms' energies; *complete = PETSC_FALSE if some active term has none. */
   PetscErrorCode PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete);
   /* Every term's AcceptStep at the accepted state (x, v) of time t (integrators call it after each step). */

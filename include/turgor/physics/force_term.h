@@ -71,6 +71,10 @@ public:
   /* An external load (the body force) rather than a property of the tissue: a material (an RVE)
      does not include it; the coarse model applies the load itself. */
   virtual bool IsLoad() const { return false; }
+  /* The farthest a particle's interactions reach into other cells: a particle–spring cutoff, the
+     glue's bonding distance (without the neighbour skin; 0: only within its own cell). A distributed
+     run keeps every cell within this distance of a rank's cells as its halo. */
+  virtual PetscReal Reach(const ParticleSet &P) const { return 0; }
   /* Precompute per-particle/per-bond data and ask the neighbour search for the lists needed. */
   virtual PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) = 0;
   /* f[2n] += forces. If virial is not NULL, virial[4] += -sum_k f_k (x) x_k over this term's

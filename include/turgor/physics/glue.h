@@ -54,6 +54,7 @@ public:
   const char    *Name() const override { return "glue"; }
   PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscReal      Reach(const ParticleSet &P) const override { return 2 * P.bar_radius + distance; }
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;

@@ -18,6 +18,7 @@ public:
   const char    *Name() const override { return "repulsion"; }
   PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
+  PetscReal      Reach(const ParticleSet &P) const override { return cutoff; }
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   /* Energy lambda (r^-5/5 + r/x0^6 - 6/(5 x0^5)) per pair that counts; the force is its gradient
      wherever the angle factor is 1 (closest point inside the spring) or when the angle factor is off. */

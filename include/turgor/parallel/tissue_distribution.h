@@ -1,0 +1,73 @@
+#pragma once
+/* Distributed fine runs: the cells of a tissue dealt to the ranks (a METIS partition,
+   cell_partition.h), every particle on the rank that owns its cell. A Lagrangian decomposition:
+   particles move with their cell and never migrate.
+
+   - Owned: the particles whose cell (OwnerCells) this rank owns; particles in no cell belong to
+     rank 0. They come first in the local numbering, in global order, and are this rank's block of
+     the distributed state.
+   - Halo: the wall particles (walls, nodes; never fluid, which only meets its own cell) of every
+     cell of another rank whose bounding box lies within reach + margin of one of this rank's cells,
+     reach being the farthest a particle's interactions go into another cell (ForceTerm::Reach plus
+     the neighbour skin). Whole cells, so that a halo polygon is complete, and the cells that share
+     a wall particle with this rank's cells (distance 0).
+   - Every interaction is computed once, by the rank owning its anchor (particles.h); the forces on
+     halo particles are returned to their owners (Return) and summed there.
+
+   The halo is fixed at set-up; Check() keeps it honest as cells move: once an edge of some cell's
+   box (of its ring and fluid) has moved half the smallest slack (the distance, beyond the reach,
+   from a rank's cells to the nearest cell outside its halo) over sqrt 2 since the last full check,
+   the cells' current boxes are exchanged and each rank's halo must still hold every cell within
+   reach, else the run stops with an error naming -fine_halo_margin. Between full checks that costs
+   one pass over the boxes and one reduction of a number per evaluation.
+
+   The exchange pattern is one PetscSF over the halo particles' two components (roots: the owned
+   particles' components on their owner; leaves: the halo slots), used for positions and velocities
+   (broadcast) and for forces (reduction by sum). */
+#include <turgor/tissue/tissue.h>
+#include <petscsf.h>
+#include <vector>
+
+namespace turgor {
+
+class TissueDistribution {
+public:
+  ~TissueDistribution();
+  /* Collective. Every rank holds the whole tissue `global`; cell_rank[c] is the rank that owns cell
+     c (Tissue::cell_walls order). Builds this rank's tissue `local` (owned particles, then the halo;
+     ParticleSet's owned counts and index set) and the exchange pattern. A periodic tissue is refused. */
+  PetscErrorCode SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin, Tissue *local);
+
+  /* a[2n] (n local particles): fill the halo part a[2 n_owned ...] from the owners' owned parts. */
+  PetscErrorCode Gather(PetscReal *a) const;
+  /* f[2n]: add the halo part to the owners' owned parts (on their ranks); the halo part is left. */
+  PetscErrorCode Return(PetscReal *f) const;
+  /* Collective: is the halo still enough at these local positions x[2n]? (see above) */
+  PetscErrorCode Check(const PetscReal *x);
+
+  PetscInt NumOwned() const { return n_owned_; }
+  PetscInt NumHalo() const { return n_halo_; }
+  PetscInt Start() const { return start_; } /* this rank's first particle in the distributed state */
+  /* local index of global particle g, -1 if this rank has no copy */
+  PetscInt                     LocalOf(PetscInt g) const { return g >= 0 && g < (PetscInt)local_of_.size() ? local_of_[g] : -1; }
+  const std::vector<PetscInt> &LocalIndices() const { return local_of_; }       /* [global particles] */
+  PetscInt                     NumLocalCells() const { return n_local_cells_; } /* owned + halo cells */
+  PetscInt                     NumOwnedCells() const { return (PetscInt)owned_cells_.size(); }
+  PetscInt                     FullChecks() const { return full_checks_; }
+  PetscReal                    Bytes() const { return bytes_; } /* received by Gather and sent by Return so far */
+  PetscReal                    Slack() const { return slack_; }
+
+private:
+  MPI_Comm                           comm_    = MPI_COMM_NULL;
+  PetscSF                            sf_      = nullptr;
+  PetscInt                           n_owned_ = 0, n_halo_ = 0, start_ = 0, n_cells_ = 0, n_local_cells_ = 0, full_checks_ = 0;
+  std::vector<PetscInt>              local_of_;    /* [global particles] */
+  std::vector<PetscInt>              owned_cells_; /* global ids of this rank's cells */
+  std::vector<std::vector<PetscInt>> owned_rings_; /* their particles: rings and fluid (local indices) */
+  std::vector<char>                  local_cell_;  /* [cells]: owned or halo here */
+  PetscReal                          reach_ = 0, margin_ = 0, slack_ = 0;
+  std::vector<PetscReal>             box_check_; /* this rank's cells' boxes at the last full check */
+  mutable PetscReal                  bytes_ = 0;
+};
+
+} // namespace turgor

@@ -1,0 +1,298 @@
+#include <turgor/parallel/tissue_distribution.h>
+#include <turgor/parallel/cell_partition.h>
+#include <algorithm>
+#include <cmath>
+
+namespace turgor {
+
+namespace {
+struct Box {
+  PetscReal lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
+  void      Add(const PetscReal *p)
+  {
+    for (int d = 0; d < 2; d++) lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+  }
+};
+
+PetscReal BoxDistance(const Box &a, const Box &b)
+{
+  const PetscReal dx = std::max((PetscReal)0, std::max(a.lo[0] - b.hi[0], b.lo[0] - a.hi[0]));
+  const PetscReal dy = std::max((PetscReal)0, std::max(a.lo[1] - b.hi[1], b.lo[1] - a.hi[1]));
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+/* For every target box the distance to the nearest query box, or `cap` where none is nearer: the
+   query boxes grown by cap in a uniform grid of about their size (a plate spans many bins). */
+void NearestDistances(const std::vector<Box> &query, const std::vector<Box> &target, PetscReal cap, std::vector<PetscReal> *dist)
+{
+  dist->assign(target.size(), cap);
+  if (query.empty() || target.empty()) return;
+  Box       all;
+  PetscReal extent = 0;
+  for (const Box &q : query) {
+    all.Add(q.lo), all.Add(q.hi);
+    extent += (q.hi[0] - q.lo[0]) + (q.hi[1] - q.lo[1]);
+  }
+  for (int d = 0; d < 2; d++) all.lo[d] -= cap, all.hi[d] += cap;
+  PetscReal h = std::max({extent / (2 * query.size()), cap, (PetscReal)1e-9 * (all.hi[0] - all.lo[0] + all.hi[1] - all.lo[1] + 1)});
+  while (((all.hi[0] - all.lo[0]) / h + 1) * ((all.hi[1] - all.lo[1]) / h + 1) > 4.0 * query.size() + 64) h *= 1.5;
+  const PetscInt                     gx = (PetscInt)((all.hi[0] - all.lo[0]) / h) + 1, gy = (PetscInt)((all.hi[1] - all.lo[1]) / h) + 1;
+  std::vector<std::vector<PetscInt>> bins((size_t)gx * gy);
+  auto                               ix = [&](PetscReal x) { return std::min(gx - 1, std::max((PetscInt)0, (PetscInt)std::floor((x - all.lo[0]) / h))); };
+  auto                               iy = [&](PetscReal y) { return std::min(gy - 1, std::max((PetscInt)0, (PetscInt)std::floor((y - all.lo[1]) / h))); };
+  for (size_t k = 0; k < query.size(); k++)
+    for (PetscInt y = iy(query[k].lo[1] - cap); y <= iy(query[k].hi[1] + cap); y++)
+      for (PetscInt x = ix(query[k].lo[0] - cap); x <= ix(query[k].hi[0] + cap); x++) bins[(size_t)y * gx + x].push_back((PetscInt)k);
+  for (size_t t = 0; t < target.size(); t++) {
+    const Box &T = target[t];
+    if (T.hi[0] < all.lo[0] || T.lo[0] > all.hi[0] || T.hi[1] < all.lo[1] || T.lo[1] > all.hi[1]) continue;
+    PetscReal best = cap;
+    for (PetscInt y = iy(T.lo[1]); y <= iy(T.hi[1]); y++)
+      for (PetscInt x = ix(T.lo[0]); x <= ix(T.hi[0]); x++)
+        for (PetscInt k : bins[(size_t)y * gx + x]) best = std::min(best, BoxDistance(query[k], T));
+    (*dist)[t] = best;
+  }
+}
+} // namespace
+
+TissueDistribution::~TissueDistribution()
+{
+  PetscCallVoid(PetscSFDestroy(&sf_));
+}
+
+PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin,
+                                         Tissue *local)
+{
+  const ParticleSet &G = global.particles;
+  const PetscInt     N = G.n;
+  PetscMPIInt        size, rank;
+  PetscFunctionBeginUser;
+  comm_ = comm;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCheck(global.period[0] == 0 && global.period[1] == 0, comm, PETSC_ERR_SUP, "A periodic tissue cannot be distributed over ranks (run it on one rank)");
+  PetscCheck((PetscInt)cell_rank.size() == global.NumCells(), comm, PETSC_ERR_ARG_SIZ, "cell_rank has %zu entries for %" PetscInt_FMT " cells",
+             cell_rank.size(), global.NumCells());
+  reach_  = reach;
+  margin_ = margin;
+
+  /* the cells: the tissue's, then one pseudo-cell for every particle in no cell (rank 0's) */
+  std::vector<PetscInt> owner_cell, owner_rank(N);
+  OwnerCells(global, &owner_cell);
+  std::vector<std::vector<PetscInt>> rings(global.cell_walls.begin(), global.cell_walls.end());
+  std::vector<PetscInt>              crank(cell_rank.begin(), cell_rank.end());
+  for (PetscInt i = 0; i < N; i++)
+    if (owner_cell[i] < 0) {
+      owner_cell[i] = (PetscInt)rings.size();
+      rings.push_back({i});
+      crank.push_back(0);
+    }
+  n_cells_ = (PetscInt)rings.size();
+  for (PetscInt i = 0; i < N; i++) owner_rank[i] = crank[owner_cell[i]];
+
+  /* owned positions and the ranks' blocks (global order within a rank) */
+  std::vector<PetscInt> pos(N), count(size, 0), offset(size + 1, 0);
+  for (PetscInt g = 0; g < N; g++) pos[g] = count[owner_rank[g]]++;
+  for (PetscMPIInt r = 0; r < size; r++) offset[r + 1] = offset[r] + count[r];
+  start_   = offset[rank];
+  n_owned_ = count[rank];
+
+  /* the halo cells: another rank's cells within reach + margin of this rank's (reference boxes, of
+     the rings and fluid) */
+  std::vector<Box> box(n_cells_), mine;
+  owned_cells_.clear();
+  for (PetscInt i = 0; i < N; i++) box[owner_cell[i]].Add(&global.X[2 * i]);
+  for (PetscInt c = 0; c < n_cells_; c++) {
+    for (PetscInt i : rings[c]) box[c].Add(&global.X[2 * i]);
+    if (crank[c] == rank) owned_cells_.push_back(c), mine.push_back(box[c]);
+  }
+  std::vector<PetscReal> dist;
+  NearestDistances(mine, box, reach + margin + 1, &dist);
+  local_cell_.assign(n_cells_, 0);
+  n_local_cells_ = 0;
+  for (PetscInt c = 0; c < n_cells_; c++) {
+    local_cell_[c] = crank[c] == rank || dist[c] <= reach + margin;
+    n_local_cells_ += local_cell_[c];
+  }
+
+  /* local particles: owned, then the other ranks' wall particles of the local cells */
+  std::vector<PetscInt> order;
+  local_of_.assign(N, -1);
+  for (PetscInt g = 0; g < N; g++)
+    if (owner_rank[g] == rank) local_of_[g] = (PetscInt)order.size(), order.push_back(g);
+  {
+    std::vector<PetscInt> halo;
+    for (PetscInt c = 0; c < n_cells_; c++)
+      if (local_cell_[c])
+        for (PetscInt i : rings[c])
+          if (owner_rank[i] != rank && G.kind[i] != KIND_FLUID) halo.push_back(i);
+    std::sort(halo.begin(), halo.end());
+    halo.erase(std::unique(halo.begin(), halo.end()), halo.end());
+    for (PetscInt g : halo) local_of_[g] = (PetscInt)order.size(), order.push_back(g);
+    n_halo_ = (PetscInt)halo.size();
+  }
+  const PetscInt n = (PetscInt)order.size();
+
+  /* this rank's tissue */
+  Tissue       T;
+  ParticleSet &P = T.particles;
+  P.n            = n;
+  P.n_owned      = n_owned_;
+  P.bar_radius   = G.bar_radius;
+  P.mass.resize(n), P.kind.resize(n), P.cell.resize(n), P.gid.resize(n), P.fixed.resize(n), P.index.resize(n);
+  T.X.resize(2 * n);
+  if (!global.V.empty()) T.V.resize(2 * n);
+  for (PetscInt l = 0; l < n; l++) {
+    const PetscInt g = order[l];
+    P.mass[l] = G.mass[g], P.kind[l] = G.kind[g], P.cell[l] = G.cell[g], P.gid[l] = G.gid[g], P.fixed[l] = G.fixed[g];
+    P.index[l] = offset[owner_rank[g]] + pos[g];
+    for (int d = 0; d < 2; d++) {
+      T.X[2 * l + d] = global.X[2 * g + d];
+      if (!global.V.empty()) T.V[2 * l + d] = global.V[2 * g + d];
+    }
+  }
+  /* springs with both ends here; this rank's (end i owned) first */
+  std::vector<PetscInt> spring_of(G.springs.size(), -1);
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t s = 0; s < G.springs.size(); s++) {
+      const PetscInt i = local_of_[G.springs[s].i], j = local_of_[G.springs[s].j];
+      if (i < 0 || j < 0 || (i < n_owned_) != (pass == 0)) continue;
+      spring_of[s] = (PetscInt)P.springs.size();
+      P.spring_gid.push_back((PetscInt)s);
+      Spring sp = G.springs[s];
+      sp.i = i, sp.j = j;
+      P.springs.push_back(sp);
+    }
+  P.n_springs_owned = 0;
+  for (const Spring &s : P.springs) P.n_springs_owned += s.i < n_owned_;
+  for (Spring &s : P.springs)
+    for (int e = 0; e < 2; e++)
+      if (s.joint[e] >= 0) s.joint[e] = spring_of[s.joint[e] / 2] >= 0 ? 2 * spring_of[s.joint[e] / 2] + s.joint[e] % 2 : -1;
+  /* polygons of the local cells, this rank's first; the cell rings of this rank's cells */
+  if (!G.polygons.empty()) {
+    std::vector<PetscInt> polygon_of(G.polygons.size(), -1);
+    for (int pass = 0; pass < 2; pass++)
+      for (size_t c = 0; c < G.polygons.size(); c++) {
+        if (!local_cell_[c] || (crank[c] == rank) != (pass == 0)) continue;
+        PolygonCell C = G.polygons[c];
+        for (PetscInt &i : C.nodes) i = local_of_[i];
+        for (PetscInt &s : C.bars) s = spring_of[s];
+        PetscCheck(std::find(C.nodes.begin(), C.nodes.end(), -1) == C.nodes.end() && std::find(C.bars.begin(), C.bars.end(), -1) == C.bars.end(),
+                   PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %zu is not whole on rank %d", c, rank);
+        polygon_of[c] = (PetscInt)P.polygons.size();
+        P.polygons.push_back(C);
+        P.polygon_gid.push_back((PetscInt)c);
+        if (pass == 0) P.n_polygons_owned = (PetscInt)P.polygons.size();
+      }
+    if (P.n_polygons_owned < 0) P.n_polygons_owned = 0;
+    P.node_polygon.assign(n, -1);
+    for (PetscInt l = 0; l < n; l++)
+      if (G.node_polygon[order[l]] >= 0) P.node_polygon[l] = polygon_of[G.node_polygon[order[l]]];
+    for (const auto &nc : global.named_cells)
+      if (polygon_of[nc.second] >= 0) T.named_cells.push_back({nc.first, polygon_of[nc.second]});
+  }
+  /* this rank's cells: their rings, and every particle that makes their boxes (rings and fluid) */
+  owned_rings_.clear();
+  {
+    std::vector<std::vector<PetscInt>> fluid(n_cells_);
+    for (PetscInt i = 0; i < N; i++)
+      if (G.kind[i] == KIND_FLUID && crank[owner_cell[i]] == rank) fluid[owner_cell[i]].push_back(local_of_[i]);
+    for (PetscInt c : owned_cells_) {
+      std::vector<PetscInt> ring;
+      for (PetscInt i : rings[c]) ring.push_back(local_of_[i]);
+      if (c < global.NumCells()) T.cell_walls.push_back(ring);
+      ring.insert(ring.end(), fluid[c].begin(), fluid[c].end());
+      owned_rings_.push_back(ring);
+    }
+  }
+  for (int d = 0; d < 2; d++) T.lo[d] = global.lo[d], T.hi[d] = global.hi[d];
+  *local = std::move(T);
+
+  /* the exchange pattern: halo components <- their owners' */
+  std::vector<PetscSFNode> remote(2 * n_halo_);
+  for (PetscInt k = 0; k < n_halo_; k++) {
+    const PetscInt g = order[n_owned_ + k];
+    for (int d = 0; d < 2; d++) remote[2 * k + d] = {owner_rank[g], 2 * pos[g] + d};
+  }
+  PetscCall(PetscSFDestroy(&sf_));
+  PetscCall(PetscSFCreate(comm, &sf_));
+  PetscCall(PetscSFSetGraph(sf_, 2 * n_owned_, 2 * n_halo_, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
+  PetscCall(PetscSFSetUp(sf_));
+  box_check_.clear();
+  full_checks_ = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TissueDistribution::Gather(PetscReal *a) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
+  bytes_ += 2.0 * n_halo_ * sizeof(PetscReal);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TissueDistribution::Return(PetscReal *f) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSFReduceBegin(sf_, MPIU_REAL, f + 2 * n_owned_, f, MPIU_SUM));
+  PetscCall(PetscSFReduceEnd(sf_, MPIU_REAL, f + 2 * n_owned_, f, MPIU_SUM));
+  bytes_ += 2.0 * n_halo_ * sizeof(PetscReal);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TissueDistribution::Check(const PetscReal *x)
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  /* this rank's cells' boxes now; cheap: has any box edge moved half the slack since the last full
+     check? (two boxes come closer by at most the sum of their edges' moves) */
+  std::vector<PetscReal> now(4 * owned_cells_.size());
+  PetscReal              shift = 0;
+  for (size_t k = 0; k < owned_cells_.size(); k++) {
+    Box b;
+    for (PetscInt i : owned_rings_[k]) b.Add(&x[2 * i]);
+    const PetscReal e[4] = {b.lo[0], b.lo[1], b.hi[0], b.hi[1]};
+    for (int q = 0; q < 4; q++) {
+      now[4 * k + q] = e[q];
+      if (!box_check_.empty()) shift = std::max(shift, std::fabs(e[q] - box_check_[4 * k + q]));
+    }
+  }
+  if (!box_check_.empty()) {
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &shift, 1, MPIU_REAL, MPIU_MAX, comm_));
+    if (2 * std::sqrt(2.0) * shift < slack_) PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscInfo(NULL, "halo full check %d: box shift %g, slack %g\n", (int)full_checks_, (double)shift, (double)slack_));
+  /* every cell's current box, from its owner */
+  full_checks_++;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  std::vector<PetscReal> send;
+  for (size_t k = 0; k < owned_cells_.size(); k++)
+    send.insert(send.end(), {(PetscReal)owned_cells_[k], now[4 * k], now[4 * k + 1], now[4 * k + 2], now[4 * k + 3]});
+  PetscMPIInt              mine = (PetscMPIInt)send.size();
+  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  std::vector<PetscReal> all(displs[size]);
+  PetscCallMPI(MPI_Allgatherv(send.data(), mine, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, comm_));
+  std::vector<Box> box(n_cells_), own;
+  for (size_t k = 0; k + 5 <= all.size(); k += 5) {
+    Box &b  = box[(size_t)all[k]];
+    b.lo[0] = all[k + 1], b.lo[1] = all[k + 2], b.hi[0] = all[k + 3], b.hi[1] = all[k + 4];
+  }
+  for (PetscInt c : owned_cells_) own.push_back(box[c]);
+  std::vector<PetscReal> dist;
+  NearestDistances(own, box, reach_ + margin_, &dist);
+  PetscReal slack = margin_;
+  for (PetscInt c = 0; c < n_cells_; c++)
+    if (!local_cell_[c]) slack = std::min(slack, dist[c] - reach_);
+  PetscCallMPI(MPI_Allreduce(&slack, &slack_, 1, MPIU_REAL, MPIU_MIN, comm_));
+  PetscCheck(slack_ >= 0, comm_, PETSC_ERR_NOT_CONVERGED,
+             "A cell came within %g µm (the interactions' reach) of a rank's cells without being in its halo: the halo set up at the start "
+             "(reach + -fine_halo_margin %g µm) no longer covers this deformation; rerun with a larger -fine_halo_margin",
+             (double)reach_, (double)margin_);
+  box_check_ = now;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor

@@ -1,0 +1,68 @@
+# Distributed fine runs (issue 13; labels fine mpi): every particle on the rank of its cell, a halo
+# exchanged before each evaluation, every interaction computed once. The same scene on 1, 2 and 3
+# ranks (oversubscribed on CI's 2 cores) must give the same tip history to 1e-10 of its largest
+# value; only the order of the force sums differs.
+
+# name; OPTIONS: the scene; COMPARE: further compare_runs.py checks of each multi-rank run against
+# the 1-rank one, as "mode:file-or-key:tolerance" (csvrel and samekey)
+function(turgor_ranks_agree name)
+  cmake_parse_arguments(D "" "TOL" "OPTIONS;COMPARE" ${ARGN})
+  if(NOT D_TOL)
+    set(D_TOL 1e-10)
+  endif()
+  foreach(np 1 2 3)
+    turgor_add_test(dist_${name}_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${D_OPTIONS} -output_overwrite
+      -output_dir dist_${name}_np${np} LABELS fine mpi SETUP dist_${name}_np${np})
+  endforeach()
+  foreach(np 2 3)
+    turgor_add_test(dist_${name}_np${np}_tip COMMAND ${CHECK} tiprel dist_${name}_np${np} dist_${name}_np1 ${D_TOL} LABELS fine mpi
+      REQUIRES "dist_${name}_np1;dist_${name}_np${np}")
+    foreach(c ${D_COMPARE})
+      string(REPLACE ":" ";" parts ${c})
+      list(GET parts 0 mode)
+      list(GET parts 1 what)
+      list(GET parts 2 tol)
+      string(MAKE_C_IDENTIFIER ${what} id)
+      turgor_add_test(dist_${name}_np${np}_${id} COMMAND ${CHECK} ${mode} dist_${name}_np${np} dist_${name}_np1 ${what} ${tol} LABELS fine mpi
+        REQUIRES "dist_${name}_np1;dist_${name}_np${np}")
+    endforeach()
+  endforeach()
+  # the distribution's keys in summary.json
+  turgor_add_test(dist_${name}_keys COMMAND ${CHECK} keys dist_${name}_np2 mpi_ranks particles_per_rank_max particles_per_rank_mean
+    halo_bytes_per_step load_imbalance LABELS fine mpi REQUIRES dist_${name}_np2)
+endfunction()
+
+# The seed's square-grid bending bar (springs, repulsion, SPH, gravity; DOPRI, adaptive) over 2 µs.
+turgor_ranks_agree(bar OPTIONS -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_max_time 2 -fine_snapshots 0
+  -fine_progress_interval 0)
+# A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
+# velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
+# share summed), TS verlet, over 4 µs.
+set(DIST_POLY -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -ts_max_time 4 -control_lid_delay 1 -control_lid_velocity 0,-3 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_tip_samples 200)
+turgor_ranks_agree(polygon OPTIONS ${DIST_POLY} COMPARE csvrel:groups.csv:1e-9 csvrel:energy.csv:1e-9 samekey:contact_friction_dissipation:1e-9
+  samekey:hinge_plastic_hinges:0)
+# The glued traction scene on 16 cells: the same bonds (554) and breaks (111) on every rank count;
+# fracture amplifies round-off (a break a step earlier or later), so the tip agrees to 1e-7.
+turgor_ranks_agree(glue TOL 1e-7 OPTIONS -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.yaml -tissue_voronoi_cells 16
+  -tissue_box 0,0,100,100 -control_top_box -1,87.5,101,101 -control_bottom_box -1,-1,101,12.5 -fine_snapshots 0 -fine_progress_interval 0
+  -fine_energy 0 -fine_dt_safety 0.25 -control_top_velocity 0,0.05 -control_bottom_velocity 0,-0.05 -control_top_ramp_time 5
+  -control_bottom_ramp_time 5 -ts_max_time 12 COMPARE samekey:bonds_created:0 samekey:bonds_broken:0 samekey:glue_interface_length:1e-12)
+
+# Snapshots of a distributed run: each rank writes its own particles, bars and cells into the one
+# file (connectivity in the state's numbering, halo ends included): the XDMF agrees with its HDF5
+# data, and ParaView shows the 64 cells with the gas-law pressure, as for one rank.
+turgor_add_test(dist_box_snapshots COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${BOX} -ts_max_time 1 -fine_snapshots 2
+  -output_dir dist_box_snapshots LABELS fine mpi SETUP dist_box_snapshots)
+turgor_add_test(dist_box_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py dist_box_snapshots/particles.xmf LABELS fine mpi
+  REQUIRES dist_box_snapshots)
+turgor_paraview_polygons(dist_box dist_box_snapshots 50)
+
+# Restart of a distributed run (the polygonal tissue above on 2 ranks, 6 µs, stopped after 3000
+# steps): bit for bit, with groups.csv and energy.csv.
+turgor_restart_case(dist_polygon 3000 INTERVAL 3 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_POLY} -ts_max_time 6 FILES groups.csv energy.csv)
+
+# hard: cells that move farther than the halo's margin stop the run with an error naming the
+# option (the lid comes down onto the cells with no margin), not with missed contacts.
+turgor_add_test(dist_halo_outgrown COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${DIST_POLY} -ts_max_time 16 -fine_halo_margin 0
+  -output_overwrite -output_dir dist_halo_outgrown LABELS fine mpi hard PASS_REGEX "no longer covers this deformation; rerun with a larger -fine_halo_margin")
