@@ -205,6 +205,9 @@ def run_local(args, runs):
             continue
         os.makedirs(args.runs_dir, exist_ok=True)
         write_meta(args, run, line)
+        stale = os.path.join(run["rundir"], "summary.json")
+        if os.path.exists(stale):  # an earlier run's: a run that fails early must not be read as this one
+            os.remove(stale)
         log = run["rundir"] + ".log"
         t0 = time.time()
         try:
@@ -326,9 +329,16 @@ def read_run(summary_path):
         return None
     if s.get("mode") and s["mode"] != mode:
         print(f"warning: {rundir}: summary.json says mode {s['mode']}, the study {mode}", file=sys.stderr)
-    if s.get("status", "completed") != "completed":
-        print(f"warning: {rundir}: status {s.get('status')!r}", file=sys.stderr)
-    ranks = s.get("mpi_ranks", meta.get("ranks", int(m.group(3)) if m else None))
+    status = s.get("status", "completed")
+    if status == "failed":
+        print(f"warning: {rundir}: the run failed (summary.json status 'failed'); skipped", file=sys.stderr)
+        return None
+    if status != "completed":  # interrupted (a signal, a job's time limit): its steps were timed all the same
+        print(f"warning: {rundir}: status {status!r}; its {s.get('steps')} steps are used", file=sys.stderr)
+    asked = meta.get("ranks", int(m.group(3)) if m else None)
+    ranks = s.get("mpi_ranks", asked)
+    if asked is not None and ranks != asked:
+        print(f"warning: {rundir}: ran on {ranks} ranks, {asked} were asked for", file=sys.stderr)
     if ranks is None:
         print(f"warning: {rundir}: no rank count; skipped", file=sys.stderr)
         return None

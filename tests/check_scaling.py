@@ -88,9 +88,11 @@ def check_collect(script, work):
                                       n_fluid_particles=2560), meta={"mode": "fe2", "kind": "weak", "ranks": 2})
     fake_run(f"{runs}/fine_strong_r8_k1", raw='{"mode": "fine", "steps": 10, ')  # a run killed while writing
     fake_run(f"{work}/study/other/summary.json_dir", fine(1, 1, 1.0))              # no meta, no telling name
+    fake_run(f"{runs}/fine_strong_r16_k1", fine(16, 0, 0.1, status="failed"))       # a failed run: skipped
     out = run(script, "--collect", os.path.join(work, "study"), "--outdir", os.path.join(work, "collected"))
     check("unreadable" in out and "fine_strong_r8_k1" in out, "a broken summary.json is not reported")
     check("neither a meta file" in out, "a run of unknown mode/kind is not reported")
+    check("the run failed" in out, "a failed run is not reported")
     header, rows = read_csv(os.path.join(work, "collected", "scaling.csv"))
     check(header == COLUMNS, f"CSV columns {header}, expected {COLUMNS}")
     got = [(r["mode"], r["kind"], r["ranks"]) for r in rows]
