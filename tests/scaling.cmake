@@ -1,0 +1,12 @@
+# The scaling-study driver bench/scaling.py (issue 13, docs/scaling.md "Running a scaling study"),
+# checked by tests/check_scaling.py: --collect on a fabricated study (CSV columns, best of repeats,
+# strong and weak efficiencies, missing summary keys), --slurm job scripts and their collection, and
+# a real strong and weak study of the fine mode on 1 and 2 ranks (4 x 4 cells, 5 steps, seconds).
+set(SCALING ${PROJECT_SOURCE_DIR}/bench/scaling.py)
+turgor_add_test(scaling_collect COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_scaling.py collect ${SCALING} scaling_collect
+  LABELS unit study TIMEOUT 30)
+turgor_add_test(scaling_slurm COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_scaling.py slurm ${SCALING} scaling_slurm
+  LABELS unit study TIMEOUT 30)
+turgor_add_test(scaling_local COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_scaling.py local ${SCALING} scaling_local
+  $<TARGET_FILE:turgor_app> ${MPIEXEC_EXECUTABLE} ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml
+  LABELS study fine mpi TIMEOUT 60)
