@@ -149,10 +149,7 @@ PetscErrorCode FineRun::LocalState(PetscReal t, const PetscScalar *x, const Pets
   vw_.resize(2 * n_all_);
   std::copy(x, x + n2, xw_.begin());
   std::copy(v, v + n2, vw_.begin());
-  if (distributed_) {
-    PetscCall(dist_.Gather(xw_.data()));
-    PetscCall(dist_.Gather(vw_.data()));
-  }
+  if (distributed_) PetscCall(dist_.Gather(xw_.data(), vw_.data()));
   controls_.Impose(t, xw_.data(), vw_.data());
   if (distributed_) PetscCall(dist_.Check(xw_.data()));
   *xc = xw_.data(), *vc = vw_.data();

@@ -223,12 +223,14 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TissueDistribution::Gather(PetscReal *a) const
+PetscErrorCode TissueDistribution::Gather(PetscReal *a, PetscReal *b) const
 {
   PetscFunctionBeginUser;
   PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
+  if (b) PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, b, b + 2 * n_owned_, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
-  bytes_ += 2.0 * n_halo_ * sizeof(PetscReal);
+  if (b) PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, b, b + 2 * n_owned_, MPI_REPLACE));
+  bytes_ += (b ? 4.0 : 2.0) * n_halo_ * sizeof(PetscReal);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

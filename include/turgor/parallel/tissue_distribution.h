@@ -38,8 +38,9 @@ public:
      ParticleSet's owned counts and index set) and the exchange pattern. A periodic tissue is refused. */
   PetscErrorCode SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin, Tissue *local);
 
-  /* a[2n] (n local particles): fill the halo part a[2 n_owned ...] from the owners' owned parts. */
-  PetscErrorCode Gather(PetscReal *a) const;
+  /* a[2n] (n local particles): fill the halo part a[2 n_owned ...] from the owners' owned parts;
+     b likewise if not NULL (both in flight at once: one latency). */
+  PetscErrorCode Gather(PetscReal *a, PetscReal *b = nullptr) const;
   /* f[2n]: add the halo part to the owners' owned parts (on their ranks); the halo part is left. */
   PetscErrorCode Return(PetscReal *f) const;
   /* Collective: is the halo still enough at these local positions x[2n]? (see above) */
