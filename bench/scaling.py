@@ -176,8 +176,10 @@ def turgor_args(args, rundir, ranks, base_ranks):
 def planned_runs(args):
     base = min(args.ranks)
     runs = []
-    for r in args.ranks:
-        for k in range(1, args.repeat + 1):
+    # rounds of every rank count (1, 2, 1, 2, ...) rather than each count's repeats in a row: a shared
+    # machine's slow spells then touch every rank count alike
+    for k in range(1, args.repeat + 1):
+        for r in args.ranks:
             name = run_name(args.mode, args.kind, r, k)
             rundir = os.path.join(args.runs_dir, name)
             tcmd, size = turgor_args(args, rundir, r, base)
