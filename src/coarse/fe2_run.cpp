@@ -299,6 +299,7 @@ PetscErrorCode FE2Run::CheckpointFingerprint(std::vector<std::pair<std::string, 
     material = buf ? buf : "";
     free(buf);
     while (!material.empty() && (material.back() == '\n' || material.back() == ' ')) material.pop_back();
+    if (material.rfind("material ", 0) == 0) material.erase(0, 9); /* "rve: ...": the key says material */
   }
   auto join = [](const std::vector<std::string> &v) {
     std::string s;

@@ -80,8 +80,10 @@ PetscErrorCode TimeRun::SetFromOptions()
                                "TimeRun", ckpt_interval_, &ckpt_interval_, NULL));
     PetscCall(PetscOptionsReal("-checkpoint_wall_interval", "Write a checkpoint every S seconds of wall time (at the next accepted step); 0 = off", "TimeRun",
                                ckpt_wall_, &ckpt_wall_, NULL));
-    PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint file (the same scene options and number of ranks)", "TimeRun", file, file,
-                                 sizeof file, &set));
+    PetscCall(PetscOptionsString("-restart",
+                                 "Continue from this checkpoint file (-mode fine, or -mode fe2 with its RVE states): the same scene options, integrator and "
+                                 "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, euler, ssp)",
+                                 "TimeRun", file, file, sizeof file, &set));
     PetscOptionsEnd();
     PetscCheck(std::isfinite(ckpt_interval_) && ckpt_interval_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
                "Option -checkpoint_interval = %g: must be finite and >= 0", (double)ckpt_interval_);
@@ -127,10 +129,11 @@ PetscErrorCode TimeRun::SetUp()
     PetscBool   ok;
     const char *why;
     PetscCall(TSCheckpointSupported(ts_, &ok, &why));
+    const std::string option = restart_file_.empty() ? (ckpt_interval_ > 0 ? "-checkpoint_interval" : "-checkpoint_wall_interval")
+                                                     : "-restart " + restart_file_;
     PetscCheck(ok, comm_, PETSC_ERR_SUP,
                "Option %s: %s, which a checkpoint does not hold; checkpoints support the one-step explicit integrators (-ts_type rk, euler, ssp%s)",
-               restart_file_.empty() ? (ckpt_interval_ > 0 ? "-checkpoint_interval" : "-checkpoint_wall_interval") : "-restart", why,
-               mode_ == "fine" ? ", basicsymplectic, verlet" : "");
+               option.c_str(), why, mode_ == "fine" ? ", basicsymplectic, verlet" : "");
   }
   if (!restart_file_.empty()) {
     PetscCall(ReadCheckpoint());
@@ -510,7 +513,8 @@ PetscErrorCode TimeRun::CheckpointDue(PetscReal t, PetscBool *due)
 /* checkpoint_<step>.h5 in the output directory, written as a temporary file and renamed (a crash
    while writing leaves the previous checkpoints whole), then linked as checkpoint.h5 (the latest,
    also by a rename). Attributes of "/": the format version, mode, ranks, integrator, time, step, next
-   step size, step rejections, the sampler's position and the scene's fingerprint; datasets: state
+   step size, step rejections, the step-size controller's type and history (adapt_type, adapt_state:
+   hexadecimal floats), the sampler's position and the scene's fingerprint; datasets: state
    (the TS solution), integrator_history (ts_checkpoint.h; with has_history), run_state_layout (per
    rank, the length of its part of run_state) and run_state (per rank: the length, then the mode's
    StateBlob). */
