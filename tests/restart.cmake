@@ -1,4 +1,4 @@
-# Checkpoint and restart of fine runs (issue 13; label restart): a run of 2T in one go, and the same
+# Checkpoint and restart of fine and FE^2 runs (issue 13; label restart): a run of 2T in one go, and the same
 # run stopped after some steps (-ts_max_steps) with its end-of-run checkpoint, then continued with
 # -restart in the same output directory, end bit for bit the same: tip.csv (and the other time
 # series) byte for byte, without duplicated rows, and the same final_state_hash (FNV-1a of the final
@@ -7,11 +7,14 @@ set(RESTART_HELPER ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_helper.py)
 
 # name; leg1: the steps of the first leg; INTERVAL: -checkpoint_interval of the full run (it writes
 # one checkpoint there and one at the end); FILES: further outputs that must be the same; LAUNCH:
-# mpiexec and its arguments
+# mpiexec and its arguments; MODE: the label of the mode (fine by default, fe2)
 function(turgor_restart_case name leg1)
-  cmake_parse_arguments(R "" "INTERVAL" "OPTIONS;FILES;LAUNCH" ${ARGN})
+  cmake_parse_arguments(R "" "INTERVAL;MODE" "OPTIONS;FILES;LAUNCH" ${ARGN})
+  if(NOT R_MODE)
+    set(R_MODE fine)
+  endif()
   set(run ${R_LAUNCH} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite)
-  set(labels fine restart)
+  set(labels ${R_MODE} restart)
   if(R_LAUNCH)
     list(APPEND labels mpi)
   endif()
@@ -22,10 +25,10 @@ function(turgor_restart_case name leg1)
   turgor_add_test(restart_${name}_leg2 COMMAND ${R_LAUNCH} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_dir restart_${name}_legs
     -restart restart_${name}_legs/checkpoint.h5 LABELS ${labels} REQUIRES restart_${name}_leg1 SETUP restart_${name}_leg2)
   turgor_add_test(restart_${name}_identical COMMAND ${CHECK} identical restart_${name}_full restart_${name}_legs final_state_hash tip_displacement_final
-    steps LABELS fine restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
+    steps LABELS ${R_MODE} restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
   if(R_FILES)
     turgor_add_test(restart_${name}_series COMMAND ${CHECK} samefiles restart_${name}_full restart_${name}_legs ${R_FILES}
-      LABELS fine restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
+      LABELS ${R_MODE} restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
   endif()
 endfunction()
 
@@ -69,10 +72,34 @@ turgor_restart_case(glue 6000 INTERVAL 10 OPTIONS ${RESTART_GLUE} FILES groups.c
 turgor_restart_case(mpi2 150 INTERVAL 5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS -mode fine -tissue_cells_x 4 -tissue_cells_y 4 -ts_max_time 10
   -fine_snapshots 2 -fine_progress_interval 0)
 
+# FE^2 with RVEs: the seed's 4 x 4 bending bar (80 material points, one-cell RVEs) over 30 µs with
+# DOPRI 5(4) and the DSP step controller (163 steps, 4 rejected), stopped after 80 steps (t = 14.2
+# µs): the coarse state, the FSAL derivative, the controller's history and every RVE's warm start,
+# kept Jacobian and neighbour lists are restored, so the relaxations after the restart take the same
+# iterations and the run ends bit for bit as the uninterrupted one (rve_solves, psi_tc_iterations
+# too). On two ranks (two material-point groups, each rank saving its own points), with snapshots
+# (the restart's go to coarse_restart_<step>.h5).
+set(RESTART_FE2 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fe2.yaml -ts_max_time 30 -fe2_snapshots 0 -fe2_progress_interval 0
+  -ts_type rk -ts_rk_type 5dp)
+turgor_restart_case(fe2 80 MODE fe2 INTERVAL 15 OPTIONS ${RESTART_FE2})
+turgor_add_test(restart_fe2_work COMMAND ${CHECK} identical restart_fe2_full restart_fe2_legs rve_solves psi_tc_iterations rhs_evals rejected_steps
+  LABELS fe2 restart REQUIRES "restart_fe2_full;restart_fe2_leg2")
+turgor_restart_case(fe2_mpi2 80 MODE fe2 INTERVAL 15 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -fe2_snapshots 2)
+# ... and from the checkpoint written at t = 15 µs (in the run, not at its end) into a fresh directory
+turgor_add_test(restart_fe2_first COMMAND ${RESTART_HELPER} first restart_fe2_full restart_fe2_first.h5 LABELS fe2 restart
+  REQUIRES restart_fe2_full SETUP restart_fe2_first)
+turgor_add_test(restart_fe2_fresh COMMAND turgor_app ${RESTART_FE2} -output_dir restart_fe2_fresh -output_overwrite -restart restart_fe2_first.h5
+  LABELS fe2 restart REQUIRES restart_fe2_first SETUP restart_fe2_fresh)
+turgor_add_test(restart_fe2_fresh_identical COMMAND ${CHECK} samekey restart_fe2_full restart_fe2_fresh tip_displacement_final 0 LABELS fe2 restart
+  REQUIRES "restart_fe2_full;restart_fe2_fresh")
+
 # The fixture of the bad-checkpoint cases (tests/bad_input.txt, @RESTART@): a checkpoint of the
-# bad-input suite's fine preset, and a copy cut in half.
+# bad-input suite's fine preset, and a copy cut in half; a checkpoint of its fe2 preset (rk 5dp) in
+# restart_fixture/fe2.
 turgor_add_test(restart_fixture COMMAND turgor_app ${BAD_PRESET_fine} -output_dir restart_fixture -output_overwrite -checkpoint_interval 0.5
   LABELS badinput restart SETUP restart_fixture_run)
+turgor_add_test(restart_fixture_fe2 COMMAND turgor_app ${BAD_PRESET_fe2} -ts_type rk -output_dir restart_fixture/fe2 -output_overwrite -checkpoint_interval 0.5
+  LABELS badinput restart SETUP restart_fixture)
 turgor_add_test(restart_fixture_truncated COMMAND ${RESTART_HELPER} truncate restart_fixture/checkpoint.h5 restart_fixture/truncated.h5
   LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
 

@@ -818,6 +818,78 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* [counters (5), cache: valid, ok, tangents, U, per point F, Fdot (8), response (10), tangents (18)
+   when cached with them; the material points] */
+PetscErrorCode CoarseModel::SaveState(StateBlob &state)
+{
+  const CoarseCounters &c = counters_;
+  PetscFunctionBeginUser;
+  for (PetscInt v : {c.residuals, c.jacobians, c.material_evals, c.tangent_evals, c.failures}) state.Put((PetscReal)v);
+  state.Put(cached_valid_ ? 1.0 : 0.0);
+  state.Put(cached_ok_ ? 1.0 : 0.0);
+  state.Put(cached_tangents_ ? 1.0 : 0.0);
+  state.Put(std::vector<PetscReal>(cached_U_.begin(), cached_U_.end()));
+  state.Put((PetscReal)F_.size());
+  for (size_t k = 0; k < F_.size(); k++) {
+    const MaterialResponse &r = response_[k];
+    for (int i = 0; i < 4; i++) state.Put(F_[k].a[i / 2][i % 2]);
+    for (int i = 0; i < 4; i++) state.Put(Fdot_[k].a[i / 2][i % 2]);
+    for (int i = 0; i < 4; i++) state.Put(r.sigma.a[i / 2][i % 2]);
+    for (PetscReal v : {r.rho, r.ok ? 1.0 : 0.0, (PetscReal)r.iterations, (PetscReal)r.snes_its, (PetscReal)r.ksp_its, r.residual}) state.Put(v);
+    if (cached_tangents_)
+      for (int i = 0; i < 9; i++) {
+        state.Put(tangent_[k].De[i / 3][i % 3]);
+        state.Put(tangent_[k].Dv[i / 3][i % 3]);
+      }
+  }
+  PetscCall(pool_.SaveState(state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::LoadState(StateBlob &state)
+{
+  PetscInt               c[5];
+  PetscReal              valid, ok, tangents, np;
+  std::vector<PetscReal> U;
+  PetscFunctionBeginUser;
+  for (PetscInt &x : c) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's coarse counters are incomplete");
+  counters_ = CoarseCounters{c[0], c[1], c[2], c[3], c[4]};
+  PetscCheck(state.Get(&valid) && state.Get(&ok) && state.Get(&tangents) && state.Get(U) && state.Get(&np), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's material cache is incomplete");
+  PetscCheck(np == 0 || (size_t)np == response_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's material cache holds %g points of this rank, the mesh has %zu here", (double)np, response_.size());
+  cached_valid_    = valid != 0;
+  cached_ok_       = ok != 0;
+  cached_tangents_ = tangents != 0;
+  cached_U_.assign(U.begin(), U.end());
+  F_.resize((size_t)np);
+  Fdot_.resize((size_t)np);
+  for (size_t k = 0; k < (size_t)np; k++) {
+    PetscReal v[18];
+    for (PetscReal &x : v) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
+    MaterialResponse &r = response_[k];
+    r                   = MaterialResponse();
+    for (int i = 0; i < 4; i++) {
+      F_[k].a[i / 2][i % 2]    = v[i];
+      Fdot_[k].a[i / 2][i % 2] = v[4 + i];
+      r.sigma.a[i / 2][i % 2]  = v[8 + i];
+    }
+    r.rho        = v[12];
+    r.ok         = v[13] != 0;
+    r.iterations = (PetscInt)v[14];
+    r.snes_its   = (PetscInt)v[15];
+    r.ksp_its    = (PetscInt)v[16];
+    r.residual   = v[17];
+    if (!r.ok) r.reason = "(restored from the checkpoint)";
+    if (cached_tangents_)
+      for (int i = 0; i < 9; i++)
+        PetscCheck(state.Get(&tangent_[k].De[i / 3][i % 3]) && state.Get(&tangent_[k].Dv[i / 3][i % 3]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                   "the checkpoint's material tangents are incomplete");
+  }
+  PetscCall(pool_.LoadState(state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The part of a material point's (symmetric) stress that its rule integrates there: the whole
    stress, its deviator sigma - tr(sigma)/2 I, or its pressure tr(sigma)/2 I. */
 static Tensor2 StressPart(PointPart part, const Tensor2 &sg)

@@ -3,6 +3,9 @@
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/radau_iia.h>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 
 namespace turgor {
 
@@ -59,6 +62,9 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
   PetscOptionsEnd();
   PetscCheck(jacobian_max_age_ >= -1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_jacobian_max_age = %" PetscInt_FMT ": must be >= -1", jacobian_max_age_);
   PetscCall(monitor_.SetFromOptions("fe2_", "steps", "time"));
+  PetscCheck(!monitor_.Active() || !CheckpointsRequested(), comm_, PETSC_ERR_SUP,
+             "Option -fe2_eigen_monitor: the stability monitor's history (its last eigenvalues, the first crossing) is not checkpointed; give it without "
+             "-checkpoint_interval, -checkpoint_wall_interval and -restart");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -235,6 +241,104 @@ PetscErrorCode FE2Run::WriteSnapshot(PetscReal t, Vec U)
   PetscFunctionBeginUser;
   PetscCall(model_.EvaluateCellStress(U, &ok)); /* the stresses at U, without changing the run */
   PetscCall(fields_.Write(model_, U, t));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2Run::OpenSnapshots()
+{
+  PetscFunctionBeginUser;
+  if (!RestartFile().empty()) { /* a restart's snapshots go beside the interrupted run's, which stay whole */
+    char base[64];
+    PetscCall(PetscSNPrintf(base, sizeof base, "coarse_restart_%08" PetscInt_FMT, RestartStep()));
+    PetscCall(fields_.Open(model_, out_.dir, base));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(fields_.Open(model_, out_.dir, "coarse"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---- checkpoints ---- */
+
+PetscErrorCode FE2Run::CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp)
+{
+  PetscFunctionBeginUser;
+  if (mesh_hash_.empty()) {
+    /* FNV-1a over each rank's coordinates, then over the ranks' hashes (the same rank count) */
+    Vec                coords;
+    const PetscScalar *x;
+    PetscInt           n;
+    PetscMPIInt        size;
+    std::uint64_t      h = 1469598103934665603ull;
+    PetscCall(DMGetCoordinates(model_.GetDM(), &coords));
+    PetscCall(VecGetLocalSize(coords, &n));
+    PetscCall(VecGetArrayRead(coords, &x));
+    const unsigned char *b = (const unsigned char *)x;
+    for (size_t k = 0; k < (size_t)n * sizeof(PetscScalar); k++) h = (h ^ b[k]) * 1099511628211ull;
+    PetscCall(VecRestoreArrayRead(coords, &x));
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    std::vector<std::uint64_t> all(size);
+    PetscCallMPI(MPI_Allgather(&h, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, comm_));
+    std::uint64_t g = 1469598103934665603ull;
+    for (std::uint64_t v : all) g = (g ^ v) * 1099511628211ull;
+    char hex[24];
+    PetscCall(PetscSNPrintf(hex, sizeof hex, "%016llx", (unsigned long long)g));
+    mesh_hash_ = hex;
+  }
+  std::string material;
+  {
+    /* the material's own description (an RVE: cells, particles, relaxation and its tolerances) */
+    char       *buf = NULL;
+    size_t      len = 0;
+    FILE       *f   = open_memstream(&buf, &len);
+    PetscViewer v;
+    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_SYS, "open_memstream failed");
+    PetscCall(PetscViewerASCIIOpenWithFILE(PETSC_COMM_SELF, f, &v));
+    PetscCall(model_.Pool().Model().View(v));
+    PetscCall(PetscViewerDestroy(&v));
+    fclose(f);
+    material = buf ? buf : "";
+    free(buf);
+    while (!material.empty() && (material.back() == '\n' || material.back() == ' ')) material.pop_back();
+    if (material.rfind("material ", 0) == 0) material.erase(0, 9); /* "rve: ...": the key says material */
+  }
+  auto join = [](const std::vector<std::string> &v) {
+    std::string s;
+    for (const std::string &x : v) s += (s.empty() ? "" : ",") + x;
+    return s.empty() ? std::string("none") : s;
+  };
+  std::vector<std::string> dirichlet;
+  for (PetscInt v : model_.Spec().dirichlet_values) dirichlet.push_back(std::to_string((long long)v));
+  char load[96];
+  PetscCall(PetscSNPrintf(load, sizeof load, "%.17g,%.17g", (double)load_.body_acceleration[0], (double)load_.body_acceleration[1]));
+  fp.push_back({"elements", std::to_string((long long)model_.NumElements())});
+  fp.push_back({"element", std::string(model_.ElementName()) + " " + model_.QuadratureName()});
+  fp.push_back({"material_points", std::to_string((long long)model_.NumMaterialPoints())});
+  fp.push_back({"material", material});
+  fp.push_back({"material_physics", join(model_.Pool().Model().Physics())});
+  fp.push_back({"material_groups", std::to_string((long long)model_.Pool().NumGroups())});
+  fp.push_back({"mass", model_.LumpedMass() ? "lumped" : "consistent"});
+  fp.push_back({"dirichlet", model_.Spec().dirichlet_label + ":" + join(dirichlet)});
+  fp.push_back({"body_force", load});
+  fp.push_back({"mesh_coordinates_hash", mesh_hash_});
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [jacobian reuse: steps since the refresh, rejections then; the coarse model] */
+PetscErrorCode FE2Run::SaveState(PetscReal t, Vec U, StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  state.Put((PetscReal)steps_since_refresh_);
+  state.Put((PetscReal)rejections_at_refresh_);
+  PetscCall(model_.SaveState(state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2Run::LoadState(PetscReal t, Vec U, StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(state.Get(&steps_since_refresh_) && state.Get(&rejections_at_refresh_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's coarse state is incomplete");
+  PetscCall(model_.LoadState(state));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -58,7 +58,7 @@ PetscErrorCode OutputDirectory(MPI_Comm comm, std::string *dir, bool *overwrite,
         own = own ||
               (name.rfind("checkpoint", 0) == 0 &&
                ((name.size() > 3 && name.compare(name.size() - 3, 3, ".h5") == 0) || (name.size() > 7 && name.compare(name.size() - 7, 7, ".h5.tmp") == 0))) ||
-              name.rfind("particles_restart", 0) == 0; /* checkpoint.h5, checkpoint_<step>.h5, a restart's snapshots */
+              name.rfind("particles_restart", 0) == 0 || name.rfind("coarse_restart", 0) == 0; /* checkpoint.h5, checkpoint_<step>.h5, a restart's snapshots */
         if (own) ours.push_back(entry.path());
         else kept += (kept.empty() ? "" : ", ") + name;
         found += (found.empty() ? "" : ", ") + name;

@@ -275,6 +275,40 @@ PetscErrorCode MaterialPointPool::Revert()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* [group's first point, end, then per point its blob] */
+PetscErrorCode MaterialPointPool::SaveState(StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  state.Put((PetscReal)begin_);
+  state.Put((PetscReal)end_);
+  for (auto &p : points_) {
+    StateBlob b;
+    PetscCall(p->SaveState(b));
+    state.Put(b.data);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::LoadState(StateBlob &state)
+{
+  PetscInt b = -1, e = -1;
+  PetscFunctionBeginUser;
+  PetscCheck(state.Get(&b) && state.Get(&e), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are missing");
+  PetscCheck(b == begin_ && e == end_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's material points of this rank's group are [%" PetscInt_FMT ", %" PetscInt_FMT "), this run's [%" PetscInt_FMT ", %" PetscInt_FMT
+             ") (another -material_comm_size?)",
+             b, e, begin_, end_);
+  for (size_t k = 0; k < points_.size(); k++) {
+    StateBlob pb;
+    PetscCheck(state.Get(pb.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of material point %" PetscInt_FMT " is missing",
+               begin_ + (PetscInt)k);
+    PetscCall(points_[k]->LoadState(pb));
+    PetscCheck(pb.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's state of material point %" PetscInt_FMT " has %zu numbers more than it reads", begin_ + (PetscInt)k, pb.data.size() - pb.pos);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
 {
   MaterialCounters k;

@@ -2,6 +2,8 @@
 #include <turgor/core/log.h>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <turgor/run/time_run.h>
 #include <turgor/ts/ts_checkpoint.h>
@@ -78,8 +80,10 @@ PetscErrorCode TimeRun::SetFromOptions()
                                "TimeRun", ckpt_interval_, &ckpt_interval_, NULL));
     PetscCall(PetscOptionsReal("-checkpoint_wall_interval", "Write a checkpoint every S seconds of wall time (at the next accepted step); 0 = off", "TimeRun",
                                ckpt_wall_, &ckpt_wall_, NULL));
-    PetscCall(PetscOptionsString("-restart", "Continue from this checkpoint file (the same scene options and number of ranks)", "TimeRun", file, file,
-                                 sizeof file, &set));
+    PetscCall(PetscOptionsString("-restart",
+                                 "Continue from this checkpoint file (-mode fine, or -mode fe2 with its RVE states): the same scene options, integrator and "
+                                 "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, euler, ssp)",
+                                 "TimeRun", file, file, sizeof file, &set));
     PetscOptionsEnd();
     PetscCheck(std::isfinite(ckpt_interval_) && ckpt_interval_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE,
                "Option -checkpoint_interval = %g: must be finite and >= 0", (double)ckpt_interval_);
@@ -88,7 +92,7 @@ PetscErrorCode TimeRun::SetFromOptions()
     PetscCheck(!set || file[0], comm_, PETSC_ERR_ARG_WRONG, "Option -restart: empty (give the checkpoint file to continue from)");
     restart_file_ = set ? file : "";
     PetscCheck(Checkpointable() || (ckpt_interval_ == 0 && ckpt_wall_ == 0 && !set), comm_, PETSC_ERR_SUP,
-               "Option %s: -mode %s has no checkpoints yet (only -mode fine; FE2's RVE states are not saved)",
+               "Option %s: -mode %s has no checkpoints (-mode fine and -mode fe2 have)",
                set                  ? "-restart"
                : ckpt_interval_ > 0 ? "-checkpoint_interval"
                                     : "-checkpoint_wall_interval",
@@ -125,7 +129,11 @@ PetscErrorCode TimeRun::SetUp()
     PetscBool   ok;
     const char *why;
     PetscCall(TSCheckpointSupported(ts_, &ok, &why));
-    PetscCheck(ok, comm_, PETSC_ERR_SUP, "Option %s: %s", restart_file_.empty() ? "-checkpoint_interval" : "-restart", why);
+    const std::string option = restart_file_.empty() ? (ckpt_interval_ > 0 ? "-checkpoint_interval" : "-checkpoint_wall_interval")
+                                                     : "-restart " + restart_file_;
+    PetscCheck(ok, comm_, PETSC_ERR_SUP,
+               "Option %s: %s, which a checkpoint does not hold; checkpoints support the one-step explicit integrators (-ts_type rk, euler, ssp%s)",
+               option.c_str(), why, mode_ == "fine" ? ", basicsymplectic, verlet" : "");
   }
   if (!restart_file_.empty()) {
     PetscCall(ReadCheckpoint());
@@ -464,6 +472,18 @@ static PetscErrorCode IntegratorName(TS ts, std::string *name)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A Vec of U's parallel layout without its DM, holding U's values, named `name`. */
+static PetscErrorCode PlainCopy(Vec U, Vec *S, const char *name = "state")
+{
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(U, &n));
+  PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)U), n, PETSC_DETERMINE, S));
+  PetscCall(VecCopy(U, *S));
+  PetscCall(PetscObjectSetName((PetscObject)*S, name));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TimeRun::PreStep(TS ts)
 {
   PetscFunctionBeginUser;
@@ -493,7 +513,8 @@ PetscErrorCode TimeRun::CheckpointDue(PetscReal t, PetscBool *due)
 /* checkpoint_<step>.h5 in the output directory, written as a temporary file and renamed (a crash
    while writing leaves the previous checkpoints whole), then linked as checkpoint.h5 (the latest,
    also by a rename). Attributes of "/": the format version, mode, ranks, integrator, time, step, next
-   step size, step rejections, the sampler's position and the scene's fingerprint; datasets: state
+   step size, step rejections, the step-size controller's type and history (adapt_type, adapt_state:
+   hexadecimal floats), the sampler's position and the scene's fingerprint; datasets: state
    (the TS solution), integrator_history (ts_checkpoint.h; with has_history), run_state_layout (per
    rank, the length of its part of run_state) and run_state (per rank: the length, then the mode's
    StateBlob). */
@@ -535,11 +556,33 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "t_final", PETSC_REAL, &t_final_)); /* the sampling schedule */
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "samples", PETSC_INT, &out_.samples));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "snapshots", PETSC_INT, &out_.snapshots));
+    {
+      /* the step-size controller's history, as exact hexadecimal floats */
+      const char *type;
+      PetscInt    na;
+      PetscReal   a[TS_CHECKPOINT_ADAPT_MAX];
+      std::string text;
+      char        num[64];
+      PetscCall(TSCheckpointGetAdaptState(ts_, &type, &na, a));
+      for (PetscInt k = 0; k < na; k++) {
+        std::snprintf(num, sizeof num, "%a", (double)a[k]);
+        text += (k ? " " : "") + std::string(num);
+      }
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "adapt_type", PETSC_STRING, type));
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "adapt_state", PETSC_STRING, text.c_str()));
+    }
     std::vector<std::pair<std::string, std::string>> fp;
     PetscCall(CheckpointFingerprint(fp));
     for (auto &kv : fp) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), PETSC_STRING, kv.second.c_str()));
   }
-  PetscCall(VecView(U_, v));
+  {
+    /* a plain copy of the state: a DM's own VecView (DMPlex: FE^2) writes its field layout and the
+       TS's output sequence number, which VecLoad then expects back */
+    Vec S;
+    PetscCall(PlainCopy(U_, &S));
+    PetscCall(VecView(S, v));
+    PetscCall(VecDestroy(&S));
+  }
   {
     Vec      H, Hc;
     PetscInt has;
@@ -547,9 +590,7 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     has = H ? 1 : 0;
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "has_history", PETSC_INT, &has));
     if (H) {
-      PetscCall(VecDuplicate(H, &Hc));
-      PetscCall(VecCopy(H, Hc));
-      PetscCall(PetscObjectSetName((PetscObject)Hc, "integrator_history"));
+      PetscCall(PlainCopy(H, &Hc, "integrator_history"));
       PetscCall(VecView(Hc, v));
       PetscCall(VecDestroy(&Hc));
     }
@@ -699,11 +740,44 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
                " µs: nothing to continue";
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(VecLoad(U_, v));
+  {
+    Vec S;
+    PetscCall(PlainCopy(U_, &S));
+    PetscCall(VecLoad(S, v));
+    PetscCall(VecCopy(S, U_));
+    PetscCall(VecDestroy(&S));
+  }
   PetscCall(TSSetTime(ts_, t));
   PetscCall(TSSetStepNumber(ts_, step));
   PetscCall(TSSetTimeStep(ts_, dt));
   PetscCall(TSCheckpointSetRejections(ts_, rej));
+  {
+    PetscBool present;
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/", "adapt_state", &present));
+    if (present) { /* (a checkpoint of an earlier turgor has none: the controller starts afresh) */
+      const char            *ours;
+      PetscInt               na;
+      PetscReal              a[TS_CHECKPOINT_ADAPT_MAX];
+      std::vector<PetscReal> theirs;
+      PetscCall(TSCheckpointGetAdaptState(ts_, &ours, &na, a));
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "adapt_type", PETSC_STRING, NULL, &str));
+      const std::string type = str;
+      PetscCall(PetscFree(str));
+      if (type != ours) {
+        *problem = "integrated with -ts_adapt_type " + type + ", this run with " + ours + " (give the same step-size controller)";
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "adapt_state", PETSC_STRING, NULL, &str));
+      for (char *p = str, *end; *p; p = end) {
+        const double x = std::strtod(p, &end);
+        if (end == p) break;
+        theirs.push_back((PetscReal)x);
+      }
+      PetscCall(PetscFree(str));
+      PetscCheck(theirs.size() <= TS_CHECKPOINT_ADAPT_MAX, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "adapt_state: %zu numbers", theirs.size());
+      PetscCall(TSCheckpointSetAdaptState(ts_, (PetscInt)theirs.size(), theirs.data()));
+    }
+  }
   if (has) {
     PetscInt n;
     Vec      H;

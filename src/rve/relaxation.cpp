@@ -117,11 +117,12 @@ PetscErrorCode RVERelaxation::IJacobian(TS ts, PetscReal t, Vec W, Vec Wdot, Pet
   });
 }
 
-PetscErrorCode RVERelaxation::BuildJacobianPattern()
+PetscErrorCode RVERelaxation::BuildJacobianPattern(const std::vector<std::vector<PetscInt>> *given)
 {
   std::vector<std::vector<PetscInt>> cols;
   PetscFunctionBeginUser;
-  PetscCall(eq_->PatternColumns(cols));
+  if (given) cols = *given;
+  else PetscCall(eq_->PatternColumns(cols));
   PetscCall(MatFDColoringDestroy(&coloring_));
   PetscCall(MatDestroy(&factor_));
   PetscCall(MatDestroy(&J_));
@@ -165,6 +166,91 @@ PetscErrorCode RVERelaxation::BuildJacobianPattern()
   pattern_cols_     = cols;
   pattern_rebuilds_ = eq_->NeighbourRebuilds();
   PetscCallMPI(MPI_Bcast(&pattern_rebuilds_, 1, MPIU_INT, 0, comm_));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Values of a matrix's local rows, row by row in its pattern's order. */
+static PetscErrorCode SaveRows(Mat A, StateBlob &state)
+{
+  PetscInt rs, re;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(A, &rs, &re));
+  for (PetscInt r = rs; r < re; r++) {
+    PetscInt           nc;
+    const PetscScalar *v;
+    PetscCall(MatGetRow(A, r, &nc, NULL, &v));
+    state.Put(std::vector<PetscReal>(v, v + nc));
+    PetscCall(MatRestoreRow(A, r, &nc, NULL, &v));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode LoadRows(Mat A, StateBlob &state, const char *what)
+{
+  PetscInt                           rs, re;
+  std::vector<std::vector<PetscInt>> cols;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(A, &rs, &re));
+  for (PetscInt r = rs; r < re; r++) { /* the pattern first: MatGetRow needs an assembled matrix */
+    PetscInt        nc;
+    const PetscInt *c;
+    PetscCall(MatGetRow(A, r, &nc, &c, NULL));
+    cols.emplace_back(c, c + nc);
+    PetscCall(MatRestoreRow(A, r, &nc, &c, NULL));
+  }
+  for (PetscInt r = rs; r < re; r++) {
+    std::vector<PetscReal>       v;
+    const std::vector<PetscInt> &c = cols[r - rs];
+    PetscCheck(state.Get(v) && v.size() == c.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's RVE %s does not fit its pattern (row %" PetscInt_FMT ")", what, r);
+    PetscCall(MatSetValues(A, 1, &r, (PetscInt)c.size(), c.data(), v.data(), INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [jacobians, have_K, pattern_rebuilds, pattern: pairs, then each pair's columns; K's rows, J's rows] */
+PetscErrorCode RVERelaxation::SaveState(StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  state.Put((PetscReal)jacobians_);
+  state.Put(have_K_ ? 1.0 : 0.0);
+  state.Put((PetscReal)pattern_rebuilds_);
+  state.Put((PetscReal)pattern_cols_.size());
+  for (const auto &c : pattern_cols_) state.Put(std::vector<PetscReal>(c.begin(), c.end()));
+  PetscCall(SaveRows(K_, state));
+  PetscCall(SaveRows(J_, state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVERelaxation::LoadState(StateBlob &state)
+{
+  PetscReal                          jac, haveK, rebuilds, npairs;
+  std::vector<std::vector<PetscInt>> cols;
+  PetscInt                           differ = 0;
+  PetscFunctionBeginUser;
+  PetscCheck(state.Get(&jac) && state.Get(&haveK) && state.Get(&rebuilds) && state.Get(&npairs) && npairs >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's RVE relaxation is incomplete");
+  cols.resize((size_t)npairs);
+  for (auto &c : cols) {
+    std::vector<PetscReal> v;
+    PetscCheck(state.Get(v), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE Jacobian pattern is incomplete");
+    c.assign(v.begin(), v.end());
+  }
+  /* the group's first rank holds the unknowns and decides (the others' patterns are empty) */
+  if (eq_->Rank() == 0) {
+    PetscCheck(cols.size() == (size_t)eq_->Cell().NumUnknowns() / 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's RVE has %zu free particles, this one %" PetscInt_FMT, cols.size(), eq_->Cell().NumUnknowns() / 2);
+    differ = cols != pattern_cols_;
+  }
+  PetscCallMPI(MPI_Bcast(&differ, 1, MPIU_INT, 0, comm_));
+  if (differ) PetscCall(BuildJacobianPattern(&cols));
+  pattern_rebuilds_ = (PetscInt)rebuilds;
+  jacobians_        = (PetscInt)jac;
+  PetscCall(LoadRows(K_, state, "G'"));
+  PetscCall(LoadRows(J_, state, "Jacobian"));
+  have_K_ = haveK != 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

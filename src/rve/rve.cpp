@@ -255,6 +255,46 @@ PetscErrorCode RVE::Revert()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* [counters (12), have_current, have_committed, current, committed; equations; relaxation] */
+PetscErrorCode RVE::SaveState(StateBlob &state)
+{
+  const MaterialCounters &k = counters_;
+  PetscFunctionBeginUser;
+  for (PetscInt c : {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves, k.output_solves, k.exact_tangents,
+                     k.tangent_linear_its, k.tangent_force_evals})
+    state.Put((PetscReal)c);
+  state.Put(have_current_ ? 1.0 : 0.0);
+  state.Put(have_committed_ ? 1.0 : 0.0);
+  state.Put(std::vector<PetscReal>(current_.begin(), current_.end()));
+  state.Put(std::vector<PetscReal>(committed_.begin(), committed_.end()));
+  PetscCall(eq_.SaveState(state));
+  PetscCall(relax_.SaveState(state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVE::LoadState(StateBlob &state)
+{
+  PetscInt               c[12];
+  PetscReal              hc, hm;
+  std::vector<PetscReal> cur, com;
+  PetscFunctionBeginUser;
+  for (PetscInt &x : c) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE counters are incomplete");
+  counters_ = MaterialCounters{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], c[9], c[10], c[11]};
+  PetscCheck(state.Get(&hc) && state.Get(&hm) && state.Get(cur) && state.Get(com), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's RVE fine state is incomplete");
+  const size_t n = rank_ == 0 ? (size_t)NumUnknowns() : 0;
+  PetscCheck((cur.size() == n || cur.size() == (size_t)NumUnknowns()) && com.size() == cur.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, cur.size(), NumUnknowns());
+  current_.assign(cur.begin(), cur.end());
+  committed_.assign(com.begin(), com.end());
+  have_current_   = hc != 0;
+  have_committed_ = hm != 0;
+  last_ok_        = false;
+  PetscCall(eq_.LoadState(state));
+  PetscCall(relax_.LoadState(state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm)
 {
   PetscFunctionBeginUser;

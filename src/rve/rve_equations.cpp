@@ -47,8 +47,13 @@ PetscErrorCode RVEEquations::Compute(Vec W)
     PetscCall(VecGetArrayRead(W, &w));
     cell_->Place(F_, w, x_.data());
     PetscCall(VecRestoreArrayRead(W, &w));
+    const PetscInt rebuilds = model_.Neighbours().Rebuilds();
     PetscCall(model_.ComputeForces(x_.data(), v_.data(), f_.data(), virial_));
     force_evals_++;
+    if (model_.Neighbours().Rebuilds() != rebuilds) { /* the lists were built at this lattice */
+      build_F_    = F_;
+      build_Fdot_ = Fdot_;
+    }
     for (size_t k = 0; k < free.size(); k++) {
       r_[2 * k]     = -f_[2 * free[k]] / force_scale_;
       r_[2 * k + 1] = -f_[2 * free[k] + 1] / force_scale_;
@@ -88,6 +93,35 @@ PetscErrorCode RVEEquations::Virial(Vec W, PetscReal virial[4])
   PetscFunctionBeginUser;
   PetscCall(Compute(W));
   for (int c = 0; c < 4; c++) virial[c] = rank_ == 0 ? virial_[c] : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [force evaluations, the build deformation F, Fdot (8), the force model's state] */
+PetscErrorCode RVEEquations::SaveState(StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  state.Put((PetscReal)force_evals_);
+  for (int c = 0; c < 4; c++) state.Put(build_F_.a[c / 2][c % 2]);
+  for (int c = 0; c < 4; c++) state.Put(build_Fdot_.a[c / 2][c % 2]);
+  PetscCall(model_.SaveState(x_.data(), v_.data(), 0, state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVEEquations::LoadState(StateBlob &state)
+{
+  PetscReal v[9];
+  PetscFunctionBeginUser;
+  for (PetscReal &x : v) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE equations are incomplete");
+  force_evals_ = (PetscInt)v[0];
+  for (int c = 0; c < 4; c++) {
+    build_F_.a[c / 2][c % 2]    = v[1 + c];
+    build_Fdot_.a[c / 2][c % 2] = v[5 + c];
+  }
+  /* the lists rebuilt where and on the lattice they were built last */
+  model_.SetPeriodicImages(cell_->Lattice(build_F_, build_Fdot_));
+  PetscCall(model_.LoadState(x_.data(), v_.data(), 0, state));
+  SetDeformation(Tensor2::Identity(), Tensor2::Zero());
+  kept_version_ = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -107,6 +107,13 @@ public:
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
   PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
   PetscErrorCode CommitMaterials() { return pool_.Commit(); }
+  /* Checkpoints (at an accepted state, after CommitMaterials): the counters, the material cache
+     (the last evaluation's state, deformations and responses: an explicit integrator's next stage
+     check at the accepted state finds it, as in the uninterrupted run) and every material point's
+     state (MaterialPointPool::SaveState). This rank's part; collective. The K, C kept for implicit
+     integrators are not saved (their checkpoints are refused). */
+  PetscErrorCode SaveState(StateBlob &state);
+  PetscErrorCode LoadState(StateBlob &state);
   /* Back to the material points' last committed states (a rejected load increment); the cache is
      dropped. */
   PetscErrorCode RevertMaterials();

@@ -30,11 +30,11 @@ protected:
   PetscErrorCode           Report() override;
   std::vector<std::string> ObservedColumns() const override { return {"tip_displacement_y"}; }
   PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) override;
-  PetscErrorCode           OpenSnapshots() override { return fields_.Open(model_, out_.dir, "coarse"); }
   PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) override;
   PetscInt                 SnapshotCount() const override { return fields_.Count(); }
   const char              *SnapshotFiles() const override { return "coarse.h5 + coarse.xmf"; }
   PetscInt                 FunctionEvaluations() const override { return model_.Counters().residuals; }
+  PetscErrorCode           OpenSnapshots() override;
   PetscErrorCode           AddSummary(JsonObject &js) override;
   PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
@@ -42,6 +42,14 @@ protected:
     return "steps were rejected repeatedly (more than -ts_max_reject in a row): the material-point failures printed above say where and why; lower -ts_dt "
            "or tighten -ts_rtol";
   }
+
+  /* Checkpoints: the scene's fingerprint (mesh coordinates, element, quadrature, material and its
+     RVE settings, groups, boundary and load), and the coarse model's state with every material
+     point's (CoarseModel::SaveState). Explicit one-step integrators only (TimeRun refuses the others). */
+  bool           Checkpointable() const override { return true; }
+  PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
+  PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
+  PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx);
@@ -59,7 +67,8 @@ private:
   PetscInt           jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
   bool               explicit_ = false;
   CoarseFieldsWriter fields_;
-  StabilityMonitor   monitor_; /* -fe2_eigen_monitor */
+  StabilityMonitor   monitor_;   /* -fe2_eigen_monitor */
+  std::string        mesh_hash_; /* the fingerprint's, computed once */
 };
 
 } // namespace turgor

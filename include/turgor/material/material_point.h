@@ -14,6 +14,7 @@
    An evaluation never aborts: a material point that cannot answer (no convergence, NaN, inverted
    element) returns ok = false with its reason, so that the caller can reject a step and retry. */
 #include <turgor/core/registry.h>
+#include <turgor/core/state_blob.h>
 #include <turgor/core/tensor2.h>
 #include <petscviewer.h>
 #include <memory>
@@ -69,6 +70,14 @@ public:
   virtual PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
                                            Tensor2 *dsigma, MaterialResponse *status);
   virtual void           AddCounters(MaterialCounters &c) const { }
+  /* Checkpoints (-checkpoint_interval, -restart of -mode fe2): everything the point keeps between
+     evaluations that decides its next answer bit for bit (an RVE: its current and committed fine
+     state, the kept Jacobian, the neighbour lists) and its work counters, at an accepted coarse
+     state; LoadState restores it into a point set up from the same material. Each rank of the
+     point's group saves and loads its own part (collective on the group). PETSC_ERR_FILE_UNEXPECTED
+     on a blob that does not fit. A point without such state (a closed-form law) writes nothing. */
+  virtual PetscErrorCode SaveState(StateBlob &state) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode LoadState(StateBlob &state) { return PETSC_SUCCESS; }
 };
 
 class MaterialModel {

@@ -43,6 +43,10 @@ public:
   PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D = NULL, EvaluationKind kind = EvaluationKind::Trial);
   PetscErrorCode Commit();
   PetscErrorCode Revert();
+  /* Checkpoints: the points of this rank's group, this rank's part of each (MaterialPoint::SaveState);
+     collective. LoadState refuses a blob of another block of points. */
+  PetscErrorCode SaveState(StateBlob &state);
+  PetscErrorCode LoadState(StateBlob &state);
 
   /* Totals over all points and ranks (collective). */
   PetscErrorCode GlobalCounters(MaterialCounters *c) const;

@@ -98,8 +98,8 @@ protected:
   virtual PetscErrorCode CheckIntegrator() { return PETSC_SUCCESS; }
 
   /* Checkpoints (-checkpoint_interval, -checkpoint_wall_interval, -restart). TimeRun writes the
-     state Vec, time, step, next step size, the integrator's carried derivative (ts_checkpoint.h)
-     and the outputs' sampling position; a mode that supports them returns true and adds its own
+     state Vec, time, step, next step size, the integrator's carried derivative and step-size
+     controller history (ts_checkpoint.h) and the outputs' sampling position; a mode that supports them returns true and adds its own
      state and the fingerprint of its scene (name, value: a restart on another scene is refused,
      naming the part that differs). */
   virtual bool           Checkpointable() const { return false; }
@@ -107,6 +107,8 @@ protected:
   virtual PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
   /* At the restored state U of time t (after TSSetUp, before the outputs are opened). */
   virtual PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
+  /* -checkpoint_interval, -checkpoint_wall_interval or -restart was given (after SetFromOptions). */
+  bool CheckpointsRequested() const { return ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty(); }
   /* The checkpoint a run continues from ("" when none), and its step. */
   const std::string &RestartFile() const { return restart_file_; }
   PetscInt           RestartStep() const { return restart_step_; }

@@ -38,6 +38,11 @@ public:
      (modified Newton), hence the Krylov iterations, each one residual pair. *its: iterations;
      *ok = false when GMRES did not converge. */
   PetscErrorCode SolveLinearized(Vec W, Vec b, Vec z, PetscInt *its, bool *ok);
+  /* Checkpoints: the Jacobian pattern (rebuilt with the neighbour lists), the kept G' and J = G' +
+     shift I whose LU factor the next warm solve reuses (modified Newton; the factor is recomputed
+     from J, bit for bit), and the Jacobian count. Collective on the RVE's communicator. */
+  PetscErrorCode SaveState(StateBlob &state);
+  PetscErrorCode LoadState(StateBlob &state);
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec W, Vec Wdot, Vec F, void *ctx);
@@ -47,7 +52,7 @@ private:
   static PetscErrorCode PreStep(TS ts);
   static PetscErrorCode PostStep(TS ts);
 
-  PetscErrorCode        BuildJacobianPattern();
+  PetscErrorCode        BuildJacobianPattern(const std::vector<std::vector<PetscInt>> *given = nullptr); /* given: these columns, not the lists' */
   PetscErrorCode        PatternStale(PetscBool *stale);
   PetscErrorCode        Refresh(Vec W);    /* K = G'(W) by colouring */
   PetscErrorCode        Factor(bool *ok);  /* J's LU factors, up to date */

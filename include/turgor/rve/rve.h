@@ -33,6 +33,11 @@ public:
   PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
                                    Tensor2 *dsigma, MaterialResponse *status) override;
   void           AddCounters(MaterialCounters &c) const override;
+  /* The warm start (current and committed fine state and their flags), the relaxation's kept
+     Jacobian and pattern, the neighbour lists and the counters (rank 0 of the group holds the
+     unknowns; the other ranks save their flags and their empty parts). */
+  PetscErrorCode SaveState(StateBlob &state) override;
+  PetscErrorCode LoadState(StateBlob &state) override;
 
   const PeriodicCell &Cell() const { return cell_; }
   PetscInt            NumUnknowns() const { return cell_.NumUnknowns(); }

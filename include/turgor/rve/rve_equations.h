@@ -36,6 +36,11 @@ public:
   const PeriodicCell           &Cell() const { return *cell_; }
   PetscInt                      ForceEvaluations() const { return force_evals_; }
   PetscMPIInt                   Rank() const { return rank_; }
+  /* Checkpoints: the neighbour lists (the positions and the lattice they were last built at, so that
+     a restored RVE rebuilds them when the uninterrupted one does and visits its pairs in the same
+     order) and the force count. LoadState leaves the deformation at the identity. */
+  PetscErrorCode SaveState(StateBlob &state);
+  PetscErrorCode LoadState(StateBlob &state);
 
 private:
   PetscErrorCode Compute(Vec W); /* forces and virial at W unless kept */
@@ -44,6 +49,7 @@ private:
   PetscMPIInt              rank_ = 0;
   ForceModel               model_;
   Tensor2                  F_, Fdot_;
+  Tensor2                  build_F_ = Tensor2::Identity(), build_Fdot_ = Tensor2::Zero(); /* the deformation of the lists' last build */
   std::vector<PetscReal>   x_, v_, f_;
   std::vector<PetscScalar> r_; /* G of the kept evaluation */
   PetscReal                virial_[4]   = {0, 0, 0, 0};
