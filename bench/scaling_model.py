@@ -20,8 +20,10 @@ and for N particles on P ranks (square parts of a square tissue with the run's p
             2 * neighbours * latency + 48 B * halo / bandwidth
   check     an allreduce of one number per evaluation: ceil(log2 P) * latency; and `checks` times per
             step an allgather of every cell's box (40 B per cell): 40 B * cells / bandwidth + log2 P latency
-  E(P) = compute / (compute + halo + check), the evaluations per step cancelling except in the
-  full checks (counted per evaluation with the run's evaluations per step).
+  E(P) = (t_eval N / P) / (compute + halo + check), the evaluations per step cancelling except in
+  the full checks (counted per evaluation with the run's evaluations per step). The model leaves
+  out what two ranks on one machine measure beyond it (shared memory bandwidth and caches, noise):
+  the last column scales E(P) by the measured 2-rank efficiency over the model's for 2 ranks.
 
 Assumptions (stated in docs/scaling.md): a network of `latency` per message and `bandwidth` per
 rank (defaults: 2 µs and 12.5 GB/s, an InfiniBand HDR link, no overlap of communication and
@@ -69,16 +71,25 @@ def main(argv):
     print(f"model: N = {a.particles:.3g} particles ({cells:.3g} cells), latency {a.latency * 1e6:g} µs, bandwidth {a.bandwidth / 1e9:g} GB/s, "
           f"{a.neighbours} neighbours, imbalance {a.imbalance}")
     print()
-    print("| ranks | particles per rank | halo per rank | compute / evaluation | halo / evaluation | check / evaluation | efficiency |")
-    print("|---|---|---|---|---|---|---|")
+    def model(P, N, ncells, imbalance):
+        comp = t_eval * N / P * imbalance
+        halo = 4 * math.sqrt(ncells / P) * h_line if P > 1 else 0.0
+        t_halo = (2 * a.neighbours * a.latency + 48 * halo / a.bandwidth) if P > 1 else 0.0
+        lg = math.ceil(math.log2(P)) if P > 1 else 0
+        t_check = (lg * a.latency + checks / evals_per_step * (40 * ncells / a.bandwidth + lg * a.latency)) if P > 1 else 0.0
+        return comp, halo, t_halo, t_check, (t_eval * N / P) / (comp + t_halo + t_check)
+
+    # the measured 2-rank efficiency against the model's for the measured tissue (its imbalance)
+    e2 = (s1["wall_time_s"] / s1["steps"]) / (2 * s2["wall_time_s"] / s2["steps"])
+    m2 = model(2, n1, cells1, s2.get("load_imbalance", 1.0))[4]
+    print(f"measured 2-rank efficiency {e2:.3f}, the model's {m2:.3f}: scale {e2 / m2:.3f}")
+    print()
+    print("| ranks | particles per rank | halo per rank | compute / evaluation | halo / evaluation | check / evaluation | model | scaled |")
+    print("|---|---|---|---|---|---|---|---|")
     for P in [int(r) for r in a.ranks.split(",")]:
-        comp = t_eval * a.particles / P * a.imbalance
-        halo = 4 * math.sqrt(cells / P) * h_line
-        t_halo = 2 * a.neighbours * a.latency + 48 * halo / a.bandwidth
-        lg = math.ceil(math.log2(P))
-        t_check = lg * a.latency + checks / evals_per_step * (40 * cells / a.bandwidth + lg * a.latency)
-        eff = comp / (comp + t_halo + t_check)
-        print(f"| {P} | {a.particles / P:.3g} | {halo:.0f} | {comp * 1e6:.0f} µs | {t_halo * 1e6:.1f} µs | {t_check * 1e6:.1f} µs | {eff:.3f} |")
+        comp, halo, t_halo, t_check, eff = model(P, a.particles, cells, a.imbalance)
+        print(f"| {P} | {a.particles / P:.3g} | {halo:.0f} | {comp * 1e6:.0f} µs | {t_halo * 1e6:.1f} µs | {t_check * 1e6:.1f} µs | {eff:.3f} | "
+              f"{eff * e2 / m2:.3f} |")
 
 
 if __name__ == "__main__":

@@ -6,11 +6,12 @@
 set -u
 turgor=$1 mode=$2
 shift 2
-dir=help_$mode
+dir=help_${mode}_$$ # per process: two checks of one mode may run at once
 rm -rf "$dir" && mkdir -p "$dir" && echo keep > "$dir/foreign" && echo '{}' > "$dir/summary.json"
 out=$("$turgor" -mode "$mode" -help -output_dir "$dir" -output_overwrite 2>&1) || { printf 'FAIL: -help exited with an error:\n%s\n' "$out"; exit 1; }
 [ "$(ls "$dir" | tr '\n' ' ')" = "foreign summary.json " ] && [ "$(cat "$dir/summary.json")" = "{}" ] || { echo "FAIL: -help changed $dir: $(ls "$dir")"; exit 1; }
 for o in "$@"; do
   printf '%s\n' "$out" | grep -q -- "^ *$o[ <:]" || { echo "FAIL: -help does not list $o"; exit 1; }
 done
-echo "ok: -mode $mode -help lists $# options and leaves $dir as it was"
+rm -rf "$dir"
+echo "ok: -mode $mode -help lists $# options and leaves its output directory as it was"

@@ -32,17 +32,23 @@ function(turgor_restart_case name leg1)
   endif()
 endfunction()
 
+# A run continued from the first checkpoint (in the run, not at its end) of case `name`'s full run,
+# into a fresh directory: the same final tip. label: fine or fe2; the scene's options follow.
+function(turgor_restart_fresh name label)
+  turgor_add_test(restart_${name}_first COMMAND ${RESTART_HELPER} first restart_${name}_full restart_${name}_first.h5 LABELS ${label} restart
+    REQUIRES restart_${name}_full SETUP restart_${name}_first)
+  turgor_add_test(restart_${name}_fresh COMMAND turgor_app ${ARGN} -output_dir restart_${name}_fresh -output_overwrite -restart restart_${name}_first.h5
+    LABELS ${label} restart REQUIRES restart_${name}_first SETUP restart_${name}_fresh)
+  turgor_add_test(restart_${name}_fresh_identical COMMAND ${CHECK} samekey restart_${name}_full restart_${name}_fresh tip_displacement_final 0
+    LABELS ${label} restart REQUIRES "restart_${name}_full;restart_${name}_fresh")
+endfunction()
+
 # The square-grid bending bar (DOPRI, adaptive: the next step size and the FSAL derivative are
 # restored) over 4 µs, stopped after 300 steps (t = 1.19 µs).
 set(RESTART_BAR -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_max_time 4 -fine_snapshots 0 -fine_progress_interval 0)
 turgor_restart_case(bar 300 INTERVAL 2 OPTIONS ${RESTART_BAR})
 # ... and from the checkpoint written at t = 2 µs (not the end) into a fresh directory
-turgor_add_test(restart_bar_first COMMAND ${RESTART_HELPER} first restart_bar_full restart_bar_first.h5 LABELS fine restart
-  REQUIRES restart_bar_full SETUP restart_bar_first)
-turgor_add_test(restart_bar_fresh COMMAND turgor_app ${RESTART_BAR} -output_dir restart_bar_fresh -output_overwrite -restart restart_bar_first.h5
-  LABELS fine restart REQUIRES restart_bar_first SETUP restart_bar_fresh)
-turgor_add_test(restart_bar_fresh_identical COMMAND ${CHECK} samekey restart_bar_full restart_bar_fresh tip_displacement_final 0 LABELS fine restart
-  REQUIRES "restart_bar_full;restart_bar_fresh")
+turgor_restart_fresh(bar fine ${RESTART_BAR})
 # ... and extended: the 4 µs run continued to 6 µs in its own directory (tip.csv: 1000 samples over
 # 4 µs, then this run's 1000 over 6 µs from t = 4 on, no row twice)
 turgor_add_test(restart_bar_extend_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_bar_full restart_bar_extend LABELS fine restart
@@ -86,12 +92,7 @@ turgor_add_test(restart_fe2_work COMMAND ${CHECK} identical restart_fe2_full res
   LABELS fe2 restart REQUIRES "restart_fe2_full;restart_fe2_leg2")
 turgor_restart_case(fe2_mpi2 80 MODE fe2 INTERVAL 15 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -fe2_snapshots 2)
 # ... and from the checkpoint written at t = 15 µs (in the run, not at its end) into a fresh directory
-turgor_add_test(restart_fe2_first COMMAND ${RESTART_HELPER} first restart_fe2_full restart_fe2_first.h5 LABELS fe2 restart
-  REQUIRES restart_fe2_full SETUP restart_fe2_first)
-turgor_add_test(restart_fe2_fresh COMMAND turgor_app ${RESTART_FE2} -output_dir restart_fe2_fresh -output_overwrite -restart restart_fe2_first.h5
-  LABELS fe2 restart REQUIRES restart_fe2_first SETUP restart_fe2_fresh)
-turgor_add_test(restart_fe2_fresh_identical COMMAND ${CHECK} samekey restart_fe2_full restart_fe2_fresh tip_displacement_final 0 LABELS fe2 restart
-  REQUIRES "restart_fe2_full;restart_fe2_fresh")
+turgor_restart_fresh(fe2 fe2 ${RESTART_FE2})
 
 # The fixture of the bad-checkpoint cases (tests/bad_input.txt, @RESTART@): a checkpoint of the
 # bad-input suite's fine preset, and a copy cut in half; a checkpoint of its fe2 preset (rk 5dp) in
@@ -111,3 +112,19 @@ turgor_add_test(restart_polygon_int_continue COMMAND turgor_app ${RESTART_POLY} 
   LABELS fine restart REQUIRES restart_polygon_int SETUP restart_polygon_int_continue)
 turgor_add_test(restart_polygon_int_identical COMMAND ${CHECK} identical restart_polygon_full restart_polygon_int final_state_hash tip_displacement_final
   steps LABELS fine restart REQUIRES "restart_polygon_full;restart_polygon_int_continue")
+
+# Another rank count (label mpi): a scene whose terms keep no internal state (the small square grid:
+# springs, repulsion, SPH, gravity; DOPRI) stopped on 2 ranks, continued on 1 and on 3. The state and
+# DOPRI's carried derivative are written in the tissue's particle order; the neighbour lists are
+# built afresh, so the forces are summed in another order: the final tip agrees with the
+# uninterrupted 1-rank run to 1e-10 of it.
+set(RESTART_XR -mode fine -tissue_cells_x 4 -tissue_cells_y 4 -ts_max_time 10 -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
+turgor_add_test(restart_ranks_full COMMAND turgor_app ${RESTART_XR} -output_dir restart_ranks_full LABELS fine restart SETUP restart_ranks_full)
+turgor_add_test(restart_ranks_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${RESTART_XR} -ts_max_steps 150 -checkpoint_interval 1e6
+  -output_dir restart_ranks_leg1 LABELS fine restart mpi SETUP restart_ranks_leg1)
+foreach(np 1 3)
+  turgor_add_test(restart_ranks_to${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${RESTART_XR} -restart restart_ranks_leg1/checkpoint.h5
+    -output_dir restart_ranks_to${np} LABELS fine restart mpi REQUIRES restart_ranks_leg1 SETUP restart_ranks_to${np})
+  turgor_add_test(restart_ranks_to${np}_agrees COMMAND ${CHECK} samekey restart_ranks_to${np} restart_ranks_full tip_displacement_final 1e-10
+    LABELS fine restart mpi REQUIRES "restart_ranks_full;restart_ranks_to${np}")
+endforeach()

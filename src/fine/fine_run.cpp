@@ -5,6 +5,7 @@
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cmath>
 
 namespace turgor {
@@ -302,6 +303,21 @@ PetscErrorCode FineRun::SetUpModel()
   }
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
   {
+    /* the checkpoints' fingerprint of the reference positions and masses (FNV-1a), of the whole
+       tissue, which every rank holds here (rank 0's, broadcast: the same bits everywhere) */
+    std::uint64_t hash = 1469598103934665603ull;
+    auto          add  = [&hash](const void *p, size_t bytes) {
+      const unsigned char *b = (const unsigned char *)p;
+      for (size_t k = 0; k < bytes; k++) hash = (hash ^ b[k]) * 1099511628211ull;
+    };
+    add(tissue_.X.data(), tissue_.X.size() * sizeof(PetscReal));
+    add(tissue_.particles.mass.data(), tissue_.particles.mass.size() * sizeof(PetscReal));
+    PetscCallMPI(MPI_Bcast(&hash, 1, MPI_UINT64_T, 0, comm_));
+    char hex[24];
+    PetscCall(PetscSNPrintf(hex, sizeof hex, "%016llx", (unsigned long long)hash));
+    reference_hash_ = hex;
+  }
+  {
     PetscMPIInt size;
     PetscCallMPI(MPI_Comm_size(comm_, &size));
     distributed_ = size > 1 && spec_.distribute;
@@ -312,8 +328,10 @@ PetscErrorCode FineRun::SetUpModel()
   tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
   tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
   if (distributed_) PetscCall(Distribute());
-  else if (rank != 0) { /* -fine_distribute 0: rank 0 holds the whole tissue, the other ranks none */ tissue_ = Tissue();
-    tip_                                                                                                      = -1;
+  else if (rank != 0) {
+    /* -fine_distribute 0: rank 0 holds the whole tissue, the other ranks none */
+    tissue_ = Tissue();
+    tip_    = -1;
   }
   n_all_   = tissue_.particles.n;
   n_local_ = tissue_.particles.NumOwned();
@@ -436,9 +454,19 @@ PetscErrorCode FineRun::Report()
   PetscCall(PetscPrintf(comm_, "Explicit stability limits at t = 0 (smallest first):\n"));
   for (const TimeStepLimit &l : limits_) PetscCall(PetscPrintf(comm_, "  dt <= %-11.4g %s\n", (double)l.dt, l.why.c_str()));
   PetscCall(controls_.View(comm_));
+  if (distributed_) {
+    PetscReal   r[3] = {(PetscReal)n_local_, -(PetscReal)n_local_, (PetscReal)dist_.NumHalo()};
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(comm_, &size));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, r, 3, MPIU_REAL, MPIU_MAX, comm_));
+    PetscCall(PetscPrintf(comm_,
+                          "Distributed over %d ranks (METIS cells, -fine_distribute): %.0f..%.0f particles per rank, halo up to %.0f particles "
+                          "(cells within %.4g µm reach + %.4g µm -fine_halo_margin)\n",
+                          size, -(double)r[1], (double)r[0], (double)r[2], (double)halo_reach_, (double)halo_margin_));
+  }
   if (spec_.partition > 0)
     PetscCall(PetscPrintf(comm_,
-                          "Cell partition (METIS, -fine_partition_report; reported only, the particles stay on rank 0): %" PetscInt_FMT
+                          "Cell partition (METIS, -fine_partition_report; a report): %" PetscInt_FMT
                           " parts, edge cut %.0f walls (%.4g µm), particles per part %.0f..%.0f, imbalance %.4f, METIS %.3g s\n",
                           spec_.partition, (double)partition_stats_[0], (double)partition_stats_[1], (double)partition_stats_[4], (double)partition_stats_[5],
                           (double)partition_stats_[2], (double)partition_stats_[3]));
@@ -521,6 +549,40 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A distributed run: every rank's limits, the smallest of each kind (the text before its ':', e.g.
+   "wall springs") kept, the same on every rank (each rank bounds only its own particles). */
+static PetscErrorCode SmallestLimits(MPI_Comm comm, std::vector<TimeStepLimit> &limits)
+{
+  const char  US = '\x1f', RS = '\x1e';
+  std::string text;
+  PetscMPIInt size;
+  char        num[64];
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  for (const TimeStepLimit &l : limits) {
+    PetscCall(PetscSNPrintf(num, sizeof num, "%.17g", (double)l.dt));
+    text += std::string(num) + US + l.why + RS;
+  }
+  PetscMPIInt              len = (PetscMPIInt)text.size();
+  std::vector<PetscMPIInt> lens(size), displs(size + 1, 0);
+  PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + lens[r];
+  std::string all((size_t)displs[size], '\0');
+  PetscCallMPI(MPI_Allgatherv(text.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR, comm));
+  std::vector<TimeStepLimit> merged;
+  for (size_t at = 0; at < all.size();) {
+    const size_t      us = all.find(US, at), rs = all.find(RS, at);
+    TimeStepLimit     l{(PetscReal)std::strtod(all.substr(at, us - at).c_str(), nullptr), all.substr(us + 1, rs - us - 1)};
+    const std::string kind = l.why.substr(0, l.why.find(':'));
+    auto              it   = std::find_if(merged.begin(), merged.end(), [&](const TimeStepLimit &m) { return m.why.substr(0, m.why.find(':')) == kind; });
+    if (it == merged.end()) merged.push_back(l);
+    else if (l.dt < it->dt) *it = l;
+    at = rs + 1;
+  }
+  limits = merged;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The smallest stability limit at the initial state; printed at start. Adaptive RK uses it only as
    its first step; basicsymplectic uses dt_safety times it unless -ts_dt is given. */
 PetscErrorCode FineRun::ChooseTimeStep()
@@ -532,6 +594,7 @@ PetscErrorCode FineRun::ChooseTimeStep()
   PetscCall(LocalState(0, u, u + 2 * n_local_, &x, &v));
   PetscCall(model_.TimeStepLimits(x, v, limits_));
   PetscCall(VecRestoreArrayRead(U_, &u));
+  if (distributed_) PetscCall(SmallestLimits(comm_, limits_));
   std::sort(limits_.begin(), limits_.end(), [](const TimeStepLimit &a, const TimeStepLimit &b) { return a.dt < b.dt; });
   PetscReal dt = limits_.empty() ? PETSC_MAX_REAL : limits_[0].dt;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPIU_REAL, MPIU_MIN, comm_));
@@ -894,20 +957,6 @@ PetscErrorCode FineRun::CheckpointFingerprint(std::vector<std::pair<std::string,
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
-  if (reference_hash_.empty()) {
-    /* FNV-1a over the reference positions and masses (rank 0 holds the tissue) */
-    std::uint64_t h   = 1469598103934665603ull;
-    auto          add = [&h](const void *p, size_t bytes) {
-      const unsigned char *b = (const unsigned char *)p;
-      for (size_t k = 0; k < bytes; k++) h = (h ^ b[k]) * 1099511628211ull;
-    };
-    add(tissue_.X.data(), tissue_.X.size() * sizeof(PetscReal));
-    add(tissue_.particles.mass.data(), tissue_.particles.mass.size() * sizeof(PetscReal));
-    PetscCallMPI(MPI_Bcast(&h, 1, MPI_UINT64_T, 0, comm_));
-    char hex[24];
-    PetscCall(PetscSNPrintf(hex, sizeof hex, "%016llx", (unsigned long long)h));
-    reference_hash_ = hex;
-  }
   auto join = [](const std::vector<std::string> &v) {
     std::string s;
     for (const std::string &x : v) s += (s.empty() ? "" : ",") + x;
@@ -946,25 +995,66 @@ PetscErrorCode FineRun::SaveState(PetscReal t, Vec U, StateBlob &state)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The lazily taken references (hinge angles, cell areas, bonds at -glue_start_time 0) from the
+   initial state, where the uninterrupted run's first evaluation took them. */
+PetscErrorCode FineRun::PrimeReferences()
+{
+  const PetscInt         n2 = 2 * n_all_; /* every local particle's (a distributed run's halo too) */
+  std::vector<PetscReal> u0(2 * n2, 0.0), f(n2);
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n2; k++) {
+    u0[k]      = tissue_.X[k];
+    u0[n2 + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
+  }
+  controls_.Impose(0, u0.data(), u0.data() + n2);
+  model_.SetTime(0);
+  PetscCall(model_.ComputeForces(u0.data(), u0.data() + n2, f.data(), NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRun::StateOrder(IS *order)
+{
+  PetscInt              n = n_local_, N;
+  std::vector<PetscInt> idx(4 * n);
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(&n, &N, 1, MPIU_INT, MPI_SUM, comm_));
+  for (PetscInt l = 0; l < n; l++) /* [x | v], each in the tissue's particle order */
+    for (PetscInt d = 0; d < 2; d++) {
+      idx[2 * l + d]         = 2 * tissue_.particles.gid[l] + d;
+      idx[2 * n + 2 * l + d] = 2 * N + 2 * tissue_.particles.gid[l] + d;
+    }
+  PetscCall(ISCreateGeneral(comm_, 4 * n, idx.data(), PETSC_COPY_VALUES, order));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool FineRun::RestartsOnOtherRanks(std::string *why) const
+{
+  if (model_.HasInternalState()) *why = "the terms' internal state (plasticity, contact, glue, dashpots) is saved per rank";
+  else if (spec_.energy) *why = "-fine_energy's sums are saved per rank";
+  else if (drift_fraction_ > 0) *why = "the Verlet integrators' last drift velocities are saved per rank";
+  else return true;
+  return false;
+}
+
+/* Another rank count: nothing per rank to read (the neighbour lists are built afresh: the pairs in
+   another order, the same forces to round-off). */
+PetscErrorCode FineRun::LoadStateOtherRanks(PetscReal t, Vec U)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PrimeReferences());
+  v_stale_.assign(2 * n_local_, 0);
+  restart_energy_rows_ = 0;
+  restart_record_rows_.clear();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
 {
   const PetscScalar *u;
   const PetscReal   *x, *v;
   PetscReal          energy, nrec;
   PetscFunctionBeginUser;
-  {
-    /* the lazily taken references (hinge angles, cell areas, bonds at -glue_start_time 0) from the
-       initial state, where the uninterrupted run's first evaluation took them */
-    const PetscInt         n2 = 2 * n_all_; /* every local particle's (a distributed run's halo too) */
-    std::vector<PetscReal> u0(2 * n2, 0.0), f(n2);
-    for (PetscInt k = 0; k < n2; k++) {
-      u0[k]      = tissue_.X[k];
-      u0[n2 + k] = tissue_.V.empty() || tissue_.particles.fixed[k / 2] ? 0 : tissue_.V[k];
-    }
-    controls_.Impose(0, u0.data(), u0.data() + n2);
-    model_.SetTime(0);
-    PetscCall(model_.ComputeForces(u0.data(), u0.data() + n2, f.data(), NULL));
-  }
+  PetscCall(PrimeReferences());
   PetscCheck(state.Get(v_stale_) && (PetscInt)v_stale_.size() == 2 * n_local_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "the checkpoint's velocities of the last drift do not fit this scene");
   PetscCall(VecGetArrayRead(U, &u));

@@ -453,7 +453,7 @@ PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
 
 /* ---- checkpoints ---- */
 
-static const PetscInt kCheckpointVersion = 1;
+static const PetscInt kCheckpointVersion = 2; /* 2: the state in the mode's StateOrder */
 
 /* The integrator as a checkpoint names it: type, and the RK or ARKIMEX scheme. */
 static PetscErrorCode IntegratorName(TS ts, std::string *name)
@@ -481,6 +481,23 @@ static PetscErrorCode PlainCopy(Vec U, Vec *S, const char *name = "state")
   PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)U), n, PETSC_DETERMINE, S));
   PetscCall(VecCopy(U, *S));
   PetscCall(PetscObjectSetName((PetscObject)*S, name));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* canonical[order[k]] = local[k] (SCATTER_FORWARD), or back (SCATTER_REVERSE) */
+static PetscErrorCode Permute(Vec local, Vec canonical, IS order, ScatterMode mode)
+{
+  VecScatter sc;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterCreate(local, NULL, canonical, order, &sc));
+  if (mode == SCATTER_FORWARD) {
+    PetscCall(VecScatterBegin(sc, local, canonical, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, local, canonical, INSERT_VALUES, SCATTER_FORWARD));
+  } else {
+    PetscCall(VecScatterBegin(sc, canonical, local, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(sc, canonical, local, INSERT_VALUES, SCATTER_REVERSE));
+  }
+  PetscCall(VecScatterDestroy(&sc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -579,21 +596,26 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     /* a plain copy of the state: a DM's own VecView (DMPlex: FE^2) writes its field layout and the
        TS's output sequence number, which VecLoad then expects back */
     Vec S;
+    IS  order;
     PetscCall(PlainCopy(U_, &S));
+    PetscCall(StateOrder(&order));
+    if (order) PetscCall(Permute(U_, S, order, SCATTER_FORWARD));
     PetscCall(VecView(S, v));
     PetscCall(VecDestroy(&S));
-  }
-  {
     Vec      H, Hc;
-    PetscInt has;
+    PetscInt has, nh, nu;
     PetscCall(TSCheckpointGetHistory(ts_, &H));
     has = H ? 1 : 0;
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "has_history", PETSC_INT, &has));
-    if (H) {
+    if (H) { /* a derivative of the state (DOPRI's FSAL stage) in the state's order too */
       PetscCall(PlainCopy(H, &Hc, "integrator_history"));
+      PetscCall(VecGetLocalSize(H, &nh));
+      PetscCall(VecGetLocalSize(U_, &nu));
+      if (order && nh == nu) PetscCall(Permute(H, Hc, order, SCATTER_FORWARD));
       PetscCall(VecView(Hc, v));
       PetscCall(VecDestroy(&Hc));
     }
+    PetscCall(ISDestroy(&order));
   }
   {
     StateBlob    blob;
@@ -692,10 +714,15 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "ranks", PETSC_INT, NULL, &ranks));
+  bool other_ranks = false;
   if (ranks != size) {
-    *problem = "written on " + std::to_string((long long)ranks) + " MPI ranks, this run has " + std::to_string((long long)size) +
-               " (restart on the same number of ranks)";
-    PetscFunctionReturn(PETSC_SUCCESS);
+    std::string why;
+    if (!RestartsOnOtherRanks(&why)) {
+      *problem = "written on " + std::to_string((long long)ranks) + " MPI ranks, this run has " + std::to_string((long long)size) +
+                 " (restart on the same number of ranks: " + why + ")";
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    other_ranks = true;
   }
   {
     std::vector<std::pair<std::string, std::string>> fp;
@@ -740,12 +767,16 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
                " µs: nothing to continue";
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  IS order;
+  PetscCall(StateOrder(&order));
   {
     Vec S;
     PetscCall(PlainCopy(U_, &S));
     PetscCall(VecLoad(S, v));
-    PetscCall(VecCopy(S, U_));
+    if (order) PetscCall(Permute(U_, S, order, SCATTER_REVERSE));
+    else PetscCall(VecCopy(S, U_));
     PetscCall(VecDestroy(&S));
+    PetscCall(ISDestroy(&order));
   }
   PetscCall(TSSetTime(ts_, t));
   PetscCall(TSSetStepNumber(ts_, step));
@@ -785,8 +816,18 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     PetscCall(VecCreateMPI(comm_, n, PETSC_DETERMINE, &H));
     PetscCall(PetscObjectSetName((PetscObject)H, "integrator_history"));
     PetscCall(VecLoad(H, v));
-    PetscCall(TSCheckpointSetHistory(ts_, H));
+    PetscInt nu;
+    PetscCall(VecGetLocalSize(U_, &nu));
+    PetscCall(StateOrder(&order));
+    if (order && n == nu) { /* written in the state's order */
+      Vec Hl;
+      PetscCall(VecDuplicate(H, &Hl));
+      PetscCall(Permute(Hl, H, order, SCATTER_REVERSE));
+      PetscCall(TSCheckpointSetHistory(ts_, Hl));
+      PetscCall(VecDestroy(&Hl));
+    } else PetscCall(TSCheckpointSetHistory(ts_, H));
     PetscCall(VecDestroy(&H));
+    PetscCall(ISDestroy(&order));
   }
   restart_tip_rows_ = sample; /* the rows written up to the checkpoint */
   {
@@ -808,7 +849,8 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     }
   }
   sampler_.SetPosition(sample, snapshot);
-  {
+  if (other_ranks) PetscCall(LoadStateOtherRanks(t, U_)); /* the run_state is per rank */
+  else {
     Vec                L, B;
     const PetscScalar *l, *b;
     PetscInt           n;

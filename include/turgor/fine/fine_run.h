@@ -1,9 +1,10 @@
 #pragma once
 /* Full fine-scale simulation (-mode fine): the whole tissue as particles kept in a DMSwarm,
    integrated with PETSc TS on the run skeleton (time_run.h). The TS state is one Vec
-   [x (2n) | v (2n)] per rank; the DMSwarm is the particle record (fields position, velocity, mass,
-   kind, cell; DMSwarm_pid is the global id) and is synchronised from the state whenever output is
-   written.
+   [x (2n) | v (2n)] of each rank's own particles; the DMSwarm is the particle record (fields
+   position, velocity, mass, kind, cell; DMSwarm_pid is the global id) and is synchronised from the
+   state whenever output is written. On several ranks every particle lives on the rank of its cell
+   and the model sees a halo of the neighbouring ranks' particles (tissue_distribution.h).
 
    Integrators (options only): -ts_type rk -ts_rk_type 5dp (default, adaptive, rtol = atol = 1e-3)
    or -ts_type basicsymplectic (PETSc's velocity Verlet, fixed step from the stability limits). */
@@ -88,6 +89,12 @@ protected:
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
   PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
   PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
+  /* Another rank count: the state in the tissue's particle order; possible for scenes whose terms
+     keep no internal state, without -fine_energy, under DOPRI-like integrators (Verlet's last drift
+     velocities, the terms' histories and the energy sums are per rank). */
+  PetscErrorCode StateOrder(IS *order) override;
+  bool           RestartsOnOtherRanks(std::string *why) const override;
+  PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U) override;
 
 private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx);
@@ -107,7 +114,8 @@ private:
   PetscErrorCode TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f);
   /* a[2 n] of the owned particles at the local state (x, v) */
   PetscErrorCode Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a);
-  PetscErrorCode Distribute(); /* -fine_distribute on several ranks: partition, halo, this rank's tissue */
+  PetscErrorCode Distribute();      /* -fine_distribute on several ranks: partition, halo, this rank's tissue */
+  PetscErrorCode PrimeReferences(); /* a restart: the terms' lazily taken references, from the initial state */
   PetscErrorCode ChooseTimeStep();
   PetscErrorCode PartitionCellsReport(); /* -fine_partition_report: before the tissue leaves the ranks other than 0 */
 
@@ -142,15 +150,15 @@ private:
   std::vector<std::unique_ptr<CsvWriter>> record_csv_;
   PetscErrorCode                          EnergyRow(PetscReal t, const PetscReal *x, const PetscReal *v);
 
-  /* -fine_partition_report (the particles stay on rank 0): the partition and the part of each
-     particle (snapshots) on rank 0; on every rank the edge cut (walls), its length (µm), the
+  /* -fine_partition_report (a report): the partition and the part of each owned particle
+     (snapshots); on every rank the edge cut (walls), its length (µm), the
      imbalance, the METIS time (s), the smallest and largest part (particles) */
   CellPartition          partition_;
   std::vector<PetscReal> particle_part_;
   PetscReal              partition_stats_[6] = {0, 0, 0, 0, 0, 0};
 
   /* observation */
-  PetscInt               tip_    = -1; /* local index of the tip particle on rank 0 */
+  PetscInt               tip_    = -1; /* local index of the tip particle on its owner, -1 elsewhere */
   PetscReal              tip_y0_ = 0;
   ParticleSnapshotWriter snapshots_writer_;
   PetscInt               rhs_evals_ = 0;

@@ -107,6 +107,22 @@ protected:
   virtual PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
   /* At the restored state U of time t (after TSSetUp, before the outputs are opened). */
   virtual PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
+  /* Restarts on another number of ranks: StateOrder gives each local entry of the state its index
+     in an order that does not depend on the ranks (NULL: the state's own order), in which the state
+     (and a carried derivative of the state's layout) is written; RestartsOnOtherRanks says whether
+     this run can continue from a checkpoint of another rank count (else why not), and
+     LoadStateOtherRanks then replaces LoadState (the per-rank run_state is not read). */
+  virtual PetscErrorCode StateOrder(IS *order)
+  {
+    *order = NULL;
+    return PETSC_SUCCESS;
+  }
+  virtual bool RestartsOnOtherRanks(std::string *why) const
+  {
+    *why = "this mode's checkpoint holds per-rank state";
+    return false;
+  }
+  virtual PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U) { return PETSC_SUCCESS; }
   /* -checkpoint_interval, -checkpoint_wall_interval or -restart was given (after SetFromOptions). */
   bool CheckpointsRequested() const { return ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty(); }
   /* The checkpoint a run continues from ("" when none), and its step. */
