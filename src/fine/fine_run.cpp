@@ -17,8 +17,6 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
   PetscBool set, pset, hset;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
-  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec",
-                                    sides, &nsides, &set));
   PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec",
                              dt_safety, &dt_safety, NULL));
   {
@@ -44,20 +42,22 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
                              "Distributed runs: width [µm] of the halo beyond the interactions' reach (cutoffs + neighbour skin); cells may move this "
                              "far relative to each other before the run stops (default: the reach)",
                              "FineRunSpec", halo_margin, &halo_margin, &hset));
+  /* last, and its strings taken at once: an error in another option must not leave them allocated */
+  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec",
+                                    sides, &nsides, &set));
   PetscOptionsEnd();
+  std::vector<std::string> listed;
+  for (PetscInt k = 0; set && k < nsides; k++) {
+    listed.push_back(sides[k]);
+    PetscCall(PetscFree(sides[k]));
+  }
   PetscCheck(!hset || (halo_margin >= 0 && std::isfinite(halo_margin)), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_halo_margin = %g: must be >= 0",
              (double)halo_margin);
   PetscCheck(!pset || partition >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_partition_report = %" PetscInt_FMT ": the number of parts must be >= 1",
              partition);
   PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
   PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
-  if (set) {
-    clamp.clear();
-    for (PetscInt k = 0; k < nsides; k++) {
-      clamp.push_back(sides[k]);
-      PetscCall(PetscFree(sides[k]));
-    }
-  }
+  if (set) clamp = listed;
   PetscCheck(dt_safety > 0 && dt_safety <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
