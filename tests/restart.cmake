@@ -128,3 +128,7 @@ foreach(np 1 3)
   turgor_add_test(restart_ranks_to${np}_agrees COMMAND ${CHECK} samekey restart_ranks_to${np} restart_ranks_full tip_displacement_final 1e-10
     LABELS fine restart mpi REQUIRES "restart_ranks_full;restart_ranks_to${np}")
 endforeach()
+
+# A rebalanced FE² run (-material_rebalance 5: the points dealt again by cost before the checkpoint)
+# continues from its checkpoint with the checkpoint's blocks, bit for bit.
+turgor_restart_case(fe2_rebalance 80 MODE fe2 INTERVAL 15 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -material_rebalance 5)

@@ -399,6 +399,10 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
     js.Set("time_integrator_and_linear_algebra_s", wall - trial - tangents - coarse);
   }
   js.Set("pool_remote_bytes_per_evaluation", model_.Pool().RemoteBytesPerEvaluation());
+  /* -material_rebalance: the groups' measured cost, largest over mean, before and after */
+  js.Set("material_cost_imbalance_before", model_.Pool().CostImbalanceBefore());
+  js.Set("material_cost_imbalance_after", model_.Pool().CostImbalanceAfter());
+  js.Set("material_points_moved", model_.Pool().PointsMoved());
   if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -87,7 +87,13 @@ PetscErrorCode MaterialPointPool::SetFromOptions()
                               "MaterialPointPool", tangents, 3, tangents[tangent], &tangent, NULL));
   PetscCall(PetscOptionsReal("-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ,
                              &tangent_.Fdot_typ, NULL));
+  PetscCall(PetscOptionsInt("-rebalance",
+                            "After N material evaluations, deal the points to the groups again in blocks of equal measured cost (the points that "
+                            "change group move with their state: the same results); 0: never",
+                            "MaterialPointPool", rebalance_after_, &rebalance_after_, NULL));
   PetscOptionsEnd();
+  PetscCheck(rebalance_after_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_rebalance = %" PetscInt_FMT ": must be >= 0 (0: never)",
+             rebalance_after_);
   tangent_.method = (TangentMethod)tangent;
   PetscCheck(tangent_.method != TangentMethod::Implicit || model_->HasStressDerivatives(), comm_, PETSC_ERR_ARG_INCOMP,
              "Option -material_tangent = implicit: the material %s has no exact stress derivatives (use forward or central)", model_->Name());
@@ -123,39 +129,178 @@ PetscErrorCode MaterialPointPool::SetUp(PetscInt n_local)
   end_                    = ((color + 1) * n_global_) / n_groups_;
   MPI_Comm group          = PetscSubcommChild(subcomm_);
   PetscCallMPI(MPI_Comm_rank(group, &group_rank_));
+  offsets_ = offsets;
   for (PetscInt g = begin_; g < end_; g++) {
     std::unique_ptr<MaterialPoint> p;
     PetscCall(model_->CreatePoint(group, &p));
     points_.push_back(std::move(p));
   }
+  cost_.assign(end_ - begin_, 0.0);
+  PetscCall(ContiguousType(sizeof(PointInput) / sizeof(PetscReal), MPIU_REAL, &in_type_));
+  PetscCall(ContiguousType(sizeof(PointResult) / sizeof(PetscReal), MPIU_REAL, &out_type_));
+  PetscCall(ContiguousType(sizeof(PointReason), MPI_CHAR, &reason_type_));
+  PetscCall(BuildTraffic());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-  /* every rank of a group receives its block's inputs; only the group's first rank sends results */
+/* every rank of a group receives its block's inputs; only the group's first rank sends results */
+PetscErrorCode MaterialPointPool::BuildTraffic()
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   const PetscInt           nblock = end_ - begin_;
   std::vector<PetscSFNode> remote(nblock);
   PetscInt                 n_remote = 0;
   for (PetscInt k = 0; k < nblock; k++) {
     const PetscInt g = begin_ + k;
     int            r = 0;
-    while (offsets[r + 1] <= g) r++;
+    while (offsets_[r + 1] <= g) r++;
     remote[k].rank  = r;
-    remote[k].index = g - offsets[r];
+    remote[k].index = g - offsets_[r];
     n_remote += r != rank;
   }
+  PetscCall(PetscSFDestroy(&in_sf_));
+  PetscCall(PetscSFDestroy(&out_sf_));
   PetscCall(PetscSFCreate(comm_, &in_sf_));
   PetscCall(PetscSFSetGraph(in_sf_, n_local_, nblock, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
   PetscCall(PetscSFSetUp(in_sf_));
   PetscCall(PetscSFCreate(comm_, &out_sf_));
   PetscCall(PetscSFSetGraph(out_sf_, n_local_, group_rank_ == 0 ? nblock : 0, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
   PetscCall(PetscSFSetUp(out_sf_));
-  PetscCall(ContiguousType(sizeof(PointInput) / sizeof(PetscReal), MPIU_REAL, &in_type_));
-  PetscCall(ContiguousType(sizeof(PointResult) / sizeof(PetscReal), MPIU_REAL, &out_type_));
-  PetscCall(ContiguousType(sizeof(PointReason), MPI_CHAR, &reason_type_));
   remote_bytes_ = n_remote * (PetscInt)(sizeof(PointInput) + (group_rank_ == 0 ? sizeof(PointResult) : 0));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &remote_bytes_, 1, MPIU_INT, MPI_SUM, comm_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* This group's points become [begin, end): the ones it had stay (with their measured cost), the
+   others are created (collectively on the group) and take their state from states[g - begin]
+   (none: they start afresh). Collective on the pool. */
+PetscErrorCode MaterialPointPool::SetBlock(PetscInt begin, PetscInt end, std::vector<StateBlob> *states)
+{
+  MPI_Comm                                    group = PetscSubcommChild(subcomm_);
+  std::vector<std::unique_ptr<MaterialPoint>> points;
+  std::vector<PetscReal>                      cost;
+  PetscFunctionBeginUser;
+  for (PetscInt g = begin; g < end; g++) {
+    if (g >= begin_ && g < end_) {
+      points.push_back(std::move(points_[g - begin_]));
+      cost.push_back(cost_[g - begin_]);
+      continue;
+    }
+    std::unique_ptr<MaterialPoint> p;
+    PetscCall(model_->CreatePoint(group, &p));
+    if (states) {
+      StateBlob &b = (*states)[g - begin];
+      PetscCall(p->LoadState(b));
+      PetscCheck(b.Done(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "material point %" PetscInt_FMT ": %zu numbers of its state left unread", g, b.data.size() - b.pos);
+    }
+    points.push_back(std::move(p));
+    cost.push_back(0);
+  }
+  points_ = std::move(points);
+  cost_   = std::move(cost);
+  begin_ = begin, end_ = end;
+  PetscCall(BuildTraffic());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -material_rebalance: blocks of equal measured cost, the points that change group sent with their
+   state from rank j of the old group to rank j of the new one. */
+PetscErrorCode MaterialPointPool::Rebalance()
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  const PetscMPIInt color = subcomm_->color;
+  /* every point's cost in global order (the groups' first ranks in order hold the blocks in order):
+     its force evaluations so far, the bulk of an RVE's work and the same on every run (so the blocks
+     are), or for a material without work counters the time it took */
+  std::vector<PetscReal> mine;
+  PetscInt               counted = 0;
+  for (size_t k = 0; group_rank_ == 0 && k < points_.size(); k++) {
+    MaterialCounters w;
+    points_[k]->AddCounters(w);
+    mine.push_back((PetscReal)(w.force_evals + w.tangent_force_evals));
+    counted += w.force_evals + w.tangent_force_evals;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &counted, 1, MPIU_INT, MPI_SUM, comm_));
+  if (!counted && group_rank_ == 0) mine = cost_;
+  PetscMPIInt              n = (PetscMPIInt)mine.size();
+  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  PetscCheck(displs[size] == n_global_, comm_, PETSC_ERR_PLIB, "rebalance: %d costs for %" PetscInt_FMT " points", displs[size], n_global_);
+  std::vector<PetscReal> cost(n_global_);
+  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_REAL, cost.data(), counts.data(), displs.data(), MPIU_REAL, comm_));
+  /* the old blocks (each group's begin) and the new ones: cuts at equal shares of the total cost */
+  std::vector<PetscInt> old_begin(size), ob(n_groups_ + 1, n_global_), nb(n_groups_ + 1, n_global_);
+  PetscCallMPI(MPI_Allgather(&begin_, 1, MPIU_INT, old_begin.data(), 1, MPIU_INT, comm_));
+  for (PetscInt c = 0; c < n_groups_; c++) ob[c] = old_begin[c * comm_size_];
+  std::vector<PetscReal> prefix(n_global_ + 1, 0);
+  for (PetscInt g = 0; g < n_global_; g++) prefix[g + 1] = prefix[g] + cost[g];
+  const PetscReal total = prefix[n_global_];
+  nb[0]                 = 0;
+  for (PetscInt c = 1; c < n_groups_; c++) {
+    const PetscReal target = total * (PetscReal)c / (PetscReal)n_groups_;
+    PetscInt        g      = (PetscInt)(std::lower_bound(prefix.begin(), prefix.end(), target) - prefix.begin());
+    if (g > 0 && target - prefix[g - 1] < prefix[g] - target) g--; /* the nearer cut */
+    nb[c] = std::max(nb[c - 1], std::min(g, n_global_));
+  }
+  auto worst = [&](const std::vector<PetscInt> &b) {
+    PetscReal w = 0;
+    for (PetscInt c = 0; c < n_groups_; c++) w = std::max(w, prefix[b[c + 1]] - prefix[b[c]]);
+    return total > 0 ? w * n_groups_ / total : 1.0;
+  };
+  imbalance_before_ = worst(ob);
+  imbalance_after_  = worst(nb);
+  auto group_of     = [&](const std::vector<PetscInt> &b, PetscInt g) { return (PetscInt)(std::upper_bound(b.begin(), b.end(), g) - b.begin()) - 1; };
+  moved_            = 0;
+  for (PetscInt g = 0; g < n_global_; g++) moved_ += group_of(ob, g) != group_of(nb, g);
+  /* this rank's part of every point that leaves its group, to rank j of the new group */
+  std::vector<std::vector<PetscReal>> out(size);
+  for (PetscInt g = begin_; g < end_; g++) {
+    const PetscInt c = group_of(nb, g);
+    if (c == color) continue;
+    StateBlob b;
+    PetscCall(points_[g - begin_]->SaveState(b));
+    std::vector<PetscReal> &o = out[c * comm_size_ + group_rank_];
+    o.push_back((PetscReal)g);
+    o.push_back((PetscReal)b.data.size());
+    o.insert(o.end(), b.data.begin(), b.data.end());
+  }
+  std::vector<PetscMPIInt> scount(size), rcount(size), sdispl(size + 1, 0), rdispl(size + 1, 0);
+  for (PetscMPIInt r = 0; r < size; r++) scount[r] = (PetscMPIInt)out[r].size();
+  PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm_));
+  std::vector<PetscReal> send, recv;
+  for (PetscMPIInt r = 0; r < size; r++) {
+    sdispl[r + 1] = sdispl[r] + scount[r];
+    rdispl[r + 1] = rdispl[r] + rcount[r];
+    send.insert(send.end(), out[r].begin(), out[r].end());
+  }
+  recv.resize(rdispl[size]);
+  PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdispl.data(), MPIU_REAL, recv.data(), rcount.data(), rdispl.data(), MPIU_REAL, comm_));
+  const PetscInt         begin = nb[color], end = nb[color + 1];
+  std::vector<StateBlob> states(end - begin);
+  for (size_t at = 0; at + 2 <= recv.size();) {
+    const PetscInt g = (PetscInt)recv[at], len = (PetscInt)recv[at + 1];
+    PetscCheck(g >= begin && g < end, PETSC_COMM_SELF, PETSC_ERR_PLIB, "rebalance: point %" PetscInt_FMT " sent to the wrong group", g);
+    states[g - begin].data.assign(recv.begin() + at + 2, recv.begin() + at + 2 + len);
+    at += 2 + (size_t)len;
+  }
+  PetscCall(SetBlock(begin, end, &states));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind)
+{
+  PetscFunctionBeginUser;
+  if (rebalance_after_ > 0 && kind == EvaluationKind::Trial && evaluations_++ == rebalance_after_) PetscCall(Rebalance());
+  PetscCall(EvaluateBlock(F, Fdot, out, D, kind));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind)
 {
   const PetscInt           nblock = end_ - begin_;
   std::vector<PointInput>  in(n_local_), block(nblock);
@@ -186,6 +331,7 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
     PetscCall(mp.Evaluate(Fg, Fdg, kind, &r));
     PetscCall(PetscTime(&t1));
     time_trial_ += t1 - t0;
+    cost_[k] += t1 - t0;
     if (r.ok && D) {
       PetscCall(PetscLogEventBegin(ev_tangents_, 0, 0, 0, 0));
       /* tangents for output leave the work counters as they are, like the output evaluation itself */
@@ -193,6 +339,7 @@ PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot
       PetscCall(PetscLogEventEnd(ev_tangents_, 0, 0, 0, 0));
       PetscCall(PetscTime(&t2));
       time_tangents_ += t2 - t1;
+      cost_[k] += t2 - t1;
       if (!status.ok) {
         r.ok     = false;
         r.reason = "tangent: " + status.reason;
@@ -294,10 +441,16 @@ PetscErrorCode MaterialPointPool::LoadState(StateBlob &state)
   PetscInt b = -1, e = -1;
   PetscFunctionBeginUser;
   PetscCheck(state.Get(&b) && state.Get(&e), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are missing");
-  PetscCheck(b == begin_ && e == end_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's material points of this rank's group are [%" PetscInt_FMT ", %" PetscInt_FMT "), this run's [%" PetscInt_FMT ", %" PetscInt_FMT
-             ") (another -material_comm_size?)",
-             b, e, begin_, end_);
+  {
+    /* a rebalanced run's blocks (-material_rebalance): take them, on every rank at once */
+    PetscInt other = b != begin_ || e != end_;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &other, 1, MPIU_INT, MPI_MAX, comm_));
+    PetscCheck(b >= 0 && b <= e && e <= n_global_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's material points of this rank's group are [%" PetscInt_FMT ", %" PetscInt_FMT "), of %" PetscInt_FMT " points", b, e,
+               n_global_);
+    if (other) PetscCall(SetBlock(b, e, nullptr));
+    if (rebalance_after_ > 0) evaluations_ = rebalance_after_ + 1; /* the checkpoint's run had rebalanced, or will not need to now */
+  }
   for (size_t k = 0; k < points_.size(); k++) {
     StateBlob pb;
     PetscCheck(state.Get(pb.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of material point %" PetscInt_FMT " is missing",

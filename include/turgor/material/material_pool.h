@@ -3,7 +3,12 @@
    quadrature point, each on its own sub-communicator). The ranks are split into groups of
    -material_comm_size ranks (PetscSubcomm, contiguous); the global points are dealt to the groups in
    balanced contiguous blocks, so a point always lives on the same group (its RVE keeps its warm
-   start). The material is configured once (MaterialModel) and creates every point.
+   start). With -material_rebalance N the blocks are drawn once more after N evaluations, balanced by
+   each point's measured cost so far (its force evaluations: a point near a clamp or a load relaxes
+   longer; the time it took for a material without counters), and the points
+   that change group move with their whole state (MaterialPoint::SaveState/LoadState), so the
+   results stay the same bits. The material is configured once (MaterialModel) and creates every
+   point.
 
    Traffic: two PetscSF built at set-up carry named structs -- the inputs (F, Fdot) from the rank
    that owns a point to the ranks of the group that evaluates it, and the results (stress, density,
@@ -44,7 +49,8 @@ public:
   PetscErrorCode Commit();
   PetscErrorCode Revert();
   /* Checkpoints: the points of this rank's group, this rank's part of each (MaterialPoint::SaveState);
-     collective. LoadState refuses a blob of another block of points. */
+     collective. LoadState takes the checkpoint's block of points (a rebalanced run's) if it is
+     another one; a checkpoint of another -material_comm_size is refused. */
   PetscErrorCode SaveState(StateBlob &state);
   PetscErrorCode LoadState(StateBlob &state);
 
@@ -64,6 +70,11 @@ public:
   MaterialPoint *GroupPoint(PetscInt k) const { return points_[k].get(); }
   PetscInt       GroupBegin() const { return begin_; }
   PetscInt       GroupEnd() const { return end_; }
+  /* -material_rebalance: the largest group's measured cost over the mean, before and after the
+     rebalancing (1 before it happened), and the points moved. */
+  PetscReal CostImbalanceBefore() const { return imbalance_before_; }
+  PetscReal CostImbalanceAfter() const { return imbalance_after_; }
+  PetscInt  PointsMoved() const { return moved_; }
 
 private:
   MPI_Comm                                    comm_;
@@ -80,6 +91,15 @@ private:
   PetscInt                                    remote_bytes_ = 0;
   PetscLogEvent                               ev_evaluate_ = 0, ev_tangents_ = 0;
   PetscLogDouble                              time_trial_ = 0, time_tangents_ = 0;
+  /* -material_rebalance */
+  PetscInt               rebalance_after_ = 0, evaluations_ = 0, moved_ = 0;
+  std::vector<PetscReal> cost_; /* [block] seconds each point of this group took so far */
+  PetscReal              imbalance_before_ = 1, imbalance_after_ = 1;
+  PetscErrorCode         BuildTraffic();                                                         /* the SFs of [begin_, end_) */
+  PetscErrorCode         SetBlock(PetscInt begin, PetscInt end, std::vector<StateBlob> *states); /* this group's points become [begin, end) */
+  PetscErrorCode         Rebalance();
+  PetscErrorCode         EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind);
+  std::vector<PetscInt>  offsets_; /* [ranks + 1] the owners' blocks of points */
 };
 
 } // namespace turgor
