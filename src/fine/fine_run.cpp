@@ -461,7 +461,7 @@ PetscErrorCode FineRun::Report()
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, r, 3, MPIU_REAL, MPIU_MAX, comm_));
     PetscCall(PetscPrintf(comm_,
                           "Distributed over %d ranks (METIS cells, -fine_distribute): %.0f..%.0f particles per rank, halo up to %.0f particles "
-                          "(cells within %.4g µm reach + %.4g µm -fine_halo_margin)\n",
+                          "(cells within %.4g µm reach + %.4g µm -fine_halo_margin); the terms' lines above count rank 0's particles\n",
                           size, -(double)r[1], (double)r[0], (double)r[2], (double)halo_reach_, (double)halo_margin_));
   }
   if (spec_.partition > 0)
