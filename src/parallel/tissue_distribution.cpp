@@ -75,6 +75,8 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
              cell_rank.size(), global.NumCells());
   reach_  = reach;
   margin_ = margin;
+  PetscCall(PetscLogEventRegister("TgHaloExchange", PETSC_OBJECT_CLASSID, &ev_exchange_));
+  PetscCall(PetscLogEventRegister("TgHaloCheck", PETSC_OBJECT_CLASSID, &ev_check_));
 
   /* the cells: the tissue's, then one pseudo-cell for every particle in no cell (rank 0's) */
   std::vector<PetscInt> owner_cell, owner_rank(N);
@@ -226,20 +228,24 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
 PetscErrorCode TissueDistribution::Gather(PetscReal *a, PetscReal *b) const
 {
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_exchange_, 0, 0, 0, 0));
   PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
   if (b) PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, b, b + 2 * n_owned_, MPI_REPLACE));
   PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
   if (b) PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, b, b + 2 * n_owned_, MPI_REPLACE));
   bytes_ += (b ? 4.0 : 2.0) * n_halo_ * sizeof(PetscReal);
+  PetscCall(PetscLogEventEnd(ev_exchange_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode TissueDistribution::Return(PetscReal *f) const
 {
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_exchange_, 0, 0, 0, 0));
   PetscCall(PetscSFReduceBegin(sf_, MPIU_REAL, f + 2 * n_owned_, f, MPIU_SUM));
   PetscCall(PetscSFReduceEnd(sf_, MPIU_REAL, f + 2 * n_owned_, f, MPIU_SUM));
   bytes_ += 2.0 * n_halo_ * sizeof(PetscReal);
+  PetscCall(PetscLogEventEnd(ev_exchange_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -247,6 +253,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
 {
   PetscMPIInt size;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_check_, 0, 0, 0, 0));
   /* this rank's cells' boxes now; cheap: has any box edge moved half the slack since the last full
      check? (two boxes come closer by at most the sum of their edges' moves) */
   std::vector<PetscReal> now(4 * owned_cells_.size());
@@ -262,7 +269,10 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
   }
   if (!box_check_.empty()) {
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &shift, 1, MPIU_REAL, MPIU_MAX, comm_));
-    if (2 * std::sqrt(2.0) * shift < slack_) PetscFunctionReturn(PETSC_SUCCESS);
+    if (2 * std::sqrt(2.0) * shift < slack_) {
+      PetscCall(PetscLogEventEnd(ev_check_, 0, 0, 0, 0));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
   }
   PetscCall(PetscInfo(NULL, "halo full check %d: box shift %g, slack %g\n", (int)full_checks_, (double)shift, (double)slack_));
   /* every cell's current box, from its owner */
@@ -294,6 +304,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
              "(reach + -fine_halo_margin %g µm) no longer covers this deformation; rerun with a larger -fine_halo_margin",
              (double)reach_, (double)margin_);
   box_check_ = now;
+  PetscCall(PetscLogEventEnd(ev_check_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -68,7 +68,8 @@ private:
   std::vector<char>                  local_cell_;  /* [cells]: owned or halo here */
   PetscReal                          reach_ = 0, margin_ = 0, slack_ = 0;
   std::vector<PetscReal>             box_check_; /* this rank's cells' boxes at the last full check */
-  mutable PetscReal                  bytes_ = 0;
+  mutable PetscReal                  bytes_       = 0;
+  PetscLogEvent                      ev_exchange_ = 0, ev_check_ = 0; /* TgHaloExchange (Gather, Return), TgHaloCheck */
 };
 
 } // namespace turgor
