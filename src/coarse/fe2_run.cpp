@@ -80,6 +80,8 @@ PetscErrorCode FE2Run::SetUpModel()
   PetscCall(TSSetFunctionDomainError(ts_, CheckDomain));
   PetscCall(monitor_.SetUp(model_, out_.ready ? out_.dir : std::string()));
   if (monitor_.Active()) PetscCall(TSMonitorSet(ts_, EigenMonitor, this, NULL));
+  /* the summary's time split is of the run (wall_time_s), not of the set-up's relaxation at rest */
+  model_.Pool().ResetTimes();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

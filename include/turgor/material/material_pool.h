@@ -60,6 +60,7 @@ public:
      always measured (two clock reads per point), unlike -log_view's events, whose per-call
      overhead on millions of small RVE solves would distort the timings being broken down. */
   PetscErrorCode GlobalTimes(PetscReal *trial_s, PetscReal *tangent_s) const;
+  void           ResetTimes() { time_trial_ = time_tangents_ = 0; } /* from here on */
   /* Bytes that cross between ranks in one evaluation, summed over all ranks (inputs + results). */
   PetscInt             RemoteBytesPerEvaluation() const { return remote_bytes_; }
   PetscInt             NumGlobal() const { return n_global_; }
