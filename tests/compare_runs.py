@@ -20,6 +20,7 @@
                                              shrinks from third to third of the history, and the
                                              thirds' means agree within RELTOL of their size
   compare_runs.py csvrel A_DIR B_DIR FILE RELTOL   every column of FILE agrees within RELTOL of its largest value
+  compare_runs.py samerows A_DIR B_DIR FILE COL...  FILE has the same rows (by those columns) in any order
   compare_runs.py samekey A_DIR B_DIR KEY RELTOL  summary.json[KEY] of the two runs agree within RELTOL (relative)
   compare_runs.py between DIR KEY LO HI      LO <= summary.json[KEY] <= HI
   compare_runs.py notmore A_DIR B_DIR KEY RELTOL  summary.json[KEY] of A is at most (1 + RELTOL) x B's (strictly
@@ -160,6 +161,15 @@ def main(argv):
         print(f"{argv[4]}: {len(rb) - 1} rows, {len(rb[0])} columns, largest relative difference {worst:.3e} ({where or 'none'})")
         if not worst <= tol:
             sys.exit(f"FAIL: above {tol}")
+    elif mode == "samerows":
+        # the same rows of FILE in both runs by the given columns, in any order (a distributed run
+        # gathers its ranks' rows rank by rank)
+        cols = argv[5:]
+        ra = sorted(tuple(r[c] for c in cols) for r in csv.DictReader(open(f"{argv[2]}/{argv[4]}")))
+        rb = sorted(tuple(r[c] for c in cols) for r in csv.DictReader(open(f"{argv[3]}/{argv[4]}")))
+        print(f"{argv[4]}: {len(ra)} and {len(rb)} rows, compared by {' '.join(cols)}")
+        if ra != rb:
+            sys.exit(f"FAIL: the rows differ ({len(set(ra) ^ set(rb))} not in both)")
     elif mode == "samekey":
         a, b = json.load(open(f"{argv[2]}/summary.json"))[argv[4]], json.load(open(f"{argv[3]}/summary.json"))[argv[4]]
         rel = abs(a - b) / max(abs(b), 1e-300)

@@ -57,6 +57,10 @@ turgor_ranks_agree(glue TOL 1e-7 RANKS 2 OPTIONS -options_file_yaml ${PROJECT_SO
   -tissue_box 0,0,100,100 -control_top_box -1,87.5,101,101 -control_bottom_box -1,-1,101,12.5 -fine_snapshots 0 -fine_progress_interval 0
   -fine_energy 0 -fine_dt_safety 0.25 -control_top_velocity 0,0.05 -control_bottom_velocity 0,-0.05 -control_top_ramp_time 5
   -control_bottom_ramp_time 5 -ts_max_time 12 COMPARE samekey:bonds_created:0 samekey:bonds_broken:0 samekey:glue_interface_length:1e-12)
+# ... and breaks.csv, gathered to rank 0 step by step, names the same bonds (cells, node, bar in the
+# tissue's numbering)
+turgor_add_test(dist_glue_breaks COMMAND ${CHECK} samerows dist_glue_np2 dist_glue_np1 breaks.csv cell_node cell_bar node bar LABELS fine mpi
+  REQUIRES "dist_glue_np1;dist_glue_np2")
 
 # Snapshots of a distributed run: each rank writes its own particles, bars and cells into the one
 # file (connectivity in the state's numbering, halo ends included): the XDMF agrees with its HDF5

@@ -549,35 +549,66 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+using TextRows = std::vector<std::vector<std::string>>;
+
+/* Every rank's rows of text cells, in rank order: on rank 0 only (to_all false; the others get
+   none) or on every rank. A row travels as its cells separated by unit separators, ended by a
+   record separator. */
+static PetscErrorCode GatherRows(MPI_Comm comm, bool to_all, const TextRows &mine, TextRows *all)
+{
+  const char  US = '\x1f', RS = '\x1e';
+  std::string text;
+  PetscMPIInt size, rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  for (const auto &row : mine) {
+    for (size_t c = 0; c < row.size(); c++) text += (c ? std::string(1, US) : std::string()) + row[c];
+    text += RS;
+  }
+  PetscMPIInt              len = (PetscMPIInt)text.size();
+  std::vector<PetscMPIInt> lens(size), displs(size + 1, 0);
+  if (to_all) PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, comm));
+  else PetscCallMPI(MPI_Gather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, 0, comm));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + lens[r];
+  std::string joined(to_all || rank == 0 ? (size_t)displs[size] : 0, '\0');
+  if (to_all) PetscCallMPI(MPI_Allgatherv(text.data(), len, MPI_CHAR, joined.data(), lens.data(), displs.data(), MPI_CHAR, comm));
+  else PetscCallMPI(MPI_Gatherv(text.data(), len, MPI_CHAR, joined.data(), lens.data(), displs.data(), MPI_CHAR, 0, comm));
+  all->clear();
+  for (size_t at = 0; at < joined.size();) {
+    const size_t             end = joined.find(RS, at);
+    std::vector<std::string> row;
+    for (size_t p = at;;) {
+      const size_t q = std::min(joined.find(US, p), end);
+      row.push_back(joined.substr(p, q - p));
+      if (q == end) break;
+      p = q + 1;
+    }
+    all->push_back(std::move(row));
+    at = end + 1;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* A distributed run: every rank's limits, the smallest of each kind (the text before its ':', e.g.
    "wall springs") kept, the same on every rank (each rank bounds only its own particles). */
 static PetscErrorCode SmallestLimits(MPI_Comm comm, std::vector<TimeStepLimit> &limits)
 {
-  const char  US = '\x1f', RS = '\x1e';
-  std::string text;
-  PetscMPIInt size;
-  char        num[64];
+  TextRows mine, all;
+  char     num[64];
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   for (const TimeStepLimit &l : limits) {
     PetscCall(PetscSNPrintf(num, sizeof num, "%.17g", (double)l.dt));
-    text += std::string(num) + US + l.why + RS;
+    mine.push_back({num, l.why});
   }
-  PetscMPIInt              len = (PetscMPIInt)text.size();
-  std::vector<PetscMPIInt> lens(size), displs(size + 1, 0);
-  PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, comm));
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + lens[r];
-  std::string all((size_t)displs[size], '\0');
-  PetscCallMPI(MPI_Allgatherv(text.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR, comm));
+  PetscCall(GatherRows(comm, true, mine, &all));
   std::vector<TimeStepLimit> merged;
-  for (size_t at = 0; at < all.size();) {
-    const size_t      us = all.find(US, at), rs = all.find(RS, at);
-    TimeStepLimit     l{(PetscReal)std::strtod(all.substr(at, us - at).c_str(), nullptr), all.substr(us + 1, rs - us - 1)};
-    const std::string kind = l.why.substr(0, l.why.find(':'));
-    auto              it   = std::find_if(merged.begin(), merged.end(), [&](const TimeStepLimit &m) { return m.why.substr(0, m.why.find(':')) == kind; });
+  for (const auto &row : all) {
+    const TimeStepLimit l{(PetscReal)std::strtod(row[0].c_str(), nullptr), row[1]};
+    const std::string   kind = l.why.substr(0, l.why.find(':'));
+    auto                it   = std::find_if(merged.begin(), merged.end(), [&](const TimeStepLimit &m) { return m.why.substr(0, m.why.find(':')) == kind; });
     if (it == merged.end()) merged.push_back(l);
     else if (l.dt < it->dt) *it = l;
-    at = rs + 1;
   }
   limits = merged;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -683,45 +714,18 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
   });
 }
 
-/* A distributed run: every rank's log rows to rank 0 (which writes the files), rank by rank. Each
-   row travels as its file name and cells separated by unit separators, one row per line. */
+/* A distributed run: every rank's log rows (file, cells) to rank 0, which writes the files. */
 static PetscErrorCode GatherRecords(MPI_Comm comm, std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
 {
-  const char  US = '\x1f', RS = '\x1e';
-  std::string text;
-  PetscMPIInt size, rank;
+  TextRows mine, all;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  for (const auto &r : rows) {
-    text += r.first;
-    for (const std::string &cell : r.second) text += US + cell;
-    text += RS;
+  for (auto &r : rows) {
+    mine.push_back({r.first});
+    mine.back().insert(mine.back().end(), r.second.begin(), r.second.end());
   }
-  PetscMPIInt              len = (PetscMPIInt)text.size();
-  std::vector<PetscMPIInt> lens(size), displs(size + 1, 0);
-  PetscCallMPI(MPI_Gather(&len, 1, MPI_INT, lens.data(), 1, MPI_INT, 0, comm));
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + lens[r];
-  std::string all(rank == 0 ? (size_t)displs[size] : 0, '\0');
-  PetscCallMPI(MPI_Gatherv(text.data(), len, MPI_CHAR, all.data(), lens.data(), displs.data(), MPI_CHAR, 0, comm));
+  PetscCall(GatherRows(comm, false, mine, &all));
   rows.clear();
-  size_t at = 0;
-  while (rank == 0 && at < all.size()) {
-    const size_t             end = all.find(RS, at);
-    std::vector<std::string> cells;
-    size_t                   p = at;
-    while (true) {
-      const size_t q = all.find(US, p);
-      if (q == std::string::npos || q > end) {
-        cells.push_back(all.substr(p, end - p));
-        break;
-      }
-      cells.push_back(all.substr(p, q - p));
-      p = q + 1;
-    }
-    rows.push_back({cells.front(), std::vector<std::string>(cells.begin() + 1, cells.end())});
-    at = end + 1;
-  }
+  for (auto &row : all) rows.push_back({row.front(), std::vector<std::string>(row.begin() + 1, row.end())});
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -256,8 +256,9 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
   PetscCall(PetscLogEventBegin(ev_check_, 0, 0, 0, 0));
   /* this rank's cells' boxes now; cheap: has any box edge moved half the slack since the last full
      check? (two boxes come closer by at most the sum of their edges' moves) */
-  std::vector<PetscReal> now(4 * owned_cells_.size());
-  PetscReal              shift = 0;
+  std::vector<PetscReal> &now   = box_now_; /* kept: this runs every evaluation */
+  PetscReal               shift = 0;
+  now.resize(4 * owned_cells_.size());
   for (size_t k = 0; k < owned_cells_.size(); k++) {
     Box b;
     for (PetscInt i : owned_rings_[k]) b.Add(&x[2 * i]);
@@ -303,7 +304,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
              "A cell came within %g µm (the interactions' reach) of a rank's cells without being in its halo: the halo set up at the start "
              "(reach + -fine_halo_margin %g µm) no longer covers this deformation; rerun with a larger -fine_halo_margin",
              (double)reach_, (double)margin_);
-  box_check_ = now;
+  box_check_.swap(box_now_);
   PetscCall(PetscLogEventEnd(ev_check_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -25,6 +25,16 @@ PetscErrorCode Contact::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void Contact::ForgetLists()
+{
+  cand_.clear();
+  hist_.clear();
+  live_.clear();
+  trial_.clear();
+  trial_lists_   = -1;
+  seen_rebuilds_ = -1;
+}
+
 PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
@@ -49,13 +59,8 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
     }
   }
   nb.RequestParticleSpringPairs(2 * r_);
-  cand_.clear();
+  ForgetLists();
   near_.clear();
-  hist_.clear();
-  live_.clear();
-  trial_.clear();
-  trial_lists_   = -1;
-  seen_rebuilds_ = -1;
   evaluations_ = max_active_ = 0;
   dissipated_                = 0;
   sum_active_ = sum_near_ = 0;
@@ -389,12 +394,7 @@ PetscErrorCode Contact::LoadState(const ForceInput &in, StateBlob &state)
     saved.emplace(Key(*in.P, (PetscInt)v[0], (PetscInt)v[1]), History{v[2], v[3], true, (PetscInt)v[4]});
   }
   /* the pair lists from the restored neighbour lists, then the histories by key */
-  cand_.clear();
-  hist_.clear();
-  live_.clear();
-  trial_.clear();
-  trial_lists_   = -1;
-  seen_rebuilds_ = -1;
+  ForgetLists();
   PetscCall(Refresh(in));
   size_t found = 0;
   for (size_t k = 0; k < cand_.size(); k++) {

@@ -683,6 +683,17 @@ static PetscErrorCode KeepFirstError(MPI_Comm comm, int line, const char *fun, c
   return n;
 }
 
+/* A string attribute of the checkpoint's root group. */
+static PetscErrorCode ReadStringAttribute(PetscViewer v, const std::string &name, std::string *value)
+{
+  char *str = NULL;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name.c_str(), PETSC_STRING, NULL, &str));
+  *value = str;
+  PetscCall(PetscFree(str));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
 {
   PetscInt    version = -1, ranks = 0, step = 0, rej = 0, sample = 0, snapshot = 0, has = 0;
@@ -706,9 +717,8 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
                std::to_string((long long)kCheckpointVersion);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "mode", PETSC_STRING, NULL, &str));
-  std::string mode = str;
-  PetscCall(PetscFree(str));
+  std::string mode;
+  PetscCall(ReadStringAttribute(v, "mode", &mode));
   if (mode != mode_) {
     *problem = "written by -mode " + mode + ", this run is -mode " + mode_;
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -732,11 +742,7 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
       PetscBool   present;
       std::string theirs = "(none)";
       PetscCall(PetscViewerHDF5HasAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), &present));
-      if (present) {
-        PetscCall(PetscViewerHDF5ReadAttribute(v, "/", ("fingerprint_" + kv.first).c_str(), PETSC_STRING, NULL, &str));
-        theirs = str;
-        PetscCall(PetscFree(str));
-      }
+      if (present) { PetscCall(ReadStringAttribute(v, "fingerprint_" + kv.first, &theirs)); }
       if (theirs != kv.second) diff += (diff.empty() ? "" : "; ") + kv.first + " " + theirs + " in the checkpoint, " + kv.second + " in this scene";
     }
     if (!diff.empty()) {
@@ -747,9 +753,8 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
   {
     std::string ours;
     PetscCall(IntegratorName(ts_, &ours));
-    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "integrator", PETSC_STRING, NULL, &str));
-    std::string theirs = str;
-    PetscCall(PetscFree(str));
+    std::string theirs;
+    PetscCall(ReadStringAttribute(v, "integrator", &theirs));
     if (theirs != ours) {
       *problem = "integrated with -ts_type " + theirs + ", this run with " + ours + " (give the same integrator)";
       PetscFunctionReturn(PETSC_SUCCESS);
@@ -791,9 +796,8 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
       PetscReal              a[TS_CHECKPOINT_ADAPT_MAX];
       std::vector<PetscReal> theirs;
       PetscCall(TSCheckpointGetAdaptState(ts_, &ours, &na, a));
-      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "adapt_type", PETSC_STRING, NULL, &str));
-      const std::string type = str;
-      PetscCall(PetscFree(str));
+      std::string type;
+      PetscCall(ReadStringAttribute(v, "adapt_type", &type));
       if (type != ours) {
         *problem = "integrated with -ts_adapt_type " + type + ", this run with " + ours + " (give the same step-size controller)";
         PetscFunctionReturn(PETSC_SUCCESS);

@@ -67,6 +67,7 @@ private:
   template <int MODE>
   PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   PetscErrorCode Refresh(const ForceInput &in);
+  void           ForgetLists(); /* no pairs, histories or trials: the next Refresh builds them */
   void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
   void           CommitTrial();
