@@ -2,6 +2,7 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
+#include <turgor/particles/local_numbering.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cstdint>
@@ -1033,22 +1034,85 @@ PetscErrorCode FineRun::StateOrder(IS *order)
 
 bool FineRun::RestartsOnOtherRanks(std::string *why) const
 {
-  if (model_.HasInternalState()) *why = "the terms' internal state (plasticity, contact, glue, dashpots) is saved per rank";
-  else if (spec_.energy) *why = "-fine_energy's sums are saved per rank";
-  else if (drift_fraction_ > 0) *why = "the Verlet integrators' last drift velocities are saved per rank";
-  else return true;
-  return false;
+  return model_.RestartsOnOtherRanks(why);
 }
 
-/* Another rank count: nothing per rank to read (the neighbour lists are built afresh: the pairs in
-   another order, the same forces to round-off). */
-PetscErrorCode FineRun::LoadStateOtherRanks(PetscReal t, Vec U)
+/* The state of FineRun::SaveState in the tissue's numbering: [n owned, n x (gid, v_stale); force
+   model (ForceModel::SaveGlobalState); energy: flag, balance, next row time; rows of energy.csv,
+   n logs, their rows] */
+PetscErrorCode FineRun::SaveGlobalState(PetscReal t, Vec U, StateBlob &state)
 {
+  const PetscScalar *u;
+  const PetscReal   *x, *v;
   PetscFunctionBeginUser;
+  state.Put((PetscReal)n_local_);
+  for (PetscInt l = 0; l < n_local_; l++)
+    for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
+  model_.SetTime(t);
+  PetscCall(model_.SaveGlobalState(x, v, t, state));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  state.Put(spec_.energy ? 1.0 : 0.0);
+  if (spec_.energy) {
+    energy_.SaveGlobalState(state);
+    state.Put(energy_next_);
+  }
+  state.Put((PetscReal)energy_csv_.Rows());
+  state.Put((PetscReal)record_csv_.size());
+  for (auto &csv : record_csv_) state.Put((PetscReal)csv->Rows());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Another rank count: every writing rank's global state; this rank takes its particles' and its
+   interactions' part (the neighbour lists built afresh at the checkpoint's state: the pairs in
+   another order, the same forces to round-off). The output rows are the first writer's (rank 0
+   writes the files). */
+PetscErrorCode FineRun::LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states)
+{
+  const PetscScalar *u;
+  const PetscReal   *x, *v;
+  PetscMPIInt        rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCall(PrimeReferences());
+  const LocalNumbering local(tissue_.particles);
   v_stale_.assign(2 * n_local_, 0);
-  restart_energy_rows_ = 0;
-  restart_record_rows_.clear();
+  for (size_t r = 0; r < states.size(); r++) {
+    StateBlob &b = states[r];
+    PetscReal  n;
+    PetscCheck(b.Get(&n) && n >= 0 && b.pos + 3 * (size_t)n <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's velocities of the last drift are incomplete");
+    for (size_t e = 0; e < (size_t)n; e++) {
+      PetscReal g = 0, w[2] = {0, 0};
+      b.Get(&g), b.Get(&w[0]), b.Get(&w[1]);
+      const PetscInt l = local.Particle((PetscInt)g);
+      if (l >= 0 && l < n_local_) v_stale_[2 * l] = w[0], v_stale_[2 * l + 1] = w[1];
+    }
+  }
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
+  model_.SetTime(t);
+  PetscCall(model_.LoadGlobalState(x, v, t, states, rank == 0));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  for (StateBlob &b : states) {
+    PetscReal energy;
+    PetscCheck(b.Get(&energy) && (energy != 0) == spec_.energy, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint was written %s -fine_energy, this run is %s it", energy != 0 ? "with" : "without", spec_.energy ? "with" : "without");
+  }
+  if (spec_.energy) {
+    PetscCall(energy_.LoadGlobalState(states, rank == 0));
+    for (StateBlob &b : states) PetscCheck(b.Get(&energy_next_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's energy balance is incomplete");
+  }
+  for (size_t r = 0; r < states.size(); r++) {
+    PetscReal rows, nrec;
+    PetscCheck(states[r].Get(&rows) && states[r].Get(&nrec), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are missing");
+    std::vector<PetscInt> rec((size_t)nrec, 0);
+    for (PetscInt &q : rec) PetscCheck(states[r].Get(&q), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are incomplete");
+    PetscCheck(states[r].Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "global_state of rank %zu: %zu numbers more than this run reads", r,
+               states[r].data.size() - states[r].pos);
+    if (r == 0) restart_energy_rows_ = (PetscInt)rows, restart_record_rows_ = rec;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

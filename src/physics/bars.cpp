@@ -104,4 +104,20 @@ PetscErrorCode Bars::LoadState(const ForceInput &in, StateBlob &state)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The dissipation and the last accepted state's dashpot power are sums over the bars: the first rank
+   takes the writing ranks' totals (the trapezoidal rule is linear in them, so the sum over ranks
+   goes on as it would have). */
+PetscErrorCode Bars::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
+{
+  PetscReal dissipated = 0, power = 0;
+  PetscFunctionBeginUser;
+  for (StateBlob &b : states) {
+    PetscCall(LoadState(in, b));
+    dissipated += dissipated_, power += power_;
+  }
+  dissipated_ = first ? dissipated : 0;
+  power_      = first ? power : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -1,3 +1,4 @@
+#include <turgor/particles/local_numbering.h>
 #include <turgor/physics/contact.h>
 #include <algorithm>
 #include <unordered_map>
@@ -393,7 +394,13 @@ PetscErrorCode Contact::LoadState(const ForceInput &in, StateBlob &state)
                "contact: the checkpoint's contact history names a node or bar outside the scene");
     saved.emplace(Key(*in.P, (PetscInt)v[0], (PetscInt)v[1]), History{v[2], v[3], true, (PetscInt)v[4]});
   }
-  /* the pair lists from the restored neighbour lists, then the histories by key */
+  PetscCall(AttachHistories(in, saved));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Contact::AttachHistories(const ForceInput &in, const std::unordered_map<std::uint64_t, History> &saved)
+{
+  PetscFunctionBeginUser;
   ForgetLists();
   PetscCall(Refresh(in));
   size_t found = 0;
@@ -407,6 +414,53 @@ PetscErrorCode Contact::LoadState(const ForceInput &in, StateBlob &state)
   PetscCheck(found == saved.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "contact: %zu of the checkpoint's %zu contact histories have no pair in the neighbour lists at its state", saved.size() - found, saved.size());
   BuildNearList(in, in.x, in.P->n); /* with the live pairs */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [commits, dissipated, n, n x (node's gid, bar's number, xi, lam_ref, commits since it was set)] */
+PetscErrorCode Contact::SaveGlobalState(const ForceInput &in, StateBlob &state) const
+{
+  PetscFunctionBeginUser;
+  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  state.Put((PetscReal)stamp_);
+  state.Put(dissipated_);
+  state.Put((PetscReal)HistoryEntries());
+  for (size_t k = 0; k < cand_.size(); k++)
+    if (hist_[k].live) {
+      const History &h = hist_[k];
+      for (PetscReal v : {(PetscReal)in.P->gid[cand_[k].p], (PetscReal)in.P->SpringGid(cand_[k].s), h.xi, h.lam_ref, (PetscReal)(stamp_ - h.stamp)})
+        state.Put(v);
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* This rank keeps the histories of the pairs whose node it owns (a pair is computed by its node's
+   owner); their bars are on it, owned or halo, as they would be in an uninterrupted run. */
+PetscErrorCode Contact::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
+{
+  const LocalNumbering                       local(*in.P);
+  std::unordered_map<std::uint64_t, History> saved;
+  PetscFunctionBeginUser;
+  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  dissipated_ = 0;
+  for (StateBlob &b : states) {
+    PetscReal stamp, diss, n;
+    PetscCheck(b.Get(&stamp) && b.Get(&diss) && b.Get(&n) && n >= 0 && b.pos + 5 * (size_t)n <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "contact: the checkpoint's contact histories are incomplete");
+    stamp_ = (PetscInt)stamp; /* every rank commits once per accepted step */
+    if (first) dissipated_ += diss;
+    for (size_t e = 0; e < (size_t)n; e++) {
+      PetscReal v[5] = {0, 0, 0, 0, 0};
+      for (PetscReal &r : v) b.Get(&r);
+      const PetscInt p = local.Particle((PetscInt)v[0]);
+      if (p < 0 || p >= in.P->NumOwned()) continue; /* another rank's pair */
+      const PetscInt s = local.Spring((PetscInt)v[1]);
+      PetscCheck(s >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "contact: the checkpoint's contact of node %g names bar %g, which is not on this rank",
+                 (double)v[0], (double)v[1]);
+      saved.emplace(Key(*in.P, p, s), History{v[2], v[3], true, stamp_ - (PetscInt)v[4]});
+    }
+  }
+  PetscCall(AttachHistories(in, saved));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

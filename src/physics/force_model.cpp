@@ -376,4 +376,59 @@ PetscErrorCode ForceModel::LoadState(const PetscReal *x, const PetscReal *v, Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+bool ForceModel::RestartsOnOtherRanks(std::string *why) const
+{
+  for (const auto &term : terms_)
+    if (!term->RestartsOnOtherRanks()) {
+      *why = std::string("the internal state of term ") + term->Name() + " has no rank-independent form";
+      return false;
+    }
+  return true;
+}
+
+PetscErrorCode ForceModel::SaveGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  ForceInput in = {P_, x, v, &nb_, &images_};
+  in.t          = t;
+  state.Put((PetscReal)nb_.Rebuilds());
+  state.Put((PetscReal)terms_.size());
+  for (auto &term : terms_) {
+    StateBlob b;
+    PetscCall(term->SaveGlobalState(in, b));
+    state.Put(b.data);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ForceModel::LoadGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, std::vector<StateBlob> &states, bool first)
+{
+  std::vector<std::vector<StateBlob>> per_term(terms_.size(), std::vector<StateBlob>(states.size()));
+  PetscReal                           rebuilds = 0;
+  PetscFunctionBeginUser;
+  for (size_t r = 0; r < states.size(); r++) {
+    PetscReal nterms, nr = 0;
+    PetscCheck(states[r].Get(&nr) && states[r].Get(&nterms) && (size_t)nterms == terms_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint holds the state of %g terms, the scene has %zu", (double)nterms, terms_.size());
+    for (size_t q = 0; q < terms_.size(); q++)
+      PetscCheck(states[r].Get(per_term[q][r].data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s is missing",
+                 terms_[q]->Name());
+    rebuilds = std::max(rebuilds, nr);
+  }
+  /* the lists at the checkpoint's state: this rank's particles were never listed together */
+  PetscCall(nb_.Restore(*P_, std::vector<PetscReal>(x, x + 2 * P_->n), (PetscInt)rebuilds, images_));
+  last_x_.clear();
+  last_rebuilds_ = -1;
+  t_             = t;
+  ForceInput in  = {P_, x, v, &nb_, &images_};
+  in.t           = t;
+  for (size_t q = 0; q < terms_.size(); q++) {
+    PetscCall(terms_[q]->LoadGlobalState(in, per_term[q], first));
+    for (const StateBlob &b : per_term[q])
+      PetscCheck(b.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s has %zu numbers more than the term reads",
+                 terms_[q]->Name(), b.data.size() - b.pos);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace turgor

@@ -1,4 +1,5 @@
 #include <turgor/core/options.h>
+#include <turgor/particles/local_numbering.h>
 #include <turgor/physics/glue.h>
 #include <algorithm>
 #include <cmath>
@@ -571,6 +572,77 @@ PetscErrorCode Glue::LoadState(const ForceInput &in, StateBlob &state)
   for (PetscReal &r : v) state.Get(&r);
   intact_ = (PetscInt)v[0], accepted_ = (PetscInt)v[1], unbonded_ = (PetscInt)v[2], dissipated_ = v[3], time_ = v[4];
   have_bonds_ = have != 0;
+  trial_.clear();
+  push_.clear();
+  breaks_.clear();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [have_bonds, accepted, unbonded, dissipated, time, n, n x (node, bar ends as gids, intact, lam,
+   gn0, gt0, sign, L, lmax, bar, the node's cell, the bar's cell in the tissue's numbering)] */
+PetscErrorCode Glue::SaveGlobalState(const ForceInput &in, StateBlob &state) const
+{
+  const ParticleSet &P = *in.P;
+  PetscFunctionBeginUser;
+  for (PetscReal v : {have_bonds_ ? 1.0 : 0.0, (PetscReal)accepted_, (PetscReal)unbonded_, dissipated_, time_, (PetscReal)bonds_.size()}) state.Put(v);
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    const Bond     &B = bonds_[k];
+    const BondInfo &I = info_[k];
+    for (PetscReal v : {(PetscReal)P.gid[B.p], (PetscReal)P.gid[B.a], (PetscReal)P.gid[B.b], (PetscReal)B.intact, B.lam, B.gn0, B.gt0, B.sign, B.L, B.lmax,
+                        (PetscReal)P.SpringGid(I.s), (PetscReal)P.PolygonGid(I.cell_p), (PetscReal)P.PolygonGid(I.cell_s)})
+      state.Put(v);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* This rank keeps the bonds of the nodes it owns, in the order CreateBonds makes them (by node, then
+   the bar's cell); their bars are on it (owned or halo), as in an uninterrupted run. */
+PetscErrorCode Glue::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
+{
+  const ParticleSet   &P = *in.P;
+  const LocalNumbering local(P);
+  PetscFunctionBeginUser;
+  bonds_.clear();
+  info_.clear();
+  unbonded_   = 0;
+  dissipated_ = 0;
+  for (StateBlob &b : states) {
+    PetscReal h[6] = {0, 0, 0, 0, 0, 0};
+    for (PetscReal &r : h) PetscCheck(b.Get(&r), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "glue: the checkpoint's bond records are incomplete");
+    PetscCheck(h[5] >= 0 && b.pos + 13 * (size_t)h[5] <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "glue: the checkpoint's bond records are incomplete");
+    have_bonds_ = h[0] != 0, accepted_ = (PetscInt)h[1], time_ = h[4]; /* the same on every rank */
+    if (first) unbonded_ += (PetscInt)h[2], dissipated_ += h[3];
+    for (size_t k = 0; k < (size_t)h[5]; k++) {
+      PetscReal v[13] = {};
+      for (PetscReal &r : v) b.Get(&r);
+      Bond     B;
+      BondInfo I;
+      B.p = local.Particle((PetscInt)v[0]);
+      if (B.p < 0 || B.p >= P.NumOwned()) continue; /* another rank's bond */
+      B.a = local.Particle((PetscInt)v[1]), B.b = local.Particle((PetscInt)v[2]), I.s = local.Spring((PetscInt)v[10]);
+      I.cell_p = local.Polygon((PetscInt)v[11]), I.cell_s = local.Polygon((PetscInt)v[12]);
+      PetscCheck(B.a >= 0 && B.b >= 0 && I.s >= 0 && I.cell_p >= 0 && I.cell_s >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                 "glue: the checkpoint's bond of node %g to bar %g (cell %g) is not within this rank's halo (-fine_halo_margin)", (double)v[0], (double)v[10],
+                 (double)v[12]);
+      B.intact = (PetscInt)v[3], B.lam = v[4], B.gn0 = v[5], B.gt0 = v[6], B.sign = v[7], B.L = v[8], B.lmax = v[9];
+      bonds_.push_back(B);
+      info_.push_back(I);
+    }
+  }
+  std::vector<size_t> order(bonds_.size());
+  for (size_t k = 0; k < order.size(); k++) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](size_t i, size_t j) { return bonds_[i].p != bonds_[j].p ? bonds_[i].p < bonds_[j].p : info_[i].cell_s < info_[j].cell_s; });
+  std::vector<Bond>     bonds(bonds_.size());
+  std::vector<BondInfo> info(info_.size());
+  intact_ = 0;
+  for (size_t k = 0; k < order.size(); k++) {
+    bonds[k] = bonds_[order[k]], info[k] = info_[order[k]];
+    intact_ += bonds[k].intact != 0;
+  }
+  bonds_.swap(bonds);
+  info_.swap(info);
   trial_.clear();
   push_.clear();
   breaks_.clear();

@@ -1,6 +1,7 @@
 #include <turgor/physics/hinges.h>
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace turgor {
 
@@ -273,6 +274,48 @@ PetscErrorCode Hinges::LoadState(const ForceInput &in, StateBlob &state)
   cos0_.swap(c);
   sin0_.swap(s);
   theta_p_.swap(p);
+  have_angles_ = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [have_ref, dissipated, n, n x (hinge node's gid, cos0, sin0, theta_p)]: a node is the hinge of at
+   most one polygon, so its gid names the hinge */
+PetscErrorCode Hinges::SaveGlobalState(const ForceInput &in, StateBlob &state) const
+{
+  PetscFunctionBeginUser;
+  state.Put(have_ref_ ? 1.0 : 0.0);
+  state.Put(dissipated_);
+  state.Put((PetscReal)hinge_.size());
+  for (size_t h = 0; h < hinge_.size(); h++)
+    for (PetscReal v : {(PetscReal)in.P->gid[hinge_[h].b], cos0_[h], sin0_[h], theta_p_[h]}) state.Put(v);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Hinges::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
+{
+  std::unordered_map<PetscInt, size_t> of_node; /* hinge node's gid -> this rank's hinge */
+  size_t                               found = 0;
+  PetscFunctionBeginUser;
+  for (size_t h = 0; h < hinge_.size(); h++) of_node.emplace(in.P->gid[hinge_[h].b], h);
+  have_ref_   = false;
+  dissipated_ = 0;
+  for (StateBlob &b : states) {
+    PetscReal ref, diss, n;
+    PetscCheck(b.Get(&ref) && b.Get(&diss) && b.Get(&n) && n >= 0 && b.pos + 4 * (size_t)n <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "hinges: the checkpoint's hinge records are incomplete");
+    have_ref_ = have_ref_ || ref != 0;
+    if (first) dissipated_ += diss;
+    for (size_t e = 0; e < (size_t)n; e++) {
+      PetscReal v[4] = {0, 0, 0, 0};
+      for (PetscReal &r : v) b.Get(&r);
+      auto it = of_node.find((PetscInt)v[0]);
+      if (it == of_node.end()) continue; /* another rank's hinge */
+      cos0_[it->second] = v[1], sin0_[it->second] = v[2], theta_p_[it->second] = v[3];
+      found++;
+    }
+  }
+  PetscCheck(found == hinge_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "hinges: the checkpoint holds %zu of this rank's %zu hinges", found,
+             hinge_.size());
   have_angles_ = false;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -453,7 +453,7 @@ PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
 
 /* ---- checkpoints ---- */
 
-static const PetscInt kCheckpointVersion = 2; /* 2: the state in the mode's StateOrder */
+static const PetscInt kCheckpointVersion = 3; /* 2: the state in the mode's StateOrder; 3: Verlet's acceleration too, and global_state */
 
 /* The integrator as a checkpoint names it: type, and the RK or ARKIMEX scheme. */
 static PetscErrorCode IntegratorName(TS ts, std::string *name)
@@ -498,6 +498,126 @@ static PetscErrorCode Permute(Vec local, Vec canonical, IS order, ScatterMode mo
     PetscCall(VecScatterEnd(sc, canonical, local, INSERT_VALUES, SCATTER_REVERSE));
   }
   PetscCall(VecScatterDestroy(&sc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Each rank's blob as the dataset `name` (per rank: its length, then the numbers) and its layout
+   `name`_layout (per rank, the length). */
+static PetscErrorCode WriteRankBlobs(MPI_Comm comm, PetscViewer v, const std::string &name, const StateBlob &blob)
+{
+  Vec          B, L;
+  PetscScalar *b;
+  PetscMPIInt  rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  const PetscInt n = (PetscInt)blob.data.size();
+  PetscCall(VecCreateMPI(comm, 1, PETSC_DETERMINE, &L));
+  PetscCall(PetscObjectSetName((PetscObject)L, (name + "_layout").c_str()));
+  PetscCall(VecSetValue(L, rank, (PetscScalar)n, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(L));
+  PetscCall(VecAssemblyEnd(L));
+  PetscCall(VecView(L, v));
+  PetscCall(VecDestroy(&L));
+  PetscCall(VecCreateMPI(comm, n + 1, PETSC_DETERMINE, &B));
+  PetscCall(PetscObjectSetName((PetscObject)B, name.c_str()));
+  PetscCall(VecGetArray(B, &b));
+  b[0] = (PetscScalar)n;
+  for (PetscInt k = 0; k < n; k++) b[k + 1] = blob.data[k];
+  PetscCall(VecRestoreArray(B, &b));
+  PetscCall(VecView(B, v));
+  PetscCall(VecDestroy(&B));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* This rank's blob of the dataset `name` (written on as many ranks). */
+static PetscErrorCode ReadRankBlob(MPI_Comm comm, PetscViewer v, const std::string &name, StateBlob &blob)
+{
+  Vec                L, B;
+  const PetscScalar *l, *b;
+  PetscInt           n;
+  PetscMPIInt        rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(VecCreateMPI(comm, 1, PETSC_DETERMINE, &L));
+  PetscCall(PetscObjectSetName((PetscObject)L, (name + "_layout").c_str()));
+  PetscCall(VecLoad(L, v));
+  PetscCall(VecGetArrayRead(L, &l));
+  n = (PetscInt)PetscRealPart(l[0]);
+  PetscCall(VecRestoreArrayRead(L, &l));
+  PetscCall(VecDestroy(&L));
+  PetscCall(VecCreateMPI(comm, n + 1, PETSC_DETERMINE, &B));
+  PetscCall(PetscObjectSetName((PetscObject)B, name.c_str()));
+  PetscCall(VecLoad(B, v));
+  PetscCall(VecGetArrayRead(B, &b));
+  PetscCheck((PetscInt)PetscRealPart(b[0]) == n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s of rank %d: length %g, layout says %" PetscInt_FMT,
+             name.c_str(), rank, (double)PetscRealPart(b[0]), n);
+  blob.data.assign(b + 1, b + 1 + n);
+  PetscCall(VecRestoreArrayRead(B, &b));
+  PetscCall(VecDestroy(&B));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A Vec of `size` entries read from dataset `name`, whole on every rank. */
+static PetscErrorCode ReadWhole(MPI_Comm comm, PetscViewer v, const std::string &name, PetscInt size, std::vector<PetscReal> &all)
+{
+  Vec                X, Y;
+  VecScatter         sc;
+  const PetscScalar *y;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, size, &X));
+  PetscCall(PetscObjectSetName((PetscObject)X, name.c_str()));
+  PetscCall(VecLoad(X, v));
+  PetscCall(VecScatterCreateToAll(X, &sc, &Y));
+  PetscCall(VecScatterBegin(sc, X, Y, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, X, Y, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(Y, &y));
+  all.resize((size_t)size);
+  for (PetscInt k = 0; k < size; k++) all[k] = PetscRealPart(y[k]);
+  PetscCall(VecRestoreArrayRead(Y, &y));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(VecDestroy(&X));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every one of the `writers` ranks' blobs of the dataset `name`, on every rank (another rank count). */
+static PetscErrorCode ReadAllRankBlobs(MPI_Comm comm, PetscViewer v, const std::string &name, PetscInt writers, std::vector<StateBlob> &blobs)
+{
+  std::vector<PetscReal> len, all;
+  PetscInt               total = 0;
+  PetscFunctionBeginUser;
+  PetscCall(ReadWhole(comm, v, name + "_layout", writers, len));
+  for (PetscReal l : len) total += (PetscInt)l + 1;
+  PetscCall(ReadWhole(comm, v, name, total, all));
+  blobs.assign((size_t)writers, StateBlob());
+  size_t off = 0;
+  for (PetscInt r = 0; r < writers; r++) {
+    const size_t n = (size_t)len[r];
+    PetscCheck(all[off] == len[r], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s of rank %" PetscInt_FMT ": length %g, layout says %g", name.c_str(), r,
+               (double)all[off], (double)len[r]);
+    blobs[r].data.assign(all.begin() + off + 1, all.begin() + off + 1 + n);
+    off += n + 1;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The order of the integrator's carried derivative H of local length nh: the state's order for a
+   derivative of the whole state (DOPRI's FSAL stage), its first half's for one of half the state
+   (Verlet's acceleration: dv/dt, laid out as the positions); NULL (the writer's layout) otherwise. */
+static PetscErrorCode HistoryOrder(IS order, PetscInt nh, PetscInt nu, IS *horder)
+{
+  const PetscInt *idx;
+  PetscFunctionBeginUser;
+  *horder = NULL;
+  if (!order) PetscFunctionReturn(PETSC_SUCCESS);
+  if (nh == nu) {
+    PetscCall(PetscObjectReference((PetscObject)order));
+    *horder = order;
+  } else if (2 * nh == nu) {
+    PetscCall(ISGetIndices(order, &idx));
+    PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)order), nh, idx, PETSC_COPY_VALUES, horder));
+    PetscCall(ISRestoreIndices(order, &idx));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -607,37 +727,25 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     PetscCall(TSCheckpointGetHistory(ts_, &H));
     has = H ? 1 : 0;
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "has_history", PETSC_INT, &has));
-    if (H) { /* a derivative of the state (DOPRI's FSAL stage) in the state's order too */
+    if (H) { /* a derivative of the state (DOPRI's FSAL stage, Verlet's acceleration) in the state's order too */
+      IS horder;
       PetscCall(PlainCopy(H, &Hc, "integrator_history"));
       PetscCall(VecGetLocalSize(H, &nh));
       PetscCall(VecGetLocalSize(U_, &nu));
-      if (order && nh == nu) PetscCall(Permute(H, Hc, order, SCATTER_FORWARD));
+      PetscCall(HistoryOrder(order, nh, nu, &horder));
+      if (horder) PetscCall(Permute(H, Hc, horder, SCATTER_FORWARD));
+      PetscCall(ISDestroy(&horder));
       PetscCall(VecView(Hc, v));
       PetscCall(VecDestroy(&Hc));
     }
     PetscCall(ISDestroy(&order));
   }
   {
-    StateBlob    blob;
-    Vec          B, L;
-    PetscScalar *b;
+    StateBlob blob, global;
     PetscCall(SaveState(t, U_, blob));
-    const PetscInt n = (PetscInt)blob.data.size();
-    PetscCall(VecCreateMPI(comm_, 1, PETSC_DETERMINE, &L));
-    PetscCall(PetscObjectSetName((PetscObject)L, "run_state_layout"));
-    PetscCall(VecSetValue(L, rank, (PetscScalar)n, INSERT_VALUES));
-    PetscCall(VecAssemblyBegin(L));
-    PetscCall(VecAssemblyEnd(L));
-    PetscCall(VecView(L, v));
-    PetscCall(VecDestroy(&L));
-    PetscCall(VecCreateMPI(comm_, n + 1, PETSC_DETERMINE, &B));
-    PetscCall(PetscObjectSetName((PetscObject)B, "run_state"));
-    PetscCall(VecGetArray(B, &b));
-    b[0] = (PetscScalar)n;
-    for (PetscInt k = 0; k < n; k++) b[k + 1] = blob.data[k];
-    PetscCall(VecRestoreArray(B, &b));
-    PetscCall(VecView(B, v));
-    PetscCall(VecDestroy(&B));
+    PetscCall(WriteRankBlobs(comm_, v, "run_state", blob));
+    PetscCall(SaveGlobalState(t, U_, global));
+    PetscCall(WriteRankBlobs(comm_, v, "global_state", global));
   }
   PetscCall(PetscViewerDestroy(&v));
   PetscReal bytes  = 0;
@@ -821,16 +929,19 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     PetscCall(PetscObjectSetName((PetscObject)H, "integrator_history"));
     PetscCall(VecLoad(H, v));
     PetscInt nu;
+    IS       horder;
     PetscCall(VecGetLocalSize(U_, &nu));
     PetscCall(StateOrder(&order));
-    if (order && n == nu) { /* written in the state's order */
+    PetscCall(HistoryOrder(order, n, nu, &horder));
+    if (horder) { /* written in the state's order */
       Vec Hl;
       PetscCall(VecDuplicate(H, &Hl));
-      PetscCall(Permute(Hl, H, order, SCATTER_REVERSE));
+      PetscCall(Permute(Hl, H, horder, SCATTER_REVERSE));
       PetscCall(TSCheckpointSetHistory(ts_, Hl));
       PetscCall(VecDestroy(&Hl));
     } else PetscCall(TSCheckpointSetHistory(ts_, H));
     PetscCall(VecDestroy(&H));
+    PetscCall(ISDestroy(&horder));
     PetscCall(ISDestroy(&order));
   }
   restart_tip_rows_ = sample; /* the rows written up to the checkpoint */
@@ -853,28 +964,20 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     }
   }
   sampler_.SetPosition(sample, snapshot);
-  if (other_ranks) PetscCall(LoadStateOtherRanks(t, U_)); /* the run_state is per rank */
-  else {
-    Vec                L, B;
-    const PetscScalar *l, *b;
-    PetscInt           n;
-    StateBlob          blob;
-    PetscCall(VecCreateMPI(comm_, 1, PETSC_DETERMINE, &L));
-    PetscCall(PetscObjectSetName((PetscObject)L, "run_state_layout"));
-    PetscCall(VecLoad(L, v));
-    PetscCall(VecGetArrayRead(L, &l));
-    n = (PetscInt)PetscRealPart(l[0]);
-    PetscCall(VecRestoreArrayRead(L, &l));
-    PetscCall(VecDestroy(&L));
-    PetscCall(VecCreateMPI(comm_, n + 1, PETSC_DETERMINE, &B));
-    PetscCall(PetscObjectSetName((PetscObject)B, "run_state"));
-    PetscCall(VecLoad(B, v));
-    PetscCall(VecGetArrayRead(B, &b));
-    PetscCheck((PetscInt)PetscRealPart(b[0]) == n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "run_state of rank %d: length %g, layout says %" PetscInt_FMT,
-               rank, (double)PetscRealPart(b[0]), n);
-    blob.data.assign(b + 1, b + 1 + n);
-    PetscCall(VecRestoreArrayRead(B, &b));
-    PetscCall(VecDestroy(&B));
+  if (other_ranks) { /* the run_state is per rank: every rank reads every writer's global_state */
+    std::vector<StateBlob> blobs;
+    PetscBool              present;
+    PetscCall(PetscViewerHDF5HasDataset(v, "global_state", &present));
+    if (!present) {
+      *problem = "written on " + std::to_string((long long)ranks) + " MPI ranks by a turgor without the rank-independent state (global_state); restart on " +
+                 std::to_string((long long)ranks) + " ranks";
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    PetscCall(ReadAllRankBlobs(comm_, v, "global_state", ranks, blobs));
+    PetscCall(LoadStateOtherRanks(t, U_, blobs));
+  } else {
+    StateBlob blob;
+    PetscCall(ReadRankBlob(comm_, v, "run_state", blob));
     PetscCall(LoadState(t, U_, blob));
     PetscCheck(blob.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "run_state of rank %d: %zu numbers more than this run reads", rank,
                blob.data.size() - blob.pos);

@@ -50,6 +50,11 @@ protected:
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
   PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
   PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
+  bool           RestartsOnOtherRanks(std::string *why) const override
+  {
+    *why = "the coarse state is in its partition's numbering and every material point's RVE state is saved by its group's ranks";
+    return false;
+  }
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx);

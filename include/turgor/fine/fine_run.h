@@ -94,7 +94,8 @@ protected:
      velocities, the terms' histories and the energy sums are per rank). */
   PetscErrorCode StateOrder(IS *order) override;
   bool           RestartsOnOtherRanks(std::string *why) const override;
-  PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U) override;
+  PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override;
+  PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) override;
 
 private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx);

@@ -102,6 +102,9 @@ struct ParticleSet {
   PetscInt NumOwned() const { return n_owned < 0 ? n : n_owned; }
   size_t   OwnedSprings() const { return n_springs_owned < 0 ? springs.size() : (size_t)n_springs_owned; }
   size_t   OwnedPolygons() const { return n_polygons_owned < 0 ? polygons.size() : (size_t)n_polygons_owned; }
+  /* the tissue's number of local spring s (polygon c) */
+  PetscInt SpringGid(size_t s) const { return spring_gid.empty() ? (PetscInt)s : spring_gid[s]; }
+  PetscInt PolygonGid(size_t c) const { return polygon_gid.empty() ? (PetscInt)c : polygon_gid[c]; }
 };
 
 } // namespace turgor

@@ -29,6 +29,9 @@ public:
   /* Checkpoints: the dashpot's dissipation and its last power sample. */
   PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
   PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+  bool           RestartsOnOtherRanks() const override { return true; }
+  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override { return SaveState(in, state); }
+  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
 
 private:
   std::vector<PetscReal> gamma_; /* per bar (all `damping`) */

@@ -52,6 +52,9 @@ public:
      restart rebuilds the pair lists from the restored neighbour lists and re-attaches them. */
   PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
   PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+  bool           RestartsOnOtherRanks() const override { return true; }
+  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
 
 private:
   struct History {
@@ -71,6 +74,8 @@ private:
   void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
   void           CommitTrial();
+  /* the pair lists from the neighbour lists at in.x, then the histories `saved` by Key */
+  PetscErrorCode AttachHistories(const ForceInput &in, const std::unordered_map<std::uint64_t, History> &saved);
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
 

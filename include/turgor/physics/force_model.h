@@ -99,6 +99,13 @@ public:
      set up on the same scene (errors name the term). */
   PetscErrorCode SaveState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
   PetscErrorCode LoadState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
+  /* Restarts on another number of ranks (ForceTerm::SaveGlobalState): every term's state in the
+     tissue's numbering, one sub-blob per term; LoadGlobalState takes the blobs of all the writing
+     ranks, builds the neighbour lists afresh at x and hands each term its sub-blobs. A term that
+     cannot is named in *why (RestartsOnOtherRanks false). */
+  bool           RestartsOnOtherRanks(std::string *why) const;
+  PetscErrorCode SaveGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
+  PetscErrorCode LoadGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, std::vector<StateBlob> &states, bool first);
 
 private:
   const ParticleSet                      *P_ = nullptr;

@@ -127,6 +127,15 @@ public:
      not fit (the caller names the file). */
   virtual PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const { return PETSC_SUCCESS; }
   virtual PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) { return PETSC_SUCCESS; }
+  /* Restarts on another number of ranks: the same internal state in the tissue's numbering
+     (ParticleSet::gid, SpringGid, PolygonGid; LocalNumbering translates back). LoadGlobalState gets
+     the blob of every rank of the run that wrote it, in rank order, and keeps the records of the
+     interactions this rank computes; a running sum (dissipation) is each writing rank's share, so
+     the first rank takes the total and the others none (the sums over ranks are what is reported).
+     A term with internal state and without these says false to RestartsOnOtherRanks. */
+  virtual bool           RestartsOnOtherRanks() const { return !HasInternalState(); }
+  virtual PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const { return PETSC_SUCCESS; }
+  virtual PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) { return PETSC_SUCCESS; }
 };
 
 /* Clone() for a term that is copyable while configured and not yet set up. */

@@ -99,6 +99,9 @@ public:
      positions of that time). */
   PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
   PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+  bool           RestartsOnOtherRanks() const override { return true; }
+  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
 
 private:
   struct Bond {        /* what every evaluation reads */

@@ -39,6 +39,9 @@ public:
   /* Checkpoints: the plastic angles, the reference angles and the dissipation. */
   PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
   PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
+  bool           RestartsOnOtherRanks() const override { return true; }
+  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
 
 private:
   struct Hinge {

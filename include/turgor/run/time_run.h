@@ -111,7 +111,9 @@ protected:
      in an order that does not depend on the ranks (NULL: the state's own order), in which the state
      (and a carried derivative of the state's layout) is written; RestartsOnOtherRanks says whether
      this run can continue from a checkpoint of another rank count (else why not), and
-     LoadStateOtherRanks then replaces LoadState (the per-rank run_state is not read). */
+     LoadStateOtherRanks then replaces LoadState: the per-rank run_state is not read, but every
+     writing rank's SaveGlobalState blob (global_state: the mode's state in a numbering that does
+     not depend on the ranks), handed to every rank in rank order. */
   virtual PetscErrorCode StateOrder(IS *order)
   {
     *order = NULL;
@@ -122,7 +124,8 @@ protected:
     *why = "this mode's checkpoint holds per-rank state";
     return false;
   }
-  virtual PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) { return PETSC_SUCCESS; }
   /* -checkpoint_interval, -checkpoint_wall_interval or -restart was given (after SetFromOptions). */
   bool CheckpointsRequested() const { return ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty(); }
   /* The checkpoint a run continues from ("" when none), and its step. */
