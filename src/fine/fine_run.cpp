@@ -1037,7 +1037,8 @@ bool FineRun::RestartsOnOtherRanks(std::string *why) const
   return model_.RestartsOnOtherRanks(why);
 }
 
-/* The state of FineRun::SaveState in the tissue's numbering: [n owned, n x (gid, v_stale); force
+/* The state of FineRun::SaveState in the tissue's numbering: [n, n x (gid, v_stale) (n = 0 without
+   drifts); force
    model (ForceModel::SaveGlobalState); energy: flag, balance, next row time; rows of energy.csv,
    n logs, their rows] */
 PetscErrorCode FineRun::SaveGlobalState(PetscReal t, Vec U, StateBlob &state)
@@ -1045,8 +1046,9 @@ PetscErrorCode FineRun::SaveGlobalState(PetscReal t, Vec U, StateBlob &state)
   const PetscScalar *u;
   const PetscReal   *x, *v;
   PetscFunctionBeginUser;
-  state.Put((PetscReal)n_local_);
-  for (PetscInt l = 0; l < n_local_; l++)
+  const PetscInt n = drift_fraction_ > 0 ? n_local_ : 0; /* only Verlet-type integrators use them */
+  state.Put((PetscReal)n);
+  for (PetscInt l = 0; l < n; l++)
     for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
