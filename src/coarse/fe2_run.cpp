@@ -2,6 +2,7 @@
 #include <turgor/coarse/fe2_run.h>
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/radau_iia.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -265,23 +266,31 @@ PetscErrorCode FE2Run::CheckpointFingerprint(std::vector<std::pair<std::string, 
 {
   PetscFunctionBeginUser;
   if (mesh_hash_.empty()) {
-    /* FNV-1a over each rank's coordinates, then over the ranks' hashes (the same rank count) */
+    /* FNV-1a over every vertex's coordinates in the order of their values: the same mesh gives the
+       same hash on any number of ranks */
     Vec                coords;
     const PetscScalar *x;
     PetscInt           n;
     PetscMPIInt        size;
-    std::uint64_t      h = 1469598103934665603ull;
     PetscCall(DMGetCoordinates(model_.GetDM(), &coords));
     PetscCall(VecGetLocalSize(coords, &n));
     PetscCall(VecGetArrayRead(coords, &x));
-    const unsigned char *b = (const unsigned char *)x;
-    for (size_t k = 0; k < (size_t)n * sizeof(PetscScalar); k++) h = (h ^ b[k]) * 1099511628211ull;
+    std::vector<PetscReal> mine(n);
+    for (PetscInt k = 0; k < n; k++) mine[k] = PetscRealPart(x[k]);
     PetscCall(VecRestoreArrayRead(coords, &x));
     PetscCallMPI(MPI_Comm_size(comm_, &size));
-    std::vector<std::uint64_t> all(size);
-    PetscCallMPI(MPI_Allgather(&h, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, comm_));
-    std::uint64_t g = 1469598103934665603ull;
-    for (std::uint64_t v : all) g = (g ^ v) * 1099511628211ull;
+    std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
+    const PetscMPIInt        nm = (PetscMPIInt)n;
+    PetscCallMPI(MPI_Allgather(&nm, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
+    for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+    std::vector<PetscReal> all(displs[size]);
+    PetscCallMPI(MPI_Allgatherv(mine.data(), nm, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, comm_));
+    std::vector<std::pair<PetscReal, PetscReal>> v(all.size() / 2);
+    for (size_t k = 0; k < v.size(); k++) v[k] = {all[2 * k], all[2 * k + 1]};
+    std::sort(v.begin(), v.end());
+    std::uint64_t        g = 1469598103934665603ull;
+    const unsigned char *b = (const unsigned char *)v.data();
+    for (size_t k = 0; k < v.size() * sizeof(v[0]); k++) g = (g ^ b[k]) * 1099511628211ull;
     char hex[24];
     PetscCall(PetscSNPrintf(hex, sizeof hex, "%016llx", (unsigned long long)g));
     mesh_hash_ = hex;
@@ -317,7 +326,7 @@ PetscErrorCode FE2Run::CheckpointFingerprint(std::vector<std::pair<std::string, 
   fp.push_back({"material_points", std::to_string((long long)model_.NumMaterialPoints())});
   fp.push_back({"material", material});
   fp.push_back({"material_physics", join(model_.Pool().Model().Physics())});
-  fp.push_back({"material_groups", std::to_string((long long)model_.Pool().NumGroups())});
+  fp.push_back({"material_comm_size", std::to_string((long long)model_.Pool().CommSize())});
   fp.push_back({"mass", model_.LumpedMass() ? "lumped" : "consistent"});
   fp.push_back({"dirichlet", model_.Spec().dirichlet_label + ":" + join(dirichlet)});
   fp.push_back({"body_force", load});
@@ -341,6 +350,38 @@ PetscErrorCode FE2Run::LoadState(PetscReal t, Vec U, StateBlob &state)
   PetscCheck(state.Get(&steps_since_refresh_) && state.Get(&rejections_at_refresh_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "the checkpoint's coarse state is incomplete");
   PetscCall(model_.LoadState(state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool FE2Run::RestartsOnOtherRanks(std::string *why) const
+{
+  if (model_.Pool().CommSize() == 1) return true;
+  *why = "the RVEs are solved on groups of -material_comm_size " + std::to_string((long long)model_.Pool().CommSize()) +
+         " ranks, each saving its part of every RVE state";
+  return false;
+}
+
+/* [jacobian reuse: steps since the refresh, rejections then; CoarseModel::SaveGlobalState] */
+PetscErrorCode FE2Run::SaveGlobalState(PetscReal t, Vec U, StateBlob &state)
+{
+  PetscFunctionBeginUser;
+  if (model_.Pool().CommSize() > 1) PetscFunctionReturn(PETSC_SUCCESS); /* RestartsOnOtherRanks says why not */
+  state.Put((PetscReal)steps_since_refresh_);
+  state.Put((PetscReal)rejections_at_refresh_);
+  PetscCall(model_.SaveGlobalState(U, state));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FE2Run::LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states)
+{
+  PetscFunctionBeginUser;
+  for (StateBlob &b : states) /* the same on every writing rank */
+    PetscCheck(b.Get(&steps_since_refresh_) && b.Get(&rejections_at_refresh_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's coarse state is incomplete");
+  PetscCall(model_.LoadGlobalState(U, states));
+  for (size_t r = 0; r < states.size(); r++)
+    PetscCheck(states[r].Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "global_state of rank %zu: %zu numbers more than this run reads", r,
+               states[r].data.size() - states[r].pos);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

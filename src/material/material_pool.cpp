@@ -1,4 +1,5 @@
 #include <turgor/material/material_pool.h>
+#include <unordered_map>
 #include <cmath>
 #include <cstring>
 
@@ -459,6 +460,49 @@ PetscErrorCode MaterialPointPool::LoadState(StateBlob &state)
     PetscCheck(pb.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
                "the checkpoint's state of material point %" PetscInt_FMT " has %zu numbers more than it reads", begin_ + (PetscInt)k, pb.data.size() - pb.pos);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [n, n x (id, the point's blob)] */
+PetscErrorCode MaterialPointPool::SaveGlobalState(StateBlob &state, const std::vector<PetscInt> &ids)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(comm_size_ == 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "material points on groups of %" PetscInt_FMT " ranks have no rank-independent state",
+             comm_size_);
+  state.Put((PetscReal)points_.size());
+  for (size_t k = 0; k < points_.size(); k++) {
+    StateBlob b;
+    PetscCall(points_[k]->SaveState(b));
+    state.Put((PetscReal)ids[begin_ + k]);
+    state.Put(b.data);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::LoadGlobalState(std::vector<StateBlob> &states, const std::vector<PetscInt> &ids)
+{
+  std::unordered_map<PetscInt, PetscInt> of_id; /* id -> this group's point */
+  size_t                                 found = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt g = begin_; g < end_; g++) of_id.emplace(ids[g], g - begin_);
+  for (StateBlob &b : states) {
+    PetscReal n;
+    PetscCheck(b.Get(&n) && n >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are missing");
+    for (size_t e = 0; e < (size_t)n; e++) {
+      PetscReal id;
+      StateBlob pb;
+      PetscCheck(b.Get(&id) && b.Get(pb.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are incomplete");
+      auto it = of_id.find((PetscInt)id);
+      if (it == of_id.end()) continue; /* another group's */
+      PetscCall(points_[it->second]->LoadState(pb));
+      PetscCheck(pb.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of material point %g has %zu numbers more than it reads", id,
+                 pb.data.size() - pb.pos);
+      found++;
+    }
+  }
+  PetscCheck(found == points_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint holds %zu of this group's %zu material points", found,
+             points_.size());
+  if (rebalance_after_ > 0) evaluations_ = rebalance_after_ + 1; /* the blocks by count (the measured costs are the other partition's) */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

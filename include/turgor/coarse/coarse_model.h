@@ -114,6 +114,16 @@ public:
      integrators are not saved (their checkpoints are refused). */
   PetscErrorCode SaveState(StateBlob &state);
   PetscErrorCode LoadState(StateBlob &state);
+  /* Restarts on another number of ranks (coarse_numbering.cpp): the state's unknowns in an order of
+     their nodes' reference positions (RankFreeStateOrder: each local entry's index in it), every
+     material point's id in an order of its element's centre (RankFreePointIds: in the pool's
+     global order, all points), and SaveState's content keyed by those ids (SaveGlobalState, at the
+     state U; LoadGlobalState takes every writing rank's blob and keeps this rank's points). The
+     material cache is kept when it is of U (an explicit integrator's last stage), else dropped. */
+  PetscErrorCode RankFreeStateOrder(IS *order);
+  PetscErrorCode RankFreePointIds(std::vector<PetscInt> &global);
+  PetscErrorCode SaveGlobalState(Vec U, StateBlob &state);
+  PetscErrorCode LoadGlobalState(Vec U, std::vector<StateBlob> &states);
   /* Back to the material points' last committed states (a rejected load increment); the cache is
      dropped. */
   PetscErrorCode RevertMaterials();
@@ -132,15 +142,16 @@ public:
      f_int - f_ext) of the owned, unclamped vertices, vertex by vertex in the same order. */
   PetscErrorCode CreateFreeIS(IS *displacement, IS *velocity) const;
 
-  DM                    GetDM() const { return dm_; }
-  Mat                   MassMatrix() const { return Mt_; }
-  MaterialPointPool    &Pool() { return pool_; }
-  const CoarseCounters &Counters() const { return counters_; }
-  PetscInt              NumElements() const { return n_elements_; } /* global */
-  PetscInt              NumMaterialPoints() const { return pool_.NumGlobal(); }
-  PetscReal             ReferenceDensity() const { return rho0_; }
-  bool                  LumpedMass() const { return spec_.lumped_mass; }
-  CoarseSpec           &Spec() { return spec_; }
+  DM                       GetDM() const { return dm_; }
+  Mat                      MassMatrix() const { return Mt_; }
+  MaterialPointPool       &Pool() { return pool_; }
+  const MaterialPointPool &Pool() const { return pool_; }
+  const CoarseCounters    &Counters() const { return counters_; }
+  PetscInt                 NumElements() const { return n_elements_; } /* global */
+  PetscInt                 NumMaterialPoints() const { return pool_.NumGlobal(); }
+  PetscReal                ReferenceDensity() const { return rho0_; }
+  bool                     LumpedMass() const { return spec_.lumped_mass; }
+  CoarseSpec              &Spec() { return spec_; }
   /* The element and quadrature rule in use (after SetUp): material points and nodes per element,
      their names. */
   PetscInt    PointsPerElement() const;

@@ -50,11 +50,12 @@ protected:
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
   PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
   PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
-  bool           RestartsOnOtherRanks(std::string *why) const override
-  {
-    *why = "the coarse state is in its partition's numbering and every material point's RVE state is saved by its group's ranks";
-    return false;
-  }
+  /* Another number of ranks: the unknowns in the order of their nodes' positions, each material
+     point's state by its element's position (CoarseModel::SaveGlobalState); RVEs on one rank each. */
+  PetscErrorCode StateOrder(IS *order) override { return model_.RankFreeStateOrder(order); }
+  bool           RestartsOnOtherRanks(std::string *why) const override;
+  PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override;
+  PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) override;
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx);

@@ -53,6 +53,12 @@ public:
      another one; a checkpoint of another -material_comm_size is refused. */
   PetscErrorCode SaveState(StateBlob &state);
   PetscErrorCode LoadState(StateBlob &state);
+  /* Restarts on another number of ranks (groups of one rank only): every point of this group with
+     its id ids[g] (a numbering of the points that does not depend on the ranks); LoadGlobalState
+     reads every writing rank's blob and loads the points of this group's block by id. */
+  PetscErrorCode SaveGlobalState(StateBlob &state, const std::vector<PetscInt> &ids);
+  PetscErrorCode LoadGlobalState(std::vector<StateBlob> &states, const std::vector<PetscInt> &ids);
+  PetscInt       CommSize() const { return comm_size_; }
 
   /* Totals over all points and ranks (collective). */
   PetscErrorCode GlobalCounters(MaterialCounters *c) const;

@@ -1,0 +1,213 @@
+/* A numbering of the coarse mesh's unknowns and material points that does not depend on the ranks
+   or the partition (restarts on another number of ranks): by position in the reference geometry.
+   Debian's PETSc 3.18 DMPlex keeps no natural numbering unless a section exists before the mesh is
+   distributed (ours is made after METIS's partition), so the positions are the rank-free key: a
+   node's reference position and component for an unknown, a cell's centre for its points. */
+#include <turgor/coarse/coarse_model.h>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+namespace turgor {
+
+/* Every rank's items keyed by (a, b, c), a and b rounded to `tol`: each item's position in the
+   order of the keys over all ranks, in rank order of the items (every rank sorts the same gathered
+   keys, so the order does not depend on the partition). Two items with one key are an error. */
+static PetscErrorCode GeometricOrder(MPI_Comm comm, const std::vector<std::array<PetscReal, 3>> &keys, PetscReal tol, const char *what,
+                                     std::vector<PetscInt> &order)
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
+  const PetscMPIInt        n = (PetscMPIInt)(3 * keys.size());
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  std::vector<PetscReal> all(displs[size]);
+  PetscCallMPI(MPI_Allgatherv(keys.empty() ? nullptr : keys[0].data(), n, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, comm));
+  const size_t                          N = all.size() / 3;
+  std::vector<std::array<long long, 3>> key(N);
+  std::vector<PetscInt>                 by_key(N);
+  for (size_t i = 0; i < N; i++) {
+    key[i]    = {std::llround(all[3 * i] / tol), std::llround(all[3 * i + 1] / tol), std::llround(all[3 * i + 2])};
+    by_key[i] = (PetscInt)i;
+  }
+  std::sort(by_key.begin(), by_key.end(), [&](PetscInt i, PetscInt j) { return key[i] < key[j]; });
+  order.assign(N, -1);
+  for (size_t k = 0; k < N; k++) {
+    PetscCheck(k == 0 || key[by_key[k]] != key[by_key[k - 1]], comm, PETSC_ERR_PLIB, "%s: two at (%g, %g): no rank-independent numbering", what,
+               (double)all[3 * by_key[k]], (double)all[3 * by_key[k] + 1]);
+    order[by_key[k]] = (PetscInt)k;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The mesh's extent, for the rounding of positions. */
+static PetscErrorCode Extent(MPI_Comm comm, const std::vector<PetscReal> &Xref, PetscReal *extent)
+{
+  PetscReal lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
+  PetscFunctionBeginUser;
+  for (size_t i = 0; i < Xref.size(); i++) lo[i % 2] = std::min(lo[i % 2], Xref[i]), hi[i % 2] = std::max(hi[i % 2], Xref[i]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, lo, 2, MPIU_REAL, MPI_MIN, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, hi, 2, MPIU_REAL, MPI_MAX, comm));
+  *extent = std::max(std::max(hi[0] - lo[0], hi[1] - lo[1]), (PetscReal)1e-300);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::RankFreeStateOrder(IS *order)
+{
+  Vec                   X[3];
+  const PetscScalar    *x[3];
+  PetscInt              n, rstart;
+  PetscReal             extent;
+  std::vector<PetscInt> all;
+  std::string           missing;
+  PetscFunctionBeginUser;
+  PetscCall(Extent(comm_, Xref_, &extent));
+  /* each unknown's node position (x, then y) and component, through NodeState */
+  for (int k = 0; k < 3; k++) {
+    PetscCall(DMCreateGlobalVector(dm_, &X[k]));
+    PetscCall(NodeState(
+      X[k],
+      [k](const PetscReal P[2], PetscReal s[4]) {
+        for (int d = 0; d < 4; d++) s[d] = k < 2 ? P[k] : (PetscReal)d;
+        return true;
+      },
+      &missing));
+  }
+  PetscCall(VecGetLocalSize(X[0], &n));
+  PetscCall(VecGetOwnershipRange(X[0], &rstart, NULL));
+  std::vector<std::array<PetscReal, 3>> keys((size_t)n);
+  for (int k = 0; k < 3; k++) PetscCall(VecGetArrayRead(X[k], &x[k]));
+  for (PetscInt i = 0; i < n; i++) keys[i] = {PetscRealPart(x[1][i]), PetscRealPart(x[0][i]), PetscRealPart(x[2][i])}; /* row by row */
+  for (int k = 0; k < 3; k++) {
+    PetscCall(VecRestoreArrayRead(X[k], &x[k]));
+    PetscCall(VecDestroy(&X[k]));
+  }
+  PetscCall(GeometricOrder(comm_, keys, 1e-9 * extent, "coarse unknowns", all));
+  PetscCall(ISCreateGeneral(comm_, n, all.data() + rstart, PETSC_COPY_VALUES, order));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::RankFreePointIds(std::vector<PetscInt> &global)
+{
+  PetscReal                             extent;
+  std::vector<std::array<PetscReal, 3>> keys((size_t)(c_end_ - c_start_));
+  std::vector<PetscInt>                 cells;
+  PetscFunctionBeginUser;
+  PetscCall(Extent(comm_, Xref_, &extent));
+  for (size_t k = 0; k < keys.size(); k++) {
+    const PetscReal *X = &Xref_[8 * k];
+    keys[k]            = {0.25 * (X[1] + X[3] + X[5] + X[7]), 0.25 * (X[0] + X[2] + X[4] + X[6]), 0};
+  }
+  PetscCall(GeometricOrder(comm_, keys, 1e-9 * extent, "coarse elements", cells));
+  /* the points in the pool's global order: the ranks' cells in turn, each cell's points in turn */
+  global.resize(cells.size() * npts_);
+  for (size_t c = 0; c < cells.size(); c++)
+    for (PetscInt q = 0; q < npts_; q++) global[c * npts_ + q] = cells[c] * npts_ + q;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [counters (5), cache: valid at U, ok, tangents; n, n x (point id, F, Fdot, sigma, rho, ok,
+   iterations, SNES and KSP iterations, residual, tangents when cached); the pool's] */
+PetscErrorCode CoarseModel::SaveGlobalState(Vec U, StateBlob &state)
+{
+  const CoarseCounters &c = counters_;
+  std::vector<PetscInt> ids;
+  PetscInt              first = 0, n = (PetscInt)response_.size();
+  PetscFunctionBeginUser;
+  PetscCall(RankFreePointIds(ids));
+  PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, comm_));
+  if (rank_ == 0) first = 0;
+  bool at_u = false;
+  if (cached_valid_) {
+    PetscCall(GlobalToLocal(U, Uloc_));
+    PetscCall(CacheHolds(Uloc_, cached_tangents_, &at_u));
+  }
+  for (PetscInt v : {c.residuals, c.jacobians, c.material_evals, c.tangent_evals, c.failures}) state.Put((PetscReal)v);
+  for (bool b : {at_u, cached_ok_, cached_tangents_}) state.Put(b ? 1.0 : 0.0);
+  state.Put((PetscReal)(at_u ? n : 0));
+  for (PetscInt k = 0; at_u && k < n; k++) {
+    const MaterialResponse &r = response_[k];
+    state.Put((PetscReal)ids[first + k]);
+    for (int i = 0; i < 4; i++) state.Put(F_[k].a[i / 2][i % 2]);
+    for (int i = 0; i < 4; i++) state.Put(Fdot_[k].a[i / 2][i % 2]);
+    for (int i = 0; i < 4; i++) state.Put(r.sigma.a[i / 2][i % 2]);
+    for (PetscReal v : {r.rho, r.ok ? 1.0 : 0.0, (PetscReal)r.iterations, (PetscReal)r.snes_its, (PetscReal)r.ksp_its, r.residual}) state.Put(v);
+    if (cached_tangents_)
+      for (int i = 0; i < 9; i++) {
+        state.Put(tangent_[k].De[i / 3][i % 3]);
+        state.Put(tangent_[k].Dv[i / 3][i % 3]);
+      }
+  }
+  PetscCall(pool_.SaveGlobalState(state, ids));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::LoadGlobalState(Vec U, std::vector<StateBlob> &states)
+{
+  std::vector<PetscInt>                  ids;
+  std::unordered_map<PetscInt, PetscInt> of_id; /* point id -> this rank's point */
+  PetscInt                               first = 0, n = (PetscInt)response_.size();
+  size_t                                 found = 0;
+  bool                                   valid = true;
+  PetscFunctionBeginUser;
+  PetscCall(RankFreePointIds(ids));
+  PetscCallMPI(MPI_Exscan(&n, &first, 1, MPIU_INT, MPI_SUM, comm_));
+  if (rank_ == 0) first = 0;
+  for (PetscInt k = 0; k < n; k++) of_id.emplace(ids[first + k], k);
+  F_.resize((size_t)n);
+  Fdot_.resize((size_t)n);
+  for (size_t r = 0; r < states.size(); r++) {
+    StateBlob &b = states[r];
+    PetscInt   c[5];
+    PetscReal  at_u, ok, tangents, np;
+    for (PetscInt &x : c) PetscCheck(b.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's coarse counters are incomplete");
+    PetscCheck(b.Get(&at_u) && b.Get(&ok) && b.Get(&tangents) && b.Get(&np) && np >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's material cache is incomplete");
+    if (r == 0) { /* the same on every writing rank */
+      counters_        = CoarseCounters{c[0], c[1], c[2], c[3], c[4]};
+      cached_ok_       = ok != 0;
+      cached_tangents_ = tangents != 0;
+    }
+    valid = valid && at_u != 0;
+    for (size_t e = 0; e < (size_t)np; e++) {
+      PetscReal v[19], D[18];
+      for (PetscReal &x : v) PetscCheck(b.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
+      for (int i = 0; cached_tangents_ && i < 18; i++)
+        PetscCheck(b.Get(&D[i]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material tangents are incomplete");
+      auto it = of_id.find((PetscInt)v[0]);
+      if (it == of_id.end()) continue; /* another rank's point */
+      const PetscInt    k = it->second;
+      MaterialResponse &R = response_[k];
+      R                   = MaterialResponse();
+      for (int i = 0; i < 4; i++) {
+        F_[k].a[i / 2][i % 2]    = v[1 + i];
+        Fdot_[k].a[i / 2][i % 2] = v[5 + i];
+        R.sigma.a[i / 2][i % 2]  = v[9 + i];
+      }
+      R.rho = v[13], R.ok = v[14] != 0, R.iterations = (PetscInt)v[15], R.snes_its = (PetscInt)v[16], R.ksp_its = (PetscInt)v[17], R.residual = v[18];
+      if (!R.ok) R.reason = "(restored from the checkpoint)";
+      for (int i = 0; cached_tangents_ && i < 9; i++) tangent_[k].De[i / 3][i % 3] = D[2 * i], tangent_[k].Dv[i / 3][i % 3] = D[2 * i + 1];
+      found++;
+    }
+  }
+  /* the cache of the checkpoint's state, which U is: its local form here */
+  cached_valid_ = valid && found == (size_t)n;
+  if (cached_valid_) {
+    const PetscScalar *u;
+    PetscInt           nl;
+    PetscCall(GlobalToLocal(U, Uloc_));
+    PetscCall(VecGetLocalSize(Uloc_, &nl));
+    PetscCall(VecGetArrayRead(Uloc_, &u));
+    cached_U_.assign(u, u + nl);
+    PetscCall(VecRestoreArrayRead(Uloc_, &u));
+  }
+  PetscCheck(!valid || found == (size_t)n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's material cache holds %zu of this rank's %" PetscInt_FMT " points", found, n);
+  PetscCall(pool_.LoadGlobalState(states, ids));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
