@@ -830,20 +830,24 @@ PetscErrorCode CoarseModel::SaveState(StateBlob &state)
   state.Put(cached_tangents_ ? 1.0 : 0.0);
   state.Put(std::vector<PetscReal>(cached_U_.begin(), cached_U_.end()));
   state.Put((PetscReal)F_.size());
-  for (size_t k = 0; k < F_.size(); k++) {
-    const MaterialResponse &r = response_[k];
-    for (int i = 0; i < 4; i++) state.Put(F_[k].a[i / 2][i % 2]);
-    for (int i = 0; i < 4; i++) state.Put(Fdot_[k].a[i / 2][i % 2]);
-    for (int i = 0; i < 4; i++) state.Put(r.sigma.a[i / 2][i % 2]);
-    for (PetscReal v : {r.rho, r.ok ? 1.0 : 0.0, (PetscReal)r.iterations, (PetscReal)r.snes_its, (PetscReal)r.ksp_its, r.residual}) state.Put(v);
-    if (cached_tangents_)
-      for (int i = 0; i < 9; i++) {
-        state.Put(tangent_[k].De[i / 3][i % 3]);
-        state.Put(tangent_[k].Dv[i / 3][i % 3]);
-      }
-  }
+  for (size_t k = 0; k < F_.size(); k++) PutCachedPoint(k, state);
   PetscCall(pool_.SaveState(state));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* [F, Fdot, sigma, rho, ok, iterations, SNES and KSP iterations, residual; tangents when cached] */
+void CoarseModel::PutCachedPoint(size_t k, StateBlob &state) const
+{
+  const MaterialResponse &r = response_[k];
+  for (int i = 0; i < 4; i++) state.Put(F_[k].a[i / 2][i % 2]);
+  for (int i = 0; i < 4; i++) state.Put(Fdot_[k].a[i / 2][i % 2]);
+  for (int i = 0; i < 4; i++) state.Put(r.sigma.a[i / 2][i % 2]);
+  for (PetscReal v : {r.rho, r.ok ? 1.0 : 0.0, (PetscReal)r.iterations, (PetscReal)r.snes_its, (PetscReal)r.ksp_its, r.residual}) state.Put(v);
+  if (cached_tangents_)
+    for (int i = 0; i < 9; i++) {
+      state.Put(tangent_[k].De[i / 3][i % 3]);
+      state.Put(tangent_[k].Dv[i / 3][i % 3]);
+    }
 }
 
 PetscErrorCode CoarseModel::LoadState(StateBlob &state)

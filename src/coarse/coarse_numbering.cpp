@@ -129,17 +129,8 @@ PetscErrorCode CoarseModel::SaveGlobalState(Vec U, StateBlob &state)
   for (bool b : {at_u, cached_ok_, cached_tangents_}) state.Put(b ? 1.0 : 0.0);
   state.Put((PetscReal)(at_u ? n : 0));
   for (PetscInt k = 0; at_u && k < n; k++) {
-    const MaterialResponse &r = response_[k];
     state.Put((PetscReal)ids[first + k]);
-    for (int i = 0; i < 4; i++) state.Put(F_[k].a[i / 2][i % 2]);
-    for (int i = 0; i < 4; i++) state.Put(Fdot_[k].a[i / 2][i % 2]);
-    for (int i = 0; i < 4; i++) state.Put(r.sigma.a[i / 2][i % 2]);
-    for (PetscReal v : {r.rho, r.ok ? 1.0 : 0.0, (PetscReal)r.iterations, (PetscReal)r.snes_its, (PetscReal)r.ksp_its, r.residual}) state.Put(v);
-    if (cached_tangents_)
-      for (int i = 0; i < 9; i++) {
-        state.Put(tangent_[k].De[i / 3][i % 3]);
-        state.Put(tangent_[k].Dv[i / 3][i % 3]);
-      }
+    PutCachedPoint((size_t)k, state);
   }
   PetscCall(pool_.SaveGlobalState(state, ids));
   PetscFunctionReturn(PETSC_SUCCESS);

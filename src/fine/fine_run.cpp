@@ -977,21 +977,31 @@ PetscErrorCode FineRun::CheckpointFingerprint(std::vector<std::pair<std::string,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* [v_stale, force model, energy: flag, balance, next row time; rows of energy.csv, n logs, their rows] */
-PetscErrorCode FineRun::SaveState(PetscReal t, Vec U, StateBlob &state)
+/* [v_stale, force model, energy: flag, balance, next row time; rows of energy.csv, n logs, their
+   rows]; `global` (SaveGlobalState): the same in the tissue's numbering, v_stale as [n, n x (gid,
+   v_stale)] (n = 0 without drifts) */
+PetscErrorCode FineRun::WriteState(PetscReal t, Vec U, StateBlob &state, bool global)
 {
   const PetscScalar *u;
   const PetscReal   *x, *v;
   PetscFunctionBeginUser;
-  state.Put(v_stale_);
+  if (!global) state.Put(v_stale_);
+  else {
+    const PetscInt n = drift_fraction_ > 0 ? n_local_ : 0; /* only Verlet-type integrators use them */
+    state.Put((PetscReal)n);
+    for (PetscInt l = 0; l < n; l++)
+      for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
+  }
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
-  PetscCall(model_.SaveState(x, v, t, state));
+  if (global) PetscCall(model_.SaveGlobalState(x, v, t, state));
+  else PetscCall(model_.SaveState(x, v, t, state));
   PetscCall(VecRestoreArrayRead(U, &u));
   state.Put(spec_.energy ? 1.0 : 0.0);
   if (spec_.energy) {
-    energy_.SaveState(state);
+    if (global) energy_.SaveGlobalState(state);
+    else energy_.SaveState(state);
     state.Put(energy_next_);
   }
   state.Put((PetscReal)energy_csv_.Rows());
@@ -1035,35 +1045,6 @@ PetscErrorCode FineRun::StateOrder(IS *order)
 bool FineRun::RestartsOnOtherRanks(std::string *why) const
 {
   return model_.RestartsOnOtherRanks(why);
-}
-
-/* The state of FineRun::SaveState in the tissue's numbering: [n, n x (gid, v_stale) (n = 0 without
-   drifts); force
-   model (ForceModel::SaveGlobalState); energy: flag, balance, next row time; rows of energy.csv,
-   n logs, their rows] */
-PetscErrorCode FineRun::SaveGlobalState(PetscReal t, Vec U, StateBlob &state)
-{
-  const PetscScalar *u;
-  const PetscReal   *x, *v;
-  PetscFunctionBeginUser;
-  const PetscInt n = drift_fraction_ > 0 ? n_local_ : 0; /* only Verlet-type integrators use them */
-  state.Put((PetscReal)n);
-  for (PetscInt l = 0; l < n; l++)
-    for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
-  PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
-  model_.SetTime(t);
-  PetscCall(model_.SaveGlobalState(x, v, t, state));
-  PetscCall(VecRestoreArrayRead(U, &u));
-  state.Put(spec_.energy ? 1.0 : 0.0);
-  if (spec_.energy) {
-    energy_.SaveGlobalState(state);
-    state.Put(energy_next_);
-  }
-  state.Put((PetscReal)energy_csv_.Rows());
-  state.Put((PetscReal)record_csv_.size());
-  for (auto &csv : record_csv_) state.Put((PetscReal)csv->Rows());
-  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Another rank count: every writing rank's global state; this rank takes its particles' and its

@@ -363,20 +363,20 @@ PetscErrorCode Contact::View(PetscViewer viewer) const
 }
 
 /* Checkpoints: [stamp, dissipated, nlive, per live pair: node, bar, xi, lam_ref, stamp] (local
-   node indices: a restart has the same particles on the same ranks) */
-PetscErrorCode Contact::SaveState(const ForceInput &in, StateBlob &state) const
+   node indices: a restart has the same particles on the same ranks); `global`: the node's gid, the
+   bar's number in the tissue and the commits since the history was set instead */
+void Contact::WriteHistories(const ParticleSet &P, StateBlob &state, bool global) const
 {
-  PetscFunctionBeginUser;
-  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!HasInternalState()) return;
   state.Put((PetscReal)stamp_);
   state.Put(dissipated_);
   state.Put((PetscReal)HistoryEntries());
   for (size_t k = 0; k < cand_.size(); k++)
     if (hist_[k].live) {
-      const History &h = hist_[k];
-      for (PetscReal v : {(PetscReal)cand_[k].p, (PetscReal)cand_[k].s, h.xi, h.lam_ref, (PetscReal)h.stamp}) state.Put(v);
+      const History  &h = hist_[k];
+      const PetscReal p = global ? P.gid[cand_[k].p] : cand_[k].p, s = global ? P.SpringGid(cand_[k].s) : cand_[k].s;
+      for (PetscReal v : {p, s, h.xi, h.lam_ref, (PetscReal)(global ? stamp_ - h.stamp : h.stamp)}) state.Put(v);
     }
-  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode Contact::LoadState(const ForceInput &in, StateBlob &state)
@@ -414,23 +414,6 @@ PetscErrorCode Contact::AttachHistories(const ForceInput &in, const std::unorder
   PetscCheck(found == saved.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "contact: %zu of the checkpoint's %zu contact histories have no pair in the neighbour lists at its state", saved.size() - found, saved.size());
   BuildNearList(in, in.x, in.P->n); /* with the live pairs */
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* [commits, dissipated, n, n x (node's gid, bar's number, xi, lam_ref, commits since it was set)] */
-PetscErrorCode Contact::SaveGlobalState(const ForceInput &in, StateBlob &state) const
-{
-  PetscFunctionBeginUser;
-  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
-  state.Put((PetscReal)stamp_);
-  state.Put(dissipated_);
-  state.Put((PetscReal)HistoryEntries());
-  for (size_t k = 0; k < cand_.size(); k++)
-    if (hist_[k].live) {
-      const History &h = hist_[k];
-      for (PetscReal v : {(PetscReal)in.P->gid[cand_[k].p], (PetscReal)in.P->SpringGid(cand_[k].s), h.xi, h.lam_ref, (PetscReal)(stamp_ - h.stamp)})
-        state.Put(v);
-    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -208,6 +208,7 @@ private:
   /* true when the cached evaluation is of this local state (collective) */
   PetscErrorCode CacheHolds(Vec Uloc, bool tangents, bool *holds);
   PetscErrorCode FillNaN(Vec F);
+  void           PutCachedPoint(size_t k, StateBlob &state) const; /* checkpoints: local point k of the material cache */
 
   MPI_Comm          comm_;
   DM                dm_ = nullptr;

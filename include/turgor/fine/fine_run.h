@@ -87,17 +87,18 @@ protected:
      the terms' logs). */
   bool           Checkpointable() const override { return true; }
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
-  PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
+  PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override { return WriteState(t, U, state, false); }
   PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
-  /* Another rank count: the state in the tissue's particle order; possible for scenes whose terms
-     keep no internal state, without -fine_energy, under DOPRI-like integrators (Verlet's last drift
-     velocities, the terms' histories and the energy sums are per rank). */
+  /* Another rank count: the state in the tissue's particle order, and the run's state again in the
+     tissue's numbering (every term's, the energy balance's, Verlet's drift velocities by gid);
+     refused only for a term without such a form (ForceTerm::RestartsOnOtherRanks). */
   PetscErrorCode StateOrder(IS *order) override;
   bool           RestartsOnOtherRanks(std::string *why) const override;
-  PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override;
+  PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override { return WriteState(t, U, state, true); }
   PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) override;
 
 private:
+  PetscErrorCode        WriteState(PetscReal t, Vec U, StateBlob &state, bool global); /* SaveState, or SaveGlobalState's form */
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx);
   static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx);
   static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx);

@@ -50,10 +50,18 @@ public:
 
   /* Checkpoints: the live tangential histories by (node, bar) and the friction's dissipation; a
      restart rebuilds the pair lists from the restored neighbour lists and re-attaches them. */
-  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override
+  {
+    WriteHistories(*in.P, state, false);
+    return PETSC_SUCCESS;
+  }
   PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
   bool           RestartsOnOtherRanks() const override { return true; }
-  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override;
+  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override
+  {
+    WriteHistories(*in.P, state, true);
+    return PETSC_SUCCESS;
+  }
   PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
 
 private:
@@ -74,6 +82,7 @@ private:
   void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
   void           CommitTrial();
+  void           WriteHistories(const ParticleSet &P, StateBlob &state, bool global) const; /* SaveState, SaveGlobalState */
   /* the pair lists from the neighbour lists at in.x, then the histories `saved` by Key */
   PetscErrorCode AttachHistories(const ForceInput &in, const std::unordered_map<std::uint64_t, History> &saved);
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
