@@ -39,8 +39,10 @@ void Contact::ForgetLists()
 PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
-  PetscCheck(P.bar_radius > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "contact needs a bar radius > 0 (-tissue_bar_radius), got %g", (double)P.bar_radius);
-  PetscCheck(!P.polygons.empty() && P.node_polygon.size() == (size_t)P.n, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+  /* (a rank without particles, -fine_distribute 0's others, has nothing to check) */
+  PetscCheck(P.n == 0 || P.bar_radius > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "contact needs a bar radius > 0 (-tissue_bar_radius), got %g",
+             (double)P.bar_radius);
+  PetscCheck(P.n == 0 || (!P.polygons.empty() && P.node_polygon.size() == (size_t)P.n), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
              "contact needs a polygonal tissue (cells of nodes and bars: -tissue_type node_file, voronoi or polyline)");
   r_         = P.bar_radius;
   kt_        = tangential_stiffness < 0 ? stiffness : tangential_stiffness;

@@ -80,7 +80,8 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 PetscErrorCode Glue::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
-  PetscCheck(!P.polygons.empty() && P.node_polygon.size() == (size_t)P.n, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+  PetscCheck(P.n == 0 || (!P.polygons.empty() && P.node_polygon.size() == (size_t)P.n), PETSC_COMM_SELF,
+             PETSC_ERR_ARG_WRONG, /* (P.n == 0: -fine_distribute 0's other ranks) */
              "glue needs a polygonal tissue (cells of nodes and bars: -tissue_type node_file, voronoi or polyline)");
   P_ = &P;
   bonds_.clear();

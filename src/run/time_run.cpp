@@ -501,23 +501,32 @@ static PetscErrorCode Permute(Vec local, Vec canonical, IS order, ScatterMode mo
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Each rank's blob as the dataset `name` (per rank: its length, then the numbers) and its layout
-   `name`_layout (per rank, the length). */
-static PetscErrorCode WriteRankBlobs(MPI_Comm comm, PetscViewer v, const std::string &name, const StateBlob &blob)
+/* One number per rank as the dataset `name` (in rank order). */
+static PetscErrorCode WriteRankValue(MPI_Comm comm, PetscViewer v, const std::string &name, PetscInt value)
 {
-  Vec          B, L;
-  PetscScalar *b;
-  PetscMPIInt  rank;
+  Vec         L;
+  PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  const PetscInt n = (PetscInt)blob.data.size();
   PetscCall(VecCreateMPI(comm, 1, PETSC_DETERMINE, &L));
-  PetscCall(PetscObjectSetName((PetscObject)L, (name + "_layout").c_str()));
-  PetscCall(VecSetValue(L, rank, (PetscScalar)n, INSERT_VALUES));
+  PetscCall(PetscObjectSetName((PetscObject)L, name.c_str()));
+  PetscCall(VecSetValue(L, rank, (PetscScalar)value, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(L));
   PetscCall(VecAssemblyEnd(L));
   PetscCall(VecView(L, v));
   PetscCall(VecDestroy(&L));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Each rank's blob as the dataset `name` (per rank: its length, then the numbers) and its layout
+   `name`_layout (per rank, the length). */
+static PetscErrorCode WriteRankBlobs(MPI_Comm comm, PetscViewer v, const std::string &name, const StateBlob &blob)
+{
+  Vec          B;
+  PetscScalar *b;
+  PetscFunctionBeginUser;
+  const PetscInt n = (PetscInt)blob.data.size();
+  PetscCall(WriteRankValue(comm, v, name + "_layout", n));
   PetscCall(VecCreateMPI(comm, n + 1, PETSC_DETERMINE, &B));
   PetscCall(PetscObjectSetName((PetscObject)B, name.c_str()));
   PetscCall(VecGetArray(B, &b));
@@ -601,19 +610,25 @@ static PetscErrorCode ReadAllRankBlobs(MPI_Comm comm, PetscViewer v, const std::
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The order of the integrator's carried derivative H of local length nh: the state's order for a
-   derivative of the whole state (DOPRI's FSAL stage), its first half's for one of half the state
-   (Verlet's acceleration: dv/dt, laid out as the positions); NULL (the writer's layout) otherwise. */
-static PetscErrorCode HistoryOrder(IS order, PetscInt nh, PetscInt nu, IS *horder)
+/* The order of the integrator's carried derivative H (layout of H) in the layout of the state U:
+   the state's order for a derivative of the whole state (DOPRI's FSAL stage), its first half's for
+   one of half the state (Verlet's acceleration: dv/dt, laid out as the positions; every rank's
+   half); NULL (the writer's layout) otherwise. Decided on the global sizes: a rank without
+   particles (-fine_distribute 0) takes the same branch as the others (the IS is collective). */
+static PetscErrorCode HistoryOrder(IS order, Vec H, Vec U, IS *horder)
 {
   const PetscInt *idx;
+  PetscInt        NH, NU, nh;
   PetscFunctionBeginUser;
   *horder = NULL;
   if (!order) PetscFunctionReturn(PETSC_SUCCESS);
-  if (nh == nu) {
+  PetscCall(VecGetSize(H, &NH));
+  PetscCall(VecGetSize(U, &NU));
+  PetscCall(VecGetLocalSize(H, &nh));
+  if (NH == NU) {
     PetscCall(PetscObjectReference((PetscObject)order));
     *horder = order;
-  } else if (2 * nh == nu) {
+  } else if (2 * NH == NU) {
     PetscCall(ISGetIndices(order, &idx));
     PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)order), nh, idx, PETSC_COPY_VALUES, horder));
     PetscCall(ISRestoreIndices(order, &idx));
@@ -723,16 +738,14 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     PetscCall(VecView(S, v));
     PetscCall(VecDestroy(&S));
     Vec      H, Hc;
-    PetscInt has, nh, nu;
+    PetscInt has;
     PetscCall(TSCheckpointGetHistory(ts_, &H));
     has = H ? 1 : 0;
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "has_history", PETSC_INT, &has));
     if (H) { /* a derivative of the state (DOPRI's FSAL stage, Verlet's acceleration) in the state's order too */
       IS horder;
       PetscCall(PlainCopy(H, &Hc, "integrator_history"));
-      PetscCall(VecGetLocalSize(H, &nh));
-      PetscCall(VecGetLocalSize(U_, &nu));
-      PetscCall(HistoryOrder(order, nh, nu, &horder));
+      PetscCall(HistoryOrder(order, H, U_, &horder));
       if (horder) PetscCall(Permute(H, Hc, horder, SCATTER_FORWARD));
       PetscCall(ISDestroy(&horder));
       PetscCall(VecView(Hc, v));
@@ -744,6 +757,9 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     StateBlob blob, global;
     PetscCall(SaveState(t, U_, blob));
     PetscCall(WriteRankBlobs(comm_, v, "run_state", blob));
+    PetscInt nu;
+    PetscCall(VecGetLocalSize(U_, &nu));
+    PetscCall(WriteRankValue(comm_, v, "state_layout", nu)); /* the state's distribution (a restart on another one reads global_state) */
     PetscCall(SaveGlobalState(t, U_, global));
     PetscCall(WriteRankBlobs(comm_, v, "global_state", global));
   }
@@ -841,6 +857,28 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     other_ranks = true;
+  } else {
+    /* the same rank count, another distribution of the state (-fine_distribute 0 against 1): the
+       per-rank run_state does not fit either */
+    PetscBool present;
+    PetscCall(PetscViewerHDF5HasDataset(v, "state_layout", &present));
+    if (present) {
+      std::vector<PetscReal> sizes;
+      PetscInt               n;
+      int                    differs;
+      PetscCall(ReadWhole(comm_, v, "state_layout", ranks, sizes));
+      PetscCall(VecGetLocalSize(U_, &n));
+      differs = (PetscInt)sizes[rank] != n;
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &differs, 1, MPI_INT, MPI_MAX, comm_));
+      if (differs) {
+        std::string why;
+        if (!RestartsOnOtherRanks(&why)) {
+          *problem = "its state is distributed over the ranks otherwise than this run's (" + why + ")";
+          PetscFunctionReturn(PETSC_SUCCESS);
+        }
+        other_ranks = true;
+      }
+    }
   }
   {
     std::vector<std::pair<std::string, std::string>> fp;
@@ -928,11 +966,9 @@ PetscErrorCode TimeRun::ReadCheckpointFile(PetscViewer v, std::string *problem)
     PetscCall(VecCreateMPI(comm_, n, PETSC_DETERMINE, &H));
     PetscCall(PetscObjectSetName((PetscObject)H, "integrator_history"));
     PetscCall(VecLoad(H, v));
-    PetscInt nu;
-    IS       horder;
-    PetscCall(VecGetLocalSize(U_, &nu));
+    IS horder;
     PetscCall(StateOrder(&order));
-    PetscCall(HistoryOrder(order, n, nu, &horder));
+    PetscCall(HistoryOrder(order, H, U_, &horder));
     if (horder) { /* written in the state's order */
       Vec Hl;
       PetscCall(VecDuplicate(H, &Hl));
