@@ -64,21 +64,17 @@ PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The rows come out by i (the outer loop); sort each row's j in place: no permutation and no
+   second copy of the list (the rebuild's memory peak). */
 void NeighbourSearch::SortFluidPairs()
 {
-  std::vector<size_t> order(fluid_pairs_.size());
-  for (size_t t = 0; t < order.size(); t++) order[t] = t;
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b];
-  });
-  PairList sorted;
-  sorted.i.resize(order.size());
-  sorted.j.resize(order.size());
-  for (size_t t = 0; t < order.size(); t++) {
-    sorted.i[t] = fluid_pairs_.i[order[t]];
-    sorted.j[t] = fluid_pairs_.j[order[t]];
+  std::vector<PetscInt> &I = fluid_pairs_.i, &J = fluid_pairs_.j;
+  for (size_t q = 0; q < I.size();) {
+    size_t e = q + 1;
+    while (e < I.size() && I[e] == I[q]) e++;
+    std::sort(J.begin() + q, J.begin() + e);
+    q = e;
   }
-  fluid_pairs_ = std::move(sorted);
 }
 
 void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin)
@@ -122,13 +118,23 @@ static inline PetscReal PointSegmentDistance2(const PetscReal *p, const PetscRea
   return dx * dx + dy * dy;
 }
 
+/* Empty the lists but keep their storage: a rebuild of about the same size then allocates nothing
+   (no old list plus a growing new one at the same time). */
+void NeighbourSearch::ClearLists()
+{
+  fluid_pairs_.i.clear();
+  fluid_pairs_.j.clear();
+  particle_spring_.p.clear();
+  particle_spring_.s.clear();
+  particle_spring_.img.clear();
+}
+
 PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
 {
   PetscFunctionBeginUser;
   rebuilds_++;
   x_ref_.assign(x, x + 2 * P.n);
-  fluid_pairs_     = PairList();
-  particle_spring_ = PointSegmentList();
+  ClearLists();
   for (PetscInt k = 0; k < 2 * P.n; k++)
     PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
 
@@ -154,7 +160,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
           }
         }
     }
-    SortFluidPairs(); /* pairs were found bin by bin: sort by (i, j) for the SPH passes */
+    SortFluidPairs(); /* pairs were found bin by bin: sort each row by j for the SPH passes */
   }
 
   if (WantsParticleSpringPairs()) {
@@ -193,8 +199,7 @@ PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscR
   PetscFunctionBeginUser;
   rebuilds_++;
   x_ref_.assign(x, x + 2 * P.n);
-  fluid_pairs_     = PairList();
-  particle_spring_ = PointSegmentList();
+  ClearLists();
   for (PetscInt k = 0; k < 2 * P.n; k++)
     PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
   if (WantsFluidPairs()) {
