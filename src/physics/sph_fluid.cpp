@@ -42,7 +42,6 @@ PetscErrorCode SPHFluid::SetUp(const ParticleSet &P, NeighbourSearch &nb)
     }
   for (PetscInt i = P.NumOwned(); i < P.n; i++) /* the pairs' j must have a slot */
     PetscCheck(P.kind[i] != KIND_FLUID, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SPH: halo particle %" PetscInt_FMT " is fluid (a cell's fluid is its owner's)", i);
-  rho_.assign(nf, 0);
   vol_.assign(nf, 0);
   P_.assign(nf, 0);
   M_.assign(3 * nf, 0);
@@ -74,8 +73,11 @@ PetscReal SPHFluid::KernelDerivative(PetscReal r) const
 }
 
 /* Pass 1: rho_i = m_i W(0) + sum_j m_j W_ij, and the pairs within 2h with F = W'/r cached for the
-   later passes (the neighbour list carries a skin, so some listed pairs are out). */
-PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
+   later passes (the neighbour list carries a skin, so some listed pairs are out). The density
+   accumulates in vol_, which then becomes m / rho; each(s, rho) sees every slot's density first
+   (energy, time-step limit, output: no density array kept). */
+template <class Each>
+PetscErrorCode SPHFluid::DensityPass(const ForceInput &in, Each each)
 {
   const PetscReal *x = in.x, *m = in.P->mass.data();
   const PairList  &L  = in.nb->FluidPairs();
@@ -84,7 +86,8 @@ PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_density_, 0, 0, 0, 0));
-  for (PetscInt s = 0; s < nf; s++) rho_[s] = m[fluid_[s]] * W0_;
+  PetscReal *rho = vol_.data();
+  for (PetscInt s = 0; s < nf; s++) rho[s] = m[fluid_[s]] * W0_;
   pair_j_.resize(L.size());
   pair_F_.resize(L.size());
   PetscInt na = 0, row = 0;
@@ -110,18 +113,20 @@ PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
       }
       const PetscInt sj = slot_[j];
       rho_i += m[j] * W;
-      rho_[sj] += mi * W;
+      rho[sj] += mi * W;
       pair_j_[na]   = sj;
       pair_F_[na++] = r > 0 ? dW / r : 0;
     }
-    rho_[si] += rho_i;
+    rho[si] += rho_i;
   }
   while (row <= nf) pair_start_[row++] = na;
   pair_j_.resize(na);
   pair_F_.resize(na);
   for (PetscInt s = 0; s < nf; s++) {
-    vol_[s] = m[fluid_[s]] / rho_[s];
-    P_[s]   = sound_speed * sound_speed / rho_[s]; /* p / rho^2 with p = c_s^2 rho */
+    const PetscReal r = rho[s];
+    each(s, r);
+    P_[s]   = sound_speed * sound_speed / r; /* p / rho^2 with p = c_s^2 rho */
+    vol_[s] = m[fluid_[s]] / r;
   }
   PetscCall(PetscLogFlops(30.0 * L.size()));
   PetscCall(PetscLogEventEnd(ev_density_, 0, 0, 0, 0));
@@ -278,7 +283,7 @@ PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal
 {
   PetscFunctionBeginUser;
   if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(DensityPass(in));
+  PetscCall(DensityPass(in, [](PetscInt, PetscReal) {}));
   if (viscosity > 0) PetscCall(GradientPass(in, NULL));
   if (virial) PetscCall(ForcePass<true>(in, f, virial));
   else PetscCall(ForcePass<false>(in, f, NULL));
@@ -288,20 +293,18 @@ PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal
 PetscErrorCode SPHFluid::DensityAndVelocityGradient(const ForceInput &in, std::vector<PetscReal> &rho, std::vector<PetscReal> &gradv)
 {
   PetscFunctionBeginUser;
-  PetscCall(DensityPass(in));
+  rho.assign(in.P->n, 0);
+  PetscCall(DensityPass(in, [&](PetscInt s, PetscReal r) { rho[fluid_[s]] = r; }));
   gradv.assign(4 * in.P->n, 0);
   PetscCall(GradientPass(in, gradv.data()));
-  rho.assign(in.P->n, 0);
-  for (size_t s = 0; s < fluid_.size(); s++) rho[fluid_[s]] = rho_[s];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode SPHFluid::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  PetscCall(DensityPass(in));
   *E = 0;
-  for (size_t s = 0; s < fluid_.size(); s++) *E += in.P->mass[fluid_[s]] * sound_speed * sound_speed * std::log(rho_[s]);
+  PetscCall(DensityPass(in, [&](PetscInt s, PetscReal r) { *E += in.P->mass[fluid_[s]] * sound_speed * sound_speed * std::log(r); }));
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -324,9 +327,8 @@ PetscErrorCode SPHFluid::AddTimeStepLimits(const ForceInput &in, std::vector<Tim
     limits.push_back({0.25 * h / sound_speed, why});
   }
   if (viscosity > 0) {
-    PetscCall(DensityPass(in));
     PetscReal rmin = PETSC_MAX_REAL;
-    for (PetscReal r : rho_) rmin = PetscMin(rmin, r);
+    PetscCall(DensityPass(in, [&](PetscInt, PetscReal r) { rmin = PetscMin(rmin, r); }));
     const PetscReal nu = viscosity / rmin;
     PetscCall(PetscSNPrintf(why, sizeof why, "viscosity: 0.125 h^2 / nu (eq 40), nu = %.3g µm^2/µs", (double)nu));
     limits.push_back({0.125 * h * h / nu, why});
