@@ -94,17 +94,11 @@ void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, Pet
   nbx_ = (PetscInt)((xmax - xmin) / bin_) + 1;
   nby_ = (PetscInt)((ymax - ymin) / bin_) + 1;
   bin_start_.assign((size_t)nbx_ * nby_ + 1, 0);
-  bin_of_.resize(P.n);
-  for (PetscInt k = 0; k < P.n; k++) {
-    const PetscInt bx = std::min(nbx_ - 1, (PetscInt)((x[2 * k] - x0_) / bin_));
-    const PetscInt by = std::min(nby_ - 1, (PetscInt)((x[2 * k + 1] - y0_) / bin_));
-    bin_of_[k]        = by * nbx_ + bx;
-    bin_start_[bin_of_[k] + 1]++;
-  }
+  for (PetscInt k = 0; k < P.n; k++) bin_start_[BinOf(x, k) + 1]++;
   for (size_t b = 0; b + 1 < bin_start_.size(); b++) bin_start_[b + 1] += bin_start_[b];
   bin_items_.resize(P.n);
   std::vector<PetscInt> fill(bin_start_.begin(), bin_start_.end() - 1);
-  for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[bin_of_[k]]++] = k;
+  for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[BinOf(x, k)]++] = k;
 }
 
 /* Squared distance from point p to segment [a, b]. */
@@ -145,7 +139,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
     const PetscReal rf2 = rf * rf;
     for (PetscInt i = 0; i < P.n; i++) {
       if (P.kind[i] != KIND_FLUID) continue;
-      const PetscInt bx = bin_of_[i] % nbx_, by = bin_of_[i] / nbx_;
+      const PetscInt bi = BinOf(x, i), bx = bi % nbx_, by = bi / nbx_;
       for (PetscInt jy = std::max<PetscInt>(0, by - 1); jy <= std::min(nby_ - 1, by + 1); jy++)
         for (PetscInt jx = std::max<PetscInt>(0, bx - 1); jx <= std::min(nbx_ - 1, bx + 1); jx++) {
           const PetscInt b = jy * nbx_ + jx;
