@@ -64,21 +64,17 @@ PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The rows come out by i (the outer loop); sort each row's j in place: no permutation and no
+   second copy of the list (the rebuild's memory peak). */
 void NeighbourSearch::SortFluidPairs()
 {
-  std::vector<size_t> order(fluid_pairs_.size());
-  for (size_t t = 0; t < order.size(); t++) order[t] = t;
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return fluid_pairs_.i[a] != fluid_pairs_.i[b] ? fluid_pairs_.i[a] < fluid_pairs_.i[b] : fluid_pairs_.j[a] < fluid_pairs_.j[b];
-  });
-  PairList sorted;
-  sorted.i.resize(order.size());
-  sorted.j.resize(order.size());
-  for (size_t t = 0; t < order.size(); t++) {
-    sorted.i[t] = fluid_pairs_.i[order[t]];
-    sorted.j[t] = fluid_pairs_.j[order[t]];
+  std::vector<PetscInt> &I = fluid_pairs_.i, &J = fluid_pairs_.j;
+  for (size_t q = 0; q < I.size();) {
+    size_t e = q + 1;
+    while (e < I.size() && I[e] == I[q]) e++;
+    std::sort(J.begin() + q, J.begin() + e);
+    q = e;
   }
-  fluid_pairs_ = std::move(sorted);
 }
 
 void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin)
@@ -98,17 +94,11 @@ void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, Pet
   nbx_ = (PetscInt)((xmax - xmin) / bin_) + 1;
   nby_ = (PetscInt)((ymax - ymin) / bin_) + 1;
   bin_start_.assign((size_t)nbx_ * nby_ + 1, 0);
-  bin_of_.resize(P.n);
-  for (PetscInt k = 0; k < P.n; k++) {
-    const PetscInt bx = std::min(nbx_ - 1, (PetscInt)((x[2 * k] - x0_) / bin_));
-    const PetscInt by = std::min(nby_ - 1, (PetscInt)((x[2 * k + 1] - y0_) / bin_));
-    bin_of_[k]        = by * nbx_ + bx;
-    bin_start_[bin_of_[k] + 1]++;
-  }
+  for (PetscInt k = 0; k < P.n; k++) bin_start_[BinOf(x, k) + 1]++;
   for (size_t b = 0; b + 1 < bin_start_.size(); b++) bin_start_[b + 1] += bin_start_[b];
   bin_items_.resize(P.n);
   std::vector<PetscInt> fill(bin_start_.begin(), bin_start_.end() - 1);
-  for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[bin_of_[k]]++] = k;
+  for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[BinOf(x, k)]++] = k;
 }
 
 /* Squared distance from point p to segment [a, b]. */
@@ -122,13 +112,23 @@ static inline PetscReal PointSegmentDistance2(const PetscReal *p, const PetscRea
   return dx * dx + dy * dy;
 }
 
+/* Empty the lists but keep their storage: a rebuild of about the same size then allocates nothing
+   (no old list plus a growing new one at the same time). */
+void NeighbourSearch::ClearLists()
+{
+  fluid_pairs_.i.clear();
+  fluid_pairs_.j.clear();
+  particle_spring_.p.clear();
+  particle_spring_.s.clear();
+  particle_spring_.img.clear();
+}
+
 PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
 {
   PetscFunctionBeginUser;
   rebuilds_++;
   x_ref_.assign(x, x + 2 * P.n);
-  fluid_pairs_     = PairList();
-  particle_spring_ = PointSegmentList();
+  ClearLists();
   for (PetscInt k = 0; k < 2 * P.n; k++)
     PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
 
@@ -139,7 +139,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
     const PetscReal rf2 = rf * rf;
     for (PetscInt i = 0; i < P.n; i++) {
       if (P.kind[i] != KIND_FLUID) continue;
-      const PetscInt bx = bin_of_[i] % nbx_, by = bin_of_[i] / nbx_;
+      const PetscInt bi = BinOf(x, i), bx = bi % nbx_, by = bi / nbx_;
       for (PetscInt jy = std::max<PetscInt>(0, by - 1); jy <= std::min(nby_ - 1, by + 1); jy++)
         for (PetscInt jx = std::max<PetscInt>(0, bx - 1); jx <= std::min(nbx_ - 1, bx + 1); jx++) {
           const PetscInt b = jy * nbx_ + jx;
@@ -154,7 +154,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
           }
         }
     }
-    SortFluidPairs(); /* pairs were found bin by bin: sort by (i, j) for the SPH passes */
+    SortFluidPairs(); /* pairs were found bin by bin: sort each row by j for the SPH passes */
   }
 
   if (WantsParticleSpringPairs()) {
@@ -193,8 +193,7 @@ PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscR
   PetscFunctionBeginUser;
   rebuilds_++;
   x_ref_.assign(x, x + 2 * P.n);
-  fluid_pairs_     = PairList();
-  particle_spring_ = PointSegmentList();
+  ClearLists();
   for (PetscInt k = 0; k < 2 * P.n; k++)
     PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
   if (WantsFluidPairs()) {

@@ -57,11 +57,11 @@ void Repulsion::Segments(const ForceInput &in)
   const ParticleSet &P = *in.P;
   for (size_t s = 0; s < P.springs.size(); s++) {
     const PetscInt   i1 = P.springs[s].i, i2 = P.springs[s].j;
-    const PetscReal *sx = in.images->x[P.springs[s].image], *sv = in.images->v[P.springs[s].image];
+    const PetscReal *sx = in.images->x[P.springs[s].image];
     const PetscReal  tx = x[2 * i2] + sx[0] - x[2 * i1], ty = x[2 * i2 + 1] + sx[1] - x[2 * i1 + 1], L2 = tx * tx + ty * ty;
     seg_[s] = {
-      tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, sx[0], sx[1], sv[0], sv[1], {0, 0},
-                              {0, 0}
+      tx, ty, L2 > 0 ? 1.0 / L2 : 0.0, L2 > 0 ? 1.0 / std::sqrt(L2) : 0.0, {0, 0},
+                          {0, 0}
     };
   }
   for (size_t s = 0; s < P.springs.size(); s++)
@@ -85,9 +85,9 @@ inline bool Repulsion::Pair(const ForceInput &in, const PointSegmentList &L, siz
   const Spring    &sp = in.P->springs[L.s[q]];
   const Segment   &sg = seg_[L.s[q]];
   const PetscInt   p = L.p[q], i1 = sp.i, i2 = sp.j;
-  const PetscReal *px = in.images->x[L.img[q]]; /* the spring's image near p */
+  const PetscReal *px = in.images->x[L.img[q]], *sx = in.images->x[sp.image]; /* the spring's image near p; x2's image */
   const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
-  const PetscReal  ux = x[2 * p] - x[2 * i2] - sg.sx - px[0], uy = x[2 * p + 1] - x[2 * i2 + 1] - sg.sy - px[1];
+  const PetscReal  ux = x[2 * p] - x[2 * i2] - sx[0] - px[0], uy = x[2 * p + 1] - x[2 * i2 + 1] - sx[1] - px[1];
   const PetscReal  gi = wx * sg.gx[0] + wy * sg.gy[0], gj = ux * sg.gx[1] + uy * sg.gy[1];
   const unsigned   tie = ties_[L.s[q]];
   if (gi < 0 || (gi == 0 && !(tie & 1)) || gj < 0 || (gj == 0 && !(tie & 2))) return false; /* (a NaN position still gives a NaN force) */
@@ -125,8 +125,8 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
     const PetscReal cosa = angle_factor ? std::fabs(dx * sg.ty - dy * sg.tx) * ir * sg.inv_L : 1.0;
     PetscReal       mag  = strength * cosa * (ir6 - ix06);
     if (damping) { /* - 2 sqrt(6 lambda m / r^7) (x - x^).(v - v^)/r, v^ interpolated like x^ */
-      const PetscReal *pv  = in.images->v[L.img[q]];
-      const PetscReal  vhx = (1 - t) * v[2 * i1] + t * (v[2 * i2] + sg.vx) + pv[0], vhy = (1 - t) * v[2 * i1 + 1] + t * (v[2 * i2 + 1] + sg.vy) + pv[1];
+      const PetscReal *pv = in.images->v[L.img[q]], *sv = in.images->v[P.springs[L.s[q]].image];
+      const PetscReal  vhx = (1 - t) * v[2 * i1] + t * (v[2 * i2] + sv[0]) + pv[0], vhy = (1 - t) * v[2 * i1 + 1] + t * (v[2 * i2 + 1] + sv[1]) + pv[1];
       /* the taper makes the force continuous at r = x0 for moving particles: the literal term jumps
          there, which stalls Newton in an RVE whose particles move with Fdot X (docs/model.md) */
       const PetscReal taper = damping_taper ? 1.0 - r2 * r2 * r2 * ix06 : 1.0;

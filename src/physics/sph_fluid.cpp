@@ -1,4 +1,5 @@
 #include <turgor/physics/sph_fluid.h>
+#include <algorithm>
 #include <cmath>
 
 namespace turgor {
@@ -31,15 +32,23 @@ PetscErrorCode SPHFluid::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   const PetscReal h = smoothing_length;
   norm_             = 10.0 / (7.0 * PETSC_PI * h * h);
   W0_               = norm_;
-  fluid_.clear();
-  for (PetscInt i = 0; i < P.NumOwned(); i++) /* a distributed run keeps no halo fluid (a cell's fluid is its owner's) */
-    if (P.kind[i] == KIND_FLUID) fluid_.push_back(i);
-  rho_.assign(P.n, 0);
-  vol_.assign(P.n, 0);
-  M_.assign(3 * P.n, 0);
-  G_.assign(4 * P.n, 0);
-  A_.assign(4 * P.n, 0);
-  P_.assign(P.n, 0);
+  slot_.assign(P.n, -1);
+  const PetscInt nf = P.Count(KIND_FLUID);
+  fluid_.assign(nf, 0);
+  for (PetscInt i = 0, s = 0; i < P.NumOwned(); i++)
+    if (P.kind[i] == KIND_FLUID) {
+      fluid_[s] = i;
+      slot_[i]  = s++;
+    }
+  for (PetscInt i = P.NumOwned(); i < P.n; i++) /* the pairs' j must have a slot */
+    PetscCheck(P.kind[i] != KIND_FLUID, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SPH: halo particle %" PetscInt_FMT " is fluid (a cell's fluid is its owner's)", i);
+  vol_.assign(nf, 0);
+  P_.assign(nf, 0);
+  M_.assign(3 * nf, 0);
+  GA_.assign(4 * nf, 0);
+  pair_start_.assign(nf + 1, 0);
+  pair_j_.clear();
+  pair_F_.clear();
   nb.RequestFluidPairs(2.0 * h);
   PetscCall(PetscLogEventRegister("TgSPHDensity", PETSC_OBJECT_CLASSID, &ev_density_));
   PetscCall(PetscLogEventRegister("TgSPHGradient", PETSC_OBJECT_CLASSID, &ev_gradient_));
@@ -63,24 +72,31 @@ PetscReal SPHFluid::KernelDerivative(PetscReal r) const
   return 0;
 }
 
-/* Pass 1: rho_i = m_i W(0) + sum_j m_j W_ij, and the pairs within 2h with e = x_i - x_j, F = W'/r
-   cached for the later passes (the neighbour list carries a skin, so some listed pairs are out). */
-PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
+/* Pass 1: rho_i = m_i W(0) + sum_j m_j W_ij, and the pairs within 2h with F = W'/r cached for the
+   later passes (the neighbour list carries a skin, so some listed pairs are out). The density
+   accumulates in vol_, which then becomes m / rho; each(s, rho) sees every slot's density first
+   (energy, time-step limit, output: no density array kept). */
+template <class Each>
+PetscErrorCode SPHFluid::DensityPass(const ForceInput &in, Each each)
 {
   const PetscReal *x = in.x, *m = in.P->mass.data();
-  const PairList  &L = in.nb->FluidPairs();
+  const PairList  &L  = in.nb->FluidPairs();
+  const PetscInt   nf = (PetscInt)fluid_.size();
   const PetscReal  h = smoothing_length, ih = 1.0 / h, r2max = 4 * h * h, c = norm_, cd = norm_ * ih;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_density_, 0, 0, 0, 0));
-  for (PetscInt i : fluid_) rho_[i] = m[i] * W0_;
-  pairs_.resize(L.size());
-  size_t na = 0;
-  /* the list is sorted by i: row i accumulates in a register */
+  PetscReal *rho = vol_.data();
+  for (PetscInt s = 0; s < nf; s++) rho[s] = m[fluid_[s]] * W0_;
+  pair_j_.resize(L.size());
+  pair_F_.resize(L.size());
+  PetscInt na = 0, row = 0;
+  /* the list is sorted by i (so by slot): row i accumulates in a register */
   for (size_t q = 0; q < L.size();) {
-    const PetscInt  i  = L.i[q];
+    const PetscInt  i = L.i[q], si = slot_[i];
     const PetscReal xi = x[2 * i], yi = x[2 * i + 1], mi = m[i];
     PetscReal       rho_i = 0;
+    while (row <= si) pair_start_[row++] = na;
     for (; q < L.size() && L.i[q] == i; q++) {
       const PetscInt  j  = L.j[q];
       const PetscReal ex = xi - x[2 * j], ey = yi - x[2 * j + 1], r2 = ex * ex + ey * ey;
@@ -95,16 +111,22 @@ PetscErrorCode SPHFluid::DensityPass(const ForceInput &in)
         W                 = c * 0.25 * t * t * t;
         dW                = -cd * 0.75 * t * t;
       }
+      const PetscInt sj = slot_[j];
       rho_i += m[j] * W;
-      rho_[j] += mi * W;
-      pairs_[na++] = {i, j, ex, ey, r > 0 ? dW / r : 0};
+      rho[sj] += mi * W;
+      pair_j_[na]   = sj;
+      pair_F_[na++] = r > 0 ? dW / r : 0;
     }
-    rho_[i] += rho_i;
+    rho[si] += rho_i;
   }
-  pairs_.resize(na);
-  for (PetscInt i : fluid_) {
-    vol_[i] = m[i] / rho_[i];
-    P_[i]   = sound_speed * sound_speed / rho_[i]; /* p / rho^2 with p = c_s^2 rho */
+  while (row <= nf) pair_start_[row++] = na;
+  pair_j_.resize(na);
+  pair_F_.resize(na);
+  for (PetscInt s = 0; s < nf; s++) {
+    const PetscReal r = rho[s];
+    each(s, r);
+    P_[s]   = sound_speed * sound_speed / r; /* p / rho^2 with p = c_s^2 rho */
+    vol_[s] = m[fluid_[s]] / r;
   }
   PetscCall(PetscLogFlops(30.0 * L.size()));
   PetscCall(PetscLogEventEnd(ev_density_, 0, 0, 0, 0));
@@ -139,32 +161,33 @@ static inline void GuardedInverse(PetscReal a, PetscReal b, PetscReal c, PetscRe
 }
 
 /* Pass 2: M_i = sum_j V_j (-W'/r) e (x) e (the inverse of L_i, eq 14) and
-   G_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij; then grad v_i = G_i L_i, tau_i, and A_i = tau_i L_i. */
-PetscErrorCode SPHFluid::GradientPass(const ForceInput &in)
+   G_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij; then grad v_i = G_i L_i (into gradv[4 n] when asked),
+   tau_i, and A_i = tau_i L_i, which replaces G_i. */
+PetscErrorCode SPHFluid::GradientPass(const ForceInput &in, PetscReal *gradv)
 {
-  const PetscReal *v = in.v;
-  PetscReal       *M = M_.data(), *G = G_.data(), *A = A_.data();
+  const PetscReal *x = in.x, *v = in.v;
+  const PetscInt   nf = (PetscInt)fluid_.size(), *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
+  const PetscReal *pF = pair_F_.data(), *vol = vol_.data();
+  PetscReal       *M = M_.data(), *G = GA_.data();
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_gradient_, 0, 0, 0, 0));
-  for (PetscInt i : fluid_) {
-    for (int k = 0; k < 3; k++) M[3 * i + k] = 0;
-    for (int k = 0; k < 4; k++) G[4 * i + k] = 0;
-  }
-  /* pairs are sorted by i: accumulate row i in registers, scatter only to j */
-  const size_t np = pairs_.size();
-  for (size_t q = 0; q < np;) {
-    const PetscInt  i  = pairs_[q].i;
-    const PetscReal Vi = vol_[i], vxi = v[2 * i], vyi = v[2 * i + 1];
+  std::fill(M_.begin(), M_.end(), 0);
+  std::fill(GA_.begin(), GA_.end(), 0);
+  /* rows by slot: accumulate row i in registers, scatter only to j */
+  for (PetscInt si = 0; si < nf; si++) {
+    if (start[si] == start[si + 1]) continue;
+    const PetscInt  i  = fl[si];
+    const PetscReal Vi = vol[si], xi = x[2 * i], yi = x[2 * i + 1], vxi = v[2 * i], vyi = v[2 * i + 1];
     PetscReal       Mi[3] = {0, 0, 0}, Gi[4] = {0, 0, 0, 0};
-    for (; q < np && pairs_[q].i == i; q++) {
-      const ActivePair &pq = pairs_[q];
-      const PetscInt    j  = pq.j;
-      const PetscReal   Vj = vol_[j];
-      const PetscReal   gx = pq.ex * pq.F, gy = pq.ey * pq.F;
-      const PetscReal   sxx = -gx * pq.ex, sxy = -gx * pq.ey, syy = -gy * pq.ey;
-      const PetscReal   dvx = v[2 * j] - vxi, dvy = v[2 * j + 1] - vyi;
-      const PetscReal   t0 = dvx * gx, t1 = dvx * gy, t2 = dvy * gx, t3 = dvy * gy;
+    for (PetscInt q = start[si]; q < start[si + 1]; q++) {
+      const PetscInt  sj = pj[q], j = fl[sj];
+      const PetscReal Vj = vol[sj], F = pF[q];
+      const PetscReal ex = xi - x[2 * j], ey = yi - x[2 * j + 1];
+      const PetscReal gx = ex * F, gy = ey * F;
+      const PetscReal sxx = -gx * ex, sxy = -gx * ey, syy = -gy * ey;
+      const PetscReal dvx = v[2 * j] - vxi, dvy = v[2 * j + 1] - vyi;
+      const PetscReal t0 = dvx * gx, t1 = dvx * gy, t2 = dvy * gx, t3 = dvy * gy;
       Mi[0] += Vj * sxx;
       Mi[1] += Vj * sxy;
       Mi[2] += Vj * syy;
@@ -172,34 +195,38 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in)
       Gi[1] += Vj * t1;
       Gi[2] += Vj * t2;
       Gi[3] += Vj * t3;
-      M[3 * j] += Vi * sxx;
-      M[3 * j + 1] += Vi * sxy;
-      M[3 * j + 2] += Vi * syy;
-      G[4 * j] += Vi * t0;
-      G[4 * j + 1] += Vi * t1;
-      G[4 * j + 2] += Vi * t2;
-      G[4 * j + 3] += Vi * t3;
+      M[3 * sj] += Vi * sxx;
+      M[3 * sj + 1] += Vi * sxy;
+      M[3 * sj + 2] += Vi * syy;
+      G[4 * sj] += Vi * t0;
+      G[4 * sj + 1] += Vi * t1;
+      G[4 * sj + 2] += Vi * t2;
+      G[4 * sj + 3] += Vi * t3;
     }
-    for (int k = 0; k < 3; k++) M[3 * i + k] += Mi[k];
-    for (int k = 0; k < 4; k++) G[4 * i + k] += Gi[k];
+    for (int k = 0; k < 3; k++) M[3 * si + k] += Mi[k];
+    for (int k = 0; k < 4; k++) G[4 * si + k] += Gi[k];
   }
   const PetscReal mu = viscosity;
-  for (PetscInt i : fluid_) {
+  for (PetscInt s = 0; s < nf; s++) {
     PetscReal L[3] = {1, 0, 1};
-    if (correction) GuardedInverse(M[3 * i], M[3 * i + 1], M[3 * i + 2], guard, L);
-    const PetscReal *g = &G[4 * i];
+    if (correction) GuardedInverse(M[3 * s], M[3 * s + 1], M[3 * s + 2], guard, L);
+    PetscReal *g = &G[4 * s];
     /* grad v = G L (L symmetric) */
     const PetscReal gv0 = g[0] * L[0] + g[1] * L[1], gv1 = g[0] * L[1] + g[1] * L[2];
     const PetscReal gv2 = g[2] * L[0] + g[3] * L[1], gv3 = g[2] * L[1] + g[3] * L[2];
+    if (gradv) {
+      PetscReal *gr = &gradv[4 * fl[s]];
+      gr[0] = gv0, gr[1] = gv1, gr[2] = gv2, gr[3] = gv3;
+    }
     const PetscReal dxy = 0.5 * (gv1 + gv2), tr = gv0 + gv3;
     /* tau = mu (2 d - 2/3 tr(d) I): the seed's 3D deviator, i.e. plane strain (d_zz = 0) */
     const PetscReal txx = mu * (2 * gv0 - (2.0 / 3.0) * tr), tyy = mu * (2 * gv3 - (2.0 / 3.0) * tr), txy = mu * 2 * dxy;
-    A[4 * i]     = txx * L[0] + txy * L[1];
-    A[4 * i + 1] = txx * L[1] + txy * L[2];
-    A[4 * i + 2] = txy * L[0] + tyy * L[1];
-    A[4 * i + 3] = txy * L[1] + tyy * L[2];
+    g[0] = txx * L[0] + txy * L[1]; /* A = tau L replaces G */
+    g[1] = txx * L[1] + txy * L[2];
+    g[2] = txy * L[0] + tyy * L[1];
+    g[3] = txy * L[1] + tyy * L[2];
   }
-  PetscCall(PetscLogFlops(40.0 * pairs_.size() + 40.0 * fluid_.size()));
+  PetscCall(PetscLogFlops(40.0 * pair_j_.size() + 40.0 * fluid_.size()));
   PetscCall(PetscLogEventEnd(ev_gradient_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -207,38 +234,39 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in)
 template <bool VIRIAL>
 PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
-  const PetscReal *m = in.P->mass.data(), *A = A_.data();
+  const PetscReal *x = in.x, *m = in.P->mass.data(), *A = GA_.data(), *Pp = P_.data(), *vol = vol_.data(), *pF = pair_F_.data();
+  const PetscInt   nf = (PetscInt)fluid_.size(), *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
   const bool       visc = viscosity > 0;
   PetscReal        w[4] = {0, 0, 0, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_force_, 0, 0, 0, 0));
-  const size_t np = pairs_.size();
-  for (size_t q = 0; q < np;) {
-    const PetscInt  i  = pairs_[q].i;
-    const PetscReal mi = m[i], Pi = P_[i], Vi = vol_[i];
-    const PetscReal A0 = A[4 * i], A1 = A[4 * i + 1], A2 = A[4 * i + 2], A3 = A[4 * i + 3];
+  for (PetscInt si = 0; si < nf; si++) {
+    if (start[si] == start[si + 1]) continue;
+    const PetscInt  i  = fl[si];
+    const PetscReal mi = m[i], Pi = Pp[si], Vi = vol[si], xi = x[2 * i], yi = x[2 * i + 1];
+    const PetscReal A0 = A[4 * si], A1 = A[4 * si + 1], A2 = A[4 * si + 2], A3 = A[4 * si + 3];
     PetscReal       fxi = 0, fyi = 0;
-    for (; q < np && pairs_[q].i == i; q++) {
-      const ActivePair &pq = pairs_[q];
-      const PetscInt    j  = pq.j;
-      const PetscReal   gx = pq.ex * pq.F, gy = pq.ey * pq.F;
-      const PetscReal   pp = -mi * m[j] * (Pi + P_[j]);
-      PetscReal         fx = pp * gx, fy = pp * gy;
+    for (PetscInt q = start[si]; q < start[si + 1]; q++) {
+      const PetscInt  sj = pj[q], j = fl[sj];
+      const PetscReal ex = xi - x[2 * j], ey = yi - x[2 * j + 1];
+      const PetscReal gx = ex * pF[q], gy = ey * pF[q];
+      const PetscReal pp = -mi * m[j] * (Pi + Pp[sj]);
+      PetscReal       fx = pp * gx, fy = pp * gy;
       if (visc) {
-        const PetscReal vv = Vi * vol_[j];
-        fx += vv * ((A0 + A[4 * j]) * gx + (A1 + A[4 * j + 1]) * gy);
-        fy += vv * ((A2 + A[4 * j + 2]) * gx + (A3 + A[4 * j + 3]) * gy);
+        const PetscReal vv = Vi * vol[sj];
+        fx += vv * ((A0 + A[4 * sj]) * gx + (A1 + A[4 * sj + 1]) * gy);
+        fy += vv * ((A2 + A[4 * sj + 2]) * gx + (A3 + A[4 * sj + 3]) * gy);
       }
       fxi += fx;
       fyi += fy;
       f[2 * j] -= fx;
       f[2 * j + 1] -= fy;
       if (VIRIAL) { /* -(f_ij (x) x_i - f_ij (x) x_j) = -f_ij (x) e */
-        w[0] -= fx * pq.ex;
-        w[1] -= fx * pq.ey;
-        w[2] -= fy * pq.ex;
-        w[3] -= fy * pq.ey;
+        w[0] -= fx * ex;
+        w[1] -= fx * ey;
+        w[2] -= fy * ex;
+        w[3] -= fy * ey;
       }
     }
     f[2 * i] += fxi;
@@ -246,7 +274,7 @@ PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal
   }
   if (VIRIAL)
     for (int k = 0; k < 4; k++) virial[k] += w[k];
-  PetscCall(PetscLogFlops((visc ? 30.0 : 12.0) * pairs_.size()));
+  PetscCall(PetscLogFlops((visc ? 30.0 : 12.0) * pair_j_.size()));
   PetscCall(PetscLogEventEnd(ev_force_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -255,8 +283,8 @@ PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal
 {
   PetscFunctionBeginUser;
   if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(DensityPass(in));
-  if (viscosity > 0) PetscCall(GradientPass(in));
+  PetscCall(DensityPass(in, [](PetscInt, PetscReal) {}));
+  if (viscosity > 0) PetscCall(GradientPass(in, NULL));
   if (virial) PetscCall(ForcePass<true>(in, f, virial));
   else PetscCall(ForcePass<false>(in, f, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -265,28 +293,18 @@ PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal
 PetscErrorCode SPHFluid::DensityAndVelocityGradient(const ForceInput &in, std::vector<PetscReal> &rho, std::vector<PetscReal> &gradv)
 {
   PetscFunctionBeginUser;
-  PetscCall(DensityPass(in));
-  PetscCall(GradientPass(in));
-  rho = rho_;
+  rho.assign(in.P->n, 0);
+  PetscCall(DensityPass(in, [&](PetscInt s, PetscReal r) { rho[fluid_[s]] = r; }));
   gradv.assign(4 * in.P->n, 0);
-  for (PetscInt i : fluid_) {
-    PetscReal L[3] = {1, 0, 1};
-    if (correction) GuardedInverse(M_[3 * i], M_[3 * i + 1], M_[3 * i + 2], guard, L);
-    const PetscReal *g = &G_[4 * i];
-    gradv[4 * i]       = g[0] * L[0] + g[1] * L[1];
-    gradv[4 * i + 1]   = g[0] * L[1] + g[1] * L[2];
-    gradv[4 * i + 2]   = g[2] * L[0] + g[3] * L[1];
-    gradv[4 * i + 3]   = g[2] * L[1] + g[3] * L[2];
-  }
+  PetscCall(GradientPass(in, gradv.data()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode SPHFluid::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
   PetscFunctionBeginUser;
-  PetscCall(DensityPass(in));
   *E = 0;
-  for (PetscInt i : fluid_) *E += in.P->mass[i] * sound_speed * sound_speed * std::log(rho_[i]);
+  PetscCall(DensityPass(in, [&](PetscInt s, PetscReal r) { *E += in.P->mass[fluid_[s]] * sound_speed * sound_speed * std::log(r); }));
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -309,9 +327,8 @@ PetscErrorCode SPHFluid::AddTimeStepLimits(const ForceInput &in, std::vector<Tim
     limits.push_back({0.25 * h / sound_speed, why});
   }
   if (viscosity > 0) {
-    PetscCall(DensityPass(in));
     PetscReal rmin = PETSC_MAX_REAL;
-    for (PetscInt i : fluid_) rmin = PetscMin(rmin, rho_[i]);
+    PetscCall(DensityPass(in, [&](PetscInt, PetscReal r) { rmin = PetscMin(rmin, r); }));
     const PetscReal nu = viscosity / rmin;
     PetscCall(PetscSNPrintf(why, sizeof why, "viscosity: 0.125 h^2 / nu (eq 40), nu = %.3g µm^2/µs", (double)nu));
     limits.push_back({0.125 * h * h / nu, why});

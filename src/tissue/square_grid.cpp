@@ -21,8 +21,11 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spe
   *tissue                 = Tissue();
   Tissue               &T = *tissue;
   std::vector<PetscInt> id((size_t)ax * ay, -1);
-  auto                  wall = [&](PetscInt a, PetscInt b) { id[b * ax + a] = T.AddParticle(a * dl, b * dl, spec.wall_mass, KIND_WALL); };
-  auto spring                = [&](PetscInt a, PetscInt b, PetscInt a2, PetscInt b2) { T.particles.springs.push_back({id[b * ax + a], id[b2 * ax + a2], dl}); };
+  /* lattice points on a cell boundary, the fluid; each cell's bottom and left edges, then the top and right */
+  T.Reserve(ax * ay - nx * ny * (s - 1) * (s - 1) + nx * ny * k * k, (size_t)nx * ny * 2 * s + (ax - 1) + (ay - 1));
+  T.cell_walls.reserve(nx * ny);
+  auto wall   = [&](PetscInt a, PetscInt b) { id[b * ax + a] = T.AddParticle(a * dl, b * dl, spec.wall_mass, KIND_WALL); };
+  auto spring = [&](PetscInt a, PetscInt b, PetscInt a2, PetscInt b2) { T.particles.springs.push_back({id[b * ax + a], id[b2 * ax + a2], dl}); };
 
   /* Particles and springs are numbered cell by cell (each cell owns the wall points of its bottom and
      left edges, then its fluid), so that neighbours in space are close in memory; the top row and

@@ -16,6 +16,15 @@ PetscInt Tissue::AddParticle(PetscReal x, PetscReal y, PetscReal mass, ParticleK
   return particles.n++;
 }
 
+void Tissue::Reserve(PetscInt n_particles, size_t n_springs)
+{
+  X.reserve(2 * (size_t)n_particles);
+  particles.mass.reserve(n_particles);
+  particles.kind.reserve(n_particles);
+  particles.cell.reserve(n_particles);
+  particles.springs.reserve(n_springs);
+}
+
 void Tissue::AddSpring(PetscInt i, PetscInt j)
 {
   particles.springs.push_back({i, j, std::hypot(X[2 * j] - X[2 * i], X[2 * j + 1] - X[2 * i + 1])});

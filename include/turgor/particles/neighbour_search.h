@@ -6,6 +6,7 @@
    O(n) per evaluation, a rebuild O(n) with a bin grid. Only the lists a force term asked for are
    ever built: a scene without SPH does no fluid neighbour search. */
 #include <turgor/particles/particles.h>
+#include <algorithm>
 #include <vector>
 
 namespace turgor {
@@ -58,6 +59,7 @@ private:
   PetscErrorCode Build(const ParticleSet &P, const PetscReal *x);
   PetscErrorCode BuildPeriodic(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images);
   void           SortFluidPairs();
+  void           ClearLists();
   void           BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin);
 
   PetscReal                      fluid_cutoff_ = 0, spring_cutoff_ = 0, skin_ = 1.0;
@@ -71,7 +73,14 @@ private:
   /* bin grid (counting sort) */
   PetscReal             x0_ = 0, y0_ = 0, bin_ = 1;
   PetscInt              nbx_ = 0, nby_ = 0;
-  std::vector<PetscInt> bin_start_, bin_items_, bin_of_;
+  std::vector<PetscInt> bin_start_, bin_items_;
+  /* a particle's bin, computed where needed (not stored: 4 B a particle) */
+  PetscInt BinOf(const PetscReal *x, PetscInt k) const
+  {
+    const PetscInt bx = std::min(nbx_ - 1, (PetscInt)((x[2 * k] - x0_) / bin_));
+    const PetscInt by = std::min(nby_ - 1, (PetscInt)((x[2 * k + 1] - y0_) / bin_));
+    return by * nbx_ + bx;
+  }
 };
 
 } // namespace turgor

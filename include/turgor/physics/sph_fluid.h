@@ -44,20 +44,24 @@ public:
   PetscReal guard            = 1e-2; /* eigenvalue ratio below which the correction fades out */
 
 private:
-  struct ActivePair {
-    PetscInt  i, j;
-    PetscReal ex, ey, F; /* e = x_i - x_j, F = W'(r)/r */
-  };
-  PetscErrorCode DensityPass(const ForceInput &in);
-  PetscErrorCode GradientPass(const ForceInput &in);
+  template <class Each>
+  PetscErrorCode DensityPass(const ForceInput &in, Each each);
+  PetscErrorCode GradientPass(const ForceInput &in, PetscReal *gradv);
   template <bool VIRIAL>
   PetscErrorCode ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial);
 
-  PetscReal               norm_ = 0, W0_ = 0;
-  std::vector<PetscInt>   fluid_; /* indices of fluid particles */
-  std::vector<ActivePair> pairs_; /* pairs within 2h, refreshed each evaluation */
-  std::vector<PetscReal>  rho_, vol_, M_, G_, A_, P_;
-  PetscLogEvent           ev_density_ = 0, ev_gradient_ = 0, ev_force_ = 0;
+  /* Memory (issue 13): the per-particle arrays are over the fluid only, indexed by slot s
+     (particle fluid_[s]); the pairs within 2h are rows of slots, pair_start_[s] .. pair_start_[s+1],
+     each with the slot of j and F = W'(r)/r only (12 B): e = x_i - x_j is read again from x. */
+  PetscReal              norm_ = 0, W0_ = 0;
+  std::vector<PetscInt>  fluid_;       /* [nf] slot -> particle (owned fluid particles, ascending) */
+  std::vector<PetscInt>  slot_;        /* [n] particle -> slot, -1 for a wall particle */
+  std::vector<PetscInt>  pair_start_;  /* [nf + 1] */
+  std::vector<PetscInt>  pair_j_;      /* slot of j */
+  std::vector<PetscReal> pair_F_;      /* W'(r)/r */
+  std::vector<PetscReal> vol_, P_, M_; /* [nf], [nf], [3 nf]; the density passes through vol_ */
+  std::vector<PetscReal> GA_;          /* [4 nf]: G during the gradient pass, then A = tau L */
+  PetscLogEvent          ev_density_ = 0, ev_gradient_ = 0, ev_force_ = 0;
 };
 
 } // namespace turgor

@@ -24,7 +24,10 @@ struct Tissue {
      joints of the walls (Spring::joint; a periodic tissue sets `period` first). */
   PetscInt AddParticle(PetscReal x, PetscReal y, PetscReal mass, ParticleKind kind, PetscInt cell = -1);
   void     AddSpring(PetscInt i, PetscInt j); /* rest length = current distance */
-  void     Finalize();
+  /* A generator that knows its counts reserves them: no push_back growth (a copy of every vector at
+     each doubling, and up to twice the memory kept). */
+  void Reserve(PetscInt n_particles, size_t n_springs);
+  void Finalize();
   /* Wall particle closest to the point (px, py). */
   PetscInt ClosestWallParticle(PetscReal px, PetscReal py) const;
   /* Clamp (fix) the wall particles on the named sides: any of left, right, bottom, top; "none"
