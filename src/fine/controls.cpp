@@ -209,7 +209,7 @@ PetscErrorCode Controls::SetUp(MPI_Comm comm, const Tissue &tissue, bool owner)
   PetscFunctionBeginUser;
   comp_.clear();
   comp_group_.clear();
-  node_mass_ = P.mass;
+  node_mass_.assign(groups_.empty() ? P.mass.end() : P.mass.begin(), P.mass.end()); /* read for the groups' nodes only */
   for (size_t gi = 0; gi < groups_.size(); gi++) {
     ControlGroup     &g   = groups_[gi];
     const std::string pre = "-control_" + g.name + "_";
@@ -276,7 +276,7 @@ PetscErrorCode Controls::SetUp(MPI_Comm comm, const Tissue &tissue, bool owner)
 void Controls::Localize(const std::vector<PetscInt> &local_of, const ParticleSet &P)
 {
   n_owned_ = P.NumOwned();
-  node_mass_.assign(P.mass.begin(), P.mass.end());
+  node_mass_.assign(groups_.empty() ? P.mass.end() : P.mass.begin(), P.mass.end());
   comp_.clear();
   comp_group_.clear();
   for (size_t gi = 0; gi < groups_.size(); gi++) {

@@ -354,7 +354,7 @@ PetscErrorCode FineRun::SetUpModel()
   }
   controls_.Impose(0, u, u + 2 * n_local_, n_local_);
   PetscCall(VecRestoreArray(U_, &u));
-  v_stale_.assign(2 * n_local_, 0);
+  if (RestartFile().empty()) ReleaseReferences(); /* a restart primes its references from them first (AfterSetUp) */
   if (spec_.energy) {
     const PetscScalar *u0;
     const PetscReal   *x0, *v0;
@@ -401,7 +401,8 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &symplectic));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSVERLET, &kdk));
   if (!symplectic && !kdk) PetscFunctionReturn(PETSC_SUCCESS);
-  if (kdk) drift_fraction_ = 1.0; /* one drift of h per step */
+  v_stale_.assign(2 * n_local_, 0); /* the split integrators' velocities of the last position update */
+  if (kdk) drift_fraction_ = 1.0;   /* one drift of h per step */
   else {
     /* PETSc's basicsymplectic defaults to first-order symplectic Euler; velocity Verlet unless asked */
     const char *prefix;
@@ -987,7 +988,7 @@ PetscErrorCode FineRun::WriteState(PetscReal t, Vec U, StateBlob &state, bool gl
   PetscFunctionBeginUser;
   if (!global) state.Put(v_stale_);
   else {
-    const PetscInt n = drift_fraction_ > 0 ? n_local_ : 0; /* only Verlet-type integrators use them */
+    const PetscInt n = (PetscInt)v_stale_.size() / 2; /* only the split integrators have them */
     state.Put((PetscReal)n);
     for (PetscInt l = 0; l < n; l++)
       for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
@@ -1060,7 +1061,6 @@ PetscErrorCode FineRun::LoadStateOtherRanks(PetscReal t, Vec U, std::vector<Stat
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCall(PrimeReferences());
   const LocalNumbering local(tissue_.particles);
-  v_stale_.assign(2 * n_local_, 0);
   for (size_t r = 0; r < states.size(); r++) {
     StateBlob &b = states[r];
     PetscReal  n;
@@ -1070,7 +1070,7 @@ PetscErrorCode FineRun::LoadStateOtherRanks(PetscReal t, Vec U, std::vector<Stat
       PetscReal g = 0, w[2] = {0, 0};
       b.Get(&g), b.Get(&w[0]), b.Get(&w[1]);
       const PetscInt l = local.Particle((PetscInt)g);
-      if (l >= 0 && l < n_local_) v_stale_[2 * l] = w[0], v_stale_[2 * l + 1] = w[1];
+      if (l >= 0 && l < n_local_ && !v_stale_.empty()) v_stale_[2 * l] = w[0], v_stale_[2 * l + 1] = w[1];
     }
   }
   PetscCall(VecGetArrayRead(U, &u));
@@ -1106,7 +1106,8 @@ PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
   PetscReal          energy, nrec;
   PetscFunctionBeginUser;
   PetscCall(PrimeReferences());
-  PetscCheck(state.Get(v_stale_) && (PetscInt)v_stale_.size() == 2 * n_local_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+  const size_t n_stale = v_stale_.size(); /* 2 n_local_ with a split integrator, else 0 */
+  PetscCheck(state.Get(v_stale_) && v_stale_.size() == n_stale, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "the checkpoint's velocities of the last drift do not fit this scene");
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));

@@ -176,7 +176,6 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
             if (PointSegmentDistance2(&x[2 * p], xa, xb) < rs2) {
               particle_spring_.p.push_back(p);
               particle_spring_.s.push_back((PetscInt)s);
-              particle_spring_.img.push_back(PeriodicImages::kSelf);
             }
           }
         }

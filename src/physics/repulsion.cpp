@@ -85,7 +85,7 @@ inline bool Repulsion::Pair(const ForceInput &in, const PointSegmentList &L, siz
   const Spring    &sp = in.P->springs[L.s[q]];
   const Segment   &sg = seg_[L.s[q]];
   const PetscInt   p = L.p[q], i1 = sp.i, i2 = sp.j;
-  const PetscReal *px = in.images->x[L.img[q]], *sx = in.images->x[sp.image]; /* the spring's image near p; x2's image */
+  const PetscReal *px = in.images->x[L.Image(q)], *sx = in.images->x[sp.image]; /* the spring's image near p; x2's image */
   const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
   const PetscReal  ux = x[2 * p] - x[2 * i2] - sx[0] - px[0], uy = x[2 * p + 1] - x[2 * i2 + 1] - sx[1] - px[1];
   const PetscReal  gi = wx * sg.gx[0] + wy * sg.gy[0], gj = ux * sg.gx[1] + uy * sg.gy[1];
@@ -125,7 +125,7 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
     const PetscReal cosa = angle_factor ? std::fabs(dx * sg.ty - dy * sg.tx) * ir * sg.inv_L : 1.0;
     PetscReal       mag  = strength * cosa * (ir6 - ix06);
     if (damping) { /* - 2 sqrt(6 lambda m / r^7) (x - x^).(v - v^)/r, v^ interpolated like x^ */
-      const PetscReal *pv = in.images->v[L.img[q]], *sv = in.images->v[P.springs[L.s[q]].image];
+      const PetscReal *pv = in.images->v[L.Image(q)], *sv = in.images->v[P.springs[L.s[q]].image];
       const PetscReal  vhx = (1 - t) * v[2 * i1] + t * (v[2 * i2] + sv[0]) + pv[0], vhy = (1 - t) * v[2 * i1 + 1] + t * (v[2 * i2 + 1] + sv[1]) + pv[1];
       /* the taper makes the force continuous at r = x0 for moving particles: the literal term jumps
          there, which stalls Newton in an RVE whose particles move with Fdot X (docs/model.md) */

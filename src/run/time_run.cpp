@@ -166,6 +166,7 @@ PetscErrorCode TimeRun::SetUp()
   }
   if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
   if (out_.ready) PetscCall(OpenOutputs());
+  PetscCall(AfterSetUp());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -90,7 +90,7 @@ private:
   std::vector<ControlGroup> groups_;
   /* the velocity-controlled components: state index 2 i + d, and its group */
   std::vector<PetscInt>  comp_, comp_group_;
-  std::vector<PetscReal> node_mass_;               /* of every local particle (the centre of mass of a group) */
+  std::vector<PetscReal> node_mass_;               /* of every local particle (the centre of mass of a group); empty without groups */
   PetscInt               n_owned_ = PETSC_MAX_INT; /* nodes from here on are halo copies (Localize) */
 };
 

@@ -93,6 +93,20 @@ protected:
      tissue's numbering (every term's, the energy balance's, Verlet's drift velocities by gid);
      refused only for a term without such a form (ForceTerm::RestartsOnOtherRanks). */
   PetscErrorCode StateOrder(IS *order) override;
+  /* The tissue's reference positions and initial velocities are read only at set-up (the initial
+     state, the swarm, the controls' groups, a restart's PrimeReferences): released once the state
+     holds them (a restart: after its checkpoint is read), before the set-up's first force
+     evaluation, 32 B a particle off the peak (issue 13's memory per particle). */
+  PetscErrorCode AfterSetUp() override
+  {
+    ReleaseReferences();
+    return PETSC_SUCCESS;
+  }
+  void ReleaseReferences()
+  {
+    std::vector<PetscReal>().swap(tissue_.X);
+    std::vector<PetscReal>().swap(tissue_.V);
+  }
   bool           RestartsOnOtherRanks(std::string *why) const override;
   PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override { return WriteState(t, U, state, true); }
   PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) override;

@@ -18,8 +18,9 @@ struct PairList { /* half list: each unordered pair once */
 
 struct PointSegmentList { /* particle p near image `img` of spring s (p is not an end point of s) */
   std::vector<PetscInt> p, s;
-  std::vector<int>      img;
+  std::vector<int>      img; /* empty without periodic images: every pair is the spring itself (4 B a pair saved) */
   size_t                size() const { return p.size(); }
+  int                   Image(size_t q) const { return img.empty() ? PeriodicImages::kSelf : img[q]; }
 };
 
 class NeighbourSearch {

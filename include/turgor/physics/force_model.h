@@ -113,7 +113,6 @@ private:
   std::vector<PetscLogEvent>              events_;
   NeighbourSearch                         nb_;
   PeriodicImages                          images_;
-  std::vector<PetscReal>                  inv_mass_;           /* 0 for fixed particles */
   std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
   PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
   bool                                    has_state_ = false, keep_term_forces_ = false;

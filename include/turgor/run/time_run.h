@@ -63,6 +63,8 @@ protected:
   virtual PetscErrorCode SetUpModel() = 0;
   /* Choices that depend on the integrator the user picked (after TSSetFromOptions). */
   virtual PetscErrorCode AfterTSSetFromOptions() { return PETSC_SUCCESS; }
+  /* The end of SetUp (a restart's state read, the outputs open): what only set-up needed can go. */
+  virtual PetscErrorCode AfterSetUp() { return PETSC_SUCCESS; }
   /* The start-up report. */
   virtual PetscErrorCode Report() = 0;
   /* tip.csv: the columns after "time"; the first is the tip displacement. */
