@@ -25,6 +25,7 @@ CoarseModel::~CoarseModel()
   PetscCallVoid(VecDestroy(&Floc_));
   PetscCallVoid(VecDestroy(&rhs_r_));
   PetscCallVoid(VecDestroy(&rhs_z_));
+  PetscCallVoid(ISDestroy(&rank_free_order_));
   PetscCallVoid(DMDestroy(&dm_));
 }
 
@@ -835,6 +836,28 @@ PetscErrorCode CoarseModel::SaveState(StateBlob &state)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* PutCachedPoint's record into local point k (k < 0: read past it, another rank's point) */
+PetscErrorCode CoarseModel::GetCachedPoint(PetscInt k, StateBlob &state)
+{
+  PetscReal v[18], D[18];
+  PetscFunctionBeginUser;
+  for (PetscReal &x : v) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
+  for (int i = 0; cached_tangents_ && i < 18; i++)
+    PetscCheck(state.Get(&D[i]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material tangents are incomplete");
+  if (k < 0) PetscFunctionReturn(PETSC_SUCCESS);
+  MaterialResponse &r = response_[k];
+  r                   = MaterialResponse();
+  for (int i = 0; i < 4; i++) {
+    F_[k].a[i / 2][i % 2]    = v[i];
+    Fdot_[k].a[i / 2][i % 2] = v[4 + i];
+    r.sigma.a[i / 2][i % 2]  = v[8 + i];
+  }
+  r.rho = v[12], r.ok = v[13] != 0, r.iterations = (PetscInt)v[14], r.snes_its = (PetscInt)v[15], r.ksp_its = (PetscInt)v[16], r.residual = v[17];
+  if (!r.ok) r.reason = "(restored from the checkpoint)";
+  for (int i = 0; cached_tangents_ && i < 9; i++) tangent_[k].De[i / 3][i % 3] = D[2 * i], tangent_[k].Dv[i / 3][i % 3] = D[2 * i + 1];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* [F, Fdot, sigma, rho, ok, iterations, SNES and KSP iterations, residual; tangents when cached] */
 void CoarseModel::PutCachedPoint(size_t k, StateBlob &state) const
 {
@@ -868,28 +891,7 @@ PetscErrorCode CoarseModel::LoadState(StateBlob &state)
   cached_U_.assign(U.begin(), U.end());
   F_.resize((size_t)np);
   Fdot_.resize((size_t)np);
-  for (size_t k = 0; k < (size_t)np; k++) {
-    PetscReal v[18];
-    for (PetscReal &x : v) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
-    MaterialResponse &r = response_[k];
-    r                   = MaterialResponse();
-    for (int i = 0; i < 4; i++) {
-      F_[k].a[i / 2][i % 2]    = v[i];
-      Fdot_[k].a[i / 2][i % 2] = v[4 + i];
-      r.sigma.a[i / 2][i % 2]  = v[8 + i];
-    }
-    r.rho        = v[12];
-    r.ok         = v[13] != 0;
-    r.iterations = (PetscInt)v[14];
-    r.snes_its   = (PetscInt)v[15];
-    r.ksp_its    = (PetscInt)v[16];
-    r.residual   = v[17];
-    if (!r.ok) r.reason = "(restored from the checkpoint)";
-    if (cached_tangents_)
-      for (int i = 0; i < 9; i++)
-        PetscCheck(state.Get(&tangent_[k].De[i / 3][i % 3]) && state.Get(&tangent_[k].Dv[i / 3][i % 3]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-                   "the checkpoint's material tangents are incomplete");
-  }
+  for (size_t k = 0; k < (size_t)np; k++) PetscCall(GetCachedPoint((PetscInt)k, state));
   PetscCall(pool_.LoadState(state));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -57,6 +57,15 @@ static PetscErrorCode Extent(MPI_Comm comm, const std::vector<PetscReal> &Xref, 
 
 PetscErrorCode CoarseModel::RankFreeStateOrder(IS *order)
 {
+  PetscFunctionBeginUser;
+  if (!rank_free_order_) PetscCall(ComputeRankFreeStateOrder(&rank_free_order_)); /* once: the mesh does not change */
+  PetscCall(PetscObjectReference((PetscObject)rank_free_order_));
+  *order = rank_free_order_;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::ComputeRankFreeStateOrder(IS *order)
+{
   Vec                   X[3];
   const PetscScalar    *x[3];
   PetscInt              n, rstart;
@@ -96,6 +105,10 @@ PetscErrorCode CoarseModel::RankFreePointIds(std::vector<PetscInt> &global)
   std::vector<std::array<PetscReal, 3>> keys((size_t)(c_end_ - c_start_));
   std::vector<PetscInt>                 cells;
   PetscFunctionBeginUser;
+  if (!rank_free_ids_.empty()) { /* once: the mesh does not change */
+    global = rank_free_ids_;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(Extent(comm_, Xref_, &extent));
   for (size_t k = 0; k < keys.size(); k++) {
     const PetscReal *X = &Xref_[8 * k];
@@ -106,6 +119,7 @@ PetscErrorCode CoarseModel::RankFreePointIds(std::vector<PetscInt> &global)
   global.resize(cells.size() * npts_);
   for (size_t c = 0; c < cells.size(); c++)
     for (PetscInt q = 0; q < npts_; q++) global[c * npts_ + q] = cells[c] * npts_ + q;
+  rank_free_ids_ = global;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -164,24 +178,11 @@ PetscErrorCode CoarseModel::LoadGlobalState(Vec U, std::vector<StateBlob> &state
     }
     valid = valid && at_u != 0;
     for (size_t e = 0; e < (size_t)np; e++) {
-      PetscReal v[19], D[18];
-      for (PetscReal &x : v) PetscCheck(b.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
-      for (int i = 0; cached_tangents_ && i < 18; i++)
-        PetscCheck(b.Get(&D[i]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material tangents are incomplete");
-      auto it = of_id.find((PetscInt)v[0]);
-      if (it == of_id.end()) continue; /* another rank's point */
-      const PetscInt    k = it->second;
-      MaterialResponse &R = response_[k];
-      R                   = MaterialResponse();
-      for (int i = 0; i < 4; i++) {
-        F_[k].a[i / 2][i % 2]    = v[1 + i];
-        Fdot_[k].a[i / 2][i % 2] = v[5 + i];
-        R.sigma.a[i / 2][i % 2]  = v[9 + i];
-      }
-      R.rho = v[13], R.ok = v[14] != 0, R.iterations = (PetscInt)v[15], R.snes_its = (PetscInt)v[16], R.ksp_its = (PetscInt)v[17], R.residual = v[18];
-      if (!R.ok) R.reason = "(restored from the checkpoint)";
-      for (int i = 0; cached_tangents_ && i < 9; i++) tangent_[k].De[i / 3][i % 3] = D[2 * i], tangent_[k].Dv[i / 3][i % 3] = D[2 * i + 1];
-      found++;
+      PetscReal id;
+      PetscCheck(b.Get(&id), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
+      auto it = of_id.find((PetscInt)id);
+      PetscCall(GetCachedPoint(it == of_id.end() ? -1 : it->second, b)); /* -1: another rank's point */
+      found += it != of_id.end();
     }
   }
   /* the cache of the checkpoint's state, which U is: its local form here */

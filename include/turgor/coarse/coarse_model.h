@@ -206,9 +206,13 @@ private:
   /* F and Fdot at the material points of this rank's cells, from the local state */
   PetscErrorCode DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std::vector<Tensor2> &Fdot);
   /* true when the cached evaluation is of this local state (collective) */
-  PetscErrorCode CacheHolds(Vec Uloc, bool tangents, bool *holds);
-  PetscErrorCode FillNaN(Vec F);
-  void           PutCachedPoint(size_t k, StateBlob &state) const; /* checkpoints: local point k of the material cache */
+  PetscErrorCode        CacheHolds(Vec Uloc, bool tangents, bool *holds);
+  PetscErrorCode        FillNaN(Vec F);
+  void                  PutCachedPoint(size_t k, StateBlob &state) const; /* checkpoints: local point k of the material cache */
+  PetscErrorCode        GetCachedPoint(PetscInt k, StateBlob &state);     /* and back (k < 0: skipped) */
+  PetscErrorCode        ComputeRankFreeStateOrder(IS *order);
+  IS                    rank_free_order_ = nullptr; /* RankFreeStateOrder's, made at the first call */
+  std::vector<PetscInt> rank_free_ids_;             /* RankFreePointIds', likewise */
 
   MPI_Comm          comm_;
   DM                dm_ = nullptr;
