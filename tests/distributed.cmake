@@ -42,6 +42,12 @@ endfunction()
 # (about 250 steps).
 turgor_ranks_agree(bar OPTIONS -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_max_time 1 -fine_snapshots 0
   -fine_progress_interval 0)
+# The same bar under TS verlet without controls: the drift's velocities take their halo in place and
+# the accelerations carry room for the halo's forces (no copies of v and f, FineRun::LocalState,
+# TSVerletSetAccelerationRoom); a restart on 2 ranks continues it bit for bit.
+set(DIST_BAR_VERLET -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_type verlet -ts_max_time 0.5 -fine_snapshots 0
+  -fine_progress_interval 0)
+turgor_ranks_agree(bar_verlet RANKS 2 OPTIONS ${DIST_BAR_VERLET})
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs).
@@ -74,6 +80,7 @@ turgor_paraview_polygons(dist_box dist_box_snapshots 50)
 # Restart of a distributed run (the polygonal tissue above on 2 ranks, 6 µs, stopped after 3000
 # steps): bit for bit, with groups.csv and energy.csv.
 turgor_restart_case(dist_polygon 3000 INTERVAL 3 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_POLY} -ts_max_time 6 FILES groups.csv energy.csv)
+turgor_restart_case(dist_bar_verlet 400 INTERVAL 0.25 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_BAR_VERLET})
 
 # hard: cells that move farther than the halo's margin stop the run with an error naming the
 # option (the lid comes down onto the cells with no margin), not with missed contacts.

@@ -97,7 +97,6 @@ PetscErrorCode FineRun::ModeSetFromOptions()
 PetscErrorCode FineRun::CreateSwarm()
 {
   const ParticleSet &P = tissue_.particles;
-  PetscReal         *pos, *vel, *mass;
   PetscInt          *kind, *cell;
   PetscInt64        *pid;
 
@@ -107,35 +106,21 @@ PetscErrorCode FineRun::CreateSwarm()
   PetscCall(DMSetType(swarm_, DMSWARM));
   PetscCall(DMSetDimension(swarm_, 2));
   PetscCall(DMSwarmSetType(swarm_, DMSWARM_BASIC));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "position", 2, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "velocity", 2, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "mass", 1, PETSC_REAL));
   PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "kind", 1, PETSC_INT));
   PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "cell", 1, PETSC_INT));
   PetscCall(DMSwarmFinalizeFieldRegister(swarm_));
   PetscCall(DMSwarmSetLocalSizes(swarm_, n_local_, 0));
-  PetscCall(DMSwarmGetField(swarm_, "position", NULL, NULL, (void **)&pos));
-  PetscCall(DMSwarmGetField(swarm_, "velocity", NULL, NULL, (void **)&vel));
-  PetscCall(DMSwarmGetField(swarm_, "mass", NULL, NULL, (void **)&mass));
   PetscCall(DMSwarmGetField(swarm_, "kind", NULL, NULL, (void **)&kind));
   PetscCall(DMSwarmGetField(swarm_, "cell", NULL, NULL, (void **)&cell));
   PetscCall(DMSwarmGetField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
   for (PetscInt i = 0; i < n_local_; i++) { /* the owned particles come first */
-    pos[2 * i]     = tissue_.X[2 * i];
-    pos[2 * i + 1] = tissue_.X[2 * i + 1];
-    vel[2 * i]     = tissue_.V.empty() ? 0 : tissue_.V[2 * i];
-    vel[2 * i + 1] = tissue_.V.empty() ? 0 : tissue_.V[2 * i + 1];
-    mass[i]        = P.mass[i];
-    kind[i]        = P.kind[i];
-    cell[i]        = P.cell[i];
-    pid[i]         = P.gid[i];
+    kind[i] = P.kind[i];
+    cell[i] = P.cell[i];
+    pid[i]  = P.gid[i];
   }
   PetscCall(DMSwarmRestoreField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
   PetscCall(DMSwarmRestoreField(swarm_, "cell", NULL, NULL, (void **)&cell));
   PetscCall(DMSwarmRestoreField(swarm_, "kind", NULL, NULL, (void **)&kind));
-  PetscCall(DMSwarmRestoreField(swarm_, "mass", NULL, NULL, (void **)&mass));
-  PetscCall(DMSwarmRestoreField(swarm_, "velocity", NULL, NULL, (void **)&vel));
-  PetscCall(DMSwarmRestoreField(swarm_, "position", NULL, NULL, (void **)&pos));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -148,13 +133,18 @@ PetscErrorCode FineRun::LocalState(PetscReal t, const PetscScalar *x, const Pets
   }
   const PetscInt n2 = 2 * n_local_;
   xw_.resize(2 * n_all_);
-  vw_.resize(2 * n_all_);
   std::copy(x, x + n2, xw_.begin());
-  std::copy(v, v + n2, vw_.begin());
-  if (distributed_) PetscCall(dist_.Gather(xw_.data(), vw_.data()));
-  controls_.Impose(t, xw_.data(), vw_.data());
+  PetscReal *vl;                                                                                                    /* v with its halo */
+  if (!controls_.Active() && v == v_stale_.data() && v_stale_.size() == (size_t)(2 * n_all_)) vl = v_stale_.data(); /* room for the halo: in place */
+  else {
+    vw_.resize(2 * n_all_);
+    std::copy(v, v + n2, vw_.begin());
+    vl = vw_.data();
+  }
+  if (distributed_) PetscCall(dist_.Gather(xw_.data(), vl));
+  controls_.Impose(t, xw_.data(), vl);
   if (distributed_) PetscCall(dist_.Check(xw_.data()));
-  *xc = xw_.data(), *vc = vw_.data();
+  *xc = xw_.data(), *vc = vl;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -166,44 +156,21 @@ PetscErrorCode FineRun::TotalForces(const PetscReal *x, const PetscReal *v, Pets
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FineRun::Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a)
+PetscErrorCode FineRun::Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a, bool a_has_halo_room)
 {
   PetscFunctionBeginUser;
   if (!distributed_) { /* the state's array holds every particle: no copy */
     PetscCall(model_.ComputeAcceleration(x, v, a));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  if (a_has_halo_room) { /* the halo's forces in a's spare tail, returned from there */
+    PetscCall(TotalForces(x, v, a));
+    model_.DivideByMass(a, a, n_local_);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   fw_.resize(2 * n_all_);
   PetscCall(TotalForces(x, v, fw_.data()));
   model_.DivideByMass(fw_.data(), a, n_local_);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FineRun::AfterSolve()
-{
-  PetscReal t;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetTime(ts_, &t));
-  PetscCall(SyncSwarm(t, U_));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FineRun::SyncSwarm(PetscReal t, Vec U)
-{
-  const PetscScalar *u;
-  PetscReal         *pos, *vel;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(DMSwarmGetField(swarm_, "position", NULL, NULL, (void **)&pos));
-  PetscCall(DMSwarmGetField(swarm_, "velocity", NULL, NULL, (void **)&vel));
-  for (PetscInt k = 0; k < 2 * n_local_; k++) {
-    pos[k] = u[k];
-    vel[k] = u[2 * n_local_ + k];
-  }
-  controls_.Impose(t, pos, vel, n_local_);
-  PetscCall(DMSwarmRestoreField(swarm_, "velocity", NULL, NULL, (void **)&vel));
-  PetscCall(DMSwarmRestoreField(swarm_, "position", NULL, NULL, (void **)&pos));
-  PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -273,10 +240,11 @@ PetscErrorCode FineRun::Distribute()
   for (const auto &t : physics_.Terms()) halo_reach_ = std::max(halo_reach_, t->Reach(tissue_.particles));
   halo_reach_ += physics_.neighbour_skin;
   halo_margin_ = spec_.halo_margin >= 0 ? spec_.halo_margin : halo_reach_;
-  Tissue local;
-  PetscCall(dist_.SetUp(comm_, tissue_, cell_rank, halo_reach_, halo_margin_, &local));
-  controls_.Localize(dist_.LocalIndices(), local.particles);
-  tip_ = dist_.LocalOf(tip_);
+  Tissue                local;
+  std::vector<PetscInt> local_of;
+  PetscCall(dist_.SetUp(comm_, tissue_, cell_rank, halo_reach_, halo_margin_, &local, &local_of));
+  controls_.Localize(local_of, local.particles);
+  tip_ = tip_ >= 0 ? local_of[tip_] : -1;
   if (tip_ >= dist_.NumOwned()) tip_ = -1; /* observed by its owner */
   if (spec_.partition > 0) {               /* the report's part of every owned particle (rank 0 computed them) */
     std::vector<PetscReal> all(tissue_.particles.n);
@@ -401,9 +369,17 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSBASICSYMPLECTIC, &symplectic));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts_, TSVERLET, &kdk));
   if (!symplectic && !kdk) PetscFunctionReturn(PETSC_SUCCESS);
-  v_stale_.assign(2 * n_local_, 0); /* the split integrators' velocities of the last position update */
-  if (kdk) drift_fraction_ = 1.0;   /* one drift of h per step */
-  else {
+  /* the split integrators' velocities of the last position update; a distributed run without
+     controls gathers the halo's into their tail (LocalState: no copy of the velocities) */
+  v_stale_.assign(2 * (distributed_ && !controls_.Active() ? n_all_ : n_local_), 0);
+  if (kdk) {
+    drift_fraction_ = 1.0; /* one drift of h per step */
+    if (distributed_) {    /* its accelerations carry room for the halo's forces (Accelerations) */
+      PetscCall(TSVerletSetAccelerationRoom(ts_, 2 * (n_all_ - n_local_)));
+      acceleration_room_ = true;
+      if (v_stale_.size() == (size_t)(2 * n_all_)) std::vector<PetscReal>().swap(vw_); /* the set-up's copy: the force evaluations gather into v_stale_ */
+    }
+  } else {
     /* PETSc's basicsymplectic defaults to first-order symplectic Euler; velocity Verlet unless asked */
     const char *prefix;
     PetscBool   chosen;
@@ -485,22 +461,19 @@ PetscErrorCode FineRun::Report()
 PetscErrorCode FineRun::OpenSnapshots()
 {
   PetscFunctionBeginUser;
-  /* this rank's particles, bars and cells (a distributed run's halo is drawn by its owners) */
-  const ParticleSet *P = &tissue_.particles;
-  ParticleSet        mine;
-  if (distributed_) {
-    mine = tissue_.particles;
-    mine.springs.resize(mine.OwnedSprings());
-    mine.polygons.resize(mine.OwnedPolygons());
-    P = &mine;
-  }
+  /* this rank's particles, bars and cells (a distributed run's halo is drawn by its owners); the
+     cells' reference areas at the tissue's positions (a restart holds them until its checkpoint's
+     state is in, AfterSetUp), else at the initial state */
+  const PetscScalar *u;
+  std::string        base = "particles";
   if (!RestartFile().empty()) { /* a restart's snapshots go beside the interrupted run's, which stay whole */
-    char base[64];
-    PetscCall(PetscSNPrintf(base, sizeof base, "particles_restart_%08" PetscInt_FMT, RestartStep()));
-    PetscCall(snapshots_writer_.Open(swarm_, *P, out_.dir, base));
-    PetscFunctionReturn(PETSC_SUCCESS);
+    char name[64];
+    PetscCall(PetscSNPrintf(name, sizeof name, "particles_restart_%08" PetscInt_FMT, RestartStep()));
+    base = name;
   }
-  PetscCall(snapshots_writer_.Open(swarm_, *P, out_.dir, "particles"));
+  PetscCall(VecGetArrayRead(U_, &u));
+  PetscCall(snapshots_writer_.Open(swarm_, tissue_.particles, tissue_.X.empty() ? u : tissue_.X.data(), out_.dir, base));
+  PetscCall(VecRestoreArrayRead(U_, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -514,7 +487,6 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   std::vector<TermField>         terms;
   ParticleSnapshotWriter::Field  force{"force", "µN", std::vector<PetscReal>(2 * n_all_), 2};
   PetscFunctionBeginUser;
-  PetscCall(SyncSwarm(t, U));
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
@@ -546,7 +518,7 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
     f.values.resize(f.where == TermField::CELL ? closed : P.OwnedSprings());
     (f.where == TermField::CELL ? fields.cells : fields.bars).push_back({f.name, f.unit, std::move(f.values), 1});
   }
-  PetscCall(snapshots_writer_.Write(swarm_, t, fields, x));
+  PetscCall(snapshots_writer_.Write(swarm_, t, x, v, fields));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -702,7 +674,7 @@ PetscErrorCode FineRun::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *c
     run->model_.SetTime(t);
     const PetscReal *xc, *vc;
     PetscCall(run->LocalState(t, x, run->v_stale_.data(), &xc, &vc));
-    PetscCall(run->Accelerations(xc, vc, a));
+    PetscCall(run->Accelerations(xc, vc, a, run->acceleration_room_));
     if (run->controls_.Active()) run->controls_.AdjustAccelerations(t, a);
     for (PetscInt k = 0; k < 2 * run->n_local_; k++)
       PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
@@ -832,7 +804,8 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
   const PetscReal *x, *v;
   PetscCall(VecGetArrayRead(U, &u));
   const PetscInt n2 = 2 * n_local_;
-  PetscCall(LocalState(t, u, u + n2, &x, &v));
+  x = u, v = u + n2; /* the owned particles': the state's own, unless controls impose components */
+  if (controls_.Active()) PetscCall(LocalState(t, u, u + n2, &x, &v));
   for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
   if (tip_ >= 0) vals[0] = x[2 * tip_ + 1] - tip_y0_;
   PetscCall(VecRestoreArrayRead(U, &u));
@@ -986,9 +959,10 @@ PetscErrorCode FineRun::WriteState(PetscReal t, Vec U, StateBlob &state, bool gl
   const PetscScalar *u;
   const PetscReal   *x, *v;
   PetscFunctionBeginUser;
-  if (!global) state.Put(v_stale_);
+  const PetscInt n_stale = v_stale_.empty() ? 0 : n_local_; /* only the split integrators have them (the owned particles') */
+  if (!global) state.Put(v_stale_.data(), 2 * (size_t)n_stale);
   else {
-    const PetscInt n = (PetscInt)v_stale_.size() / 2; /* only the split integrators have them */
+    const PetscInt n = n_stale;
     state.Put((PetscReal)n);
     for (PetscInt l = 0; l < n; l++)
       for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
@@ -1106,8 +1080,8 @@ PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
   PetscReal          energy, nrec;
   PetscFunctionBeginUser;
   PetscCall(PrimeReferences());
-  const size_t n_stale = v_stale_.size(); /* 2 n_local_ with a split integrator, else 0 */
-  PetscCheck(state.Get(v_stale_) && v_stale_.size() == n_stale, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+  const size_t n_stale = v_stale_.empty() ? 0 : 2 * (size_t)n_local_; /* with a split integrator: the owned particles' */
+  PetscCheck(state.Get(v_stale_.data(), n_stale), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "the checkpoint's velocities of the last drift do not fit this scene");
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));

@@ -28,12 +28,12 @@ static PetscErrorCode WriteIntegerField(MPI_Comm comm, PetscViewer viewer, const
    distributed run's halo particles are other ranks' rows), else this rank's offset + its index. */
 static PetscInt FileIndex(const ParticleSet &P, PetscInt start, PetscInt i)
 {
-  return P.index.empty() ? start + i : P.index[i];
+  return i < P.NumOwned() ? start + i : P.halo_index[i - P.NumOwned()];
 }
 
-PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, const std::string &dir, const std::string &base)
+PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, const PetscReal *x, const std::string &dir, const std::string &base)
 {
-  PetscInt n, start = 0, ns = (PetscInt)P.springs.size();
+  PetscInt n, start = 0, ns = (PetscInt)P.OwnedSprings();
   PetscFunctionBeginUser;
   PetscCall(Close());
   PetscCall(PetscObjectGetComm((PetscObject)swarm, &comm_));
@@ -46,7 +46,7 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
   PetscCall(PetscViewerHDF5Open(comm_, (dir + "/" + h5name_).c_str(), FILE_MODE_WRITE, &viewer_));
   PetscCall(DMSwarmGetSize(swarm, &n_global_));
   PetscCallMPI(MPI_Allreduce(&ns, &n_springs_, 1, MPIU_INT, MPI_SUM, comm_));
-  bars_local_ = P.springs.size();
+  bars_local_ = P.OwnedSprings();
 
   /* static data */
   PetscCall(PetscViewerHDF5PushGroup(viewer_, "/static"));
@@ -80,18 +80,16 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
   area0_.clear();
   bars_.clear();
   n_polys_ = mixed_size_ = nodes_per_poly_ = 0;
-  PetscInt any                             = P.polygons.empty() ? 0 : 1;
+  PetscInt     any                         = P.polygons.empty() ? 0 : 1;
+  const size_t npoly                       = P.OwnedPolygons();
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPIU_INT, MPI_MAX, comm_));
   if (any) {
-    PetscReal *pos;
-    PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
-    for (const PolygonCell &c : P.polygons)
-      if (!c.open) {
-        polys_.push_back(c.nodes);
-        area0_.push_back(PolygonArea(c.nodes, pos));
+    for (size_t c = 0; c < npoly; c++)
+      if (!P.polygons[c].open) {
+        polys_.push_back(P.polygons[c].nodes);
+        area0_.push_back(PolygonArea(P.polygons[c].nodes, x));
       }
-    PetscCall(DMSwarmRestoreField(swarm, "position", NULL, NULL, (void **)&pos));
-    bars_       = P.springs;
+    bars_.assign(P.springs.begin(), P.springs.begin() + bars_local_);
     PetscInt np = (PetscInt)polys_.size(), lo = PETSC_MAX_INT, hi = 0, size = 0;
     for (auto &c : polys_) lo = PetscMin(lo, (PetscInt)c.size()), hi = PetscMax(hi, (PetscInt)c.size()), size += 2 + (PetscInt)c.size();
     PetscCallMPI(MPI_Allreduce(&np, &n_polys_, 1, MPIU_INT, MPI_SUM, comm_));
@@ -100,7 +98,7 @@ PetscErrorCode ParticleSnapshotWriter::Open(DM swarm, const ParticleSet &P, cons
     PetscCallMPI(MPI_Allreduce(&size, &mixed_size_, 1, MPIU_INT, MPI_SUM, comm_));
     nodes_per_poly_ = lo == hi ? lo : 0;
     std::vector<PetscInt> conn, ids;
-    for (size_t c = 0; c < P.polygons.size(); c++) {
+    for (size_t c = 0; c < npoly; c++) {
       if (P.polygons[c].open) continue;
       if (!nodes_per_poly_) {
         conn.push_back(3); /* XDMF's Polygon type code in a Mixed topology */
@@ -143,7 +141,7 @@ PetscErrorCode ParticleSnapshotWriter::WriteVector(const std::string &name, cons
 }
 
 /* Per snapshot: A/A0 of every closed cell, the callers' cell fields and every bar's strain. */
-PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const PetscReal *x_bars, const std::vector<Field> &cell_fields)
+PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, const std::vector<Field> &cell_fields)
 {
   PetscFunctionBeginUser;
   const PetscInt                                              np = (PetscInt)polys_.size(), nb = (PetscInt)bars_.size();
@@ -152,8 +150,7 @@ PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, co
     std::vector<PetscReal> ratio(np), strain(nb);
     for (PetscInt c = 0; c < np; c++) ratio[c] = PolygonArea(polys_[c], x) / area0_[c];
     for (PetscInt b = 0; b < nb; b++)
-      strain[b] = std::hypot(x_bars[2 * bars_[b].j] - x_bars[2 * bars_[b].i], x_bars[2 * bars_[b].j + 1] - x_bars[2 * bars_[b].i + 1]) / bars_[b].rest_length -
-                  1;
+      strain[b] = std::hypot(x[2 * bars_[b].j] - x[2 * bars_[b].i], x[2 * bars_[b].j + 1] - x[2 * bars_[b].i + 1]) / bars_[b].rest_length - 1;
     fields.push_back({"area_ratio", ratio});
     fields.push_back({"bar_strain", strain});
   }
@@ -170,7 +167,7 @@ PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fields &fields, const PetscReal *positions)
+PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const PetscReal *x, const PetscReal *vel, const Fields &fields)
 {
   char     group[64];
   Vec      v;
@@ -196,21 +193,16 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fie
      positions stay (n x 2), an XY geometry; the velocity is written (n x 3) with z = 0, since
      ParaView's Xdmf3 readers keep a 2-component vector as 2 components and no filter takes it. */
   for (const char *field : {"position", "velocity"}) {
-    PetscInt      n, bs;
-    PetscDataType type;
-    PetscReal    *data;
-    PetscScalar  *a;
-    PetscCall(DMSwarmGetLocalSize(swarm, &n));
-    PetscCall(DMSwarmGetField(swarm, field, &bs, &type, (void **)&data));
-    const PetscInt out = field[0] == 'v' ? 3 : bs;
-    PetscCall(VecCreateMPI(comm_, out * n, PETSC_DETERMINE, &v));
+    const PetscReal *data = field[0] == 'v' ? vel : x;
+    const PetscInt   bs = 2, out = field[0] == 'v' ? 3 : bs;
+    PetscScalar     *a;
+    PetscCall(VecCreateMPI(comm_, out * nlocal, PETSC_DETERMINE, &v));
     PetscCall(VecSetBlockSize(v, out));
     PetscCall(PetscObjectSetName((PetscObject)v, field));
     PetscCall(VecGetArray(v, &a));
-    for (PetscInt i = 0; i < n; i++)
+    for (PetscInt i = 0; i < nlocal; i++)
       for (PetscInt d = 0; d < out; d++) a[out * i + d] = d < bs ? data[bs * i + d] : 0.0;
     PetscCall(VecRestoreArray(v, &a));
-    PetscCall(DMSwarmRestoreField(swarm, field, &bs, &type, (void **)&data));
     PetscCall(VecView(v, viewer_));
     PetscCall(VecDestroy(&v));
   }
@@ -250,12 +242,8 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Fie
       it->fields.push_back({f.name, f.unit, {}, 1});
     }
   }
-  if (n_polys_ > 0) {
-    PetscReal *pos;
-    PetscCall(DMSwarmGetField(swarm, "position", NULL, NULL, (void **)&pos));
-    PetscCall(WritePolygonFields(pos, positions ? positions : pos, fields.cells));
-    PetscCall(DMSwarmRestoreField(swarm, "position", NULL, NULL, (void **)&pos));
-  } else PetscCheck(fields.cells.empty(), comm_, PETSC_ERR_ARG_WRONG, "Cell fields given for a tissue without polygonal cells");
+  if (n_polys_ > 0) PetscCall(WritePolygonFields(x, fields.cells));
+  else PetscCheck(fields.cells.empty(), comm_, PETSC_ERR_ARG_WRONG, "Cell fields given for a tissue without polygonal cells");
   PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
   PetscCall(PetscViewerHDF5PopGroup(viewer_));
   {

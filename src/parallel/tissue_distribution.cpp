@@ -61,7 +61,7 @@ TissueDistribution::~TissueDistribution()
 }
 
 PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin,
-                                         Tissue *local)
+                                         Tissue *local, std::vector<PetscInt> *local_of_out)
 {
   const ParticleSet &G = global.particles;
   const PetscInt     N = G.n;
@@ -118,7 +118,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   }
 
   /* local particles: owned, then the other ranks' wall particles of the local cells */
-  std::vector<PetscInt> order;
+  std::vector<PetscInt> &local_of_ = *local_of_out, order;
   local_of_.assign(N, -1);
   for (PetscInt g = 0; g < N; g++)
     if (owner_rank[g] == rank) local_of_[g] = (PetscInt)order.size(), order.push_back(g);
@@ -141,20 +141,26 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   P.n            = n;
   P.n_owned      = n_owned_;
   P.bar_radius   = G.bar_radius;
-  P.mass.resize(n), P.kind.resize(n), P.cell.resize(n), P.gid.resize(n), P.fixed.resize(n), P.index.resize(n);
+  P.mass.resize(n), P.kind.resize(n), P.cell.resize(n), P.gid.resize(n), P.fixed.resize(n), P.halo_index.resize(n - n_owned_);
   T.X.resize(2 * n);
   if (!global.V.empty()) T.V.resize(2 * n);
   for (PetscInt l = 0; l < n; l++) {
     const PetscInt g = order[l];
     P.mass[l] = G.mass[g], P.kind[l] = G.kind[g], P.cell[l] = G.cell[g], P.gid[l] = G.gid[g], P.fixed[l] = G.fixed[g];
-    P.index[l] = offset[owner_rank[g]] + pos[g];
+    if (l >= n_owned_) P.halo_index[l - n_owned_] = offset[owner_rank[g]] + pos[g]; /* an owned one's is start_ + l */
     for (int d = 0; d < 2; d++) {
       T.X[2 * l + d] = global.X[2 * g + d];
       if (!global.V.empty()) T.V[2 * l + d] = global.V[2 * g + d];
     }
   }
-  /* springs with both ends here; this rank's (end i owned) first */
+  /* springs with both ends here; this rank's (end i owned) first (counted first: no growth slack) */
   std::vector<PetscInt> spring_of(G.springs.size(), -1);
+  {
+    size_t count = 0;
+    for (const Spring &s : G.springs) count += local_of_[s.i] >= 0 && local_of_[s.j] >= 0;
+    P.springs.reserve(count);
+    P.spring_gid.reserve(count);
+  }
   for (int pass = 0; pass < 2; pass++)
     for (size_t s = 0; s < G.springs.size(); s++) {
       const PetscInt i = local_of_[G.springs[s].i], j = local_of_[G.springs[s].j];
@@ -194,17 +200,22 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
       if (polygon_of[nc.second] >= 0) T.named_cells.push_back({nc.first, polygon_of[nc.second]});
   }
   /* this rank's cells: their rings, and every particle that makes their boxes (rings and fluid) */
-  owned_rings_.clear();
+  ring_start_.assign(1, 0);
+  ring_.clear();
   {
     std::vector<std::vector<PetscInt>> fluid(n_cells_);
     for (PetscInt i = 0; i < N; i++)
       if (G.kind[i] == KIND_FLUID && crank[owner_cell[i]] == rank) fluid[owner_cell[i]].push_back(local_of_[i]);
+    size_t total = 0;
+    for (PetscInt c : owned_cells_) total += rings[c].size() + fluid[c].size();
+    ring_.reserve(total);
     for (PetscInt c : owned_cells_) {
       std::vector<PetscInt> ring;
       for (PetscInt i : rings[c]) ring.push_back(local_of_[i]);
-      if (c < global.NumCells()) T.cell_walls.push_back(ring);
-      ring.insert(ring.end(), fluid[c].begin(), fluid[c].end());
-      owned_rings_.push_back(ring);
+      ring_.insert(ring_.end(), ring.begin(), ring.end());
+      ring_.insert(ring_.end(), fluid[c].begin(), fluid[c].end());
+      ring_start_.push_back((PetscInt)ring_.size());
+      if (c < global.NumCells()) T.cell_walls.push_back(std::move(ring));
     }
   }
   for (int d = 0; d < 2; d++) T.lo[d] = global.lo[d], T.hi[d] = global.hi[d];
@@ -261,7 +272,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
   now.resize(4 * owned_cells_.size());
   for (size_t k = 0; k < owned_cells_.size(); k++) {
     Box b;
-    for (PetscInt i : owned_rings_[k]) b.Add(&x[2 * i]);
+    for (PetscInt r = ring_start_[k]; r < ring_start_[k + 1]; r++) b.Add(&x[2 * ring_[r]]);
     const PetscReal e[4] = {b.lo[0], b.lo[1], b.hi[0], b.hi[1]};
     for (int q = 0; q < 4; q++) {
       now[4 * k + q] = e[q];

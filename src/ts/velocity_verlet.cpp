@@ -8,18 +8,40 @@ namespace {
 struct Verlet {
   IS               is_q = NULL, is_p = NULL;
   TS               subts_q = NULL, subts_p = NULL;
-  Vec              X0 = NULL, A0 = NULL, A1 = NULL; /* state and accelerations at the step's ends (A1 also holds the drift's rate) */
-  PetscBool        have_a1     = PETSC_FALSE;       /* A1 holds a(x) at the solution of time t_a1, state state_a1 */
+  Vec              A0 = NULL, A1 = NULL;      /* accelerations at the step's ends (A1 also holds the drift's rate) */
+  PetscBool        have_a1     = PETSC_FALSE; /* A1 holds a(x) at the solution of time t_a1, state state_a1 */
   PetscReal        t_a1        = 0;
   PetscObjectState state_a1    = 0;
   PetscInt         evaluations = 0, reused = 0;
+  PetscInt         room     = 0;            /* TSVerletSetAccelerationRoom */
+  PetscScalar     *array[2] = {NULL, NULL}; /* A0's and A1's with that room */
 };
+
+/* a duplicate of p whose array has `room` spare entries after its local part (*array: allocated
+   here, freed by the caller after the Vec) */
+PetscErrorCode DuplicateWithRoom(Vec p, PetscInt room, Vec *A, PetscScalar **array)
+{
+  PetscInt n, N, bs;
+  PetscFunctionBeginUser;
+  *array = NULL;
+  if (!room) {
+    PetscCall(VecDuplicate(p, A));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(VecGetLocalSize(p, &n));
+  PetscCall(VecGetSize(p, &N));
+  PetscCall(VecGetBlockSize(p, &bs));
+  PetscCall(PetscCalloc1(n + room, array));
+  PetscCall(VecCreateMPIWithArray(PetscObjectComm((PetscObject)p), bs, n, N, *array, A));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode TSReset_Verlet(TS ts)
 {
   Verlet *vv = (Verlet *)ts->data;
   PetscFunctionBeginUser;
-  for (Vec *v : {&vv->X0, &vv->A0, &vv->A1}) PetscCall(VecDestroy(v));
+  for (Vec *v : {&vv->A0, &vv->A1}) PetscCall(VecDestroy(v));
+  for (PetscScalar *&a : vv->array) PetscCall(PetscFree(a));
   vv->have_a1 = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -48,10 +70,9 @@ PetscErrorCode TSSetUp_Verlet(TS ts)
   PetscCheck(vv->subts_q && vv->subts_p, PetscObjectComm((PetscObject)ts), PETSC_ERR_USER,
              "TS verlet needs the right-hand sides of the splits \"position\" and \"momentum\" (TSRHSSplitSetRHSFunction)");
   PetscCall(TSReset_Verlet(ts));
-  PetscCall(VecDuplicate(ts->vec_sol, &vv->X0));
   PetscCall(VecGetSubVector(ts->vec_sol, vv->is_p, &p));
-  PetscCall(VecDuplicate(p, &vv->A0));
-  PetscCall(VecDuplicate(p, &vv->A1));
+  PetscCall(DuplicateWithRoom(p, vv->room, &vv->A0, &vv->array[0]));
+  PetscCall(DuplicateWithRoom(p, vv->room, &vv->A1, &vv->array[1]));
   PetscCall(VecRestoreSubVector(ts->vec_sol, vv->is_p, &p));
   PetscCall(TSGetAdapt(ts, &ts->adapt));
   PetscCall(TSAdaptCandidatesClear(ts->adapt)); /* a fixed step */
@@ -68,6 +89,27 @@ PetscErrorCode Accelerate(TS ts, Verlet *vv, PetscReal t, Vec q, Vec A)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The state at the start of the last step, from its end: no copy of the state is kept (32 B a
+   particle). The step's own operations undone in reverse, v+ = v_{n+1} - h/2 a(x_{n+1}),
+   x_n = x_{n+1} - h v+, v_n = v+ - h/2 a(x_n): exact but for round-off (within an ulp or so of
+   x_{n+1} and v_{n+1}), which is all the interpolation of outputs and the rollback of a rejected
+   step (whose state ends the run) need. Y: the solution itself, or a work vector. */
+PetscErrorCode StepBack(TS ts, Verlet *vv, Vec Y)
+{
+  const PetscReal h = ts->time_step;
+  Vec             q, p;
+  PetscFunctionBeginUser;
+  if (Y != ts->vec_sol) PetscCall(VecCopy(ts->vec_sol, Y));
+  PetscCall(VecGetSubVector(Y, vv->is_q, &q));
+  PetscCall(VecGetSubVector(Y, vv->is_p, &p));
+  PetscCall(VecAXPY(p, -0.5 * h, vv->A1));
+  PetscCall(VecAXPY(q, -h, p));
+  PetscCall(VecAXPY(p, -0.5 * h, vv->A0));
+  PetscCall(VecRestoreSubVector(Y, vv->is_p, &p));
+  PetscCall(VecRestoreSubVector(Y, vv->is_q, &q));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TSStep_Verlet(TS ts)
 {
   Verlet          *vv = (Verlet *)ts->data;
@@ -76,7 +118,6 @@ PetscErrorCode TSStep_Verlet(TS ts)
   PetscObjectState state;
   PetscBool        ok;
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(ts->vec_sol, vv->X0));
   PetscCall(PetscObjectStateGet((PetscObject)ts->vec_sol, &state));
   /* the acceleration at x_n: the previous step's last one, unless the solution was changed since */
   const bool reuse = vv->have_a1 && vv->t_a1 == t0 && vv->state_a1 == state;
@@ -100,8 +141,14 @@ PetscErrorCode TSStep_Verlet(TS ts)
   PetscCall(TSPostStage(ts, ts->ptime, 0, &ts->vec_sol));
   PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime, ts->vec_sol, &ok));
   if (ok) PetscCall(TSFunctionDomainError(ts, ts->ptime, ts->vec_sol, &ok));
-  if (!ok) { /* back to the start of the step; a fixed-step integrator cannot retry smaller */
-    PetscCall(VecCopy(vv->X0, ts->vec_sol));
+  if (!ok) { /* back to the start of the step (to round-off); a fixed-step integrator cannot retry smaller */
+    PetscReal norm;
+    PetscCall(StepBack(ts, vv, ts->vec_sol));
+    PetscCall(VecNorm(ts->vec_sol, NORM_INFINITY, &norm));
+    PetscCheck(PetscIsNormalReal(norm) || norm == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_FP,
+               "TS verlet: the step from t = %g was rejected and its start cannot be recovered from a non-finite end (the step h = %g is likely "
+               "above the stability limit: lower it)",
+               (double)t0, (double)h);
     ts->ptime   = t0;
     vv->have_a1 = PETSC_FALSE;
     ts->reason  = TS_DIVERGED_STEP_REJECTED;
@@ -113,31 +160,30 @@ PetscErrorCode TSStep_Verlet(TS ts)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Cubic Hermite over [t_n, t_{n+1}]: x from (x, v) at both ends, v from (v, a) at both ends. */
+/* Cubic Hermite over [t_n, t_{n+1}]: x from (x, v) at both ends, v from (v, a) at both ends; the
+   start's (x_n, v_n) recovered from the end (StepBack) into X, then combined there in place. */
 PetscErrorCode TSInterpolate_Verlet(TS ts, PetscReal t, Vec X)
 {
   Verlet         *vv = (Verlet *)ts->data;
   const PetscReal h = ts->time_step, s = (t - (ts->ptime - h)) / h;
   const PetscReal h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s), h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
-  Vec             q0, p0, q1, p1, q, p;
+  Vec             q1, p1, q, p;
   PetscFunctionBeginUser;
   PetscCheck(vv->have_a1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ORDER, "TS verlet: nothing to interpolate before the first step");
-  PetscCall(VecGetSubVector(vv->X0, vv->is_q, &q0));
-  PetscCall(VecGetSubVector(vv->X0, vv->is_p, &p0));
+  PetscCall(StepBack(ts, vv, X)); /* X = (x_n, v_n) */
   PetscCall(VecGetSubVector(ts->vec_sol, vv->is_q, &q1));
   PetscCall(VecGetSubVector(ts->vec_sol, vv->is_p, &p1));
   PetscCall(VecGetSubVector(X, vv->is_q, &q));
   PetscCall(VecGetSubVector(X, vv->is_p, &p));
-  PetscCall(VecAXPBYPCZ(q, h00, h01, 0.0, q0, q1)); /* the velocities are dx/dt: v+ would be the drift's; the ends' v are used */
-  PetscCall(VecAXPBYPCZ(q, h10 * h, h11 * h, 1.0, p0, p1));
-  PetscCall(VecAXPBYPCZ(p, h00, h01, 0.0, p0, p1));
-  PetscCall(VecAXPBYPCZ(p, h10 * h, h11 * h, 1.0, vv->A0, vv->A1));
+  /* the velocities are dx/dt: v+ would be the drift's; the ends' v are used */
+  PetscCall(VecAXPBYPCZ(q, h01, h10 * h, h00, q1, p)); /* q = h00 x_n + h01 x_{n+1} + h h10 v_n */
+  PetscCall(VecAXPY(q, h11 * h, p1));
+  PetscCall(VecAXPBYPCZ(p, h01, h10 * h, h00, p1, vv->A0)); /* p = h00 v_n + h01 v_{n+1} + h h10 a_n */
+  PetscCall(VecAXPY(p, h11 * h, vv->A1));
   PetscCall(VecRestoreSubVector(X, vv->is_p, &p));
   PetscCall(VecRestoreSubVector(X, vv->is_q, &q));
   PetscCall(VecRestoreSubVector(ts->vec_sol, vv->is_p, &p1));
   PetscCall(VecRestoreSubVector(ts->vec_sol, vv->is_q, &q1));
-  PetscCall(VecRestoreSubVector(vv->X0, vv->is_p, &p0));
-  PetscCall(VecRestoreSubVector(vv->X0, vv->is_q, &q0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -223,5 +269,18 @@ PetscErrorCode TSVerletSetLastAcceleration(TS ts, Vec A1)
   PetscCall(PetscObjectStateGet((PetscObject)ts->vec_sol, &vv->state_a1));
   vv->t_a1    = ts->ptime;
   vv->have_a1 = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSVerletSetAccelerationRoom(TS ts, PetscInt extra)
+{
+  PetscBool is;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVERLET, &is));
+  PetscCheck(is, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "TSVerletSetAccelerationRoom: the TS is not of type verlet");
+  PetscCheck(extra >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSVerletSetAccelerationRoom: extra = %" PetscInt_FMT " < 0", extra);
+  Verlet *vv = (Verlet *)ts->data;
+  PetscCheck(!vv->A0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ORDER, "TSVerletSetAccelerationRoom: call before TSSetUp");
+  vv->room = extra;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,6 +1,7 @@
 #pragma once
 #include <turgor/core/petsc_compat.h>
 #include <petscsys.h>
+#include <algorithm>
 #include <vector>
 
 namespace turgor {
@@ -17,6 +18,11 @@ public:
   {
     data.push_back((PetscReal)v.size());
     data.insert(data.end(), v.begin(), v.end());
+  }
+  void Put(const PetscReal *v, size_t n) /* as a vector of n numbers */
+  {
+    data.push_back((PetscReal)n);
+    data.insert(data.end(), v, v + n);
   }
   bool Get(PetscReal *v)
   {
@@ -37,6 +43,14 @@ public:
     if (!Get(&n) || n < 0 || pos + (size_t)n > data.size()) return false;
     v.assign(data.begin() + pos, data.begin() + pos + (size_t)n);
     pos += (size_t)n;
+    return true;
+  }
+  bool Get(PetscReal *v, size_t n) /* a vector that must have n numbers */
+  {
+    PetscReal m;
+    if (!Get(&m) || m != (PetscReal)n || pos + n > data.size()) return false;
+    std::copy(data.begin() + pos, data.begin() + pos + n, v);
+    pos += n;
     return true;
   }
   bool Done() const { return pos == data.size(); }

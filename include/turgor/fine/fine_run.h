@@ -74,7 +74,6 @@ protected:
   PetscInt                 SnapshotCount() const override { return snapshots_writer_.Count(); }
   const char              *SnapshotFiles() const override { return "particles.h5 + particles.xmf"; }
   PetscInt                 FunctionEvaluations() const override { return rhs_evals_; }
-  PetscErrorCode           AfterSolve() override;
   PetscErrorCode           AddSummary(JsonObject &js) override;
   PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override
@@ -119,8 +118,11 @@ private:
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   PetscErrorCode        AfterStep(PetscReal t, Vec U) override; /* the terms' internal state at the accepted state */
 
+  /* The DMSwarm of this rank's owned particles: their ids (and ranks), kinds and cells (snapshots).
+     Not their positions and velocities: those live once, in the state Vec U_ (a copy in the swarm
+     was 32 B a particle that nothing read but the snapshots, which now take them from the state);
+     nor their masses, which the force model holds (ParticleSet) and nothing read from the swarm. */
   PetscErrorCode CreateSwarm();
-  PetscErrorCode SyncSwarm(PetscReal t, Vec U);
   /* The model's view of a state (x, v of this rank's particles): every local particle's x and v,
      the halo's from their owners, with the controlled components imposed at t (work arrays); a
      serial run without controls gets the state's own arrays. Collective in a distributed run. */
@@ -128,8 +130,9 @@ private:
   /* f[2 n_all] = the forces at the local state (x, v); on the owned particles whole (the halo's
      shares returned by the other ranks). */
   PetscErrorCode TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f);
-  /* a[2 n] of the owned particles at the local state (x, v) */
-  PetscErrorCode Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a);
+  /* a[2 n] of the owned particles at the local state (x, v); a_has_halo_room: a has 2 n_all entries
+     (TSVerletSetAccelerationRoom), the halo's forces pass through its tail instead of fw_ */
+  PetscErrorCode Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a, bool a_has_halo_room = false);
   PetscErrorCode Distribute();      /* -fine_distribute on several ranks: partition, halo, this rank's tissue */
   PetscErrorCode PrimeReferences(); /* a restart: the terms' lazily taken references, from the initial state */
   PetscErrorCode ChooseTimeStep();
@@ -151,9 +154,10 @@ private:
   std::vector<PetscReal>     fw_;              /* forces of the local particles */
   PetscReal                  halo_reach_  = 0; /* the interactions' reach (with the skin) and the margin, µm */
   PetscReal                  halo_margin_ = 0;
-  std::vector<PetscReal>     v_stale_; /* velocities seen by the last position update (Verlet) */
+  std::vector<PetscReal>     v_stale_;                   /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
+  bool                       acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
   Controls                   controls_;
-  std::vector<PetscReal>     xw_, vw_;            /* controls only: the state with the constraints imposed */
+  std::vector<PetscReal>     xw_, vw_;            /* controls or a distributed run: the local state (halo, constraints imposed) */
   PetscReal                  drift_fraction_ = 0; /* splitting integrators: a position update's share of the step */
   std::vector<TimeStepLimit> limits_;
   PetscReal                  dt_stable_ = 0, dt_initial_ = 0;

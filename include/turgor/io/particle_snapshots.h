@@ -24,9 +24,11 @@ namespace turgor {
 
 class ParticleSnapshotWriter {
 public:
-  /* `swarm` holds fields "position" and "velocity" (bs 2) and "kind", "cell" (int); `P` gives the
-     springs and fixed flags of the local particles (local indices). Files: dir/base.h5, dir/base.xmf. */
-  PetscErrorCode Open(DM swarm, const ParticleSet &P, const std::string &dir, const std::string &base);
+  /* `swarm` holds this rank's owned particles with fields "kind" and "cell" (int); `P` gives the
+     fixed flags and this rank's springs and polygons (its owned ones, local indices: a distributed
+     run's halo particles are drawn by their owners); x: the local positions (P's numbering) of the
+     cells' reference areas. Files: dir/base.h5, dir/base.xmf. */
+  PetscErrorCode Open(DM swarm, const ParticleSet &P, const PetscReal *x, const std::string &dir, const std::string &base);
   /* A field of one snapshot: `components` (1, or 2 for a vector) values per item. */
   struct Field {
     std::string            name, unit;
@@ -48,16 +50,17 @@ public:
     std::vector<Field>    nodes, cells, bars;
     std::vector<Segments> segments;
   };
-  /* positions: of all of P's particles (a distributed run: with the halo, whose bars' strains need
-     them); NULL: the swarm's */
-  PetscErrorCode Write(DM swarm, PetscReal time, const Fields &fields = {}, const PetscReal *positions = nullptr);
+  /* x, v: the positions and velocities of P's particles (owned first; a distributed run's halo
+     after them, which its bars' strains need); the owned ones are written. The swarm holds no
+     copy of them: they live once, in the time integrator's state. */
+  PetscErrorCode Write(DM swarm, PetscReal time, const PetscReal *x, const PetscReal *v, const Fields &fields = {});
   PetscErrorCode Close();
   ~ParticleSnapshotWriter() { PetscCallVoid(Close()); }
   PetscInt Count() const { return (PetscInt)times_.size(); }
 
 private:
   PetscErrorCode WriteXdmf();
-  PetscErrorCode WritePolygonFields(const PetscReal *x, const PetscReal *x_bars, const std::vector<Field> &cell_fields);
+  PetscErrorCode WritePolygonFields(const PetscReal *x, const std::vector<Field> &cell_fields);
   PetscErrorCode WriteVector(const std::string &name, const std::vector<PetscReal> &values, int components);
 
   MPI_Comm    comm_   = MPI_COMM_NULL;

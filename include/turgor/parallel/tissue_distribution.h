@@ -35,8 +35,11 @@ public:
   ~TissueDistribution();
   /* Collective. Every rank holds the whole tissue `global`; cell_rank[c] is the rank that owns cell
      c (Tissue::cell_walls order). Builds this rank's tissue `local` (owned particles, then the halo;
-     ParticleSet's owned counts and index set) and the exchange pattern. A periodic tissue is refused. */
-  PetscErrorCode SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin, Tissue *local);
+     ParticleSet's owned counts and halo indices) and the exchange pattern; local_of[g] is the local
+     index of global particle g, -1 where this rank has no copy (for the set-up's own maps: it is
+     not kept, a rank holding N entries would not scale). A periodic tissue is refused. */
+  PetscErrorCode SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin, Tissue *local,
+                       std::vector<PetscInt> *local_of);
 
   /* a[2n] (n local particles): fill the halo part a[2 n_owned ...] from the owners' owned parts;
      b likewise if not NULL (both in flight at once: one latency). */
@@ -46,31 +49,28 @@ public:
   /* Collective: is the halo still enough at these local positions x[2n]? (see above) */
   PetscErrorCode Check(const PetscReal *x);
 
-  PetscInt NumOwned() const { return n_owned_; }
-  PetscInt NumHalo() const { return n_halo_; }
-  PetscInt Start() const { return start_; } /* this rank's first particle in the distributed state */
-  /* local index of global particle g, -1 if this rank has no copy */
-  PetscInt                     LocalOf(PetscInt g) const { return g >= 0 && g < (PetscInt)local_of_.size() ? local_of_[g] : -1; }
-  const std::vector<PetscInt> &LocalIndices() const { return local_of_; }       /* [global particles] */
-  PetscInt                     NumLocalCells() const { return n_local_cells_; } /* owned + halo cells */
-  PetscInt                     NumOwnedCells() const { return (PetscInt)owned_cells_.size(); }
-  PetscInt                     FullChecks() const { return full_checks_; }
-  PetscReal                    Bytes() const { return bytes_; } /* received by Gather and sent by Return so far */
-  PetscReal                    Slack() const { return slack_; }
+  PetscInt  NumOwned() const { return n_owned_; }
+  PetscInt  NumHalo() const { return n_halo_; }
+  PetscInt  Start() const { return start_; }                 /* this rank's first particle in the distributed state */
+  PetscInt  NumLocalCells() const { return n_local_cells_; } /* owned + halo cells */
+  PetscInt  NumOwnedCells() const { return (PetscInt)owned_cells_.size(); }
+  PetscInt  FullChecks() const { return full_checks_; }
+  PetscReal Bytes() const { return bytes_; } /* received by Gather and sent by Return so far */
+  PetscReal Slack() const { return slack_; }
 
 private:
-  MPI_Comm                           comm_    = MPI_COMM_NULL;
-  PetscSF                            sf_      = nullptr;
-  PetscInt                           n_owned_ = 0, n_halo_ = 0, start_ = 0, n_cells_ = 0, n_local_cells_ = 0, full_checks_ = 0;
-  std::vector<PetscInt>              local_of_;    /* [global particles] */
-  std::vector<PetscInt>              owned_cells_; /* global ids of this rank's cells */
-  std::vector<std::vector<PetscInt>> owned_rings_; /* their particles: rings and fluid (local indices) */
-  std::vector<char>                  local_cell_;  /* [cells]: owned or halo here */
-  PetscReal                          reach_ = 0, margin_ = 0, slack_ = 0;
-  std::vector<PetscReal>             box_check_; /* this rank's cells' boxes at the last full check */
-  std::vector<PetscReal>             box_now_;   /* ... and now (Check's work array, kept: it runs every evaluation) */
-  mutable PetscReal                  bytes_       = 0;
-  PetscLogEvent                      ev_exchange_ = 0, ev_check_ = 0; /* TgHaloExchange (Gather, Return), TgHaloCheck */
+  MPI_Comm               comm_    = MPI_COMM_NULL;
+  PetscSF                sf_      = nullptr;
+  PetscInt               n_owned_ = 0, n_halo_ = 0, start_ = 0, n_cells_ = 0, n_local_cells_ = 0, full_checks_ = 0;
+  std::vector<PetscInt>  owned_cells_; /* global ids of this rank's cells */
+  std::vector<PetscInt>  ring_start_;  /* [owned cells + 1] into ring_: */
+  std::vector<PetscInt>  ring_;        /* their particles: rings and fluid (local indices) */
+  std::vector<char>      local_cell_;  /* [cells]: owned or halo here */
+  PetscReal              reach_ = 0, margin_ = 0, slack_ = 0;
+  std::vector<PetscReal> box_check_; /* this rank's cells' boxes at the last full check */
+  std::vector<PetscReal> box_now_;   /* ... and now (Check's work array, kept: it runs every evaluation) */
+  mutable PetscReal      bytes_       = 0;
+  PetscLogEvent          ev_exchange_ = 0, ev_check_ = 0; /* TgHaloExchange (Gather, Return), TgHaloCheck */
 };
 
 } // namespace turgor

@@ -11,7 +11,9 @@
    Like basicsymplectic, it needs the two splits "position" (dx/dt = v) and "momentum" (dv/dt = a)
    of TSRHSSplitSetIS/TSRHSSplitSetRHSFunction; a force that depends on v (dashpots, viscosity)
    sees the velocity of the preceding drift, v+. The step is fixed (no TSAdapt); TSInterpolate is a
-   cubic Hermite interpolation of x (with v) and of v (with a) over the last step.
+   cubic Hermite interpolation of x (with v) and of v (with a) over the last step. Work vectors: the
+   two accelerations only (no copy of the state: the step's start is recovered from its end to
+   round-off, for the interpolation and for the rollback of a step the domain check rejects).
    A C header: the functions have C linkage (PETSC_EXTERN). */
 #include <turgor/core/petsc_compat.h>
 #include <petscts.h>
@@ -29,3 +31,9 @@ PETSC_EXTERN PetscErrorCode TSVerletGetCounters(TS ts, PetscInt *evaluations, Pe
    step reuses it as an uninterrupted run would. *have is PETSC_FALSE before the first step. */
 PETSC_EXTERN PetscErrorCode TSVerletGetLastAcceleration(TS ts, Vec *A1, PetscBool *have);
 PETSC_EXTERN PetscErrorCode TSVerletSetLastAcceleration(TS ts, Vec A1);
+
+/* Before TSSetUp: the acceleration vectors that the "momentum" right-hand side fills get `extra`
+   spare entries after their local part, which that function may use as scratch (a distributed
+   particle code computes its halo particles' forces there before sending them to their owners: no
+   separate force array, 16 B a particle). 0 (the default): none. */
+PETSC_EXTERN PetscErrorCode TSVerletSetAccelerationRoom(TS ts, PetscInt extra);
