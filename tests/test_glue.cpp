@@ -99,11 +99,11 @@ static PetscErrorCode TestShares()
     PetscCall(g.CreateBonds(T.particles, T.X.data()));
     PetscReal sum = 0;
     for (PetscInt b = 0; b < g.Created(); b++) sum += g.LengthShare(b);
-    std::vector<std::pair<std::string, PetscReal>> stats;
+    std::vector<TermStatistic> stats;
     g.Statistics(stats);
     PetscReal unbonded = -1;
-    for (auto &kv : stats)
-      if (kv.first == "bonds_unbonded_box") unbonded = kv.second;
+    for (auto &s : stats)
+      if (s.name == "bonds_unbonded_box") unbonded = s.value;
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "unbonded box over y <= 5: %" PetscInt_FMT " bonds (8 outside the box), %g left out, sum of shares %g\n",
                           g.Created(), (double)unbonded, (double)sum));
     TG_CHECK(g.Created() == 8 && unbonded == 8, "expected 8 bonds made and 8 left out by the box, got %" PetscInt_FMT " and %g", g.Created(), (double)unbonded);

@@ -913,10 +913,10 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
     js.Set("energy_residual_max", worst);
     js.Set("energy_external_work", wext);
   }
-  for (auto &kv : model_.Statistics()) { /* the terms' counters (contacts, plastic dissipation) */
-    PetscReal v = kv.second;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPIU_REAL, MPIU_SUM, comm_));
-    js.Set(kv.first, v);
+  for (const TermStatistic &s : model_.Statistics()) { /* the terms' counters (contacts, plastic dissipation) */
+    PetscReal v = s.value;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPIU_REAL, s.reduction == TermStatistic::MAX ? MPIU_MAX : MPIU_SUM, comm_));
+    js.Set(s.name, v);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

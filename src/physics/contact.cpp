@@ -344,14 +344,16 @@ size_t Contact::HistoryEntries() const
   return (size_t)std::count_if(hist_.begin(), hist_.end(), [](const History &h) { return h.live; });
 }
 
-void Contact::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
+void Contact::Statistics(std::vector<TermStatistic> &stats) const
 {
   const PetscReal n = evaluations_ > 0 ? (PetscReal)evaluations_ : 1;
   stats.push_back({"contact_mean_contacts", sum_active_ / n});
+  /* the ranks' largest counts summed: the whole tissue's largest on one rank, an upper bound of it
+     on several (their largest need not fall in the same evaluation) */
   stats.push_back({"contact_max_contacts", (PetscReal)max_active_});
   stats.push_back({"contact_mean_near_pairs", sum_near_ / n});
-  stats.push_back({"contact_pair_lists", (PetscReal)list_builds_});
-  stats.push_back({"contact_near_lists", (PetscReal)near_builds_});
+  stats.push_back({"contact_pair_lists", (PetscReal)list_builds_, TermStatistic::MAX}); /* every rank rebuilds its own lists */
+  stats.push_back({"contact_near_lists", (PetscReal)near_builds_, TermStatistic::MAX});
   stats.push_back({"contact_history_entries", (PetscReal)HistoryEntries()});
   if (friction > 0) stats.push_back({"contact_friction_dissipation", dissipated_});
 }

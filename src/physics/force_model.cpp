@@ -309,9 +309,9 @@ PetscErrorCode ForceModel::OutputSegments(const PetscReal *x, const PetscReal *v
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-std::vector<std::pair<std::string, PetscReal>> ForceModel::Statistics() const
+std::vector<TermStatistic> ForceModel::Statistics() const
 {
-  std::vector<std::pair<std::string, PetscReal>> stats;
+  std::vector<TermStatistic> stats;
   for (const auto &t : terms_) t->Statistics(stats);
   return stats;
 }

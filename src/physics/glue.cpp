@@ -504,7 +504,7 @@ void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::strin
     });
 }
 
-void Glue::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
+void Glue::Statistics(std::vector<TermStatistic> &stats) const
 {
   PetscReal L = 0;
   for (const Bond &B : bonds_) L += B.L;

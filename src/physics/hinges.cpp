@@ -232,7 +232,7 @@ PetscErrorCode Hinges::AddTimeStepLimits(const ForceInput &in, std::vector<TimeS
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void Hinges::Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const
+void Hinges::Statistics(std::vector<TermStatistic> &stats) const
 {
   if (max_moment <= 0) return;
   PetscReal plastic = 0;

@@ -34,7 +34,7 @@ public:
   PetscErrorCode AcceptStep(const ForceInput &in) override;
   PetscReal      Dissipation() const override { return dissipated_; } /* by frictional slip: |f_t| x the slip at each accepted step */
   PetscErrorCode View(PetscViewer viewer) const override;
-  void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
+  void           Statistics(std::vector<TermStatistic> &stats) const override;
 
   PetscInt CandidateListBuilds() const { return list_builds_; } /* filtered node-bar lists built */
   size_t   Candidates() const { return cand_.size(); }          /* pairs within 2 r + skin */

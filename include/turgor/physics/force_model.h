@@ -86,9 +86,9 @@ public:
   /* Every term's snapshot fields at (x, v). */
   PetscErrorCode OutputFields(const PetscReal *x, const PetscReal *v, std::vector<TermField> &fields);
   /* Every term's Statistics(), in term order. */
-  std::vector<std::pair<std::string, PetscReal>> Statistics() const;
-  NeighbourSearch                               &Neighbours() { return nb_; }
-  const NeighbourSearch                         &Neighbours() const { return nb_; }
+  std::vector<TermStatistic> Statistics() const;
+  NeighbourSearch           &Neighbours() { return nb_; }
+  const NeighbourSearch     &Neighbours() const { return nb_; }
   /* Periodic lattice for RVEs (positions and rates of the image shifts); default: not periodic. */
   void                  SetPeriodicImages(const PeriodicImages &images) { images_ = images; }
   const PeriodicImages &Images() const { return images_; }

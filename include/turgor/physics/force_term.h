@@ -41,6 +41,19 @@ struct TermContext {
   const LoadSpec *load = nullptr; /* external loads (the body force); NULL where a scene has none */
 };
 
+/* A counter for summary.json; keys start with the term's name. A distributed run reports the sum
+   over the ranks (each counts what it computes: its contacts, its bonds) or, for MAX, the largest
+   rank's value (how often a rank rebuilt its lists). */
+struct TermStatistic {
+  enum Reduction {
+    SUM,
+    MAX
+  };
+  std::string name;
+  PetscReal   value;
+  Reduction   reduction = SUM;
+};
+
 /* A quantity a term shows in the snapshots: one value per closed polygon (CELL, in
    ParticleSet::polygons order, open cells skipped: a pressure) or per spring (BAR: a bar's force). */
 struct TermField {
@@ -117,9 +130,8 @@ public:
   virtual PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) { return PETSC_SUCCESS; }
   /* Fields for the snapshots at the state of `in` (TermField). */
   virtual PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) { return PETSC_SUCCESS; }
-  /* Counters for summary.json, as (key, value) pairs summed over ranks (e.g. contact's mean number
-     of contacts per evaluation); keys start with the term's name. */
-  virtual void Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const { }
+  /* Counters for summary.json (TermStatistic; e.g. contact's mean number of contacts per evaluation). */
+  virtual void Statistics(std::vector<TermStatistic> &stats) const { }
   /* Checkpoints: SaveState appends the internal state at the accepted state (after AcceptStep);
      LoadState reads it back into a term set up on the same scene, at the checkpoint's state `in`
      (its neighbour lists already restored), so that the run continues bit for bit. A term without

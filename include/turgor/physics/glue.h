@@ -64,7 +64,7 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override;
   PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
   PetscErrorCode OutputSegments(const ForceInput &in, TermSegments *segments) override;
-  void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
+  void           Statistics(std::vector<TermStatistic> &stats) const override;
   void           RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const override;
   void           TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows) override;
 

@@ -23,7 +23,7 @@ public:
   PetscErrorCode AcceptStep(const ForceInput &in) override;
   PetscReal      Dissipation() const override { return dissipated_; }
   PetscErrorCode View(PetscViewer viewer) const override;
-  void           Statistics(std::vector<std::pair<std::string, PetscReal>> &stats) const override;
+  void           Statistics(std::vector<TermStatistic> &stats) const override;
 
   /* Reference angles from positions X[2n]; without a call, the first evaluation's positions. */
   void      SetReference(const PetscReal *X);
