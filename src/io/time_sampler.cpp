@@ -1,4 +1,5 @@
 #include <turgor/io/time_sampler.h>
+#include <petsc/private/tsimpl.h> /* whether the integrator can interpolate (ops->interpolate) */
 #include <cmath>
 
 namespace turgor {
@@ -29,25 +30,36 @@ PetscErrorCode TimeSampler::At(TS ts, PetscInt step, PetscReal t, Vec U, PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TimeSampler::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, const Callback &sample, const Callback &snapshot, PetscInt evals)
+/* The due times k T / n (k = *next ...) up to the step's end t: each at its time, interpolated;
+   without interpolation (PETSc's ssp) the step's end once, at its own time, for all of them. */
+PetscErrorCode TimeSampler::Emit(TS ts, PetscInt step, PetscReal t, Vec U, PetscInt n, PetscInt *next, const Callback &cb)
 {
   const PetscReal T = t_final_, eps = 1e-9 * T;
   Vec             X;
   PetscFunctionBeginUser;
-  while (sample && next_sample_ <= n_samples_) {
-    const PetscReal tk = T * next_sample_ / n_samples_;
+  if (!cb || n <= 0) PetscFunctionReturn(PETSC_SUCCESS);
+  if (step > 0 && !ts->ops->interpolate) {
+    PetscReal tk = -1;
+    while (*next <= n && T * *next / n <= t + eps) tk = T * (*next)++ / n;
+    if (tk >= 0) PetscCall(cb(std::fabs(tk - t) <= eps ? tk : t, U));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  while (*next <= n) {
+    const PetscReal tk = T * *next / n;
     if (tk > t + eps) break;
     PetscCall(At(ts, step, t, U, tk, &X));
-    PetscCall(sample(tk, X));
-    next_sample_++;
+    PetscCall(cb(tk, X));
+    (*next)++;
   }
-  while (snapshot && n_snapshots_ > 0 && next_snapshot_ <= n_snapshots_) {
-    const PetscReal tk = T * next_snapshot_ / n_snapshots_;
-    if (tk > t + eps) break;
-    PetscCall(At(ts, step, t, U, tk, &X));
-    PetscCall(snapshot(tk, X));
-    next_snapshot_++;
-  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TimeSampler::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, const Callback &sample, const Callback &snapshot, PetscInt evals)
+{
+  const PetscReal T = t_final_;
+  PetscFunctionBeginUser;
+  PetscCall(Emit(ts, step, t, U, n_samples_, &next_sample_, sample));
+  PetscCall(Emit(ts, step, t, U, n_snapshots_, &next_snapshot_, snapshot));
   PetscLogDouble now;
   PetscCall(PetscTime(&now));
   if (!started_) {

@@ -1,7 +1,9 @@
 #pragma once
 /* Output at fixed times for any TS run: from a TSMonitor, calls `sample` at n_samples + 1 equally
    spaced times over [0, T] and `snapshot` at n_snapshots + 1, with the state interpolated by TS
-   between the last two steps (not whichever steps the integrator took), and prints a progress line
+   between the last two steps (not whichever steps the integrator took; an integrator without
+   interpolation, PETSc's ssp, gives the first step end at or after each time, stamped with the
+   step's own time), and prints a progress line
    (time reached, steps/s, evaluations/s, ETA) every `interval` seconds of wall time. */
 #include <turgor/core/petsc_compat.h>
 #include <petscts.h>
@@ -30,6 +32,7 @@ public:
 
 private:
   PetscErrorCode At(TS ts, PetscInt step, PetscReal t, Vec U, PetscReal tk, Vec *X);
+  PetscErrorCode Emit(TS ts, PetscInt step, PetscReal t, Vec U, PetscInt n, PetscInt *next, const Callback &cb);
 
   PetscReal      t_final_ = 1, interval_ = 10;
   PetscInt       n_samples_ = 0, n_snapshots_ = 0, next_sample_ = 0, next_snapshot_ = 0;
