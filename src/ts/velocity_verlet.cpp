@@ -170,6 +170,7 @@ PetscErrorCode TSInterpolate_Verlet(TS ts, PetscReal t, Vec X)
   Vec             q1, p1, q, p;
   PetscFunctionBeginUser;
   PetscCheck(vv->have_a1, PetscObjectComm((PetscObject)ts), PETSC_ERR_ORDER, "TS verlet: nothing to interpolate before the first step");
+  PetscCheck(X != ts->vec_sol, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_IDN, "TS verlet: cannot interpolate into the solution itself");
   PetscCall(StepBack(ts, vv, X)); /* X = (x_n, v_n) */
   PetscCall(VecGetSubVector(ts->vec_sol, vv->is_q, &q1));
   PetscCall(VecGetSubVector(ts->vec_sol, vv->is_p, &p1));
