@@ -91,6 +91,9 @@ turgor_restart_case(fe2 80 MODE fe2 INTERVAL 15 OPTIONS ${RESTART_FE2})
 turgor_add_test(restart_fe2_work COMMAND ${CHECK} identical restart_fe2_full restart_fe2_legs rve_solves psi_tc_iterations rhs_evals rejected_steps
   LABELS fe2 restart REQUIRES "restart_fe2_full;restart_fe2_leg2")
 turgor_restart_case(fe2_mpi2 80 MODE fe2 INTERVAL 15 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -fe2_snapshots 2)
+# ... and under ssp, which cannot interpolate (its tip.csv rows are its step ends; they stopped the
+# run before this stop), 2 µs with a checkpoint at 1 µs
+turgor_restart_case(fe2_ssp 10 MODE fe2 INTERVAL 1 OPTIONS ${RESTART_FE2} -ts_type ssp -ts_max_time 2 FILES tip.csv)
 # ... and from the checkpoint written at t = 15 µs (in the run, not at its end) into a fresh directory
 turgor_restart_fresh(fe2 fe2 ${RESTART_FE2})
 
