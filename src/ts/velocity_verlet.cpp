@@ -93,7 +93,10 @@ PetscErrorCode Accelerate(TS ts, Verlet *vv, PetscReal t, Vec q, Vec A)
    particle). The step's own operations undone in reverse, v+ = v_{n+1} - h/2 a(x_{n+1}),
    x_n = x_{n+1} - h v+, v_n = v+ - h/2 a(x_n): exact but for round-off (within an ulp or so of
    x_{n+1} and v_{n+1}), which is all the interpolation of outputs and the rollback of a rejected
-   step (whose state ends the run) need. Y: the solution itself, or a work vector. */
+   step (whose state ends the run) need. A component whose drift the position right-hand side
+   prescribes instead of v+ (turgor's velocity controls) comes back as x_{n+1} - h v+: the fine
+   run imposes those components at every output's time anyway (Controls::Impose). Y: the solution
+   itself, or a work vector. */
 PetscErrorCode StepBack(TS ts, Verlet *vv, Vec Y)
 {
   const PetscReal h = ts->time_step;
