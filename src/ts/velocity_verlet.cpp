@@ -148,7 +148,7 @@ PetscErrorCode TSStep_Verlet(TS ts)
     PetscReal norm;
     PetscCall(StepBack(ts, vv, ts->vec_sol));
     PetscCall(VecNorm(ts->vec_sol, NORM_INFINITY, &norm));
-    PetscCheck(PetscIsNormalReal(norm) || norm == 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_FP,
+    PetscCheck(!PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)ts), PETSC_ERR_FP,
                "TS verlet: the step from t = %g was rejected and its start cannot be recovered from a non-finite end (the step h = %g is likely "
                "above the stability limit: lower it)",
                (double)t0, (double)h);
