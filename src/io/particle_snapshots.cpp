@@ -24,8 +24,8 @@ static PetscErrorCode WriteIntegerField(MPI_Comm comm, PetscViewer viewer, const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A particle's row in the file: its place in the distributed state where the set says (a
-   distributed run's halo particles are other ranks' rows), else this rank's offset + its index. */
+/* A particle's row in the file: an owned one's is this rank's offset + its index; a distributed
+   run's halo copy is another rank's row (ParticleSet::halo_index). */
 static PetscInt FileIndex(const ParticleSet &P, PetscInt start, PetscInt i)
 {
   return i < P.NumOwned() ? start + i : P.halo_index[i - P.NumOwned()];
