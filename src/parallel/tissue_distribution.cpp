@@ -118,10 +118,10 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   }
 
   /* local particles: owned, then the other ranks' wall particles of the local cells */
-  std::vector<PetscInt> &local_of_ = *local_of_out, order;
-  local_of_.assign(N, -1);
+  std::vector<PetscInt> &local_of = *local_of_out, order; /* the set-up's only (the caller's) */
+  local_of.assign(N, -1);
   for (PetscInt g = 0; g < N; g++)
-    if (owner_rank[g] == rank) local_of_[g] = (PetscInt)order.size(), order.push_back(g);
+    if (owner_rank[g] == rank) local_of[g] = (PetscInt)order.size(), order.push_back(g);
   {
     std::vector<PetscInt> halo;
     for (PetscInt c = 0; c < n_cells_; c++)
@@ -130,7 +130,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
           if (owner_rank[i] != rank && G.kind[i] != KIND_FLUID) halo.push_back(i);
     std::sort(halo.begin(), halo.end());
     halo.erase(std::unique(halo.begin(), halo.end()), halo.end());
-    for (PetscInt g : halo) local_of_[g] = (PetscInt)order.size(), order.push_back(g);
+    for (PetscInt g : halo) local_of[g] = (PetscInt)order.size(), order.push_back(g);
     n_halo_ = (PetscInt)halo.size();
   }
   const PetscInt n = (PetscInt)order.size();
@@ -157,13 +157,13 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   std::vector<PetscInt> spring_of(G.springs.size(), -1);
   {
     size_t count = 0;
-    for (const Spring &s : G.springs) count += local_of_[s.i] >= 0 && local_of_[s.j] >= 0;
+    for (const Spring &s : G.springs) count += local_of[s.i] >= 0 && local_of[s.j] >= 0;
     P.springs.reserve(count);
     P.spring_gid.reserve(count);
   }
   for (int pass = 0; pass < 2; pass++)
     for (size_t s = 0; s < G.springs.size(); s++) {
-      const PetscInt i = local_of_[G.springs[s].i], j = local_of_[G.springs[s].j];
+      const PetscInt i = local_of[G.springs[s].i], j = local_of[G.springs[s].j];
       if (i < 0 || j < 0 || (i < n_owned_) != (pass == 0)) continue;
       spring_of[s] = (PetscInt)P.springs.size();
       P.spring_gid.push_back((PetscInt)s);
@@ -183,7 +183,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
       for (size_t c = 0; c < G.polygons.size(); c++) {
         if (!local_cell_[c] || (crank[c] == rank) != (pass == 0)) continue;
         PolygonCell C = G.polygons[c];
-        for (PetscInt &i : C.nodes) i = local_of_[i];
+        for (PetscInt &i : C.nodes) i = local_of[i];
         for (PetscInt &s : C.bars) s = spring_of[s];
         PetscCheck(std::find(C.nodes.begin(), C.nodes.end(), -1) == C.nodes.end() && std::find(C.bars.begin(), C.bars.end(), -1) == C.bars.end(),
                    PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %zu is not whole on rank %d", c, rank);
@@ -205,13 +205,13 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   {
     std::vector<std::vector<PetscInt>> fluid(n_cells_);
     for (PetscInt i = 0; i < N; i++)
-      if (G.kind[i] == KIND_FLUID && crank[owner_cell[i]] == rank) fluid[owner_cell[i]].push_back(local_of_[i]);
+      if (G.kind[i] == KIND_FLUID && crank[owner_cell[i]] == rank) fluid[owner_cell[i]].push_back(local_of[i]);
     size_t total = 0;
     for (PetscInt c : owned_cells_) total += rings[c].size() + fluid[c].size();
     ring_.reserve(total);
     for (PetscInt c : owned_cells_) {
       std::vector<PetscInt> ring;
-      for (PetscInt i : rings[c]) ring.push_back(local_of_[i]);
+      for (PetscInt i : rings[c]) ring.push_back(local_of[i]);
       ring_.insert(ring_.end(), ring.begin(), ring.end());
       ring_.insert(ring_.end(), fluid[c].begin(), fluid[c].end());
       ring_start_.push_back((PetscInt)ring_.size());
