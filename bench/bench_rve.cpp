@@ -29,7 +29,7 @@ int main(int argc, char **argv)
        override -cells, so the size printed is the material's), a fresh point per repetition */
     RVEMaterial material;
     material.spec.cells = cells[c];
-    PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
+    PetscCall(material.SetFromOptions(PETSC_COMM_SELF, nullptr));
     PetscReal     best[4] = {1e30, 1e30, 1e30, 1e30};
     PetscInt      its[3] = {0, 0, 0}, unknowns = 0, exact_evals = 0, exact_its = 0;
     const Tensor2 F0 =

@@ -335,7 +335,7 @@ def read_run(summary_path):
     if status == "failed":
         print(f"warning: {rundir}: the run failed (summary.json status 'failed'); skipped", file=sys.stderr)
         return None
-    if status != "completed":  # interrupted (a signal, a job's time limit): its steps were timed all the same
+    if status not in ("completed", "stopped"):  # interrupted (a signal, a job's time limit): its steps were timed all the same
         print(f"warning: {rundir}: status {status!r}; its {s.get('steps')} steps are used", file=sys.stderr)
     asked = meta.get("ranks", int(m.group(3)) if m else None)
     ranks = s.get("mpi_ranks", asked)

@@ -23,6 +23,8 @@
   compare_runs.py samerows A_DIR B_DIR FILE COL...  FILE has the same rows (by those columns) in any order
   compare_runs.py samekey A_DIR B_DIR KEY RELTOL  summary.json[KEY] of the two runs agree within RELTOL (relative)
   compare_runs.py between DIR KEY LO HI      LO <= summary.json[KEY] <= HI
+  compare_runs.py equals DIR KEY VALUE       summary.json[KEY] is VALUE (a word, or a list of words joined by commas)
+  compare_runs.py contains DIR KEY TEXT...   every TEXT is one of the entries of the list summary.json[KEY]
   compare_runs.py notmore A_DIR B_DIR KEY RELTOL  summary.json[KEY] of A is at most (1 + RELTOL) x B's (strictly
                                              less when RELTOL < 0)
   compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
@@ -181,6 +183,18 @@ def main(argv):
         print(f"{argv[3]} = {v} (expected {lo:g} .. {hi:g})")
         if not lo <= v <= hi:
             sys.exit(f"FAIL: {argv[3]} outside {lo:g} .. {hi:g}")
+    elif mode == "equals":
+        v = json.load(open(f"{argv[2]}/summary.json")).get(argv[3])
+        got = ",".join(str(x) for x in v) if isinstance(v, list) else str(v)
+        print(f"{argv[3]} = {got!r} (expected {argv[4]!r})")
+        if got != argv[4]:
+            sys.exit(f"FAIL: {argv[3]} is {got!r}, not {argv[4]!r}")
+    elif mode == "contains":
+        v = json.load(open(f"{argv[2]}/summary.json")).get(argv[3], [])
+        print(f"{argv[3]} = {v}")
+        missing = [t for t in argv[4:] if t not in v]
+        if missing:
+            sys.exit(f"FAIL: {argv[3]} lacks {missing}")
     elif mode == "notmore":
         a, b = json.load(open(f"{argv[2]}/summary.json"))[argv[4]], json.load(open(f"{argv[3]}/summary.json"))[argv[4]]
         tol = float(argv[5])

@@ -106,6 +106,17 @@ turgor_add_test(restart_fixture_fe2 COMMAND turgor_app ${BAD_PRESET_fe2} -ts_typ
   LABELS badinput restart SETUP restart_fixture)
 turgor_add_test(restart_fixture_truncated COMMAND ${RESTART_HELPER} truncate restart_fixture/checkpoint.h5 restart_fixture/truncated.h5
   LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+# ... and copies damaged on disk (a byte of the solution's values), edited by HDF5 (a value of the
+# solution; the run's time set to -5 with turgor's checksum made to match) and of an older format
+# (tests/bad_input.txt, restart_damaged, restart_edited, restart_forged_time, restart_old_format)
+turgor_add_test(restart_fixture_damaged COMMAND ${RESTART_HELPER} damage restart_fixture/checkpoint.h5 restart_fixture/damaged.h5
+  /state/solution/entries/value LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+turgor_add_test(restart_fixture_edited COMMAND ${RESTART_HELPER} edit restart_fixture/checkpoint.h5 restart_fixture/edited.h5
+  /state/solution/entries/value 3 0.125 LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+turgor_add_test(restart_fixture_forged COMMAND ${RESTART_HELPER} forge restart_fixture/checkpoint.h5 restart_fixture/forged_time.h5
+  /state/run/scalars/time 0 -5 LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+turgor_add_test(restart_fixture_old COMMAND ${RESTART_HELPER} attribute restart_fixture/checkpoint.h5 restart_fixture/old_format.h5
+  format_version 3 LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
 
 # SIGTERM: the interrupted run writes its checkpoint after the step it stops at; continued, it ends
 # as the uninterrupted one.

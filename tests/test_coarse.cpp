@@ -83,7 +83,7 @@ static PetscErrorCode UseMaterial(CoarseModel &model, const char *name)
   std::unique_ptr<MaterialModel> material;
   PetscFunctionBeginUser;
   PetscCall(MaterialModelCreate(PETSC_COMM_WORLD, name, &material));
-  PetscCall(material->SetFromOptions(PETSC_COMM_WORLD));
+  PetscCall(material->SetFromOptions(PETSC_COMM_WORLD, nullptr));
   model.Pool().SetMaterial(std::move(material));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

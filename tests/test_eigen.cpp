@@ -131,7 +131,7 @@ static PetscErrorCode MakeModel(CoarseModel &model, const char *material, PetscI
   LoadSpec                       load;
   PetscFunctionBeginUser;
   PetscCall(MaterialModelCreate(PETSC_COMM_WORLD, material, &m));
-  PetscCall(m->SetFromOptions(PETSC_COMM_WORLD));
+  PetscCall(m->SetFromOptions(PETSC_COMM_WORLD, nullptr));
   model.Pool().SetMaterial(std::move(m));
   model.Pool().SetDefaultTolerance(1e-12);
   PetscCall(DMPlexCreateBoxMesh(PETSC_COMM_WORLD, 2, PETSC_FALSE, faces, lo, hi, NULL, PETSC_TRUE, &dm));

@@ -26,7 +26,7 @@ int main(int argc, char **argv)
   /* the material configured once (-nh_* options), one point from it */
   NeoHookeanMaterial             material;
   std::unique_ptr<MaterialPoint> point;
-  PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
+  PetscCall(material.SetFromOptions(PETSC_COMM_SELF, nullptr));
   PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
   NeoHookean *const nhp = dynamic_cast<NeoHookean *>(point.get());
   TG_CHECK(nhp, "the neo_hookean material must create NeoHookean points");

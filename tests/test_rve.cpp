@@ -34,7 +34,7 @@ static PetscErrorCode CreateRVE(const RVEMaterial &material, std::unique_ptr<RVE
 static PetscErrorCode MakeRVE(RVEMaterial &material, std::unique_ptr<RVE> *rve)
 {
   PetscFunctionBeginUser;
-  PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
+  PetscCall(material.SetFromOptions(PETSC_COMM_SELF, nullptr));
   PetscCall(CreateRVE(material, rve));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -120,7 +120,7 @@ static PetscErrorCode Objectivity()
   MaterialResponse r0;
   RVEMaterial      material; /* configured once, a fresh point for every rotation */
   PetscFunctionBeginUser;
-  PetscCall(material.SetFromOptions(PETSC_COMM_SELF));
+  PetscCall(material.SetFromOptions(PETSC_COMM_SELF, nullptr));
   {
     std::unique_ptr<RVE> rve;
     PetscCall(CreateRVE(material, &rve));

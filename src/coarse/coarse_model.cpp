@@ -29,7 +29,7 @@ CoarseModel::~CoarseModel()
   PetscCallVoid(DMDestroy(&dm_));
 }
 
-PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   const char *const elements[] = {"q1", "q2"};
   PetscInt          element    = (PetscInt)this->element;
@@ -56,17 +56,17 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
                     "-coarse_dm_plex_box_faces nx,ny -coarse_dm_plex_box_lower x0,y0 -coarse_dm_plex_box_upper x1,y1 (default 4,4 and 0,0 to 400,400 µm), "
                     "or a file, -coarse_dm_plex_filename mesh.msh; -coarse_dm_refine n refines it",
                     "turgor");
-  PetscCall(PetscOptionsString("-dirichlet_label", "Label of the clamped boundary", "CoarseSpec", label, label, sizeof label, NULL));
+  PetscCall(TurgorOptionsString(params, "-dirichlet_label", "Label of the clamped boundary", "CoarseSpec", label, label, sizeof label, NULL));
   PetscCall(
     PetscOptionsIntArray("-dirichlet_values", "Label values clamped (box: 1 bottom, 2 right, 3 top, 4 left; default 4)", "CoarseSpec", values, &n, &set));
-  PetscCall(PetscOptionsBool("-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
-  PetscCall(PetscOptionsEList("-element", "Coarse element: q1 (bilinear, 4 nodes: the seed's) or q2 (biquadratic, 9 nodes, bends without locking)",
-                              "CoarseSpec", elements, 2, elements[element], &element, NULL));
-  PetscCall(PetscOptionsString("-quadrature",
-                               "Material points of an element: sri (selective reduced: the deviatoric stress at the full Gauss points, the pressure at "
-                               "fewer; q1: 2 x 2 and the centre, 5 points; q2: 3 x 3 and 2 x 2, 13 points) or full (the whole stress at the full Gauss "
-                               "points; q1: 2 x 2, 4 points; q2: 3 x 3, 9 points)",
-                               "CoarseSpec", rule, rule, sizeof rule, NULL));
+  PetscCall(TurgorOptionsBool(params, "-lumped_mass", "Lumped (row-sum) instead of consistent mass matrix (eq 32)", "CoarseSpec", lumped, &lumped, NULL));
+  PetscCall(TurgorOptionsEList(params, "-element", "Coarse element: q1 (bilinear, 4 nodes: the seed's) or q2 (biquadratic, 9 nodes, bends without locking)",
+                               "CoarseSpec", elements, 2, elements[element], &element, NULL));
+  PetscCall(TurgorOptionsString(params, "-quadrature",
+                                "Material points of an element: sri (selective reduced: the deviatoric stress at the full Gauss points, the pressure at "
+                                "fewer; q1: 2 x 2 and the centre, 5 points; q2: 3 x 3 and 2 x 2, 13 points) or full (the whole stress at the full Gauss "
+                                "points; q1: 2 x 2, 4 points; q2: 3 x 3, 9 points)",
+                                "CoarseSpec", rule, rule, sizeof rule, NULL));
   PetscCall(PetscOptionsBool("-acoustic_field",
                              "Snapshots carry acoustic_min_det, per element the smallest det of the acoustic tensor of D^e and the stress over directions and "
                              "material points (loss of ellipticity where <= 0); needs the material tangents at every snapshot (3 more material "
@@ -100,17 +100,18 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(CheckNotEmpty(comm, "-coarse_dirichlet_values", "label values, e.g. 4 (the left side of a box)"));
   dirichlet_label = label;
   if (set) dirichlet_values.assign(values, values + n);
+  if (params) params->Set("-coarse_dirichlet_values", ParameterValue(dirichlet_values.data(), (PetscInt)dirichlet_values.size()));
   lumped_mass    = lumped;
   acoustic_field = acoustic;
   PetscCheck(!dirichlet_values.empty(), comm, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_values: no value given");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseModel::SetFromOptions()
+PetscErrorCode CoarseModel::SetFromOptions(ParameterList *params)
 {
   PetscFunctionBeginUser;
-  PetscCall(spec_.SetFromOptions(comm_));
-  PetscCall(pool_.SetFromOptions());
+  PetscCall(spec_.SetFromOptions(comm_, params));
+  PetscCall(pool_.SetFromOptions(params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -551,6 +552,9 @@ PetscErrorCode CoarseModel::SetUp()
   PetscCall(PrecomputeElements());
   const PetscInt np = (c_end_ - c_start_) * npts_;
   PetscCall(pool_.SetUp(np));
+  first_point_ = 0;
+  PetscCallMPI(MPI_Exscan(&np, &first_point_, 1, MPIU_INT, MPI_SUM, comm_));
+  if (rank_ == 0) first_point_ = 0;
   F_.assign(np, Tensor2::Identity());
   Fdot_.assign(np, Tensor2::Zero());
   response_.resize(np);
@@ -821,78 +825,84 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
 
 /* [counters (5), cache: valid, ok, tangents, U, per point F, Fdot (8), response (10), tangents (18)
    when cached with them; the material points] */
-PetscErrorCode CoarseModel::SaveState(StateBlob &state)
+PetscErrorCode CoarseModel::DeclareState(std::deque<StateDeclaration> &decls, Vec U)
 {
-  const CoarseCounters &c = counters_;
+  CoarseCounters &c = counters_;
   PetscFunctionBeginUser;
-  for (PetscInt v : {c.residuals, c.jacobians, c.material_evals, c.tangent_evals, c.failures}) state.Put((PetscReal)v);
-  state.Put(cached_valid_ ? 1.0 : 0.0);
-  state.Put(cached_ok_ ? 1.0 : 0.0);
-  state.Put(cached_tangents_ ? 1.0 : 0.0);
-  state.Put(std::vector<PetscReal>(cached_U_.begin(), cached_U_.end()));
-  state.Put((PetscReal)F_.size());
-  for (size_t k = 0; k < F_.size(); k++) PutCachedPoint(k, state);
-  PetscCall(pool_.SaveState(state));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* PutCachedPoint's record into local point k (k < 0: read past it, another rank's point) */
-PetscErrorCode CoarseModel::GetCachedPoint(PetscInt k, StateBlob &state)
-{
-  PetscReal v[18], D[18];
-  PetscFunctionBeginUser;
-  for (PetscReal &x : v) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material cache is incomplete");
-  for (int i = 0; cached_tangents_ && i < 18; i++)
-    PetscCheck(state.Get(&D[i]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material tangents are incomplete");
-  if (k < 0) PetscFunctionReturn(PETSC_SUCCESS);
-  MaterialResponse &r = response_[k];
-  r                   = MaterialResponse();
-  for (int i = 0; i < 4; i++) {
-    F_[k].a[i / 2][i % 2]    = v[i];
-    Fdot_[k].a[i / 2][i % 2] = v[4 + i];
-    r.sigma.a[i / 2][i % 2]  = v[8 + i];
-  }
-  r.rho = v[12], r.ok = v[13] != 0, r.iterations = (PetscInt)v[14], r.snes_its = (PetscInt)v[15], r.ksp_its = (PetscInt)v[16], r.residual = v[17];
-  if (!r.ok) r.reason = "(restored from the checkpoint)";
-  for (int i = 0; cached_tangents_ && i < 9; i++) tangent_[k].De[i / 3][i % 3] = D[2 * i], tangent_[k].Dv[i / 3][i % 3] = D[2 * i + 1];
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* [F, Fdot, sigma, rho, ok, iterations, SNES and KSP iterations, residual; tangents when cached] */
-void CoarseModel::PutCachedPoint(size_t k, StateBlob &state) const
-{
-  const MaterialResponse &r = response_[k];
-  for (int i = 0; i < 4; i++) state.Put(F_[k].a[i / 2][i % 2]);
-  for (int i = 0; i < 4; i++) state.Put(Fdot_[k].a[i / 2][i % 2]);
-  for (int i = 0; i < 4; i++) state.Put(r.sigma.a[i / 2][i % 2]);
-  for (PetscReal v : {r.rho, r.ok ? 1.0 : 0.0, (PetscReal)r.iterations, (PetscReal)r.snes_its, (PetscReal)r.ksp_its, r.residual}) state.Put(v);
-  if (cached_tangents_)
-    for (int i = 0; i < 9; i++) {
-      state.Put(tangent_[k].De[i / 3][i % 3]);
-      state.Put(tangent_[k].Dv[i / 3][i % 3]);
+  {
+    /* whether the cache is of U (an explicit integrator's last stage): on another layout it is kept
+       only if it was on every writing rank */
+    bool at_u = false;
+    if (cached_valid_) {
+      PetscCall(GlobalToLocal(U, Uloc_));
+      PetscCall(CacheHolds(Uloc_, cached_tangents_, &at_u));
     }
+    cache_stale_ = !at_u;
+  }
+  PetscCall(RankFreePointIds(rank_free_ids_));
+  const size_t n = response_.size();
+  F_.resize(n, Tensor2::Identity());
+  Fdot_.resize(n, Tensor2::Zero());
+  tangent_.resize(n);
+  decls.emplace_back("coarse");
+  StateDeclaration &d = decls.back();
+  d.Scalar("residuals", &c.residuals, Combine::Owner);
+  d.Scalar("jacobians", &c.jacobians, Combine::Owner);
+  d.Scalar("material_evaluations", &c.material_evals, Combine::Owner);
+  d.Scalar("tangent_evaluations", &c.tangent_evals, Combine::Owner);
+  d.Scalar("failures", &c.failures, Combine::Owner);
+  d.Scalar("cache_valid", &cached_valid_, Combine::Local);
+  d.Scalar("cache_stale", &cache_stale_, Combine::Max);
+  d.Scalar("cache_ok", &cached_ok_, Combine::Owner);
+  d.Scalar("cache_tangents", &cached_tangents_, Combine::Owner);
+  d.Sequence(
+    "cache_state", [this](std::vector<PetscReal> &v) { v.assign(cached_U_.begin(), cached_U_.end()); },
+    [this](const PetscReal *v, size_t m) {
+      cached_U_.assign(v, v + m);
+      return PETSC_SUCCESS;
+    },
+    Combine::Local);
+  /* the cache of this rank's points, each by its id */
+  d.Table("points", StateEntity::MaterialPoint)
+    .Rows([this] { return response_.size(); }, [this](size_t r) { return first_point_ + (PetscInt)r; }, [](size_t) { return true; })
+    .Packed("F", F_)
+    .Packed("Fdot", Fdot_)
+    .Field("stress", response_, &MaterialResponse::sigma)
+    .Field("density", response_, &MaterialResponse::rho)
+    .Column(
+      "ok", 1, [this](size_t r, PetscReal *v) { v[0] = response_[r].ok; },
+      [this](size_t r, const PetscReal *v) {
+        response_[r].ok     = v[0] != 0;
+        response_[r].reason = response_[r].ok ? "" : "(restored from the checkpoint)";
+      },
+      Combine::Owner, true)
+    .Field("iterations", response_, &MaterialResponse::iterations)
+    .Field("snes_iterations", response_, &MaterialResponse::snes_its)
+    .Field("ksp_iterations", response_, &MaterialResponse::ksp_its)
+    .Field("residual", response_, &MaterialResponse::residual)
+    .Packed("tangents", tangent_);
+  decls.emplace_back("material");
+  PetscCall(pool_.DeclareState(decls.back(), rank_free_ids_));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseModel::LoadState(StateBlob &state)
+PetscErrorCode CoarseModel::AfterStateRead(Vec U, bool own_layout)
 {
-  PetscInt               c[5];
-  PetscReal              valid, ok, tangents, np;
-  std::vector<PetscReal> U;
   PetscFunctionBeginUser;
-  for (PetscInt &x : c) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's coarse counters are incomplete");
-  counters_ = CoarseCounters{c[0], c[1], c[2], c[3], c[4]};
-  PetscCheck(state.Get(&valid) && state.Get(&ok) && state.Get(&tangents) && state.Get(U) && state.Get(&np), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's material cache is incomplete");
-  PetscCheck(np == 0 || (size_t)np == response_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's material cache holds %g points of this rank, the mesh has %zu here", (double)np, response_.size());
-  cached_valid_    = valid != 0;
-  cached_ok_       = ok != 0;
-  cached_tangents_ = tangents != 0;
-  cached_U_.assign(U.begin(), U.end());
-  F_.resize((size_t)np);
-  Fdot_.resize((size_t)np);
-  for (size_t k = 0; k < (size_t)np; k++) PetscCall(GetCachedPoint((PetscInt)k, state));
-  PetscCall(pool_.LoadState(state));
+  if (!own_layout) { /* the cache of the checkpoint's state, which U is: its local form here */
+    cached_valid_ = !cache_stale_;
+    cached_U_.clear();
+    if (cached_valid_) {
+      const PetscScalar *u;
+      PetscInt           nl;
+      PetscCall(GlobalToLocal(U, Uloc_));
+      PetscCall(VecGetLocalSize(Uloc_, &nl));
+      PetscCall(VecGetArrayRead(Uloc_, &u));
+      cached_U_.assign(u, u + nl);
+      PetscCall(VecRestoreArrayRead(Uloc_, &u));
+    }
+  }
+  PetscCall(pool_.AfterStateRead(own_layout));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

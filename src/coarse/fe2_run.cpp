@@ -52,14 +52,15 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
      far below the coarse tolerance, for 1.5x less time (docs/benchmarks.md); -rve_psi_atol and
      -rve_psi_steptol override it. */
   model_.Pool().SetDefaultTolerance(1e-9);
-  PetscCall(load_.SetFromOptions(comm_));
+  ParameterList &params = PhysicsParameters();
+  PetscCall(load_.SetFromOptions(comm_, &params));
   model_.SetLoad(load_);
-  PetscCall(model_.SetFromOptions());
+  PetscCall(model_.SetFromOptions(&params));
   PetscOptionsBegin(comm_, "fe2_", "Coarse FE^2 run (-mode fe2)", "turgor");
-  PetscCall(PetscOptionsInt("-jacobian_max_age",
-                            "Reuse the material tangents (K, C) for this many accepted steps; 0: fresh at every Jacobian request; -1: 0 for radauiia (which "
-                            "decides itself), 10 otherwise",
-                            "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
+  PetscCall(TurgorOptionsInt(&params, "-jacobian_max_age",
+                             "Reuse the material tangents (K, C) for this many accepted steps; 0: fresh at every Jacobian request; -1: 0 for radauiia (which "
+                             "decides itself), 10 otherwise",
+                             "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
   PetscOptionsEnd();
   PetscCheck(jacobian_max_age_ >= -1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_jacobian_max_age = %" PetscInt_FMT ": must be >= -1", jacobian_max_age_);
   PetscCall(monitor_.SetFromOptions("fe2_", "steps", "time"));
@@ -182,9 +183,11 @@ PetscErrorCode FE2Run::RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx)
 {
   return TURGOR_GUARDED({
     FE2Run   *run = (FE2Run *)ctx;
-    PetscBool ok;
+    PetscBool ok, answered;
     PetscFunctionBeginUser;
     PetscCall(CheckStopNow());
+    PetscCall(run->ObserveRHS(t, U, G, &answered)); /* a restart's first derivative, the FSAL stage */
+    if (answered) PetscFunctionReturn(PETSC_SUCCESS);
     run->model_.SetEvaluationTime(t);
     PetscCall(run->model_.RHSFunction(U, G, &ok));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -295,62 +298,60 @@ PetscErrorCode FE2Run::CheckpointFingerprint(std::vector<std::pair<std::string, 
     PetscCall(PetscSNPrintf(hex, sizeof hex, "%016llx", (unsigned long long)g));
     mesh_hash_ = hex;
   }
-  std::string material;
-  {
-    /* the material's own description (an RVE: cells, particles, relaxation and its tolerances) */
-    char       *buf = NULL;
-    size_t      len = 0;
-    FILE       *f   = open_memstream(&buf, &len);
-    PetscViewer v;
-    PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_SYS, "open_memstream failed");
-    PetscCall(PetscViewerASCIIOpenWithFILE(PETSC_COMM_SELF, f, &v));
-    PetscCall(model_.Pool().Model().View(v));
-    PetscCall(PetscViewerDestroy(&v));
-    fclose(f);
-    material = buf ? buf : "";
-    free(buf);
-    while (!material.empty() && (material.back() == '\n' || material.back() == ' ')) material.pop_back();
-    if (material.rfind("material ", 0) == 0) material.erase(0, 9); /* "rve: ...": the key says material */
-  }
-  auto join = [](const std::vector<std::string> &v) {
-    std::string s;
-    for (const std::string &x : v) s += (s.empty() ? "" : ",") + x;
-    return s.empty() ? std::string("none") : s;
-  };
-  std::vector<std::string> dirichlet;
-  for (PetscInt v : model_.Spec().dirichlet_values) dirichlet.push_back(std::to_string((long long)v));
-  char load[96];
-  PetscCall(PetscSNPrintf(load, sizeof load, "%.17g,%.17g", (double)load_.body_acceleration[0], (double)load_.body_acceleration[1]));
+  /* what the options do not show: the mesh itself (its options are PETSc's, a file may change) and
+     what it makes of them; the physics parameters are compared one by one besides */
   fp.push_back({"elements", std::to_string((long long)model_.NumElements())});
-  fp.push_back({"element", std::string(model_.ElementName()) + " " + model_.QuadratureName()});
   fp.push_back({"material_points", std::to_string((long long)model_.NumMaterialPoints())});
-  fp.push_back({"material", material});
-  fp.push_back({"material_physics", join(model_.Pool().Model().Physics())});
-  fp.push_back({"material_comm_size", std::to_string((long long)model_.Pool().CommSize())});
-  fp.push_back({"mass", model_.LumpedMass() ? "lumped" : "consistent"});
-  fp.push_back({"dirichlet", model_.Spec().dirichlet_label + ":" + join(dirichlet)});
-  fp.push_back({"body_force", load});
   fp.push_back({"mesh_coordinates_hash", mesh_hash_});
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* [jacobian reuse: steps since the refresh, rejections then; the coarse model] */
-PetscErrorCode FE2Run::SaveState(PetscReal t, Vec U, StateBlob &state)
+PetscErrorCode FE2Run::DeclareState(std::deque<StateDeclaration> &decls)
 {
   PetscFunctionBeginUser;
-  state.Put((PetscReal)steps_since_refresh_);
-  state.Put((PetscReal)rejections_at_refresh_);
-  PetscCall(model_.SaveState(state));
+  decls.emplace_back("fe2");
+  decls.back().Scalar("steps_since_jacobian", &steps_since_refresh_, Combine::Owner);
+  decls.back().Scalar("rejections_at_jacobian", &rejections_at_refresh_, Combine::Owner);
+  PetscCall(model_.DeclareState(decls, U_));
+  PetscCall(model_.RankFreePointIds(point_ids_));
+  point_of_id_.clear();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FE2Run::LoadState(PetscReal t, Vec U, StateBlob &state)
+/* A material point is numbered by its index in the pool's global order here (the coarse model's
+   points are this rank's cells' in turn; the pool deals them out in blocks), its id by its element's
+   position. */
+std::uint64_t FE2Run::EntityId(StateEntity e, PetscInt g) const
 {
-  PetscFunctionBeginUser;
-  PetscCheck(state.Get(&steps_since_refresh_) && state.Get(&rejections_at_refresh_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's coarse state is incomplete");
-  PetscCall(model_.LoadState(state));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  if (e != StateEntity::MaterialPoint) return (std::uint64_t)g;
+  return (std::uint64_t)point_ids_[g];
+}
+
+PetscInt FE2Run::EntityLocal(StateEntity e, std::uint64_t id) const
+{
+  if (e != StateEntity::MaterialPoint) return -1;
+  if (point_of_id_.empty())
+    for (size_t g = 0; g < point_ids_.size(); g++) point_of_id_.emplace(point_ids_[g], (PetscInt)g);
+  auto it = point_of_id_.find((PetscInt)id);
+  return it == point_of_id_.end() ? -1 : it->second;
+}
+
+/* a point is held by the group whose block has it */
+bool FE2Run::EntityOwned(StateEntity e, PetscInt g) const
+{
+  if (e != StateEntity::MaterialPoint) return true;
+  return g >= model_.Pool().GroupBegin() && g < model_.Pool().GroupEnd();
+}
+
+/* This rank's points and unknowns: the same on a rank of another run with the same mesh partition and
+   blocks. */
+std::uint64_t FE2Run::LayoutHash() const
+{
+  std::uint64_t h = TimeRun::LayoutHash();
+  for (std::uint64_t v : {(std::uint64_t)model_.FirstPoint(), (std::uint64_t)model_.NumMaterialPoints(), (std::uint64_t)model_.Pool().GroupBegin(),
+                          (std::uint64_t)model_.Pool().GroupEnd(), (std::uint64_t)model_.Pool().CommSize()})
+    h = (h ^ v) * 1099511628211ull;
+  return h;
 }
 
 bool FE2Run::RestartsOnOtherRanks(std::string *why) const
@@ -359,30 +360,6 @@ bool FE2Run::RestartsOnOtherRanks(std::string *why) const
   *why = "the RVEs are solved on groups of -material_comm_size " + std::to_string((long long)model_.Pool().CommSize()) +
          " ranks, each saving its part of every RVE state";
   return false;
-}
-
-/* [jacobian reuse: steps since the refresh, rejections then; CoarseModel::SaveGlobalState] */
-PetscErrorCode FE2Run::SaveGlobalState(PetscReal t, Vec U, StateBlob &state)
-{
-  PetscFunctionBeginUser;
-  if (model_.Pool().CommSize() > 1) PetscFunctionReturn(PETSC_SUCCESS); /* RestartsOnOtherRanks says why not */
-  state.Put((PetscReal)steps_since_refresh_);
-  state.Put((PetscReal)rejections_at_refresh_);
-  PetscCall(model_.SaveGlobalState(U, state));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FE2Run::LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states)
-{
-  PetscFunctionBeginUser;
-  for (StateBlob &b : states) /* the same on every writing rank */
-    PetscCheck(b.Get(&steps_since_refresh_) && b.Get(&rejections_at_refresh_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint's coarse state is incomplete");
-  PetscCall(model_.LoadGlobalState(U, states));
-  for (size_t r = 0; r < states.size(); r++)
-    PetscCheck(states[r].Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "global_state of rank %zu: %zu numbers more than this run reads", r,
-               states[r].data.size() - states[r].pos);
-  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FE2Run::AddSummary(JsonObject &js)

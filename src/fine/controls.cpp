@@ -56,7 +56,7 @@ static PetscErrorCode CountValues(const std::string &name, PetscInt *count)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool help_only, ControlGroup *g)
+static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool help_only, ControlGroup *g, ParameterList *params)
 {
   const std::string pre = "-control_" + name + "_";
   PetscInt          nn = 0, nc = 0, nbox = 4, nf = 2, nv = 2, np = 5;
@@ -75,21 +75,21 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   nn++, nc++;
   nv = 3, nf = 3, nbox = 5;
   PetscOptionsBegin(comm, ("control_" + name + "_").c_str(), ("Load control group '" + name + "'").c_str(), "turgor");
-  PetscCall(PetscOptionsIntArray("-nodes", "Particle ids of the group", "Controls", nodes.data(), &nn, &set_nodes));
-  PetscCall(PetscOptionsIntArray("-cells", "Cells whose nodes (polygon nodes, or the square grid's wall particles) join the group", "Controls", cells.data(),
-                                 &nc, &set_cells));
-  PetscCall(PetscOptionsStringArray("-plates", "Plates (-tissue_plates) whose nodes join the group: any of bottom,right,top,left", "Controls", plates, &np,
-                                    &set_plates));
-  PetscCall(PetscOptionsRealArray("-box", "xmin,ymin,xmax,ymax: wall particles whose reference position is inside join the group [µm]", "Controls", box, &nbox,
-                                  &set_box));
-  PetscCall(PetscOptionsStringArray("-velocity", "vx,vy imposed velocity [µm/µs]; a component may be 'free'", "Controls", vel, &nv, &set_v));
-  PetscCall(PetscOptionsRealArray("-force", "fx,fy total force on the group [µN], shared by mass", "Controls", force, &nf, &set_f));
-  PetscCall(PetscOptionsEList("-profile", "Time profile: step (constant), ramp (0 to full over -ramp_time), cyclic (sign reverses every -half_period)",
-                              "Controls", profiles, 3, profiles[profile], &profile, NULL));
-  PetscCall(PetscOptionsReal("-ramp_time", "Ramp duration [µs] (profile ramp)", "Controls", g->ramp_time, &g->ramp_time, &set_ramp));
-  PetscCall(PetscOptionsReal("-half_period", "Half period [µs] (profile cyclic)", "Controls", g->half_period, &g->half_period, &set_half));
-  PetscCall(PetscOptionsReal("-delay", "The profile starts at this time [µs]; before it a velocity group holds still and a force group pushes nothing",
-                             "Controls", g->delay, &g->delay, NULL));
+  PetscCall(TurgorOptionsIntArray(params, "-nodes", "Particle ids of the group", "Controls", nodes.data(), &nn, &set_nodes));
+  PetscCall(TurgorOptionsIntArray(params, "-cells", "Cells whose nodes (polygon nodes, or the square grid's wall particles) join the group", "Controls",
+                                  cells.data(), &nc, &set_cells));
+  PetscCall(TurgorOptionsStringArray(params, "-plates", "Plates (-tissue_plates) whose nodes join the group: any of bottom,right,top,left", "Controls", plates,
+                                     &np, &set_plates));
+  PetscCall(TurgorOptionsRealArray(params, "-box", "xmin,ymin,xmax,ymax: wall particles whose reference position is inside join the group [µm]", "Controls",
+                                   box, &nbox, &set_box));
+  PetscCall(TurgorOptionsStringArray(params, "-velocity", "vx,vy imposed velocity [µm/µs]; a component may be 'free'", "Controls", vel, &nv, &set_v));
+  PetscCall(TurgorOptionsRealArray(params, "-force", "fx,fy total force on the group [µN], shared by mass", "Controls", force, &nf, &set_f));
+  PetscCall(TurgorOptionsEList(params, "-profile", "Time profile: step (constant), ramp (0 to full over -ramp_time), cyclic (sign reverses every -half_period)",
+                               "Controls", profiles, 3, profiles[profile], &profile, NULL));
+  PetscCall(TurgorOptionsReal(params, "-ramp_time", "Ramp duration [µs] (profile ramp)", "Controls", g->ramp_time, &g->ramp_time, &set_ramp));
+  PetscCall(TurgorOptionsReal(params, "-half_period", "Half period [µs] (profile cyclic)", "Controls", g->half_period, &g->half_period, &set_half));
+  PetscCall(TurgorOptionsReal(params, "-delay", "The profile starts at this time [µs]; before it a velocity group holds still and a force group pushes nothing",
+                              "Controls", g->delay, &g->delay, NULL));
   PetscOptionsEnd();
   if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
   g->name    = name;
@@ -165,7 +165,7 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode Controls::SetFromOptions(MPI_Comm comm)
+PetscErrorCode Controls::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   char     *names[65];
   PetscInt  n = 65;
@@ -180,14 +180,17 @@ PetscErrorCode Controls::SetFromOptions(MPI_Comm comm)
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!set) {
     ControlGroup g;
-    if (help) PetscCall(ReadGroup(comm, "<name>", true, &g)); /* list the options once */
+    if (help) PetscCall(ReadGroup(comm, "<name>", true, &g, nullptr)); /* list the options once */
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   std::vector<std::string> list;
+  std::string              all;
   for (PetscInt k = 0; k < n; k++) {
     list.push_back(names[k]);
+    all += (k ? "," : "") + list.back();
     PetscCall(PetscFree(names[k]));
   }
+  if (params) params->Set("-controls", all);
   groups_.clear();
   for (size_t k = 0; k < list.size(); k++) {
     const std::string &name = list[k];
@@ -196,7 +199,7 @@ PetscErrorCode Controls::SetFromOptions(MPI_Comm comm)
     PetscCheck(ok, comm, PETSC_ERR_ARG_WRONG, "Option -controls: group name '%s' must be letters, digits and '_'", name.c_str());
     for (size_t j = 0; j < k; j++) PetscCheck(list[j] != name, comm, PETSC_ERR_ARG_WRONG, "Option -controls: group '%s' is listed twice", name.c_str());
     ControlGroup g;
-    PetscCall(ReadGroup(comm, name, false, &g));
+    PetscCall(ReadGroup(comm, name, false, &g, params));
     groups_.push_back(g);
   }
   PetscFunctionReturn(PETSC_SUCCESS);

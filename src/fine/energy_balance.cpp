@@ -1,5 +1,4 @@
 #include <turgor/fine/energy_balance.h>
-#include <turgor/particles/local_numbering.h>
 #include <algorithm>
 #include <cmath>
 
@@ -164,90 +163,19 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void EnergyBalance::SaveState(StateBlob &state) const
+void EnergyBalance::DeclareState(StateDeclaration &d)
 {
-  for (PetscReal v : {W_controls_, K0_, E0_, t_, worst_relative_}) state.Put(v);
-  for (const std::vector<PetscReal> *w : {&W_time_, &P_time_prev_, &W_, &v_prev_, &R_prev_, &F_work_total_, &R_work_}) state.Put(*w);
-  state.Put((PetscReal)F_prev_.size());
-  for (const auto &f : F_prev_) state.Put(f);
-  state.Put((PetscReal)F_work_.size());
-  for (const auto &f : F_work_) state.Put(f);
-}
-
-PetscErrorCode EnergyBalance::LoadState(StateBlob &state)
-{
-  PetscReal n;
-  bool      ok = state.Get(&W_controls_) && state.Get(&K0_) && state.Get(&E0_) && state.Get(&t_) && state.Get(&worst_relative_);
-  PetscFunctionBeginUser;
-  for (std::vector<PetscReal> *w : {&W_time_, &P_time_prev_, &W_, &v_prev_, &R_prev_, &F_work_total_, &R_work_}) ok = ok && state.Get(*w);
-  ok = ok && state.Get(&n) && n >= 0 && n == (PetscReal)W_.size();
-  if (ok) F_prev_.assign((size_t)n, {});
-  for (size_t k = 0; ok && k < F_prev_.size(); k++) ok = state.Get(F_prev_[k]);
-  ok = ok && state.Get(&n) && n >= 0 && n <= (PetscReal)W_.size();
-  if (ok) F_work_.assign((size_t)n, {});
-  for (size_t k = 0; ok && k < F_work_.size(); k++) ok = state.Get(F_work_[k]);
-  PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's energy balance does not fit this scene's terms (-fine_energy with other physics?)");
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* [W_controls, K0, E0, t, worst; W_time, P_time_prev, W; terms, n, n x (gid, v_prev, R_prev, F_prev per term)] */
-void EnergyBalance::SaveGlobalState(StateBlob &state) const
-{
-  for (PetscReal v : {W_controls_, K0_, E0_, t_, worst_relative_}) state.Put(v);
-  for (const std::vector<PetscReal> *w : {&W_time_, &P_time_prev_, &W_}) state.Put(*w);
-  state.Put((PetscReal)F_prev_.size());
-  state.Put((PetscReal)P_->n);
-  for (PetscInt i = 0; i < P_->n; i++) {
-    state.Put((PetscReal)P_->gid[i]);
-    for (const std::vector<PetscReal> *w : {&v_prev_, &R_prev_})
-      for (int d = 0; d < 2; d++) state.Put((*w)[2 * i + d]);
-    for (const auto &f : F_prev_)
-      for (int d = 0; d < 2; d++) state.Put(f[2 * i + d]);
-  }
-}
-
-PetscErrorCode EnergyBalance::LoadGlobalState(std::vector<StateBlob> &states, bool first)
-{
-  const LocalNumbering local(*P_);
-  const size_t         nt = model_->NumTerms(), n2 = 2 * (size_t)P_->n;
-  PetscFunctionBeginUser;
-  W_controls_ = 0;
-  for (std::vector<PetscReal> *w : {&W_time_, &P_time_prev_, &W_}) w->assign(nt, 0.0);
-  F_prev_.assign(nt, std::vector<PetscReal>(n2, 0.0));
-  R_prev_.assign(n2, 0.0);
-  v_prev_.assign(n2, 0.0);
-  F_work_.clear();
-  for (StateBlob &b : states) {
-    PetscReal              wc, nf, n;
-    std::vector<PetscReal> w[3];
-    bool                   ok = b.Get(&wc) && b.Get(&K0_) && b.Get(&E0_) && b.Get(&t_) && b.Get(&worst_relative_) && b.Get(w[0]) && b.Get(w[1]) && b.Get(w[2]);
-    ok                        = ok && w[0].size() == nt && w[1].size() == nt && w[2].size() == nt && b.Get(&nf) && (size_t)nf == nt && b.Get(&n) && n >= 0 &&
-         b.pos + (size_t)n * (5 + 2 * nt) <= b.data.size();
-    PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint's energy balance does not fit this scene's terms (-fine_energy with other physics?)");
-    if (first) {
-      W_controls_ += wc;
-      for (size_t q = 0; q < nt; q++) W_time_[q] += w[0][q], P_time_prev_[q] += w[1][q], W_[q] += w[2][q];
-    }
-    for (size_t e = 0; e < (size_t)n; e++) {
-      PetscReal g = 0, v[2] = {0, 0}, r[2] = {0, 0};
-      b.Get(&g), b.Get(&v[0]), b.Get(&v[1]), b.Get(&r[0]), b.Get(&r[1]);
-      const PetscInt l     = local.Particle((PetscInt)g);
-      const bool     owner = l >= 0 && l < P_->NumOwned();
-      for (int d = 0; d < 2; d++) {
-        if (l >= 0) v_prev_[2 * l + d] = v[d]; /* a halo copy's too: its forces' work is done here */
-        if (owner) R_prev_[2 * l + d] += r[d];
-      }
-      for (size_t q = 0; q < nt; q++)
-        for (int d = 0; d < 2; d++) {
-          PetscReal f = 0;
-          b.Get(&f);
-          if (owner) F_prev_[q][2 * l + d] += f;
-        }
-    }
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
+  d.Scalar("work_controls", &W_controls_, Combine::Sum);
+  d.Scalar("kinetic_start", &K0_, Combine::Owner);
+  d.Scalar("stored_start", &E0_, Combine::Owner);
+  d.Scalar("time", &t_, Combine::Owner);
+  d.Scalar("largest_residual", &worst_relative_, Combine::Max);
+  d.Vector("work", &W_, Combine::Sum);
+  d.Vector("work_ramp", &W_time_, Combine::Sum);
+  d.Vector("ramp_power", &P_time_prev_, Combine::Sum);
+  StateTable &t = d.Table("particles", StateEntity::Particle);
+  t.Rows([this] { return (size_t)P_->n; }).Column("velocity", v_prev_, 2, Combine::Copy).Column("control_force", R_prev_, 2, Combine::Sum);
+  for (size_t q = 0; q < F_prev_.size(); q++) t.Column(std::string("force_") + model_->TermAt(q).Name(), F_prev_[q], 2, Combine::Sum);
 }
 
 } // namespace turgor

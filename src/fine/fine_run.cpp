@@ -11,15 +11,15 @@
 
 namespace turgor {
 
-PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   char     *sides[8];
   PetscInt  nsides = 8;
   PetscBool set, pset, hset;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
-  PetscCall(PetscOptionsReal("-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)", "FineRunSpec",
-                             dt_safety, &dt_safety, NULL));
+  PetscCall(TurgorOptionsReal(params, "-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)",
+                              "FineRunSpec", dt_safety, &dt_safety, NULL));
   {
     PetscBool e = energy ? PETSC_TRUE : PETSC_FALSE;
     PetscCall(PetscOptionsBool("-energy", "Write the energy balance energy.csv (kinetic, stored, work of controls and loads, dissipated, residual)",
@@ -60,6 +60,11 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm)
   PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
   if (set) clamp = listed;
   PetscCheck(dt_safety > 0 && dt_safety <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety);
+  if (params) {
+    std::string all;
+    for (const std::string &c : clamp) all += (all.empty() ? "" : ",") + c;
+    params->Set("-fine_clamp", all.empty() ? "none" : all);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -86,11 +91,12 @@ PetscErrorCode FineRun::SetTSDefaults()
 PetscErrorCode FineRun::ModeSetFromOptions()
 {
   PetscFunctionBeginUser;
-  PetscCall(tissues_.SetFromOptions(comm_));
-  PetscCall(load_.SetFromOptions(comm_));
-  PetscCall(physics_.SetFromOptions(comm_, TermContext{&load_}));
-  PetscCall(spec_.SetFromOptions(comm_));
-  PetscCall(controls_.SetFromOptions(comm_));
+  ParameterList &params = PhysicsParameters();
+  PetscCall(tissues_.SetFromOptions(comm_, &params));
+  PetscCall(load_.SetFromOptions(comm_, &params));
+  PetscCall(physics_.SetFromOptions(comm_, TermContext{&load_, &params}));
+  PetscCall(spec_.SetFromOptions(comm_, &params));
+  PetscCall(controls_.SetFromOptions(comm_, &params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -372,6 +378,7 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
   /* the split integrators' velocities of the last position update; a distributed run without
      controls gathers the halo's into their tail (LocalState: no copy of the velocities) */
   v_stale_.assign(2 * (distributed_ && !controls_.Active() ? n_all_ : n_local_), 0);
+  split_ = true;
   if (kdk) {
     drift_fraction_ = 1.0; /* one drift of h per step */
     if (distributed_) {    /* its accelerations carry room for the halo's forces (Accelerations) */
@@ -395,18 +402,7 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
     PetscCall(PetscStrcmp(scheme, TSBASICSYMPLECTICSIEULER, &euler));
     drift_fraction_ = verlet ? 0.5 : euler ? 1.0 : 0.0;
   }
-  {
-    /* a fixed step is not clipped at the final time: shorten it so that whole steps end there */
-    PetscReal dt;
-    PetscInt  max_steps;
-    PetscCall(TSGetTimeStep(ts_, &dt));
-    PetscCall(TSGetMaxSteps(ts_, &max_steps));
-    if (t_final_ < 1e12 * dt) {
-      const PetscReal n = std::ceil(t_final_ / dt * (1 - 1e-12));
-      PetscCall(TSSetTimeStep(ts_, t_final_ / n));
-      if (max_steps == PETSC_MAX_INT) PetscCall(TSSetMaxSteps(ts_, (PetscInt)n)); /* round-off must not add a step */
-    }
-  }
+  PetscCall(FitFixedSteps(0, 0)); /* a fixed step is not clipped at the final time */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -615,8 +611,11 @@ PetscErrorCode FineRun::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
     const PetscInt     n2  = 2 * run->n_local_;
     const PetscScalar *u;
     PetscScalar       *f;
+    PetscBool          answered;
     PetscFunctionBeginUser;
     PetscCall(CheckStopNow());
+    PetscCall(run->ObserveRHS(t, U, F, &answered)); /* a restart's first derivative, the FSAL stage */
+    if (answered) PetscFunctionReturn(PETSC_SUCCESS);
     PetscCall(VecGetArrayRead(U, &u));
     PetscCall(VecGetArray(F, &f));
     const std::vector<char> &fixed = run->tissue_.particles.fixed;
@@ -747,9 +746,7 @@ PetscErrorCode FineRun::EnergyRow(PetscReal t, const PetscReal *x, const PetscRe
 /* energy.csv (with its first row, the initial state) and the terms' log files. */
 PetscErrorCode FineRun::OpenOutputs()
 {
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   std::vector<std::pair<std::string, std::vector<std::string>>> files;
   model_.RecordFiles(files);
   record_names_.clear();
@@ -757,22 +754,14 @@ PetscErrorCode FineRun::OpenOutputs()
   for (auto &f : files) {
     record_names_.push_back(f.first);
     record_csv_.push_back(std::make_unique<CsvWriter>());
-    if (rank == 0 && RestartFile().empty()) PetscCall(record_csv_.back()->Open(PETSC_COMM_SELF, out_.dir + "/" + f.first, f.second));
-    else if (rank == 0) {
-      const size_t k = record_csv_.size() - 1;
-      PetscCall(
-        record_csv_.back()->Continue(PETSC_COMM_SELF, out_.dir + "/" + f.first, f.second, k < restart_record_rows_.size() ? restart_record_rows_[k] : 0));
-    }
+    PetscCall(OpenSeries(*record_csv_.back(), f.first, f.second));
   }
   if (spec_.energy) {
     std::vector<std::string> columns = {"time"};
     for (const std::string &c : energy_.Columns()) columns.push_back(c);
     energy_every_ = t_final_ / std::max<PetscInt>(out_.samples, 1);
-    if (!RestartFile().empty()) { /* continued: energy_next_ and the sums come from the checkpoint */
-      if (rank == 0) PetscCall(energy_csv_.Continue(PETSC_COMM_SELF, out_.dir + "/energy.csv", columns, restart_energy_rows_));
-      PetscFunctionReturn(PETSC_SUCCESS);
-    }
-    if (rank == 0) PetscCall(energy_csv_.Open(PETSC_COMM_SELF, out_.dir + "/energy.csv", columns));
+    PetscCall(OpenSeries(energy_csv_, "energy.csv", columns));
+    if (!RestartFile().empty()) PetscFunctionReturn(PETSC_SUCCESS); /* continued: energy_next_ and the sums come from the checkpoint */
     energy_next_ = energy_every_;
     const PetscScalar *u;
     const PetscReal   *x, *v;
@@ -936,52 +925,102 @@ PetscErrorCode FineRun::CheckpointFingerprint(std::vector<std::pair<std::string,
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, comm_));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));
-  auto join = [](const std::vector<std::string> &v) {
-    std::string s;
-    for (const std::string &x : v) s += (s.empty() ? "" : ",") + x;
-    return s.empty() ? std::string("none") : s;
-  };
+  /* what the options do not show (a node file's contents, the generators' arithmetic); the physics
+     parameters are compared one by one besides */
   fp.push_back({"particles", std::to_string((long long)n)});
   fp.push_back({"cells", std::to_string((long long)ncells)});
-  fp.push_back({"physics", join(model_.ActiveTerms())});
-  fp.push_back({"clamp", join(spec_.clamp)});
-  fp.push_back({"controls", join(controls_.Names())});
   fp.push_back({"energy", spec_.energy ? "on" : "off"});
   fp.push_back({"reference_positions_hash", reference_hash_});
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* [v_stale, force model, energy: flag, balance, next row time; rows of energy.csv, n logs, their
-   rows]; `global` (SaveGlobalState): the same in the tissue's numbering, v_stale as [n, n x (gid,
-   v_stale)] (n = 0 without drifts) */
-PetscErrorCode FineRun::WriteState(PetscReal t, Vec U, StateBlob &state, bool global)
+/* Declared state: the velocities of the split integrators' last drift, the energy balance's next
+   row, the model's (neighbour lists, terms) and the energy balance's. */
+PetscErrorCode FineRun::DeclareState(std::deque<StateDeclaration> &decls)
+{
+  PetscFunctionBeginUser;
+  numbering_ = std::make_unique<LocalNumbering>(tissue_.particles);
+  decls.emplace_back("fine");
+  StateDeclaration &d = decls.back();
+  if (spec_.energy) d.Scalar("next_energy_row", &energy_next_, Combine::Owner);
+  if (split_) d.Table("particles", StateEntity::Particle).Rows([this] { return (size_t)n_local_; }).Column("drift_velocity", v_stale_, 2);
+  model_.DeclareState(decls);
+  if (spec_.energy) {
+    decls.emplace_back("energy");
+    energy_.DeclareState(decls.back());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::uint64_t FineRun::EntityId(StateEntity e, PetscInt l) const
+{
+  const ParticleSet &P = tissue_.particles;
+  switch (e) {
+  case StateEntity::Particle:
+    return (std::uint64_t)P.gid[l];
+  case StateEntity::Bar:
+    return (std::uint64_t)P.SpringGid((size_t)l);
+  case StateEntity::Cell:
+    return (std::uint64_t)P.PolygonGid((size_t)l);
+  default:
+    return (std::uint64_t)l;
+  }
+}
+
+PetscInt FineRun::EntityLocal(StateEntity e, std::uint64_t id) const
+{
+  if (!numbering_) return -1;
+  switch (e) {
+  case StateEntity::Particle:
+    return numbering_->Particle((PetscInt)id);
+  case StateEntity::Bar:
+    return numbering_->Spring((PetscInt)id);
+  case StateEntity::Cell:
+    return numbering_->Polygon((PetscInt)id);
+  default:
+    return -1;
+  }
+}
+
+bool FineRun::EntityOwned(StateEntity e, PetscInt l) const
+{
+  const ParticleSet &P = tissue_.particles;
+  switch (e) {
+  case StateEntity::Particle:
+    return l >= 0 && l < P.NumOwned();
+  case StateEntity::Bar:
+    return l >= 0 && (size_t)l < P.OwnedSprings();
+  case StateEntity::Cell:
+    return l >= 0 && (size_t)l < P.OwnedPolygons();
+  default:
+    return true;
+  }
+}
+
+/* The particles this rank holds, in order (owned, then the halo): equal on a rank of another run
+   that holds the same ones (-fine_distribute 0's rank 0 and a one-rank run). */
+std::uint64_t FineRun::LayoutHash() const
+{
+  const ParticleSet &P   = tissue_.particles;
+  std::uint64_t      h   = 1469598103934665603ull;
+  auto               mix = [&h](std::uint64_t v) { h = (h ^ v) * 1099511628211ull; };
+  mix((std::uint64_t)n_local_);
+  mix((std::uint64_t)P.n);
+  for (PetscInt l = 0; l < P.n; l++) mix((std::uint64_t)P.gid[l]);
+  return h;
+}
+
+PetscErrorCode FineRun::AfterStateRead(PetscReal t, Vec U, bool own_layout)
 {
   const PetscScalar *u;
   const PetscReal   *x, *v;
   PetscFunctionBeginUser;
-  const PetscInt n_stale = v_stale_.empty() ? 0 : n_local_; /* only the split integrators have them (the owned particles') */
-  if (!global) state.Put(v_stale_.data(), 2 * (size_t)n_stale);
-  else {
-    const PetscInt n = n_stale;
-    state.Put((PetscReal)n);
-    for (PetscInt l = 0; l < n; l++)
-      for (PetscReal r : {(PetscReal)tissue_.particles.gid[l], v_stale_[2 * l], v_stale_[2 * l + 1]}) state.Put(r);
-  }
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
   model_.SetTime(t);
-  if (global) PetscCall(model_.SaveGlobalState(x, v, t, state));
-  else PetscCall(model_.SaveState(x, v, t, state));
+  PetscCall(model_.AfterStateRead(x, v, t, own_layout));
   PetscCall(VecRestoreArrayRead(U, &u));
-  state.Put(spec_.energy ? 1.0 : 0.0);
-  if (spec_.energy) {
-    if (global) energy_.SaveGlobalState(state);
-    else energy_.SaveState(state);
-    state.Put(energy_next_);
-  }
-  state.Put((PetscReal)energy_csv_.Rows());
-  state.Put((PetscReal)record_csv_.size());
-  for (auto &csv : record_csv_) state.Put((PetscReal)csv->Rows());
+  numbering_.reset();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1014,89 +1053,6 @@ PetscErrorCode FineRun::StateOrder(IS *order)
       idx[2 * n + 2 * l + d] = 2 * N + 2 * tissue_.particles.gid[l] + d;
     }
   PetscCall(ISCreateGeneral(comm_, 4 * n, idx.data(), PETSC_COPY_VALUES, order));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-bool FineRun::RestartsOnOtherRanks(std::string *why) const
-{
-  return model_.RestartsOnOtherRanks(why);
-}
-
-/* Another rank count: every writing rank's global state; this rank takes its particles' and its
-   interactions' part (the neighbour lists built afresh at the checkpoint's state: the pairs in
-   another order, the same forces to round-off). The output rows are the first writer's (rank 0
-   writes the files). */
-PetscErrorCode FineRun::LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states)
-{
-  const PetscScalar *u;
-  const PetscReal   *x, *v;
-  PetscMPIInt        rank;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  PetscCall(PrimeReferences());
-  const LocalNumbering local(tissue_.particles);
-  for (size_t r = 0; r < states.size(); r++) {
-    StateBlob &b = states[r];
-    PetscReal  n;
-    PetscCheck(b.Get(&n) && n >= 0 && b.pos + 3 * (size_t)n <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint's velocities of the last drift are incomplete");
-    for (size_t e = 0; e < (size_t)n; e++) {
-      PetscReal g = 0, w[2] = {0, 0};
-      b.Get(&g), b.Get(&w[0]), b.Get(&w[1]);
-      const PetscInt l = local.Particle((PetscInt)g);
-      if (l >= 0 && l < n_local_ && !v_stale_.empty()) v_stale_[2 * l] = w[0], v_stale_[2 * l + 1] = w[1];
-    }
-  }
-  PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
-  model_.SetTime(t);
-  PetscCall(model_.LoadGlobalState(x, v, t, states, rank == 0));
-  PetscCall(VecRestoreArrayRead(U, &u));
-  for (StateBlob &b : states) {
-    PetscReal energy;
-    PetscCheck(b.Get(&energy) && (energy != 0) == spec_.energy, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint was written %s -fine_energy, this run is %s it", energy != 0 ? "with" : "without", spec_.energy ? "with" : "without");
-  }
-  if (spec_.energy) {
-    PetscCall(energy_.LoadGlobalState(states, rank == 0));
-    for (StateBlob &b : states) PetscCheck(b.Get(&energy_next_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's energy balance is incomplete");
-  }
-  for (size_t r = 0; r < states.size(); r++) {
-    PetscReal rows, nrec;
-    PetscCheck(states[r].Get(&rows) && states[r].Get(&nrec), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are missing");
-    std::vector<PetscInt> rec((size_t)nrec, 0);
-    for (PetscInt &q : rec) PetscCheck(states[r].Get(&q), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are incomplete");
-    PetscCheck(states[r].Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "global_state of rank %zu: %zu numbers more than this run reads", r,
-               states[r].data.size() - states[r].pos);
-    if (r == 0) restart_energy_rows_ = (PetscInt)rows, restart_record_rows_ = rec;
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FineRun::LoadState(PetscReal t, Vec U, StateBlob &state)
-{
-  const PetscScalar *u;
-  const PetscReal   *x, *v;
-  PetscReal          energy, nrec;
-  PetscFunctionBeginUser;
-  PetscCall(PrimeReferences());
-  const size_t n_stale = v_stale_.empty() ? 0 : 2 * (size_t)n_local_; /* with a split integrator: the owned particles' */
-  PetscCheck(state.Get(v_stale_.data(), n_stale), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's velocities of the last drift do not fit this scene");
-  PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(LocalState(t, u, u + 2 * n_local_, &x, &v));
-  model_.SetTime(t);
-  PetscCall(model_.LoadState(x, v, t, state));
-  PetscCall(VecRestoreArrayRead(U, &u));
-  PetscCheck(state.Get(&energy) && (energy != 0) == spec_.energy, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint was written %s -fine_energy, this run is %s it", energy != 0 ? "with" : "without", spec_.energy ? "with" : "without");
-  if (spec_.energy) {
-    PetscCall(energy_.LoadState(state));
-    PetscCheck(state.Get(&energy_next_), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's energy balance is incomplete");
-  }
-  PetscCheck(state.Get(&restart_energy_rows_) && state.Get(&nrec), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are missing");
-  restart_record_rows_.assign((size_t)nrec, 0);
-  for (PetscInt &r : restart_record_rows_) PetscCheck(state.Get(&r), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's output rows are incomplete");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

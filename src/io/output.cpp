@@ -1,5 +1,6 @@
 #include <fstream>
 #include <turgor/io/output.h>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -90,6 +91,7 @@ PetscErrorCode CsvWriter::Open(MPI_Comm comm, const std::string &path, const std
   PetscFunctionBeginUser;
   PetscCall(Close());
   comm_ = comm;
+  path_ = path;
   ncol_ = columns.size();
   PetscCall(PetscFOpen(comm, path.c_str(), "w", &fp_));
   std::string header;
@@ -134,26 +136,32 @@ PetscErrorCode CsvWriter::Close()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A restarted run's file: the header and the first `rows` rows of the interrupted run's file are
-   kept (later rows, written after the checkpoint, are dropped) and new rows appended; a file that
-   is missing, or has another header, is started anew. Only the calling process (a PETSC_COMM_SELF
-   writer on rank 0) touches the file. */
-PetscErrorCode CsvWriter::Continue(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns, PetscInt rows)
+PetscErrorCode CsvWriter::Contents(std::string *text)
+{
+  PetscFunctionBeginUser;
+  text->clear();
+  if (comm_ == MPI_COMM_NULL) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(std::fflush(fp_) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s (disk full?)", path_.c_str());
+  std::ifstream in(path_, std::ios::binary);
+  PetscCheck(in, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Cannot read back %s", path_.c_str());
+  text->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CsvWriter::Restore(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns, const std::string &text)
 {
   std::string header;
   PetscFunctionBeginUser;
   for (const std::string &c : columns) header += (header.empty() ? "" : ",") + c;
-  std::vector<std::string> kept;
-  {
-    std::ifstream in(path);
-    std::string   line;
-    if (in && std::getline(in, line) && line == header)
-      while ((PetscInt)kept.size() < rows && std::getline(in, line)) kept.push_back(line);
-    else if (in) kept.clear();
-  }
-  PetscCall(Open(comm, path, columns));
-  for (const std::string &l : kept) PetscCall(PetscFPrintf(comm_, fp_, "%s\n", l.c_str()));
-  rows_ = rows; /* counted as the uninterrupted run counts them, also when the file was missing */
+  PetscCheck(text.compare(0, header.size() + 1, header + "\n") == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's %s has other columns than this run's (another scene?)", path.c_str());
+  PetscCall(Close());
+  comm_ = comm;
+  path_ = path;
+  ncol_ = columns.size();
+  PetscCall(PetscFOpen(comm, path.c_str(), "w", &fp_));
+  PetscCall(PetscFPrintf(comm, fp_, "%s", text.c_str()));
+  rows_ = (PetscInt)std::count(text.begin(), text.end(), '\n') - 1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -57,7 +57,7 @@ MaterialPointPool::~MaterialPointPool()
   PetscCallVoid(PetscSubcommDestroy(&subcomm_));
 }
 
-PetscErrorCode MaterialPointPool::SetFromOptions()
+PetscErrorCode MaterialPointPool::SetFromOptions(ParameterList *params)
 {
   const char *const tangents[] = {"forward", "central", "implicit"};
   PetscInt          tangent    = (PetscInt)tangent_.method;
@@ -68,12 +68,12 @@ PetscErrorCode MaterialPointPool::SetFromOptions()
     const std::string help = "Material point: " + MaterialModelNames();
     PetscCall(PetscStrncpy(name, type_.c_str(), sizeof name));
     PetscOptionsBegin(comm_, NULL, "Material points of the coarse model", "turgor");
-    PetscCall(PetscOptionsString("-material", help.c_str(), "MaterialPointPool", name, name, sizeof name, &set));
+    PetscCall(TurgorOptionsString(params, "-material", help.c_str(), "MaterialPointPool", name, name, sizeof name, &set));
     PetscOptionsEnd();
     type_ = name;
     PetscCall(MaterialModelCreate(comm_, type_, &model_));
     if (default_tol_ > 0) model_->SetDefaultTolerance(default_tol_);
-    PetscCall(model_->SetFromOptions(comm_));
+    PetscCall(model_->SetFromOptions(comm_, params));
   }
   PetscOptionsBegin(comm_, NULL, "Renamed options of the material-point pool", "turgor");
   PetscCall(PetscOptionsDeprecated("-rve_comm_size", "-material_comm_size", "0.2", NULL));
@@ -82,12 +82,12 @@ PetscErrorCode MaterialPointPool::SetFromOptions()
   PetscOptionsEnd();
   PetscOptionsBegin(comm_, "material_", "Material-point groups and tangents", "turgor");
   PetscCall(PetscOptionsInt("-comm_size", "MPI ranks per material-point group (sub-communicator)", "MaterialPointPool", comm_size_, &comm_size_, NULL));
-  PetscCall(PetscOptionsEList("-tangent",
-                              "Material tangents D^e, D^v: forward or central differences (eqs 46-53: perturbed material evaluations) or implicit (exact: "
-                              "an RVE differentiates its relaxed state, dw/dF from G_w dw/dF = -G_F with the relaxation's LU factor; no perturbed solves)",
-                              "MaterialPointPool", tangents, 3, tangents[tangent], &tangent, NULL));
-  PetscCall(PetscOptionsReal("-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ,
-                             &tangent_.Fdot_typ, NULL));
+  PetscCall(TurgorOptionsEList(params, "-tangent",
+                               "Material tangents D^e, D^v: forward or central differences (eqs 46-53: perturbed material evaluations) or implicit (exact: "
+                               "an RVE differentiates its relaxed state, dw/dF from G_w dw/dF = -G_F with the relaxation's LU factor; no perturbed solves)",
+                               "MaterialPointPool", tangents, 3, tangents[tangent], &tangent, NULL));
+  PetscCall(TurgorOptionsReal(params, "-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ,
+                              &tangent_.Fdot_typ, NULL));
   PetscCall(PetscOptionsInt("-rebalance",
                             "After N material evaluations, deal the points to the groups again in blocks of equal measured cost (the points that "
                             "change group move with their state: the same results); 0: never",
@@ -177,7 +177,7 @@ PetscErrorCode MaterialPointPool::BuildTraffic()
 /* This group's points become [begin, end): the ones it had stay (with their measured cost), the
    others are created (collectively on the group) and take their state from states[g - begin]
    (none: they start afresh). Collective on the pool. */
-PetscErrorCode MaterialPointPool::SetBlock(PetscInt begin, PetscInt end, std::vector<StateBlob> *states)
+PetscErrorCode MaterialPointPool::SetBlock(PetscInt begin, PetscInt end, std::vector<std::vector<PetscReal>> *states)
 {
   MPI_Comm                                    group = PetscSubcommChild(subcomm_);
   std::vector<std::unique_ptr<MaterialPoint>> points;
@@ -192,9 +192,8 @@ PetscErrorCode MaterialPointPool::SetBlock(PetscInt begin, PetscInt end, std::ve
     std::unique_ptr<MaterialPoint> p;
     PetscCall(model_->CreatePoint(group, &p));
     if (states) {
-      StateBlob &b = (*states)[g - begin];
-      PetscCall(p->LoadState(b));
-      PetscCheck(b.Done(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "material point %" PetscInt_FMT ": %zu numbers of its state left unread", g, b.data.size() - b.pos);
+      const std::vector<PetscReal> &b = (*states)[g - begin];
+      PetscCall(UnpackPoint(*p, b.data(), b.size()));
     }
     points.push_back(std::move(p));
     cost.push_back(0);
@@ -263,12 +262,12 @@ PetscErrorCode MaterialPointPool::Rebalance()
   for (PetscInt g = begin_; g < end_; g++) {
     const PetscInt c = group_of(nb, g);
     if (c == color) continue;
-    StateBlob b;
-    PetscCall(points_[g - begin_]->SaveState(b));
+    std::vector<PetscReal> b;
+    PetscCall(PackPoint(*points_[g - begin_], b));
     std::vector<PetscReal> &o = out[c * comm_size_ + group_rank_];
     o.push_back((PetscReal)g);
-    o.push_back((PetscReal)b.data.size());
-    o.insert(o.end(), b.data.begin(), b.data.end());
+    o.push_back((PetscReal)b.size());
+    o.insert(o.end(), b.begin(), b.end());
   }
   std::vector<PetscMPIInt> scount(size), rcount(size), sdispl(size + 1, 0), rdispl(size + 1, 0);
   for (PetscMPIInt r = 0; r < size; r++) scount[r] = (PetscMPIInt)out[r].size();
@@ -281,12 +280,12 @@ PetscErrorCode MaterialPointPool::Rebalance()
   }
   recv.resize(rdispl[size]);
   PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdispl.data(), MPIU_REAL, recv.data(), rcount.data(), rdispl.data(), MPIU_REAL, comm_));
-  const PetscInt         begin = nb[color], end = nb[color + 1];
-  std::vector<StateBlob> states(end - begin);
+  const PetscInt                      begin = nb[color], end = nb[color + 1];
+  std::vector<std::vector<PetscReal>> states(end - begin);
   for (size_t at = 0; at + 2 <= recv.size();) {
     const PetscInt g = (PetscInt)recv[at], len = (PetscInt)recv[at + 1];
     PetscCheck(g >= begin && g < end, PETSC_COMM_SELF, PETSC_ERR_PLIB, "rebalance: point %" PetscInt_FMT " sent to the wrong group", g);
-    states[g - begin].data.assign(recv.begin() + at + 2, recv.begin() + at + 2 + len);
+    states[g - begin].assign(recv.begin() + at + 2, recv.begin() + at + 2 + len);
     at += 2 + (size_t)len;
   }
   PetscCall(SetBlock(begin, end, &states));
@@ -424,85 +423,91 @@ PetscErrorCode MaterialPointPool::Revert()
 }
 
 /* [group's first point, end, then per point its blob] */
-PetscErrorCode MaterialPointPool::SaveState(StateBlob &state)
+PetscErrorCode MaterialPointPool::PackPoint(MaterialPoint &p, std::vector<PetscReal> &out)
 {
+  StateDeclaration d("point");
   PetscFunctionBeginUser;
-  state.Put((PetscReal)begin_);
-  state.Put((PetscReal)end_);
-  for (auto &p : points_) {
-    StateBlob b;
-    PetscCall(p->SaveState(b));
-    state.Put(b.data);
-  }
+  p.DeclareState(d);
+  PetscCall(PackState(d, out));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MaterialPointPool::LoadState(StateBlob &state)
+PetscErrorCode MaterialPointPool::UnpackPoint(MaterialPoint &p, const PetscReal *in, size_t n)
 {
-  PetscInt b = -1, e = -1;
+  StateDeclaration d("point");
   PetscFunctionBeginUser;
-  PetscCheck(state.Get(&b) && state.Get(&e), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are missing");
+  p.DeclareState(d);
+  PetscCall(UnpackState(d, in, n));
+  PetscCall(p.AfterStateRead());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::DeclareState(StateDeclaration &d, const std::vector<PetscInt> &ids)
+{
+  PetscFunctionBeginUser;
+  if (!prototype_) PetscCall(model_->CreatePoint(PETSC_COMM_SELF, &prototype_));
+  StateDeclaration proto("point");
+  prototype_->DeclareState(proto);
+  const std::vector<std::string> names = NestedColumns(proto);
+  saved_.clear();
+  for (size_t k = 0; k < points_.size(); k++) {
+    StateDeclaration pd("point");
+    points_[k]->DeclareState(pd);
+    saved_.push_back({begin_ + (PetscInt)k, {}});
+    PetscCall(PackNested(pd, saved_.back().columns));
+  }
+  saved_begin_ = begin_, saved_end_ = end_;
+  d.Scalar("block_begin", &saved_begin_, Combine::Local);
+  d.Scalar("block_end", &saved_end_, Combine::Local);
+  StateTable &t = d.Table("points", StateEntity::MaterialPoint)
+                    .Records([this] { return saved_.size(); }, [this, &ids](size_t r) { return (std::uint64_t)ids[saved_[r].point]; },
+                             [this, n = names.size()](size_t m) {
+                               saved_.assign(m, SavedPoint{-1, std::vector<std::vector<PetscReal>>(n)});
+                             },
+                             "point")
+                    .Ref("point", saved_, &SavedPoint::point, StateEntity::MaterialPoint);
+  for (size_t c = 0; c < names.size(); c++)
+    t.Ragged(
+      names[c], [this, c](size_t r, std::vector<PetscReal> &v) { v = saved_[r].columns[c]; },
+      [this, c](size_t r, const PetscReal *v, size_t n) {
+        saved_[r].columns[c].assign(v, v + n);
+        return PETSC_SUCCESS;
+      });
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::AfterStateRead(bool own_layout)
+{
+  PetscFunctionBeginUser;
   {
-    /* a rebalanced run's blocks (-material_rebalance): take them, on every rank at once */
-    PetscInt other = b != begin_ || e != end_;
+    /* a rebalanced run's blocks (-material_rebalance): taken on every rank at once, where every rank
+       holds what its writer held */
+    PetscInt other = own_layout && (saved_begin_ != begin_ || saved_end_ != end_), all_own = own_layout;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &other, 1, MPIU_INT, MPI_MAX, comm_));
-    PetscCheck(b >= 0 && b <= e && e <= n_global_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint's material points of this rank's group are [%" PetscInt_FMT ", %" PetscInt_FMT "), of %" PetscInt_FMT " points", b, e,
-               n_global_);
-    if (other) PetscCall(SetBlock(b, e, nullptr));
-    if (rebalance_after_ > 0) evaluations_ = rebalance_after_ + 1; /* the checkpoint's run had rebalanced, or will not need to now */
-  }
-  for (size_t k = 0; k < points_.size(); k++) {
-    StateBlob pb;
-    PetscCheck(state.Get(pb.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of material point %" PetscInt_FMT " is missing",
-               begin_ + (PetscInt)k);
-    PetscCall(points_[k]->LoadState(pb));
-    PetscCheck(pb.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint's state of material point %" PetscInt_FMT " has %zu numbers more than it reads", begin_ + (PetscInt)k, pb.data.size() - pb.pos);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* [n, n x (id, the point's blob)] */
-PetscErrorCode MaterialPointPool::SaveGlobalState(StateBlob &state, const std::vector<PetscInt> &ids)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(comm_size_ == 1, PETSC_COMM_SELF, PETSC_ERR_SUP, "material points on groups of %" PetscInt_FMT " ranks have no rank-independent state",
-             comm_size_);
-  state.Put((PetscReal)points_.size());
-  for (size_t k = 0; k < points_.size(); k++) {
-    StateBlob b;
-    PetscCall(points_[k]->SaveState(b));
-    state.Put((PetscReal)ids[begin_ + k]);
-    state.Put(b.data);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode MaterialPointPool::LoadGlobalState(std::vector<StateBlob> &states, const std::vector<PetscInt> &ids)
-{
-  std::unordered_map<PetscInt, PetscInt> of_id; /* id -> this group's point */
-  size_t                                 found = 0;
-  PetscFunctionBeginUser;
-  for (PetscInt g = begin_; g < end_; g++) of_id.emplace(ids[g], g - begin_);
-  for (StateBlob &b : states) {
-    PetscReal n;
-    PetscCheck(b.Get(&n) && n >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are missing");
-    for (size_t e = 0; e < (size_t)n; e++) {
-      PetscReal id;
-      StateBlob pb;
-      PetscCheck(b.Get(&id) && b.Get(pb.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's material points are incomplete");
-      auto it = of_id.find((PetscInt)id);
-      if (it == of_id.end()) continue; /* another group's */
-      PetscCall(points_[it->second]->LoadState(pb));
-      PetscCheck(pb.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of material point %g has %zu numbers more than it reads", id,
-                 pb.data.size() - pb.pos);
-      found++;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &all_own, 1, MPIU_INT, MPI_MIN, comm_));
+    if (other && all_own) {
+      PetscCheck(saved_begin_ >= 0 && saved_begin_ <= saved_end_ && saved_end_ <= n_global_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                 "the checkpoint's material points of this rank's group are [%" PetscInt_FMT ", %" PetscInt_FMT "), of %" PetscInt_FMT " points", saved_begin_,
+                 saved_end_, n_global_);
+      PetscCall(SetBlock(saved_begin_, saved_end_, nullptr));
     }
   }
-  PetscCheck(found == points_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint holds %zu of this group's %zu material points", found,
-             points_.size());
-  if (rebalance_after_ > 0) evaluations_ = rebalance_after_ + 1; /* the blocks by count (the measured costs are the other partition's) */
+  /* every point of the block, in the block's order (the group's ranks together) */
+  std::vector<SavedPoint *> of((size_t)(end_ - begin_), nullptr);
+  for (SavedPoint &sp : saved_) {
+    PetscCheck(sp.point >= begin_ && sp.point < end_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's material point %" PetscInt_FMT " is not in this group's block [%" PetscInt_FMT ", %" PetscInt_FMT ")", sp.point, begin_, end_);
+    of[sp.point - begin_] = &sp;
+  }
+  for (size_t k = 0; k < of.size(); k++) {
+    PetscCheck(of[k], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint has no state for material point %" PetscInt_FMT, begin_ + (PetscInt)k);
+    StateDeclaration pd("point");
+    points_[k]->DeclareState(pd);
+    PetscCall(UnpackNested(pd, of[k]->columns));
+    PetscCall(points_[k]->AfterStateRead());
+  }
+  std::vector<SavedPoint>().swap(saved_);
+  if (rebalance_after_ > 0) evaluations_ = rebalance_after_ + 1; /* the checkpoint's run had rebalanced, or will not need to now */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -3,14 +3,14 @@
 
 namespace turgor {
 
-PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "nh_", "Closed-form neo-Hookean material point (verification)", "turgor");
-  PetscCall(PetscOptionsReal("-mu", "Shear modulus mu [N/m]", "NeoHookeanSpec", mu, &mu, NULL));
-  PetscCall(PetscOptionsReal("-lambda", "Lame constant lambda [N/m]", "NeoHookeanSpec", lambda, &lambda, NULL));
-  PetscCall(PetscOptionsReal("-viscosity", "Viscosity eta in eta (l + l^T) [ng/µs]", "NeoHookeanSpec", viscosity, &viscosity, NULL));
-  PetscCall(PetscOptionsReal("-density", "Reference density rho0 [ng/µm^2]", "NeoHookeanSpec", density, &density, NULL));
+  PetscCall(TurgorOptionsReal(params, "-mu", "Shear modulus mu [N/m]", "NeoHookeanSpec", mu, &mu, NULL));
+  PetscCall(TurgorOptionsReal(params, "-lambda", "Lame constant lambda [N/m]", "NeoHookeanSpec", lambda, &lambda, NULL));
+  PetscCall(TurgorOptionsReal(params, "-viscosity", "Viscosity eta in eta (l + l^T) [ng/µs]", "NeoHookeanSpec", viscosity, &viscosity, NULL));
+  PetscCall(TurgorOptionsReal(params, "-density", "Reference density rho0 [ng/µm^2]", "NeoHookeanSpec", density, &density, NULL));
   PetscOptionsEnd();
   PetscCheck(mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_mu = %g: must be > 0", (double)mu);
   PetscCheck(lambda > -mu, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_lambda = %g: must be > -mu", (double)lambda);

@@ -8,8 +8,8 @@ PetscErrorCode Bars::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "bar_", "Bars of polygonal cells (axial springs with a dashpot)", "turgor");
-  PetscCall(PetscOptionsReal("-stiffness", "Axial stiffness k_b [µN/µm = N/m]", "Bars", stiffness, &stiffness, NULL));
-  PetscCall(PetscOptionsReal("-damping", "Axial dashpot coefficient [ng/µs]; 0 = none", "Bars", damping, &damping, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-stiffness", "Axial stiffness k_b [µN/µm = N/m]", "Bars", stiffness, &stiffness, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-damping", "Axial dashpot coefficient [ng/µs]; 0 = none", "Bars", damping, &damping, NULL));
   PetscOptionsEnd();
   PetscCheck(stiffness >= 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -bar_stiffness = %g: a stiffness must be finite and >= 0",
              (double)stiffness);
@@ -83,41 +83,15 @@ PetscErrorCode Bars::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Checkpoints: [dissipated, power, t_last, have_power] */
-PetscErrorCode Bars::SaveState(const ForceInput &in, StateBlob &state) const
+/* The dashpots' dissipation and the last accepted state's power are sums over the bars: on another
+   layout the first rank takes the totals (the trapezoidal rule is linear in them, so the sum over
+   the ranks goes on as it would have). */
+void Bars::DeclareState(const ParticleSet &P, StateDeclaration &d)
 {
-  PetscFunctionBeginUser;
-  state.Put(dissipated_);
-  state.Put(power_);
-  state.Put(t_last_);
-  state.Put(have_power_ ? 1.0 : 0.0);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode Bars::LoadState(const ForceInput &in, StateBlob &state)
-{
-  PetscReal have;
-  PetscFunctionBeginUser;
-  PetscCheck(state.Get(&dissipated_) && state.Get(&power_) && state.Get(&t_last_) && state.Get(&have), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "bars: the checkpoint's dashpot state is incomplete");
-  have_power_ = have != 0;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The dissipation and the last accepted state's dashpot power are sums over the bars: the first rank
-   takes the writing ranks' totals (the trapezoidal rule is linear in them, so the sum over ranks
-   goes on as it would have). */
-PetscErrorCode Bars::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
-{
-  PetscReal dissipated = 0, power = 0;
-  PetscFunctionBeginUser;
-  for (StateBlob &b : states) {
-    PetscCall(LoadState(in, b));
-    dissipated += dissipated_, power += power_;
-  }
-  dissipated_ = first ? dissipated : 0;
-  power_      = first ? power : 0;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  d.Scalar("dashpot_dissipation", &dissipated_, Combine::Sum);
+  d.Scalar("dashpot_power", &power_, Combine::Sum);
+  d.Scalar("last_time", &t_last_, Combine::Owner);
+  d.Scalar("have_power", &have_power_, Combine::Max);
 }
 
 } // namespace turgor

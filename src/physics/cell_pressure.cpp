@@ -11,10 +11,12 @@ PetscErrorCode CellPressure::SetFromOptions(MPI_Comm comm, const TermContext &ct
   PetscFunctionBeginUser;
   PetscInt e = (PetscInt)law;
   PetscOptionsBegin(comm, "pressure_", "Pressure of closed polygonal cells", "turgor");
-  PetscCall(PetscOptionsEList("-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, 3, kLaws[e], &e, NULL));
-  PetscCall(PetscOptionsReal("-p0", "Reference pressure p0 [N/m]", "CellPressure", p0, &p0, NULL));
-  PetscCall(PetscOptionsReal("-bulk_modulus", "Bulk modulus K of the elastic law [N/m]", "CellPressure", bulk_modulus, &bulk_modulus, NULL));
-  PetscCall(PetscOptionsReal("-ramp_time", "The turgor builds up linearly over this time [µs]; 0: at once", "CellPressure", ramp_time, &ramp_time, NULL));
+  PetscCall(
+    TurgorOptionsEList(ctx.params, "-law", "Pressure law: constant p0, gas p0 A0/A, elastic p0 - K (A - A0)/A0", "CellPressure", kLaws, 3, kLaws[e], &e, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-p0", "Reference pressure p0 [N/m]", "CellPressure", p0, &p0, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-bulk_modulus", "Bulk modulus K of the elastic law [N/m]", "CellPressure", bulk_modulus, &bulk_modulus, NULL));
+  PetscCall(
+    TurgorOptionsReal(ctx.params, "-ramp_time", "The turgor builds up linearly over this time [µs]; 0: at once", "CellPressure", ramp_time, &ramp_time, NULL));
   PetscOptionsEnd();
   law = (Law)e;
   PetscCheck(std::isfinite(p0), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -pressure_p0 = %g: must be finite", (double)p0);

@@ -1,4 +1,3 @@
-#include <turgor/particles/local_numbering.h>
 #include <turgor/physics/contact.h>
 #include <algorithm>
 #include <unordered_map>
@@ -10,11 +9,12 @@ PetscErrorCode Contact::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "contact_", "Node-bar contact of polygonal cells with Coulomb friction", "turgor");
-  PetscCall(PetscOptionsReal("-stiffness", "Normal stiffness k_n [N/m]", "Contact", stiffness, &stiffness, NULL));
-  PetscCall(PetscOptionsReal("-damping", "Normal dashpot on the normal relative velocity [ng/µs] (only pushes)", "Contact", damping, &damping, NULL));
-  PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient mu; 0 = frictionless", "Contact", friction, &friction, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-stiffness", "Normal stiffness k_n [N/m]", "Contact", stiffness, &stiffness, NULL));
   PetscCall(
-    PetscOptionsReal("-tangential_stiffness", "Tangential spring k_t [N/m]; negative = k_n", "Contact", tangential_stiffness, &tangential_stiffness, NULL));
+    TurgorOptionsReal(ctx.params, "-damping", "Normal dashpot on the normal relative velocity [ng/µs] (only pushes)", "Contact", damping, &damping, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-friction", "Coulomb friction coefficient mu; 0 = frictionless", "Contact", friction, &friction, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-tangential_stiffness", "Tangential spring k_t [N/m]; negative = k_n", "Contact", tangential_stiffness,
+                              &tangential_stiffness, NULL));
   PetscOptionsEnd();
   PetscCheck(stiffness > 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -contact_stiffness = %g: must be finite and > 0",
              (double)stiffness);
@@ -366,38 +366,32 @@ PetscErrorCode Contact::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Checkpoints: [stamp, dissipated, nlive, per live pair: node, bar, xi, lam_ref, stamp] (local
-   node indices: a restart has the same particles on the same ranks); `global`: the node's gid, the
-   bar's number in the tissue and the commits since the history was set instead */
-void Contact::WriteHistories(const ParticleSet &P, StateBlob &state, bool global) const
+void Contact::DeclareState(const ParticleSet &P, StateDeclaration &d)
 {
   if (!HasInternalState()) return;
-  state.Put((PetscReal)stamp_);
-  state.Put(dissipated_);
-  state.Put((PetscReal)HistoryEntries());
+  saved_.clear();
   for (size_t k = 0; k < cand_.size(); k++)
-    if (hist_[k].live) {
-      const History  &h = hist_[k];
-      const PetscReal p = global ? P.gid[cand_[k].p] : cand_[k].p, s = global ? P.SpringGid(cand_[k].s) : cand_[k].s;
-      for (PetscReal v : {p, s, h.xi, h.lam_ref, (PetscReal)(global ? stamp_ - h.stamp : h.stamp)}) state.Put(v);
-    }
+    if (hist_[k].live) saved_.push_back({cand_[k].p, cand_[k].s, hist_[k].xi, hist_[k].lam_ref, stamp_ - hist_[k].stamp});
+  d.Scalar("commits", &stamp_, Combine::Max); /* every rank commits once per accepted step */
+  d.Scalar("friction_dissipation", &dissipated_, Combine::Sum);
+  d.Table("histories", StateEntity::Particle)
+    .Records([this] { return saved_.size(); },
+             [this, &P](size_t r) { return PairKey((std::uint64_t)P.gid[saved_[r].node], (std::uint64_t)P.SpringGid(saved_[r].bar)); },
+             [this](size_t n) { saved_.resize(n); }, "node")
+    .Ref("node", saved_, &SavedHistory::node, StateEntity::Particle)
+    .Ref("bar", saved_, &SavedHistory::bar, StateEntity::Bar)
+    .Field("xi", saved_, &SavedHistory::xi)
+    .Field("lam_ref", saved_, &SavedHistory::lam_ref)
+    .Field("age", saved_, &SavedHistory::age);
 }
 
-PetscErrorCode Contact::LoadState(const ForceInput &in, StateBlob &state)
+PetscErrorCode Contact::AfterStateRead(const ForceInput &in)
 {
-  PetscReal n;
+  std::unordered_map<std::uint64_t, History> saved;
   PetscFunctionBeginUser;
   if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCheck(state.Get(&stamp_) && state.Get(&dissipated_) && state.Get(&n) && n >= 0 && state.pos + 5 * (size_t)n <= state.data.size(), PETSC_COMM_SELF,
-             PETSC_ERR_FILE_UNEXPECTED, "contact: the checkpoint's contact histories are incomplete");
-  std::unordered_map<std::uint64_t, History> saved;
-  for (size_t e = 0; e < (size_t)n; e++) {
-    PetscReal v[5] = {0, 0, 0, 0, 0};
-    for (PetscReal &r : v) state.Get(&r);
-    PetscCheck(v[0] >= 0 && v[0] < in.P->n && v[1] >= 0 && v[1] < (PetscReal)n_springs_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "contact: the checkpoint's contact history names a node or bar outside the scene");
-    saved.emplace(Key(*in.P, (PetscInt)v[0], (PetscInt)v[1]), History{v[2], v[3], true, (PetscInt)v[4]});
-  }
+  for (const SavedHistory &h : saved_) saved.emplace(Key(*in.P, h.node, h.bar), History{h.xi, h.lam_ref, true, stamp_ - h.age});
+  std::vector<SavedHistory>().swap(saved_);
   PetscCall(AttachHistories(in, saved));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -418,36 +412,6 @@ PetscErrorCode Contact::AttachHistories(const ForceInput &in, const std::unorder
   PetscCheck(found == saved.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "contact: %zu of the checkpoint's %zu contact histories have no pair in the neighbour lists at its state", saved.size() - found, saved.size());
   BuildNearList(in, in.x, in.P->n); /* with the live pairs */
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* This rank keeps the histories of the pairs whose node it owns (a pair is computed by its node's
-   owner); their bars are on it, owned or halo, as they would be in an uninterrupted run. */
-PetscErrorCode Contact::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
-{
-  const LocalNumbering                       local(*in.P);
-  std::unordered_map<std::uint64_t, History> saved;
-  PetscFunctionBeginUser;
-  if (!HasInternalState()) PetscFunctionReturn(PETSC_SUCCESS);
-  dissipated_ = 0;
-  for (StateBlob &b : states) {
-    PetscReal stamp, diss, n;
-    PetscCheck(b.Get(&stamp) && b.Get(&diss) && b.Get(&n) && n >= 0 && b.pos + 5 * (size_t)n <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "contact: the checkpoint's contact histories are incomplete");
-    stamp_ = (PetscInt)stamp; /* every rank commits once per accepted step */
-    if (first) dissipated_ += diss;
-    for (size_t e = 0; e < (size_t)n; e++) {
-      PetscReal v[5] = {0, 0, 0, 0, 0};
-      for (PetscReal &r : v) b.Get(&r);
-      const PetscInt p = local.Particle((PetscInt)v[0]);
-      if (p < 0 || p >= in.P->NumOwned()) continue; /* another rank's pair */
-      const PetscInt s = local.Spring((PetscInt)v[1]);
-      PetscCheck(s >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "contact: the checkpoint's contact of node %g names bar %g, which is not on this rank",
-                 (double)v[0], (double)v[1]);
-      saved.emplace(Key(*in.P, p, s), History{v[2], v[3], true, stamp_ - (PetscInt)v[4]});
-    }
-  }
-  PetscCall(AttachHistories(in, saved));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

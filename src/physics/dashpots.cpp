@@ -8,7 +8,7 @@ PetscErrorCode Dashpots::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "dashpot_", "Dashpots along the bars (wall springs): damping of their stretching rate", "turgor");
-  PetscCall(PetscOptionsReal("-coefficient", "c [ng/µs]: force per relative velocity along a bar", "Dashpots", coefficient, &coefficient, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-coefficient", "c [ng/µs]: force per relative velocity along a bar", "Dashpots", coefficient, &coefficient, NULL));
   PetscOptionsEnd();
   PetscCheck(coefficient >= 0 && std::isfinite(coefficient), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -dashpot_coefficient = %g: must be finite and >= 0",
              (double)coefficient);

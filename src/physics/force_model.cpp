@@ -20,7 +20,7 @@ std::string ForceTermNames()
   return Registry<ForceTerm>::Instance().Names();
 }
 
-PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscReal g[3] = {body_acceleration[0], body_acceleration[1], 0}; /* one spare: PETSc drops values beyond the buffer silently */
   PetscInt  n    = 3;
@@ -36,6 +36,7 @@ PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm)
   body_acceleration[1] = g[1];
   PetscCheck(std::isfinite(body_acceleration[0]) && std::isfinite(body_acceleration[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -body_force = %g,%g: must be finite", (double)body_acceleration[0], (double)body_acceleration[1]);
+  if (params) params->Set("-body_force", ParameterValue(body_acceleration, 2)); /* the value in effect, given or not */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -51,7 +52,7 @@ PetscErrorCode PhysicsSpec::SetFromOptions(MPI_Comm comm, const TermContext &ctx
                            "; none: no forces)";
   PetscOptionsBegin(comm, NULL, "Fine-scale physics", "turgor");
   PetscCall(PetscOptionsStringArray("-physics", help.c_str(), "PhysicsSpec", list, &n, &set));
-  PetscCall(PetscOptionsReal("-neighbour_skin", "Verlet skin of the neighbour lists [µm]", "PhysicsSpec", neighbour_skin, &neighbour_skin, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-neighbour_skin", "Verlet skin of the neighbour lists [µm]", "PhysicsSpec", neighbour_skin, &neighbour_skin, NULL));
   PetscOptionsEnd();
   PetscCheck(!set || n < 16, comm, PETSC_ERR_ARG_SIZ, "Option -physics: more than 15 terms listed");
   PetscCall(CheckNotEmpty(comm, "-physics", ("terms: " + ForceTermNames() + ", or none").c_str())); /* not "all terms" */
@@ -63,6 +64,11 @@ PetscErrorCode PhysicsSpec::SetFromOptions(MPI_Comm comm, const TermContext &ctx
       names.push_back(list[k]);
       PetscCall(PetscFree(list[k]));
     }
+  }
+  if (ctx.params) { /* the terms in effect, given or not */
+    std::string all;
+    for (const std::string &s : names) all += (all.empty() ? "" : ",") + s;
+    ctx.params->Set("-physics", all.empty() ? "none" : all);
   }
   terms_.clear();
   std::vector<std::string> seen;
@@ -335,99 +341,33 @@ PetscErrorCode ForceModel::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::SaveState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state)
+void ForceModel::DeclareState(std::deque<StateDeclaration> &decls, const std::string &prefix)
 {
-  PetscFunctionBeginUser;
-  ForceInput in = {P_, x, v, &nb_, &images_};
-  in.t          = t;
-  state.Put((PetscReal)nb_.Rebuilds());
-  state.Put(nb_.ReferencePositions());
-  state.Put((PetscReal)terms_.size());
+  nb_ref_      = nb_.ReferencePositions();
+  nb_rebuilds_ = nb_.Rebuilds();
+  decls.emplace_back(prefix + "neighbours");
+  StateDeclaration &d = decls.back();
+  d.Scalar("rebuilds", &nb_rebuilds_, Combine::Max);
+  d.Sequence("build_positions", &nb_ref_, Combine::Local); /* of every local particle, halo too: this rank's own */
   for (auto &term : terms_) {
-    StateBlob b;
-    PetscCall(term->SaveState(in, b));
-    state.Put(b.data);
+    decls.emplace_back(prefix + term->Name());
+    term->DeclareState(*P_, decls.back());
   }
-  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::LoadState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state)
+PetscErrorCode ForceModel::AfterStateRead(const PetscReal *x, const PetscReal *v, PetscReal t, bool own_layout)
 {
-  PetscReal              rebuilds, nterms;
-  std::vector<PetscReal> x_ref;
   PetscFunctionBeginUser;
-  PetscCheck(state.Get(&rebuilds) && state.Get(x_ref) && state.Get(&nterms), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's force model state is incomplete");
-  PetscCheck((size_t)nterms == terms_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint holds the state of %zu terms, the scene has %zu",
-             (size_t)nterms, terms_.size());
-  PetscCall(nb_.Restore(*P_, x_ref, (PetscInt)rebuilds, images_));
+  /* elsewhere the lists at the checkpoint's state: this rank's particles were never listed together */
+  if (!own_layout) nb_ref_.assign(x, x + 2 * P_->n);
+  PetscCall(nb_.Restore(*P_, nb_ref_, nb_rebuilds_, images_));
+  std::vector<PetscReal>().swap(nb_ref_);
   last_x_.clear();
   last_rebuilds_ = -1;
   t_             = t;
   ForceInput in  = {P_, x, v, &nb_, &images_};
   in.t           = t;
-  for (auto &term : terms_) {
-    StateBlob b;
-    PetscCheck(state.Get(b.data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s is missing", term->Name());
-    PetscCall(term->LoadState(in, b));
-    PetscCheck(b.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s has %zu numbers more than the term reads", term->Name(),
-               b.data.size() - b.pos);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-bool ForceModel::RestartsOnOtherRanks(std::string *why) const
-{
-  for (const auto &term : terms_)
-    if (!term->RestartsOnOtherRanks()) {
-      *why = std::string("the internal state of term ") + term->Name() + " has no rank-independent form";
-      return false;
-    }
-  return true;
-}
-
-PetscErrorCode ForceModel::SaveGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state)
-{
-  PetscFunctionBeginUser;
-  ForceInput in = {P_, x, v, &nb_, &images_};
-  in.t          = t;
-  state.Put((PetscReal)nb_.Rebuilds());
-  state.Put((PetscReal)terms_.size());
-  for (auto &term : terms_) {
-    StateBlob b;
-    PetscCall(term->SaveGlobalState(in, b));
-    state.Put(b.data);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode ForceModel::LoadGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, std::vector<StateBlob> &states, bool first)
-{
-  std::vector<std::vector<StateBlob>> per_term(terms_.size(), std::vector<StateBlob>(states.size()));
-  PetscReal                           rebuilds = 0;
-  PetscFunctionBeginUser;
-  for (size_t r = 0; r < states.size(); r++) {
-    PetscReal nterms, nr = 0;
-    PetscCheck(states[r].Get(&nr) && states[r].Get(&nterms) && (size_t)nterms == terms_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint holds the state of %g terms, the scene has %zu", (double)nterms, terms_.size());
-    for (size_t q = 0; q < terms_.size(); q++)
-      PetscCheck(states[r].Get(per_term[q][r].data), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s is missing",
-                 terms_[q]->Name());
-    rebuilds = std::max(rebuilds, nr);
-  }
-  /* the lists at the checkpoint's state: this rank's particles were never listed together */
-  PetscCall(nb_.Restore(*P_, std::vector<PetscReal>(x, x + 2 * P_->n), (PetscInt)rebuilds, images_));
-  last_x_.clear();
-  last_rebuilds_ = -1;
-  t_             = t;
-  ForceInput in  = {P_, x, v, &nb_, &images_};
-  in.t           = t;
-  for (size_t q = 0; q < terms_.size(); q++) {
-    PetscCall(terms_[q]->LoadGlobalState(in, per_term[q], first));
-    for (const StateBlob &b : per_term[q])
-      PetscCheck(b.Done(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's state of term %s has %zu numbers more than the term reads",
-                 terms_[q]->Name(), b.data.size() - b.pos);
-  }
+  for (auto &term : terms_) PetscCall(term->AfterStateRead(in));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

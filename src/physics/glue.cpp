@@ -1,5 +1,4 @@
 #include <turgor/core/options.h>
-#include <turgor/particles/local_numbering.h>
 #include <turgor/physics/glue.h>
 #include <algorithm>
 #include <cmath>
@@ -19,25 +18,26 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscInt  nbox   = 5;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "glue_", "Glue bonds between polygonal cells, and their fracture", "turgor");
-  PetscCall(PetscOptionsEList("-law", "Rupture: energy (G_c reached), strength (quadratic sigma_c, tau_c interaction), softening (bilinear, G_c dissipated)",
-                              "Glue", kLaws, 3, kLaws[e], &e, NULL));
-  PetscCall(PetscOptionsReal("-distance", "Gluing distance eps [µm]: a node this close (surface gap) to a bar of another cell is bonded to it", "Glue",
-                             distance, &distance, NULL));
-  PetscCall(PetscOptionsReal("-normal_stiffness", "k_n [N/m per µm of interface]", "Glue", normal_stiffness, &normal_stiffness, NULL));
-  PetscCall(
-    PetscOptionsReal("-tangential_stiffness", "k_t [N/m per µm of interface]; negative: k_n", "Glue", tangential_stiffness, &tangential_stiffness, NULL));
-  PetscCall(
-    PetscOptionsReal("-fracture_energy", "G_c [µN µm per µm of interface] (laws energy and softening)", "Glue", fracture_energy, &fracture_energy, NULL));
-  PetscCall(PetscOptionsReal("-strength", "sigma_c, normal strength [N/m] (laws strength and softening); negative: sqrt(2 G_c k_n)", "Glue", strength,
-                             &strength, NULL));
-  PetscCall(PetscOptionsReal("-shear_strength", "tau_c, shear strength [N/m] (law strength); negative: sigma_c sqrt(k_t/k_n)", "Glue", shear_strength,
-                             &shear_strength, NULL));
-  PetscCall(PetscOptionsBool("-open_cells", "Glue open cells (plates, walls) too", "Glue", oc, &oc, NULL));
-  PetscCall(PetscOptionsReal("-start_time",
-                             "The bonds are made at the first accepted state at or after this time [µs] (0: the first evaluation, the reference geometry)",
-                             "Glue", start_time, &start_time, NULL));
-  PetscCall(PetscOptionsRealArray("-unbonded_box", "xmin,ymin,xmax,ymax [µm]: no bond whose bond point is inside (a pre-crack or notch)", "Glue", box, &nbox,
-                                  &set_box));
+  PetscCall(TurgorOptionsEList(ctx.params, "-law",
+                               "Rupture: energy (G_c reached), strength (quadratic sigma_c, tau_c interaction), softening (bilinear, G_c dissipated)", "Glue",
+                               kLaws, 3, kLaws[e], &e, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-distance", "Gluing distance eps [µm]: a node this close (surface gap) to a bar of another cell is bonded to it",
+                              "Glue", distance, &distance, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-normal_stiffness", "k_n [N/m per µm of interface]", "Glue", normal_stiffness, &normal_stiffness, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-tangential_stiffness", "k_t [N/m per µm of interface]; negative: k_n", "Glue", tangential_stiffness,
+                              &tangential_stiffness, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-fracture_energy", "G_c [µN µm per µm of interface] (laws energy and softening)", "Glue", fracture_energy,
+                              &fracture_energy, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-strength", "sigma_c, normal strength [N/m] (laws strength and softening); negative: sqrt(2 G_c k_n)", "Glue",
+                              strength, &strength, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-shear_strength", "tau_c, shear strength [N/m] (law strength); negative: sigma_c sqrt(k_t/k_n)", "Glue",
+                              shear_strength, &shear_strength, NULL));
+  PetscCall(TurgorOptionsBool(ctx.params, "-open_cells", "Glue open cells (plates, walls) too", "Glue", oc, &oc, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-start_time",
+                              "The bonds are made at the first accepted state at or after this time [µs] (0: the first evaluation, the reference geometry)",
+                              "Glue", start_time, &start_time, NULL));
+  PetscCall(TurgorOptionsRealArray(ctx.params, "-unbonded_box", "xmin,ymin,xmax,ymax [µm]: no bond whose bond point is inside (a pre-crack or notch)", "Glue",
+                                   box, &nbox, &set_box));
   PetscOptionsEnd();
   PetscCall(CheckNotEmpty(comm, "-glue_unbonded_box", "xmin,ymin,xmax,ymax"));
   if (set_box) {
@@ -488,7 +488,8 @@ void Glue::RecordFiles(std::vector<std::pair<std::string, std::vector<std::strin
 
 void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
 {
-  /* the tissue's numbers of cells and bars (a distributed run numbers them per rank) */
+  /* the tissue's numbers of cells and bars (a distributed run numbers them per rank); a bond is named
+     by its node and bar ("node:bar"), whatever the ranks */
   auto PolygonId = [&](PetscInt c) { return P_ && !P_->polygon_gid.empty() && c >= 0 ? P_->polygon_gid[c] : c; };
   auto SpringId  = [&](PetscInt s) { return P_ && !P_->spring_gid.empty() && s >= 0 ? P_->spring_gid[s] : s; };
   char buf[64];
@@ -499,8 +500,9 @@ void Glue::TakeRecords(std::vector<std::pair<std::string, std::vector<std::strin
   for (const Break &b : TakeBreaks())
     rows.push_back({
       "breaks.csv",
-      {num(b.time), std::to_string(b.bond), std::to_string(PolygonId(b.cell_node)), std::to_string(PolygonId(b.cell_bar)), std::to_string(b.node),
-        std::to_string(SpringId(b.bar)), num(b.x), num(b.y), b.mode, num(b.energy), num(b.length)}
+      {num(b.time), std::to_string(b.node) + ":" + std::to_string(SpringId(b.bar)), std::to_string(PolygonId(b.cell_node)),
+        std::to_string(PolygonId(b.cell_bar)), std::to_string(b.node), std::to_string(SpringId(b.bar)), num(b.x), num(b.y), b.mode, num(b.energy),
+        num(b.length)}
     });
 }
 
@@ -532,105 +534,41 @@ PetscErrorCode Glue::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Checkpoints: [have_bonds, nbonds, per bond p a b intact lam gn0 gt0 sign L lmax s cell_p cell_s,
-   intact, accepted, unbonded, dissipated, time] */
-PetscErrorCode Glue::SaveState(const ForceInput &in, StateBlob &state) const
+void Glue::DeclareState(const ParticleSet &P, StateDeclaration &d)
 {
-  PetscFunctionBeginUser;
-  state.Put(have_bonds_ ? 1.0 : 0.0);
-  state.Put((PetscReal)bonds_.size());
-  for (size_t k = 0; k < bonds_.size(); k++) {
-    const Bond     &B = bonds_[k];
-    const BondInfo &I = info_[k];
-    for (PetscReal v : {(PetscReal)B.p, (PetscReal)B.a, (PetscReal)B.b, (PetscReal)B.intact, B.lam, B.gn0, B.gt0, B.sign, B.L, B.lmax, (PetscReal)I.s,
-                        (PetscReal)I.cell_p, (PetscReal)I.cell_s})
-      state.Put(v);
-  }
-  for (PetscReal v : {(PetscReal)intact_, (PetscReal)accepted_, (PetscReal)unbonded_, dissipated_, time_}) state.Put(v);
-  PetscFunctionReturn(PETSC_SUCCESS);
+  d.Scalar("have_bonds", &have_bonds_, Combine::Owner);
+  d.Scalar("accepted_steps", &accepted_, Combine::Owner);
+  d.Scalar("unbonded", &unbonded_, Combine::Sum);
+  d.Scalar("fracture_dissipation", &dissipated_, Combine::Sum);
+  d.Scalar("time", &time_, Combine::Owner);
+  d.Table("bonds", StateEntity::Particle)
+    .Records([this] { return bonds_.size(); },
+             [this, &P](size_t k) { return PairKey((std::uint64_t)P.gid[bonds_[k].p], (std::uint64_t)P.SpringGid(info_[k].s)); },
+             [this](size_t n) {
+               bonds_.resize(n);
+               info_.resize(n);
+             },
+             "node")
+    .Ref("node", bonds_, &Bond::p, StateEntity::Particle)
+    .Ref("bar_end_a", bonds_, &Bond::a, StateEntity::Particle)
+    .Ref("bar_end_b", bonds_, &Bond::b, StateEntity::Particle)
+    .Ref("bar", info_, &BondInfo::s, StateEntity::Bar)
+    .Ref("cell_node", info_, &BondInfo::cell_p, StateEntity::Cell)
+    .Ref("cell_bar", info_, &BondInfo::cell_s, StateEntity::Cell)
+    .Field("intact", bonds_, &Bond::intact)
+    .Field("lambda", bonds_, &Bond::lam)
+    .Field("gn0", bonds_, &Bond::gn0)
+    .Field("gt0", bonds_, &Bond::gt0)
+    .Field("side", bonds_, &Bond::sign)
+    .Field("length_share", bonds_, &Bond::L)
+    .Field("largest_opening", bonds_, &Bond::lmax);
 }
 
-PetscErrorCode Glue::LoadState(const ForceInput &in, StateBlob &state)
+/* The bonds in the order CreateBonds makes them (by node, then the bar's cell), whatever order the
+   checkpoint holds them in; nothing from an evaluation before the restart. */
+PetscErrorCode Glue::AfterStateRead(const ForceInput &in)
 {
-  PetscReal have, nb;
   PetscFunctionBeginUser;
-  PetscCheck(state.Get(&have) && state.Get(&nb) && nb >= 0 && state.pos + 13 * (size_t)nb + 5 <= state.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "glue: the checkpoint's bond records are incomplete");
-  bonds_.assign((size_t)nb, Bond());
-  info_.assign((size_t)nb, BondInfo());
-  for (size_t k = 0; k < bonds_.size(); k++) {
-    Bond     &B     = bonds_[k];
-    BondInfo &I     = info_[k];
-    PetscReal v[13] = {};
-    for (PetscReal &r : v) state.Get(&r);
-    B.p = (PetscInt)v[0], B.a = (PetscInt)v[1], B.b = (PetscInt)v[2], B.intact = (PetscInt)v[3];
-    B.lam = v[4], B.gn0 = v[5], B.gt0 = v[6], B.sign = v[7], B.L = v[8], B.lmax = v[9];
-    I.s = (PetscInt)v[10], I.cell_p = (PetscInt)v[11], I.cell_s = (PetscInt)v[12];
-    PetscCheck(B.p >= 0 && B.p < in.P->n && B.a >= 0 && B.a < in.P->n && B.b >= 0 && B.b < in.P->n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "glue: the checkpoint's bond %zu names a node outside the scene's %" PetscInt_FMT, k, in.P->n);
-  }
-  PetscReal v[5] = {0, 0, 0, 0, 0};
-  for (PetscReal &r : v) state.Get(&r);
-  intact_ = (PetscInt)v[0], accepted_ = (PetscInt)v[1], unbonded_ = (PetscInt)v[2], dissipated_ = v[3], time_ = v[4];
-  have_bonds_ = have != 0;
-  trial_.clear();
-  push_.clear();
-  breaks_.clear();
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* [have_bonds, accepted, unbonded, dissipated, time, n, n x (node, bar ends as gids, intact, lam,
-   gn0, gt0, sign, L, lmax, bar, the node's cell, the bar's cell in the tissue's numbering)] */
-PetscErrorCode Glue::SaveGlobalState(const ForceInput &in, StateBlob &state) const
-{
-  const ParticleSet &P = *in.P;
-  PetscFunctionBeginUser;
-  for (PetscReal v : {have_bonds_ ? 1.0 : 0.0, (PetscReal)accepted_, (PetscReal)unbonded_, dissipated_, time_, (PetscReal)bonds_.size()}) state.Put(v);
-  for (size_t k = 0; k < bonds_.size(); k++) {
-    const Bond     &B = bonds_[k];
-    const BondInfo &I = info_[k];
-    for (PetscReal v : {(PetscReal)P.gid[B.p], (PetscReal)P.gid[B.a], (PetscReal)P.gid[B.b], (PetscReal)B.intact, B.lam, B.gn0, B.gt0, B.sign, B.L, B.lmax,
-                        (PetscReal)P.SpringGid(I.s), (PetscReal)P.PolygonGid(I.cell_p), (PetscReal)P.PolygonGid(I.cell_s)})
-      state.Put(v);
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* This rank keeps the bonds of the nodes it owns, in the order CreateBonds makes them (by node, then
-   the bar's cell); their bars are on it (owned or halo), as in an uninterrupted run. */
-PetscErrorCode Glue::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
-{
-  const ParticleSet   &P = *in.P;
-  const LocalNumbering local(P);
-  PetscFunctionBeginUser;
-  bonds_.clear();
-  info_.clear();
-  unbonded_   = 0;
-  dissipated_ = 0;
-  for (StateBlob &b : states) {
-    PetscReal h[6] = {0, 0, 0, 0, 0, 0};
-    for (PetscReal &r : h) PetscCheck(b.Get(&r), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "glue: the checkpoint's bond records are incomplete");
-    PetscCheck(h[5] >= 0 && b.pos + 13 * (size_t)h[5] <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "glue: the checkpoint's bond records are incomplete");
-    have_bonds_ = h[0] != 0, accepted_ = (PetscInt)h[1], time_ = h[4]; /* the same on every rank */
-    if (first) unbonded_ += (PetscInt)h[2], dissipated_ += h[3];
-    for (size_t k = 0; k < (size_t)h[5]; k++) {
-      PetscReal v[13] = {};
-      for (PetscReal &r : v) b.Get(&r);
-      Bond     B;
-      BondInfo I;
-      B.p = local.Particle((PetscInt)v[0]);
-      if (B.p < 0 || B.p >= P.NumOwned()) continue; /* another rank's bond */
-      B.a = local.Particle((PetscInt)v[1]), B.b = local.Particle((PetscInt)v[2]), I.s = local.Spring((PetscInt)v[10]);
-      I.cell_p = local.Polygon((PetscInt)v[11]), I.cell_s = local.Polygon((PetscInt)v[12]);
-      PetscCheck(B.a >= 0 && B.b >= 0 && I.s >= 0 && I.cell_p >= 0 && I.cell_s >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-                 "glue: the checkpoint's bond of node %g to bar %g (cell %g) is not within this rank's halo (-fine_halo_margin)", (double)v[0], (double)v[10],
-                 (double)v[12]);
-      B.intact = (PetscInt)v[3], B.lam = v[4], B.gn0 = v[5], B.gt0 = v[6], B.sign = v[7], B.L = v[8], B.lmax = v[9];
-      bonds_.push_back(B);
-      info_.push_back(I);
-    }
-  }
   std::vector<size_t> order(bonds_.size());
   for (size_t k = 0; k < order.size(); k++) order[k] = k;
   std::sort(order.begin(), order.end(),

@@ -34,8 +34,8 @@ PetscErrorCode Hinges::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "hinge_", "Bending hinges at polygon nodes (elastic-perfectly plastic)", "turgor");
-  PetscCall(PetscOptionsReal("-stiffness", "Rotational stiffness k_r [µN µm/rad]", "Hinges", stiffness, &stiffness, NULL));
-  PetscCall(PetscOptionsReal("-max_moment", "Plastic moment M_max [µN µm]; 0 = elastic", "Hinges", max_moment, &max_moment, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-stiffness", "Rotational stiffness k_r [µN µm/rad]", "Hinges", stiffness, &stiffness, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-max_moment", "Plastic moment M_max [µN µm]; 0 = elastic", "Hinges", max_moment, &max_moment, NULL));
   PetscOptionsEnd();
   PetscCheck(stiffness >= 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -hinge_stiffness = %g: must be finite and >= 0",
              (double)stiffness);
@@ -250,74 +250,16 @@ PetscErrorCode Hinges::View(PetscViewer viewer) const
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Checkpoints: [have_ref, n, cos0, sin0, theta_p, dissipated] */
-PetscErrorCode Hinges::SaveState(const ForceInput &in, StateBlob &state) const
+/* A hinge is named by its node: a node is the hinge of at most one polygon. */
+void Hinges::DeclareState(const ParticleSet &P, StateDeclaration &d)
 {
-  PetscFunctionBeginUser;
-  state.Put(have_ref_ ? 1.0 : 0.0);
-  state.Put(cos0_);
-  state.Put(sin0_);
-  state.Put(theta_p_);
-  state.Put(dissipated_);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode Hinges::LoadState(const ForceInput &in, StateBlob &state)
-{
-  PetscReal              ref;
-  std::vector<PetscReal> c, s, p;
-  PetscFunctionBeginUser;
-  if (!state.Get(&ref) || !state.Get(c) || !state.Get(s) || !state.Get(p) || !state.Get(&dissipated_) || c.size() != hinge_.size() ||
-      s.size() != hinge_.size() || p.size() != hinge_.size())
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "hinges: the checkpoint holds %zu hinges' state, the scene has %zu hinges", p.size(), hinge_.size());
-  have_ref_ = ref != 0;
-  cos0_.swap(c);
-  sin0_.swap(s);
-  theta_p_.swap(p);
-  have_angles_ = false;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* [have_ref, dissipated, n, n x (hinge node's gid, cos0, sin0, theta_p)]: a node is the hinge of at
-   most one polygon, so its gid names the hinge */
-PetscErrorCode Hinges::SaveGlobalState(const ForceInput &in, StateBlob &state) const
-{
-  PetscFunctionBeginUser;
-  state.Put(have_ref_ ? 1.0 : 0.0);
-  state.Put(dissipated_);
-  state.Put((PetscReal)hinge_.size());
-  for (size_t h = 0; h < hinge_.size(); h++)
-    for (PetscReal v : {(PetscReal)in.P->gid[hinge_[h].b], cos0_[h], sin0_[h], theta_p_[h]}) state.Put(v);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode Hinges::LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first)
-{
-  std::unordered_map<PetscInt, size_t> of_node; /* hinge node's gid -> this rank's hinge */
-  size_t                               found = 0;
-  PetscFunctionBeginUser;
-  for (size_t h = 0; h < hinge_.size(); h++) of_node.emplace(in.P->gid[hinge_[h].b], h);
-  have_ref_   = false;
-  dissipated_ = 0;
-  for (StateBlob &b : states) {
-    PetscReal ref, diss, n;
-    PetscCheck(b.Get(&ref) && b.Get(&diss) && b.Get(&n) && n >= 0 && b.pos + 4 * (size_t)n <= b.data.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "hinges: the checkpoint's hinge records are incomplete");
-    have_ref_ = have_ref_ || ref != 0;
-    if (first) dissipated_ += diss;
-    for (size_t e = 0; e < (size_t)n; e++) {
-      PetscReal v[4] = {0, 0, 0, 0};
-      for (PetscReal &r : v) b.Get(&r);
-      auto it = of_node.find((PetscInt)v[0]);
-      if (it == of_node.end()) continue; /* another rank's hinge */
-      cos0_[it->second] = v[1], sin0_[it->second] = v[2], theta_p_[it->second] = v[3];
-      found++;
-    }
-  }
-  PetscCheck(found == hinge_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "hinges: the checkpoint holds %zu of this rank's %zu hinges", found,
-             hinge_.size());
-  have_angles_ = false;
-  PetscFunctionReturn(PETSC_SUCCESS);
+  d.Scalar("reference_taken", &have_ref_, Combine::Max);
+  d.Scalar("plastic_dissipation", &dissipated_, Combine::Sum);
+  d.Table("hinges", StateEntity::Particle)
+    .Rows([this] { return hinge_.size(); }, [this](size_t h) { return hinge_[h].b; })
+    .Column("cos0", cos0_)
+    .Column("sin0", sin0_)
+    .Column("plastic_angle", theta_p_);
 }
 
 } // namespace turgor

@@ -8,15 +8,15 @@ PetscErrorCode Repulsion::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "repulsion_", "Particle-spring repulsion (TW 562 eq 17)", "turgor");
-  PetscCall(PetscOptionsReal("-strength", "Strength lambda [µN µm^6]", "Repulsion", strength, &strength, NULL));
-  PetscCall(PetscOptionsReal("-cutoff", "Cutoff distance x0 [µm]", "Repulsion", cutoff, &cutoff, NULL));
-  PetscCall(PetscOptionsBool("-angle_factor", "Scale by cos(alpha), alpha = angle between x - x^ and the spring normal", "Repulsion", angle_factor,
-                             &angle_factor, NULL));
-  PetscCall(PetscOptionsBool("-damping", "Critical damping term 2 sqrt(6 lambda m / r^7)", "Repulsion", damping, &damping, NULL));
-  PetscCall(
-    PetscOptionsBool("-damping_taper",
-                     "Scale the damping by 1 - (r/x0)^6 so that it vanishes at the cutoff like the force (off: the seed's literal term, which jumps at r = x0)",
-                     "Repulsion", damping_taper, &damping_taper, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-strength", "Strength lambda [µN µm^6]", "Repulsion", strength, &strength, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-cutoff", "Cutoff distance x0 [µm]", "Repulsion", cutoff, &cutoff, NULL));
+  PetscCall(TurgorOptionsBool(ctx.params, "-angle_factor", "Scale by cos(alpha), alpha = angle between x - x^ and the spring normal", "Repulsion", angle_factor,
+                              &angle_factor, NULL));
+  PetscCall(TurgorOptionsBool(ctx.params, "-damping", "Critical damping term 2 sqrt(6 lambda m / r^7)", "Repulsion", damping, &damping, NULL));
+  PetscCall(TurgorOptionsBool(ctx.params, "-damping_taper",
+                              "Scale the damping by 1 - (r/x0)^6 so that it vanishes at the cutoff like the force (off: the seed's literal term, which jumps "
+                              "at r = x0)",
+                              "Repulsion", damping_taper, &damping_taper, NULL));
   PetscOptionsEnd();
   PetscCheck(strength >= 0 && std::isfinite(strength), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -repulsion_strength = %g: must be finite and >= 0",
              (double)strength);

@@ -8,13 +8,15 @@ PetscErrorCode SPHFluid::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "sph_", "SPH cell fluid (TW 562 eqs 2-15)", "turgor");
-  PetscCall(PetscOptionsReal("-smoothing_length", "Smoothing length h [µm] (support 2h)", "SPHFluid", smoothing_length, &smoothing_length, NULL));
-  PetscCall(PetscOptionsReal("-sound_speed", "Speed of sound c_s in p = c_s^2 rho [µm/µs = m/s]", "SPHFluid", sound_speed, &sound_speed, NULL));
-  PetscCall(PetscOptionsReal("-viscosity", "2D dynamic viscosity mu x thickness [ng/µs]; 0 skips the viscous passes", "SPHFluid", viscosity, &viscosity, NULL));
-  PetscCall(
-    PetscOptionsBool("-correction", "Bonet-Lok corrected kernel gradient in the velocity gradient (eqs 13-15)", "SPHFluid", correction, &correction, NULL));
-  PetscCall(PetscOptionsReal("-correction_guard", "Correction fades out where lambda_min/lambda_max of its inverse falls below 2 guard (zero below guard)",
-                             "SPHFluid", guard, &guard, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-smoothing_length", "Smoothing length h [µm] (support 2h)", "SPHFluid", smoothing_length, &smoothing_length, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-sound_speed", "Speed of sound c_s in p = c_s^2 rho [µm/µs = m/s]", "SPHFluid", sound_speed, &sound_speed, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-viscosity", "2D dynamic viscosity mu x thickness [ng/µs]; 0 skips the viscous passes", "SPHFluid", viscosity,
+                              &viscosity, NULL));
+  PetscCall(TurgorOptionsBool(ctx.params, "-correction", "Bonet-Lok corrected kernel gradient in the velocity gradient (eqs 13-15)", "SPHFluid", correction,
+                              &correction, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-correction_guard",
+                              "Correction fades out where lambda_min/lambda_max of its inverse falls below 2 guard (zero below guard)", "SPHFluid", guard,
+                              &guard, NULL));
   PetscOptionsEnd();
   PetscCheck(smoothing_length > 0 && std::isfinite(smoothing_length), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -sph_smoothing_length = %g: must be finite and > 0", (double)smoothing_length);

@@ -7,7 +7,7 @@ PetscErrorCode Viscosity::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "viscosity_", "Global viscosity f = -nu v on every node", "turgor");
-  PetscCall(PetscOptionsReal("-coefficient", "nu [ng/µs]: force per velocity on every node", "Viscosity", coefficient, &coefficient, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-coefficient", "nu [ng/µs]: force per velocity on every node", "Viscosity", coefficient, &coefficient, NULL));
   PetscOptionsEnd();
   PetscCheck(coefficient >= 0 && std::isfinite(coefficient), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -viscosity_coefficient = %g: must be finite and >= 0",
              (double)coefficient);

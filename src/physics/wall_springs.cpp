@@ -7,8 +7,9 @@ PetscErrorCode WallSprings::SetFromOptions(MPI_Comm comm, const TermContext &ctx
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "wall_", "Wall springs with dashpots (TW 562 eq 16)", "turgor");
-  PetscCall(PetscOptionsReal("-stiffness", "Spring stiffness k_w [µN/µm = N/m]", "WallSprings", stiffness, &stiffness, NULL));
-  PetscCall(PetscOptionsReal("-damping_ratio", "Dashpot as a fraction of critical damping 2 sqrt(m k_w)", "WallSprings", damping_ratio, &damping_ratio, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-stiffness", "Spring stiffness k_w [µN/µm = N/m]", "WallSprings", stiffness, &stiffness, NULL));
+  PetscCall(TurgorOptionsReal(ctx.params, "-damping_ratio", "Dashpot as a fraction of critical damping 2 sqrt(m k_w)", "WallSprings", damping_ratio,
+                              &damping_ratio, NULL));
   PetscOptionsEnd();
   PetscCheck(stiffness >= 0 && std::isfinite(stiffness), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -wall_stiffness = %g: a stiffness must be finite and >= 0",
              (double)stiffness);

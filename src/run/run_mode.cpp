@@ -54,6 +54,12 @@ PetscErrorCode Run(MPI_Comm comm, const char default_mode[], std::unique_ptr<Sim
   PetscOptionsEnd();
   PetscCheck(mode[0], comm, PETSC_ERR_ARG_WRONG, "Option -mode: empty (known: %s)", SimulationNames().c_str());
   PetscCall(SimulationCreate(comm, mode, &sim));
+  if (!sim->Checkpoints())
+    for (const char *o : {"-restart", "-restart_allow", "-checkpoint_interval", "-checkpoint_wall_interval"}) {
+      PetscBool given;
+      PetscCall(PetscOptionsHasName(NULL, NULL, o, &given));
+      PetscCheck(!given, comm, PETSC_ERR_SUP, "Option %s: -mode %s has no checkpoints (-mode fine and -mode fe2 have)", o, mode);
+    }
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscCall(sim->SetFromOptions());
   PetscCall(sim->SetUp());

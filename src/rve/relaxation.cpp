@@ -170,25 +170,29 @@ PetscErrorCode RVERelaxation::BuildJacobianPattern(const std::vector<std::vector
 }
 
 /* Values of a matrix's local rows, row by row in its pattern's order. */
-static PetscErrorCode SaveRows(Mat A, StateBlob &state)
+/* This rank's rows of A, their values in row order. */
+static PetscErrorCode RowValues(Mat A, std::vector<PetscReal> &values)
 {
   PetscInt rs, re;
   PetscFunctionBeginUser;
+  values.clear();
   PetscCall(MatGetOwnershipRange(A, &rs, &re));
   for (PetscInt r = rs; r < re; r++) {
     PetscInt           nc;
     const PetscScalar *v;
     PetscCall(MatGetRow(A, r, &nc, NULL, &v));
-    state.Put(std::vector<PetscReal>(v, v + nc));
+    values.insert(values.end(), v, v + nc);
     PetscCall(MatRestoreRow(A, r, &nc, NULL, &v));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode LoadRows(Mat A, StateBlob &state, const char *what)
+/* A's values (this rank's rows, in row order) set into its pattern. */
+static PetscErrorCode SetRowValues(Mat A, const std::vector<PetscReal> &values, const char *what)
 {
   PetscInt                           rs, re;
   std::vector<std::vector<PetscInt>> cols;
+  size_t                             at = 0;
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(A, &rs, &re));
   for (PetscInt r = rs; r < re; r++) { /* the pattern first: MatGetRow needs an assembled matrix */
@@ -199,58 +203,63 @@ static PetscErrorCode LoadRows(Mat A, StateBlob &state, const char *what)
     PetscCall(MatRestoreRow(A, r, &nc, &c, NULL));
   }
   for (PetscInt r = rs; r < re; r++) {
-    std::vector<PetscReal>       v;
     const std::vector<PetscInt> &c = cols[r - rs];
-    PetscCheck(state.Get(v) && v.size() == c.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+    PetscCheck(at + c.size() <= values.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
                "the checkpoint's RVE %s does not fit its pattern (row %" PetscInt_FMT ")", what, r);
-    PetscCall(MatSetValues(A, 1, &r, (PetscInt)c.size(), c.data(), v.data(), INSERT_VALUES));
+    PetscCall(MatSetValues(A, 1, &r, (PetscInt)c.size(), c.data(), values.data() + at, INSERT_VALUES));
+    at += c.size();
   }
+  PetscCheck(at == values.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE %s has %zu values more than its pattern", what,
+             values.size() - at);
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* [jacobians, have_K, pattern_rebuilds, pattern: pairs, then each pair's columns; K's rows, J's rows] */
-PetscErrorCode RVERelaxation::SaveState(StateBlob &state)
+/* The Jacobians computed, whether G' is kept, the pattern (each unknown pair's columns) and the
+   lists' rebuilds it was made at, and G' and J's values. */
+void RVERelaxation::DeclareState(StateDeclaration &d)
 {
-  PetscFunctionBeginUser;
-  state.Put((PetscReal)jacobians_);
-  state.Put(have_K_ ? 1.0 : 0.0);
-  state.Put((PetscReal)pattern_rebuilds_);
-  state.Put((PetscReal)pattern_cols_.size());
-  for (const auto &c : pattern_cols_) state.Put(std::vector<PetscReal>(c.begin(), c.end()));
-  PetscCall(SaveRows(K_, state));
-  PetscCall(SaveRows(J_, state));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  saved_pattern_ = pattern_cols_;
+  (void)RowValues(K_, saved_K_);
+  (void)RowValues(J_, saved_J_);
+  d.Scalar("jacobians", &jacobians_, Combine::Owner);
+  d.Scalar("have_G", &have_K_, Combine::Owner);
+  d.Scalar("pattern_rebuilds", &pattern_rebuilds_, Combine::Owner);
+  d.Sequence("G_values", &saved_K_);
+  d.Sequence("J_values", &saved_J_);
+  d.Table("pattern", StateEntity::Rank)
+    .Records([this] { return saved_pattern_.size(); }, [](size_t r) { return (std::uint64_t)r; }, [this](size_t n) { saved_pattern_.resize(n); }, "")
+    .Ragged(
+      "columns", [this](size_t r, std::vector<PetscReal> &v) { v.assign(saved_pattern_[r].begin(), saved_pattern_[r].end()); },
+      [this](size_t r, const PetscReal *v, size_t n) {
+        saved_pattern_[r].assign(v, v + n);
+        return PETSC_SUCCESS;
+      },
+      true);
 }
 
-PetscErrorCode RVERelaxation::LoadState(StateBlob &state)
+PetscErrorCode RVERelaxation::AfterStateRead()
 {
-  PetscReal                          jac, haveK, rebuilds, npairs;
-  std::vector<std::vector<PetscInt>> cols;
-  PetscInt                           differ = 0;
+  PetscInt differ = 0;
   PetscFunctionBeginUser;
-  PetscCheck(state.Get(&jac) && state.Get(&haveK) && state.Get(&rebuilds) && state.Get(&npairs) && npairs >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's RVE relaxation is incomplete");
-  cols.resize((size_t)npairs);
-  for (auto &c : cols) {
-    std::vector<PetscReal> v;
-    PetscCheck(state.Get(v), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE Jacobian pattern is incomplete");
-    c.assign(v.begin(), v.end());
-  }
   /* the group's first rank holds the unknowns and decides (the others' patterns are empty) */
   if (eq_->Rank() == 0) {
-    PetscCheck(cols.size() == (size_t)eq_->Cell().NumUnknowns() / 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-               "the checkpoint's RVE has %zu free particles, this one %" PetscInt_FMT, cols.size(), eq_->Cell().NumUnknowns() / 2);
-    differ = cols != pattern_cols_;
+    PetscCheck(saved_pattern_.size() == (size_t)eq_->Cell().NumUnknowns() / 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint's RVE has %zu free particles, this one %" PetscInt_FMT, saved_pattern_.size(), eq_->Cell().NumUnknowns() / 2);
+    differ = saved_pattern_ != pattern_cols_;
   }
   PetscCallMPI(MPI_Bcast(&differ, 1, MPIU_INT, 0, comm_));
-  if (differ) PetscCall(BuildJacobianPattern(&cols));
-  pattern_rebuilds_ = (PetscInt)rebuilds;
-  jacobians_        = (PetscInt)jac;
-  PetscCall(LoadRows(K_, state, "G'"));
-  PetscCall(LoadRows(J_, state, "Jacobian"));
-  have_K_ = haveK != 0;
+  const PetscInt rebuilds = pattern_rebuilds_; /* (a new pattern sets its own, and drops G') */
+  const bool     have_G   = have_K_;
+  if (differ) PetscCall(BuildJacobianPattern(&saved_pattern_));
+  pattern_rebuilds_ = rebuilds;
+  have_K_           = have_G;
+  PetscCall(SetRowValues(K_, saved_K_, "G'"));
+  PetscCall(SetRowValues(J_, saved_J_, "Jacobian"));
+  std::vector<std::vector<PetscInt>>().swap(saved_pattern_);
+  std::vector<PetscReal>().swap(saved_K_);
+  std::vector<PetscReal>().swap(saved_J_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

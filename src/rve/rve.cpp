@@ -4,22 +4,22 @@
 
 namespace turgor {
 
-PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   const char *const modes[] = {"relaxed", "cauchy_born", "frozen"};
   PetscInt          m       = (PetscInt)relax;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "rve_", "RVE material point (TW 562 §3.2)", "turgor");
-  PetscCall(PetscOptionsInt("-cells", "Cells per side of the periodic RVE", "RVESpec", cells, &cells, NULL));
-  PetscCall(PetscOptionsEList("-relax", "Fine structure: relaxed (eq 27), cauchy_born (u1 = 0) or frozen (u1 of the last committed state)", "RVESpec", modes, 3,
-                              modes[m], &m, NULL));
-  PetscCall(PetscOptionsInt("-max_it", "Psi-tc iterations before an evaluation fails", "RVESpec", max_it, &max_it, NULL));
-  PetscCall(PetscOptionsReal("-psi_dt0", "Initial pseudo time step delta_0 (scaled units)", "RVESpec", psi_dt0, &psi_dt0, NULL));
-  PetscCall(PetscOptionsReal("-psi_increment", "delta <- increment x delta after every pseudo step", "RVESpec", psi_increment, &psi_increment, NULL));
-  PetscCall(PetscOptionsReal("-psi_dt_max", "Largest pseudo time step", "RVESpec", psi_dt_max, &psi_dt_max, NULL));
-  PetscCall(PetscOptionsReal("-psi_atol", "Stop when ||G|| < atol (scaled forces)", "RVESpec", psi_atol, &psi_atol, NULL));
-  PetscCall(PetscOptionsReal("-psi_steptol", "Stop when ||step|| < steptol (scaled displacements)", "RVESpec", psi_steptol, &psi_steptol, NULL));
-  PetscCall(PetscOptionsReal("-warm_dt0", "Pseudo time step of warm solves (from a previous solution)", "RVESpec", warm_dt0, &warm_dt0, NULL));
+  PetscCall(TurgorOptionsInt(params, "-cells", "Cells per side of the periodic RVE", "RVESpec", cells, &cells, NULL));
+  PetscCall(TurgorOptionsEList(params, "-relax", "Fine structure: relaxed (eq 27), cauchy_born (u1 = 0) or frozen (u1 of the last committed state)", "RVESpec",
+                               modes, 3, modes[m], &m, NULL));
+  PetscCall(TurgorOptionsInt(params, "-max_it", "Psi-tc iterations before an evaluation fails", "RVESpec", max_it, &max_it, NULL));
+  PetscCall(TurgorOptionsReal(params, "-psi_dt0", "Initial pseudo time step delta_0 (scaled units)", "RVESpec", psi_dt0, &psi_dt0, NULL));
+  PetscCall(TurgorOptionsReal(params, "-psi_increment", "delta <- increment x delta after every pseudo step", "RVESpec", psi_increment, &psi_increment, NULL));
+  PetscCall(TurgorOptionsReal(params, "-psi_dt_max", "Largest pseudo time step", "RVESpec", psi_dt_max, &psi_dt_max, NULL));
+  PetscCall(TurgorOptionsReal(params, "-psi_atol", "Stop when ||G|| < atol (scaled forces)", "RVESpec", psi_atol, &psi_atol, NULL));
+  PetscCall(TurgorOptionsReal(params, "-psi_steptol", "Stop when ||step|| < steptol (scaled displacements)", "RVESpec", psi_steptol, &psi_steptol, NULL));
+  PetscCall(TurgorOptionsReal(params, "-warm_dt0", "Pseudo time step of warm solves (from a previous solution)", "RVESpec", warm_dt0, &warm_dt0, NULL));
   PetscOptionsEnd();
   relax = (RelaxationMode)m;
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_cells = %" PetscInt_FMT ": must be >= 1", cells);
@@ -256,52 +256,46 @@ PetscErrorCode RVE::Revert()
 }
 
 /* [counters (12), have_current, have_committed, current, committed; equations; relaxation] */
-PetscErrorCode RVE::SaveState(StateBlob &state)
+void RVE::DeclareState(StateDeclaration &d)
 {
-  const MaterialCounters &k = counters_;
-  PetscFunctionBeginUser;
-  for (PetscInt c : {k.solves, k.failures, k.iterations, k.snes_its, k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves, k.output_solves, k.exact_tangents,
-                     k.tangent_linear_its, k.tangent_force_evals})
-    state.Put((PetscReal)c);
-  state.Put(have_current_ ? 1.0 : 0.0);
-  state.Put(have_committed_ ? 1.0 : 0.0);
-  state.Put(std::vector<PetscReal>(current_.begin(), current_.end()));
-  state.Put(std::vector<PetscReal>(committed_.begin(), committed_.end()));
-  PetscCall(eq_.SaveState(state));
-  PetscCall(relax_.SaveState(state));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  MaterialCounters &k         = counters_;
+  const char       *names[12] = {"solves",        "failures",       "iterations",         "snes_its",
+                                 "ksp_its",       "jacobians",      "force_evals",        "tangent_solves",
+                                 "output_solves", "exact_tangents", "tangent_linear_its", "tangent_force_evals"};
+  PetscInt         *count[12] = {&k.solves,        &k.failures,       &k.iterations,         &k.snes_its,
+                                 &k.ksp_its,       &k.jacobians,      &k.force_evals,        &k.tangent_solves,
+                                 &k.output_solves, &k.exact_tangents, &k.tangent_linear_its, &k.tangent_force_evals};
+  for (int c = 0; c < 12; c++) d.Scalar(names[c], count[c], Combine::Owner);
+  d.Scalar("have_current", &have_current_, Combine::Owner);
+  d.Scalar("have_committed", &have_committed_, Combine::Owner);
+  d.Sequence("current", &current_);
+  d.Sequence("committed", &committed_);
+  StateDeclaration eq("equations"), relax("relaxation");
+  eq_.DeclareState(eq);
+  relax_.DeclareState(relax);
+  d.Include(std::move(eq));
+  d.Include(std::move(relax));
 }
 
-PetscErrorCode RVE::LoadState(StateBlob &state)
+PetscErrorCode RVE::AfterStateRead()
 {
-  PetscInt               c[12];
-  PetscReal              hc, hm;
-  std::vector<PetscReal> cur, com;
   PetscFunctionBeginUser;
-  for (PetscInt &x : c) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE counters are incomplete");
-  counters_ = MaterialCounters{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], c[9], c[10], c[11]};
-  PetscCheck(state.Get(&hc) && state.Get(&hm) && state.Get(cur) && state.Get(com), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's RVE fine state is incomplete");
   const size_t n = rank_ == 0 ? (size_t)NumUnknowns() : 0;
-  PetscCheck((cur.size() == n || cur.size() == (size_t)NumUnknowns()) && com.size() == cur.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-             "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, cur.size(), NumUnknowns());
-  current_.assign(cur.begin(), cur.end());
-  committed_.assign(com.begin(), com.end());
-  have_current_   = hc != 0;
-  have_committed_ = hm != 0;
-  last_ok_        = false;
-  PetscCall(eq_.LoadState(state));
-  PetscCall(relax_.LoadState(state));
+  PetscCheck((current_.size() == n || current_.size() == (size_t)NumUnknowns()) && committed_.size() == current_.size(), PETSC_COMM_SELF,
+             PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, current_.size(), NumUnknowns());
+  last_ok_ = false;
+  PetscCall(eq_.AfterStateRead());
+  PetscCall(relax_.AfterStateRead());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm)
+PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscFunctionBeginUser;
-  PetscCall(cell.SetFromOptions(comm, false));
-  PetscCall(spec.SetFromOptions(comm));
+  PetscCall(cell.SetFromOptions(comm, false, params));
+  PetscCall(spec.SetFromOptions(comm, params));
   physics.with_loads = false; /* the body force is a load on the coarse model, not part of the material */
-  PetscCall(physics.SetFromOptions(comm, TermContext{}));
+  PetscCall(physics.SetFromOptions(comm, TermContext{nullptr, params}));
   {
     PetscReal particles, springs;
     cell.Count((PetscReal)spec.cells, (PetscReal)spec.cells, true, &particles, &springs);

@@ -96,30 +96,24 @@ PetscErrorCode RVEEquations::Virial(Vec W, PetscReal virial[4])
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* [force evaluations, the build deformation F, Fdot (8), the force model's state] */
-PetscErrorCode RVEEquations::SaveState(StateBlob &state)
+/* The force evaluations, the deformation the lists were last built at, the force model's state. */
+void RVEEquations::DeclareState(StateDeclaration &d)
 {
-  PetscFunctionBeginUser;
-  state.Put((PetscReal)force_evals_);
-  for (int c = 0; c < 4; c++) state.Put(build_F_.a[c / 2][c % 2]);
-  for (int c = 0; c < 4; c++) state.Put(build_Fdot_.a[c / 2][c % 2]);
-  PetscCall(model_.SaveState(x_.data(), v_.data(), 0, state));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  d.Scalar("force_evals", &force_evals_, Combine::Owner);
+  d.Array("build_F", &build_F_.a[0][0], 4, Combine::Owner);
+  d.Array("build_Fdot", &build_Fdot_.a[0][0], 4, Combine::Owner);
+  std::deque<StateDeclaration> model;
+  model_.DeclareState(model);
+  for (StateDeclaration &m : model) d.Include(std::move(m));
 }
 
-PetscErrorCode RVEEquations::LoadState(StateBlob &state)
+/* The lists restored where and on the lattice they were built last; the deformation back at the
+   identity (the next evaluation sets its own). */
+PetscErrorCode RVEEquations::AfterStateRead()
 {
-  PetscReal v[9];
   PetscFunctionBeginUser;
-  for (PetscReal &x : v) PetscCheck(state.Get(&x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE equations are incomplete");
-  force_evals_ = (PetscInt)v[0];
-  for (int c = 0; c < 4; c++) {
-    build_F_.a[c / 2][c % 2]    = v[1 + c];
-    build_Fdot_.a[c / 2][c % 2] = v[5 + c];
-  }
-  /* the lists rebuilt where and on the lattice they were built last */
   model_.SetPeriodicImages(cell_->Lattice(build_F_, build_Fdot_));
-  PetscCall(model_.LoadState(x_.data(), v_.data(), 0, state));
+  PetscCall(model_.AfterStateRead(x_.data(), v_.data(), 0, true));
   SetDeformation(Tensor2::Identity(), Tensor2::Zero());
   kept_version_ = -1;
   PetscFunctionReturn(PETSC_SUCCESS);

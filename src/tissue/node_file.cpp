@@ -12,7 +12,7 @@
 
 namespace turgor {
 
-PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   char      buf[PETSC_MAX_PATH_LEN];
   PetscInt  ids[1025], n = 1025;
@@ -20,11 +20,11 @@ PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm)
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(buf, path.c_str(), sizeof buf));
   PetscOptionsBegin(comm, "tissue_", "Node-file tissue (-tissue_type node_file)", "turgor");
-  PetscCall(PetscOptionsString("-node_file", "Node file: one node per line 'x y cellId', each cell's nodes together and in order around it", "NodeFileSpec",
-                               buf, buf, sizeof buf, &set_path));
-  PetscCall(PetscOptionsReal("-length_scale", "Length of one file unit [µm]", "NodeFileSpec", length_scale, &length_scale, NULL));
-  PetscCall(
-    PetscOptionsIntArray("-open_cells", "Cell ids (as in the file) that are open chains: no closing bar, no pressure", "NodeFileSpec", ids, &n, &set_open));
+  PetscCall(TurgorOptionsString(params, "-node_file", "Node file: one node per line 'x y cellId', each cell's nodes together and in order around it",
+                                "NodeFileSpec", buf, buf, sizeof buf, &set_path));
+  PetscCall(TurgorOptionsReal(params, "-length_scale", "Length of one file unit [µm]", "NodeFileSpec", length_scale, &length_scale, NULL));
+  PetscCall(TurgorOptionsIntArray(params, "-open_cells", "Cell ids (as in the file) that are open chains: no closing bar, no pressure", "NodeFileSpec", ids, &n,
+                                  &set_open));
   PetscOptionsEnd();
   PetscCall(CheckNotEmpty(comm, "-tissue_node_file", "the path of a node file"));
   PetscCall(CheckNotEmpty(comm, "-tissue_open_cells", "cell ids id,id,..."));
@@ -152,11 +152,11 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode NodeFileGenerator::SetFromOptions(MPI_Comm comm)
+PetscErrorCode NodeFileGenerator::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, true));
-  PetscCall(spec.SetFromOptions(comm));
+  PetscCall(poly.SetFromOptions(comm, true, params));
+  PetscCall(spec.SetFromOptions(comm, params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -8,17 +8,18 @@ namespace turgor {
 
 static const char *const kSides[] = {"bottom", "right", "top", "left"};
 
-PetscErrorCode PlateSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode PlateSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   char     *list[5];
   PetscInt  n = 5;
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Plates around a polygonal tissue", "turgor");
-  PetscCall(PetscOptionsStringArray("-plates", "Plates to add along the tissue's sides: any of bottom,right,top,left (open one-bar cells 2 r from the tissue)",
-                                    "PlateSpec", list, &n, &set));
-  PetscCall(PetscOptionsReal("-plate_overhang", "How far each plate reaches past the tissue [µm] (negative: 10% of the tissue's larger side)", "PlateSpec",
-                             overhang, &overhang, NULL));
+  PetscCall(TurgorOptionsStringArray(params, "-plates",
+                                     "Plates to add along the tissue's sides: any of bottom,right,top,left (open one-bar cells 2 r from the tissue)",
+                                     "PlateSpec", list, &n, &set));
+  PetscCall(TurgorOptionsReal(params, "-plate_overhang", "How far each plate reaches past the tissue [µm] (negative: 10% of the tissue's larger side)",
+                              "PlateSpec", overhang, &overhang, NULL));
   PetscOptionsEnd();
   PetscCall(CheckNotEmpty(comm, "-tissue_plates", "sides: bottom, right, top, left"));
   PetscCheck(!set || n < 5, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_plates: more than 4 sides listed");

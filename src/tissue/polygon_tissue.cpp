@@ -7,21 +7,22 @@
 
 namespace turgor {
 
-PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide)
+PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide, ParameterList *params)
 {
   PetscReal box[5] = {0, 0, 0, 0, 0};
   PetscInt  nbox   = 5;
   PetscBool set_box;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Polygonal cells of nodes and bars (node_file, voronoi, polyline; units µm, ng)", "turgor");
-  PetscCall(PetscOptionsReal("-bar_radius", "Bar radius r [µm]: nodes are disks and bars capsules of radius r; neighbouring polygons are 2 r apart",
-                             "PolygonTissueSpec", bar_radius, &bar_radius, NULL));
-  PetscCall(PetscOptionsReal("-node_mass", "Mass of every node [ng]", "PolygonTissueSpec", node_mass, &node_mass, NULL));
+  PetscCall(TurgorOptionsReal(params, "-bar_radius", "Bar radius r [µm]: nodes are disks and bars capsules of radius r; neighbouring polygons are 2 r apart",
+                              "PolygonTissueSpec", bar_radius, &bar_radius, NULL));
+  PetscCall(TurgorOptionsReal(params, "-node_mass", "Mass of every node [ng]", "PolygonTissueSpec", node_mass, &node_mass, NULL));
   if (subdivide)
-    PetscCall(PetscOptionsReal("-bar_length", "Longest bar [µm]: polygon edges are cut into equal bars no longer than this (0: one bar per edge)",
-                               "PolygonTissueSpec", bar_length, &bar_length, NULL));
-  PetscCall(PetscOptionsRealArray("-cut_box", "xmin,ymin,xmax,ymax [µm]: the closed cells whose centroid is inside are removed (a notch cut out of the tissue)",
-                                  "PolygonTissueSpec", box, &nbox, &set_box));
+    PetscCall(TurgorOptionsReal(params, "-bar_length", "Longest bar [µm]: polygon edges are cut into equal bars no longer than this (0: one bar per edge)",
+                                "PolygonTissueSpec", bar_length, &bar_length, NULL));
+  PetscCall(TurgorOptionsRealArray(params, "-cut_box",
+                                   "xmin,ymin,xmax,ymax [µm]: the closed cells whose centroid is inside are removed (a notch cut out of the tissue)",
+                                   "PolygonTissueSpec", box, &nbox, &set_box));
   PetscOptionsEnd();
   PetscCall(CheckNotEmpty(comm, "-tissue_cut_box", "xmin,ymin,xmax,ymax"));
   if (set_box) {
@@ -38,7 +39,7 @@ PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide)
              (double)node_mass);
   PetscCheck(std::isfinite(bar_length) && bar_length >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -tissue_bar_length = %g: must be finite and > 0 (or 0: one bar per polygon edge)", (double)bar_length);
-  PetscCall(plates.SetFromOptions(comm));
+  PetscCall(plates.SetFromOptions(comm, params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -18,16 +18,16 @@ static PetscErrorCode CheckPoint(MPI_Comm comm, const char *name, PetscBool set,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PolylineSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode PolylineSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscReal a[3] = {start[0], start[1], 0}, b[3] = {end[0], end[1], 0};
   PetscInt  na = 3, nb = 3;
   PetscBool seta, setb;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_polyline_", "Open polyline tissue (-tissue_type polyline; µm)", "turgor");
-  PetscCall(PetscOptionsRealArray("-start", "First node x,y [µm] (default 0,0)", "PolylineSpec", a, &na, &seta));
-  PetscCall(PetscOptionsRealArray("-end", "Last node x,y [µm] (default 1,0)", "PolylineSpec", b, &nb, &setb));
-  PetscCall(PetscOptionsInt("-nodes", "Nodes on the chain (>= 2)", "PolylineSpec", nodes, &nodes, NULL));
+  PetscCall(TurgorOptionsRealArray(params, "-start", "First node x,y [µm] (default 0,0)", "PolylineSpec", a, &na, &seta));
+  PetscCall(TurgorOptionsRealArray(params, "-end", "Last node x,y [µm] (default 1,0)", "PolylineSpec", b, &nb, &setb));
+  PetscCall(TurgorOptionsInt(params, "-nodes", "Nodes on the chain (>= 2)", "PolylineSpec", nodes, &nodes, NULL));
   PetscOptionsEnd();
   PetscCall(CheckPoint(comm, "-tissue_polyline_start", seta, na, a, start));
   PetscCall(CheckPoint(comm, "-tissue_polyline_end", setb, nb, b, end));
@@ -54,11 +54,11 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PolylineGenerator::SetFromOptions(MPI_Comm comm)
+PetscErrorCode PolylineGenerator::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, false));
-  PetscCall(spec.SetFromOptions(comm));
+  PetscCall(poly.SetFromOptions(comm, false, params));
+  PetscCall(spec.SetFromOptions(comm, params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

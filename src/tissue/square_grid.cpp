@@ -126,21 +126,23 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridS
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SquareGridSpec::SetFromOptions(MPI_Comm comm, bool layout)
+PetscErrorCode SquareGridSpec::SetFromOptions(MPI_Comm comm, bool layout, ParameterList *params)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Tissue geometry (square cells with shared walls; units µm, ng)", "turgor");
   if (layout) {
-    PetscCall(PetscOptionsInt("-cells_x", "Cells in x", "SquareGridSpec", cells_x, &cells_x, NULL));
-    PetscCall(PetscOptionsInt("-cells_y", "Cells in y", "SquareGridSpec", cells_y, &cells_y, NULL));
+    PetscCall(TurgorOptionsInt(params, "-cells_x", "Cells in x", "SquareGridSpec", cells_x, &cells_x, NULL));
+    PetscCall(TurgorOptionsInt(params, "-cells_y", "Cells in y", "SquareGridSpec", cells_y, &cells_y, NULL));
   }
-  PetscCall(PetscOptionsReal("-cell_size", "Cell side length [µm]", "SquareGridSpec", cell_size, &cell_size, NULL));
-  PetscCall(PetscOptionsInt("-springs_per_side", "Wall springs along one cell side", "SquareGridSpec", springs_per_side, &springs_per_side, NULL));
-  PetscCall(PetscOptionsInt("-fluid_per_cell", "SPH particles per cell (a square number k^2)", "SquareGridSpec", fluid_per_cell, &fluid_per_cell, NULL));
-  PetscCall(PetscOptionsReal("-wall_particle_mass", "Wall (DEM) particle mass m_DEM [ng]", "SquareGridSpec", wall_mass, &wall_mass, NULL));
-  PetscCall(PetscOptionsReal("-fluid_density", "2D fluid density = 3D density x thickness [ng/µm^2]", "SquareGridSpec", fluid_density, &fluid_density, NULL));
-  PetscCall(PetscOptionsReal("-fluid_particle_mass", "SPH particle mass m_SPH [ng]; 0: fluid_density x cell area / fluid_per_cell", "SquareGridSpec",
-                             fluid_mass, &fluid_mass, NULL));
+  PetscCall(TurgorOptionsReal(params, "-cell_size", "Cell side length [µm]", "SquareGridSpec", cell_size, &cell_size, NULL));
+  PetscCall(TurgorOptionsInt(params, "-springs_per_side", "Wall springs along one cell side", "SquareGridSpec", springs_per_side, &springs_per_side, NULL));
+  PetscCall(
+    TurgorOptionsInt(params, "-fluid_per_cell", "SPH particles per cell (a square number k^2)", "SquareGridSpec", fluid_per_cell, &fluid_per_cell, NULL));
+  PetscCall(TurgorOptionsReal(params, "-wall_particle_mass", "Wall (DEM) particle mass m_DEM [ng]", "SquareGridSpec", wall_mass, &wall_mass, NULL));
+  PetscCall(
+    TurgorOptionsReal(params, "-fluid_density", "2D fluid density = 3D density x thickness [ng/µm^2]", "SquareGridSpec", fluid_density, &fluid_density, NULL));
+  PetscCall(TurgorOptionsReal(params, "-fluid_particle_mass", "SPH particle mass m_SPH [ng]; 0: fluid_density x cell area / fluid_per_cell", "SquareGridSpec",
+                              fluid_mass, &fluid_mass, NULL));
   PetscOptionsEnd();
 
   PetscCheck(cells_x >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_cells_x = %" PetscInt_FMT ": must be >= 1", cells_x);

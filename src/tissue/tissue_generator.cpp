@@ -12,18 +12,18 @@ PetscErrorCode TissueGeneratorCreate(MPI_Comm comm, const std::string &name, std
   return Registry<TissueGenerator>::Instance().Create(comm, name, "-tissue_type", "tissue generator", generator);
 }
 
-PetscErrorCode TissueSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode TissueSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   char              buf[64];
   const std::string help = "Tissue generator: " + Registry<TissueGenerator>::Instance().Names();
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(buf, type.c_str(), sizeof buf));
   PetscOptionsBegin(comm, "tissue_", "Tissue", "turgor");
-  PetscCall(PetscOptionsString("-type", help.c_str(), "TissueSpec", buf, buf, sizeof buf, NULL));
+  PetscCall(TurgorOptionsString(params, "-type", help.c_str(), "TissueSpec", buf, buf, sizeof buf, NULL));
   PetscOptionsEnd();
   type = buf;
   PetscCall(TissueGeneratorCreate(comm, type, &generator_));
-  PetscCall(generator_->SetFromOptions(comm));
+  PetscCall(generator_->SetFromOptions(comm, params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -15,19 +15,20 @@
 
 namespace turgor {
 
-PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm)
+PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscReal b[5] = {box[0], box[1], box[2], box[3], 0};
   PetscInt  nb   = 5;
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Voronoi / Laguerre tissue (-tissue_type voronoi; µm)", "turgor");
-  PetscCall(PetscOptionsInt("-voronoi_cells", "Cells (seeds)", "VoronoiSpec", cells, &cells, NULL));
-  PetscCall(PetscOptionsRealArray("-box", "Box xmin,ymin,xmax,ymax [µm] (default 0,0,400,400)", "VoronoiSpec", b, &nb, &set));
-  PetscCall(PetscOptionsInt("-seed", "Seed of the random seeds (same seed: same tissue, bit for bit)", "VoronoiSpec", seed, &seed, NULL));
-  PetscCall(PetscOptionsInt("-lloyd_steps", "Lloyd relaxations: each seed moved to its cell's centroid", "VoronoiSpec", lloyd_steps, &lloyd_steps, NULL));
-  PetscCall(PetscOptionsReal("-size_cv", "Coefficient of variation of the cell areas, 0 <= c <= 0.5 (Laguerre weights; 0: Voronoi)", "VoronoiSpec", size_cv,
-                             &size_cv, NULL));
+  PetscCall(TurgorOptionsInt(params, "-voronoi_cells", "Cells (seeds)", "VoronoiSpec", cells, &cells, NULL));
+  PetscCall(TurgorOptionsRealArray(params, "-box", "Box xmin,ymin,xmax,ymax [µm] (default 0,0,400,400)", "VoronoiSpec", b, &nb, &set));
+  PetscCall(TurgorOptionsInt(params, "-seed", "Seed of the random seeds (same seed: same tissue, bit for bit)", "VoronoiSpec", seed, &seed, NULL));
+  PetscCall(
+    TurgorOptionsInt(params, "-lloyd_steps", "Lloyd relaxations: each seed moved to its cell's centroid", "VoronoiSpec", lloyd_steps, &lloyd_steps, NULL));
+  PetscCall(TurgorOptionsReal(params, "-size_cv", "Coefficient of variation of the cell areas, 0 <= c <= 0.5 (Laguerre weights; 0: Voronoi)", "VoronoiSpec",
+                              size_cv, &size_cv, NULL));
   PetscOptionsEnd();
   PetscCall(CheckNotEmpty(comm, "-tissue_box", "four values xmin,ymin,xmax,ymax"));
   PetscCheck(!set || nb == 4, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_box needs four values xmin,ymin,xmax,ymax (got %s%" PetscInt_FMT ")",
@@ -387,11 +388,11 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode VoronoiGenerator::SetFromOptions(MPI_Comm comm)
+PetscErrorCode VoronoiGenerator::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, true));
-  PetscCall(spec.SetFromOptions(comm));
+  PetscCall(poly.SetFromOptions(comm, true, params));
+  PetscCall(spec.SetFromOptions(comm, params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,6 +1,7 @@
 /* TurgorTSRegisterAll(): turgor's TS types with PETSc's TSRegister(). */
 #include <turgor/ts/ts_register.h>
 #include <turgor/ts/adams_moulton.h>
+#include <turgor/ts/adapt_dsp.h>
 #include <turgor/ts/radau_iia.h>
 #include <turgor/ts/velocity_verlet.h>
 #include "ts_types_internal.h"
@@ -31,6 +32,10 @@ PetscErrorCode TurgorTSRegisterAll(void)
 #endif
   PetscCall(TSRegister(TSAM, TSCreate_AM));
   PetscCall(TSRegister(TSVERLET, TSCreate_Verlet));
+  /* turgor's "dsp" in the place of PETSc's (the same controller, whose history a checkpoint keeps):
+     PETSc's list first, so that its registration cannot come later and replace this one */
+  PetscCall(TSAdaptInitializePackage());
+  PetscCall(TSAdaptRegister(TSADAPTDSP, TSAdaptCreate_TurgorDSP));
   PetscCall(PetscRegisterFinalize(TurgorTSUnregister));
   registered = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

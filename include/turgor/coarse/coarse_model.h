@@ -18,6 +18,7 @@
    essential condition are PETSc's (DMSetFromOptions, a Q1 PetscFE section, DMAddBoundary): the
    vertices on the Dirichlet label values are constrained (all four dofs; displacement from
    SetBoundaryDisplacement, zero by default, velocity zero); the assembly is our own. */
+#include <turgor/core/parameters.h>
 #include <turgor/material/material_pool.h>
 #include <turgor/physics/load_spec.h>
 #include <petscdmplex.h>
@@ -25,6 +26,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <deque>
 #include <vector>
 
 namespace turgor {
@@ -57,7 +59,7 @@ struct CoarseSpec {
   bool                  acoustic_field   = true;  /* snapshots carry the acoustic-tensor field (material tangents at output) */
   bool                  metis            = false; /* -coarse_partitioner metis: the serial mesh distributed by METIS (a PETSCPARTITIONERSHELL) */
 
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
 };
 
 class CoarseModel {
@@ -69,7 +71,7 @@ public:
 
   /* -coarse_* options (Dirichlet label and values, mass; the mesh's -coarse_dm_* are read by
      DMSetFromOptions at SetUp) and the pool's. */
-  PetscErrorCode SetFromOptions();
+  PetscErrorCode SetFromOptions(ParameterList *params = nullptr);
   /* The scene's loads (the body force); before SetUp. */
   void SetLoad(const LoadSpec &load)
   {
@@ -107,23 +109,22 @@ public:
   /* Evaluate (and cache) the material points at U; *ok = false on any failure, *why says which. */
   PetscErrorCode EvaluateMaterials(Vec U, bool tangents, PetscBool *ok, std::string *why);
   PetscErrorCode CommitMaterials() { return pool_.Commit(); }
-  /* Checkpoints (at an accepted state, after CommitMaterials): the counters, the material cache
-     (the last evaluation's state, deformations and responses: an explicit integrator's next stage
-     check at the accepted state finds it, as in the uninterrupted run) and every material point's
-     state (MaterialPointPool::SaveState). This rank's part; collective. The K, C kept for implicit
-     integrators are not saved (their checkpoints are refused). */
-  PetscErrorCode SaveState(StateBlob &state);
-  PetscErrorCode LoadState(StateBlob &state);
-  /* Restarts on another number of ranks (coarse_numbering.cpp): the state's unknowns in an order of
-     their nodes' reference positions (RankFreeStateOrder: each local entry's index in it), every
-     material point's id in an order of its element's centre (RankFreePointIds: in the pool's
-     global order, all points), and SaveState's content keyed by those ids (SaveGlobalState, at the
-     state U; LoadGlobalState takes every writing rank's blob and keeps this rank's points). The
-     material cache is kept when it is of U (an explicit integrator's last stage), else dropped. */
+  /* Declared state (at an accepted state, after CommitMaterials): the counters, the material cache
+     (the last evaluation's deformations and responses by point id: an explicit integrator's next
+     stage at the accepted state finds it, as in the uninterrupted run) and every material point's
+     state (MaterialPointPool::DeclareState). The K, C kept for implicit integrators are not kept
+     (their checkpoints are refused). AfterStateRead: on another layout the cache is kept when it was
+     of the checkpoint's state U on every writing rank (an explicit integrator's last stage). The
+     unknowns are numbered in an order of their nodes' reference positions (RankFreeStateOrder:
+     each local entry's index in it), the material points in an order of their element's centre
+     (RankFreePointIds: in the pool's global order, all points) -- coarse_numbering.cpp. */
+  PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls, Vec U);
+  PetscErrorCode AfterStateRead(Vec U, bool own_layout);
   PetscErrorCode RankFreeStateOrder(IS *order);
   PetscErrorCode RankFreePointIds(std::vector<PetscInt> &global);
-  PetscErrorCode SaveGlobalState(Vec U, StateBlob &state);
-  PetscErrorCode LoadGlobalState(Vec U, std::vector<StateBlob> &states);
+  /* The pool's global index of this rank's first point (the coarse model's points are this rank's
+     cells' points in turn). */
+  PetscInt FirstPoint() const { return first_point_; }
   /* Back to the material points' last committed states (a rejected load increment); the cache is
      dropped. */
   PetscErrorCode RevertMaterials();
@@ -208,8 +209,6 @@ private:
   /* true when the cached evaluation is of this local state (collective) */
   PetscErrorCode        CacheHolds(Vec Uloc, bool tangents, bool *holds);
   PetscErrorCode        FillNaN(Vec F);
-  void                  PutCachedPoint(size_t k, StateBlob &state) const; /* checkpoints: local point k of the material cache */
-  PetscErrorCode        GetCachedPoint(PetscInt k, StateBlob &state);     /* and back (k < 0: skipped) */
   PetscErrorCode        ComputeRankFreeStateOrder(IS *order);
   IS                    rank_free_order_ = nullptr; /* RankFreeStateOrder's, made at the first call */
   std::vector<PetscInt> rank_free_ids_;             /* RankFreePointIds', likewise */
@@ -255,6 +254,8 @@ private:
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;
+  bool                          cache_stale_  = false; /* a checkpoint's: some writer's cache was not of its state */
+  PetscInt                      first_point_  = 0;
   bool                          cached_valid_ = false, cached_tangents_ = false, cached_ok_ = false;
   std::vector<Tensor2>          F_, Fdot_;
   std::vector<MaterialResponse> response_;

@@ -11,6 +11,7 @@
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/run/time_run.h>
+#include <unordered_map>
 
 namespace turgor {
 
@@ -44,18 +45,21 @@ protected:
   }
 
   /* Checkpoints: the scene's fingerprint (mesh coordinates, element, quadrature, material and its
-     RVE settings, groups, boundary and load), and the coarse model's state with every material
-     point's (CoarseModel::SaveState). Explicit one-step integrators only (TimeRun refuses the others). */
+     RVE settings, groups, boundary and load), and the declared state: the Jacobian reuse's counts,
+     the coarse model's with every material point's (CoarseModel::DeclareState). The unknowns are
+     numbered by their nodes' positions, the material points by their element's position; another
+     layout needs RVEs on one rank each. Explicit one-step integrators only (TimeRun refuses the
+     others). */
   bool           Checkpointable() const override { return true; }
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
-  PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override;
-  PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
-  /* Another number of ranks: the unknowns in the order of their nodes' positions, each material
-     point's state by its element's position (CoarseModel::SaveGlobalState); RVEs on one rank each. */
+  PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls) override;
+  std::uint64_t  EntityId(StateEntity e, PetscInt local) const override;
+  PetscInt       EntityLocal(StateEntity e, std::uint64_t id) const override;
+  bool           EntityOwned(StateEntity e, PetscInt local) const override;
+  std::uint64_t  LayoutHash() const override;
+  PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override { return model_.AfterStateRead(U, own_layout); }
   PetscErrorCode StateOrder(IS *order) override { return model_.RankFreeStateOrder(order); }
   bool           RestartsOnOtherRanks(std::string *why) const override;
-  PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override;
-  PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) override;
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec U, Vec Udot, Vec F, void *ctx);
@@ -75,6 +79,9 @@ private:
   CoarseFieldsWriter fields_;
   StabilityMonitor   monitor_;   /* -fe2_eigen_monitor */
   std::string        mesh_hash_; /* the fingerprint's, computed once */
+  /* checkpoints: every material point's rank-free id (by the pool's global index), and back */
+  std::vector<PetscInt>                          point_ids_;
+  mutable std::unordered_map<PetscInt, PetscInt> point_of_id_;
 };
 
 } // namespace turgor

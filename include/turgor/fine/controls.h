@@ -10,6 +10,7 @@
    control applies the total force F s(t) to the group, shared by mass (every node gets the same
    acceleration F s(t) / M). Nodes are wall particles (box and cells select wall particles only;
    -control_<name>_nodes may name any particle). See docs/model.md, "Controls". */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/tissue.h>
 #include <string>
 #include <vector>
@@ -51,7 +52,7 @@ struct ControlGroup {
 class Controls {
 public:
   /* Read -controls and every listed group's options (prefix -control_<name>_), validated. */
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
   /* Add a configured group (tests), before SetUp. */
   void Add(const ControlGroup &g) { groups_.push_back(g); }
   /* Resolve the groups' nodes on the full tissue (every rank holds it at this point, so the checks

@@ -35,15 +35,11 @@ public:
   PetscErrorCode Row(MPI_Comm comm, const PetscReal *x, const PetscReal *v, std::vector<PetscReal> &row, PetscReal *relative);
   PetscReal      LargestRelativeResidual() const { return worst_relative_; }
   PetscReal      ExternalWork() const; /* this rank's */
-  /* Checkpoints: the running sums (works, references, the last step's forces and velocities). */
-  void           SaveState(StateBlob &state) const;
-  PetscErrorCode LoadState(StateBlob &state);
-  /* Restarts on another number of ranks: the running sums as this rank's shares (the first rank of
-     the new run takes the totals), the last step's forces and velocities per particle by gid (each
-     particle's forces summed over the writing ranks' copies into its owner's entry: the works are
-     sums of f . v over ranks and particles, so they go on as they would have). */
-  void           SaveGlobalState(StateBlob &state) const;
-  PetscErrorCode LoadGlobalState(std::vector<StateBlob> &states, bool first);
+  /* Declared state: the running sums (works, references) as each rank's shares, and the last
+     step's forces and velocities per particle (a halo copy's forces are this rank's share of its
+     force: on another layout they are added up on the particle's owner, since the works are sums of
+     f . v over ranks and particles; its velocity is the owner's). */
+  void DeclareState(StateDeclaration &d);
 
 private:
   PetscErrorCode Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<PetscReal> &reaction);

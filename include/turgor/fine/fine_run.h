@@ -13,6 +13,7 @@
 #include <turgor/io/particle_snapshots.h>
 #include <turgor/parallel/cell_partition.h>
 #include <turgor/parallel/tissue_distribution.h>
+#include <turgor/particles/local_numbering.h>
 #include <turgor/physics/force_model.h>
 #include <turgor/run/time_run.h>
 #include <turgor/tissue/tissue_generator.h>
@@ -30,7 +31,7 @@ struct FineRunSpec {
   bool                     distribute  = true;     /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
   PetscReal                halo_margin = -1;       /* -fine_halo_margin [µm]: the halo's width beyond the interactions' reach; < 0: the reach */
 
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
 };
 
 class FineRun : public TimeRun {
@@ -81,21 +82,27 @@ protected:
     return "the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters";
   }
   /* Checkpoints: the scene's fingerprint (particles, cells, physics, clamps, controls, a hash of
-     the reference positions) and the run's state (the terms' internal state with the neighbour
-     lists, the energy balance, the velocities of Verlet's last drift, the rows of energy.csv and
-     the terms' logs). */
+     the reference positions) and the declared state (DeclareState: the drift velocities of the
+     split integrators, the force model's, the energy balance's); particles, bars and cells are
+     numbered by the tissue (gid, SpringGid, PolygonGid), the state [x | v] in the tissue's particle
+     order (StateOrder). The references the terms take lazily (hinge angles, cell areas, bonds at
+     -glue_start_time 0) are taken again from the initial state before the state is read
+     (BeforeStateRead), where the uninterrupted run took them. */
   bool           Checkpointable() const override { return true; }
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
-  PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) override { return WriteState(t, U, state, false); }
-  PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) override;
-  /* Another rank count: the state in the tissue's particle order, and the run's state again in the
-     tissue's numbering (every term's, the energy balance's, Verlet's drift velocities by gid);
-     refused only for a term without such a form (ForceTerm::RestartsOnOtherRanks). */
+  PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls) override;
+  std::uint64_t  EntityId(StateEntity e, PetscInt local) const override;
+  PetscInt       EntityLocal(StateEntity e, std::uint64_t id) const override;
+  bool           EntityOwned(StateEntity e, PetscInt local) const override;
+  std::uint64_t  LayoutHash() const override;
+  PetscErrorCode BeforeStateRead() override { return PrimeReferences(); }
+  PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override;
   PetscErrorCode StateOrder(IS *order) override;
+  bool           RestartsOnOtherRanks(std::string *why) const override { return true; }
   /* The tissue's reference positions and initial velocities are read only at set-up (the initial
      state, the swarm, the controls' groups, a restart's PrimeReferences): released once the state
      holds them (a restart: after its checkpoint is read), before the set-up's first force
-     evaluation, 32 B a particle off the peak (issue 13's memory per particle). */
+     evaluation, 32 B a particle off the peak (the memory per particle). */
   PetscErrorCode AfterSetUp() override
   {
     ReleaseReferences();
@@ -106,12 +113,8 @@ protected:
     std::vector<PetscReal>().swap(tissue_.X);
     std::vector<PetscReal>().swap(tissue_.V);
   }
-  bool           RestartsOnOtherRanks(std::string *why) const override;
-  PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) override { return WriteState(t, U, state, true); }
-  PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) override;
 
 private:
-  PetscErrorCode        WriteState(PetscReal t, Vec U, StateBlob &state, bool global); /* SaveState, or SaveGlobalState's form */
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx);
   static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx);
   static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx);
@@ -155,6 +158,7 @@ private:
   PetscReal                  halo_reach_  = 0; /* the interactions' reach (with the skin) and the margin, µm */
   PetscReal                  halo_margin_ = 0;
   std::vector<PetscReal>     v_stale_;                   /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
+  bool                       split_             = false; /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
   bool                       acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
   Controls                   controls_;
   std::vector<PetscReal>     xw_, vw_;            /* controls or a distributed run: the local state (halo, constraints imposed) */
@@ -183,10 +187,10 @@ private:
   ParticleSnapshotWriter snapshots_writer_;
   PetscInt               rhs_evals_ = 0;
 
-  /* restart: the rows of energy.csv and of the terms' logs at the checkpoint; the fingerprint's hash */
-  PetscInt              restart_energy_rows_ = 0;
-  std::vector<PetscInt> restart_record_rows_;
-  std::string           reference_hash_;
+  /* checkpoints: the fingerprint's hash of the reference positions; the tissue's numbers translated
+     while a checkpoint is read */
+  std::string                     reference_hash_;
+  std::unique_ptr<LocalNumbering> numbering_;
 };
 
 } // namespace turgor

@@ -27,14 +27,18 @@ public:
   ~CsvWriter() { PetscCallVoid(Close()); }
   /* Rows written since Open (with Continue: including the rows kept). */
   PetscInt Rows() const { return rows_; }
-  /* Restart: keep the first `rows` rows of the file at `path` (if it has these columns), then append. */
-  PetscErrorCode Continue(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns, PetscInt rows);
+  /* What the file holds so far (its header and rows): a checkpoint keeps it. */
+  PetscErrorCode Contents(std::string *text);
+  /* A restart: the file at `path` becomes `text` (a checkpoint's Contents, whose header must be
+     these columns), and rows are appended after it. */
+  PetscErrorCode Restore(MPI_Comm comm, const std::string &path, const std::vector<std::string> &columns, const std::string &text);
 
 private:
-  MPI_Comm comm_ = MPI_COMM_NULL;
-  FILE    *fp_   = nullptr;
-  size_t   ncol_ = 0;
-  PetscInt rows_ = 0;
+  MPI_Comm    comm_ = MPI_COMM_NULL;
+  FILE       *fp_   = nullptr;
+  std::string path_;
+  size_t      ncol_ = 0;
+  PetscInt    rows_ = 0;
 };
 
 /* A flat JSON object whose keys keep their insertion order. */

@@ -13,8 +13,9 @@
 
    An evaluation never aborts: a material point that cannot answer (no convergence, NaN, inverted
    element) returns ok = false with its reason, so that the caller can reject a step and retry. */
+#include <turgor/core/parameters.h>
 #include <turgor/core/registry.h>
-#include <turgor/core/state_blob.h>
+#include <turgor/io/declared_state.h>
 #include <turgor/core/tensor2.h>
 #include <petscviewer.h>
 #include <memory>
@@ -70,14 +71,15 @@ public:
   virtual PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
                                            Tensor2 *dsigma, MaterialResponse *status);
   virtual void           AddCounters(MaterialCounters &c) const { }
-  /* Checkpoints (-checkpoint_interval, -restart of -mode fe2): everything the point keeps between
-     evaluations that decides its next answer bit for bit (an RVE: its current and committed fine
-     state, the kept Jacobian, the neighbour lists) and its work counters, at an accepted coarse
-     state; LoadState restores it into a point set up from the same material. Each rank of the
-     point's group saves and loads its own part (collective on the group). PETSC_ERR_FILE_UNEXPECTED
-     on a blob that does not fit. A point without such state (a closed-form law) writes nothing. */
-  virtual PetscErrorCode SaveState(StateBlob &state) { return PETSC_SUCCESS; }
-  virtual PetscErrorCode LoadState(StateBlob &state) { return PETSC_SUCCESS; }
+  /* Declared state (io/declared_state.h; nested in the pool's table of points, whole, since a point
+     moves whole): everything the point keeps between evaluations that decides its next answer bit
+     for bit (an RVE: its current and committed fine state, the kept Jacobian, the neighbour lists)
+     and its work counters. Each rank of the point's group declares its own part. AfterStateRead,
+     once the state was read into the declaration (or a rebalance moved the point here), rebuilds
+     what derives from it (collective on the group). A point without such state (a closed-form law)
+     declares nothing. */
+  virtual void           DeclareState(StateDeclaration &d) { }
+  virtual PetscErrorCode AfterStateRead() { return PETSC_SUCCESS; }
 };
 
 class MaterialModel {
@@ -87,7 +89,7 @@ public:
   /* The accuracy a caller needs of a stress evaluation, as a default before SetFromOptions (the
      material's own options still win); materials without an iterative solve ignore it. */
   virtual void           SetDefaultTolerance(PetscReal tol) { }
-  virtual PetscErrorCode SetFromOptions(MPI_Comm comm) = 0;
+  virtual PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) = 0; /* params: the physics parameters read (may be NULL) */
   /* A material point on `group` (collective on it). */
   virtual PetscErrorCode CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const = 0;
   /* For summaries: the physics inside a point, and its particles (0 for closed forms). */

@@ -39,7 +39,7 @@ public:
 
   /* -material (API default rve) and that material's options; -material_comm_size,
      -material_tangent forward|central|implicit, -material_tangent_fdot_typ. */
-  PetscErrorCode SetFromOptions();
+  PetscErrorCode SetFromOptions(ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
   /* This rank owns n_local points. Creates the groups, the points of this rank's group and the
      communication pattern. */
   PetscErrorCode SetUp(PetscInt n_local);
@@ -48,16 +48,14 @@ public:
   PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D = NULL, EvaluationKind kind = EvaluationKind::Trial);
   PetscErrorCode Commit();
   PetscErrorCode Revert();
-  /* Checkpoints: the points of this rank's group, this rank's part of each (MaterialPoint::SaveState);
-     collective. LoadState takes the checkpoint's block of points (a rebalanced run's) if it is
-     another one; a checkpoint of another -material_comm_size is refused. */
-  PetscErrorCode SaveState(StateBlob &state);
-  PetscErrorCode LoadState(StateBlob &state);
-  /* Restarts on another number of ranks (groups of one rank only): every point of this group with
-     its id ids[g] (a numbering of the points that does not depend on the ranks); LoadGlobalState
-     reads every writing rank's blob and loads the points of this group's block by id. */
-  PetscErrorCode SaveGlobalState(StateBlob &state, const std::vector<PetscInt> &ids);
-  PetscErrorCode LoadGlobalState(std::vector<StateBlob> &states, const std::vector<PetscInt> &ids);
+  /* Declared state: this group's points as records keyed by their ids (ids[g]: a numbering of the
+     points that does not depend on the ranks; each rank of a group writes its own part of each), every
+     point's state nested in its row (MaterialPoint::DeclareState), and the block of points the group
+     evaluates. AfterStateRead (collective) takes the checkpoint's block where this rank holds what its
+     writer held (a rebalanced run's blocks), else keeps its blocks by count, and hands each point its
+     state. */
+  PetscErrorCode DeclareState(StateDeclaration &d, const std::vector<PetscInt> &ids);
+  PetscErrorCode AfterStateRead(bool own_layout);
   PetscInt       CommSize() const { return comm_size_; }
 
   /* Totals over all points and ranks (collective). */
@@ -102,11 +100,23 @@ private:
   PetscInt               rebalance_after_ = 0, evaluations_ = 0, moved_ = 0;
   std::vector<PetscReal> cost_; /* [block] seconds each point of this group took so far */
   PetscReal              imbalance_before_ = 1, imbalance_after_ = 1;
-  PetscErrorCode         BuildTraffic();                                                         /* the SFs of [begin_, end_) */
-  PetscErrorCode         SetBlock(PetscInt begin, PetscInt end, std::vector<StateBlob> *states); /* this group's points become [begin, end) */
-  PetscErrorCode         Rebalance();
-  PetscErrorCode         EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind);
-  std::vector<PetscInt>  offsets_; /* [ranks + 1] the owners' blocks of points */
+  PetscErrorCode         BuildTraffic(); /* the SFs of [begin_, end_) */
+  /* this group's points become [begin, end); the new ones take their state from states[g - begin]
+     (PackPoint's numbers; none: they start afresh) */
+  PetscErrorCode SetBlock(PetscInt begin, PetscInt end, std::vector<std::vector<PetscReal>> *states);
+  /* a point's declared state as one sequence of numbers (a rebalance moves it), and back */
+  static PetscErrorCode PackPoint(MaterialPoint &p, std::vector<PetscReal> &out);
+  static PetscErrorCode UnpackPoint(MaterialPoint &p, const PetscReal *in, size_t n);
+  struct SavedPoint { /* a point's row of a checkpoint: its global index here, its nested state */
+    PetscInt                            point;
+    std::vector<std::vector<PetscReal>> columns;
+  };
+  std::vector<SavedPoint>        saved_;
+  std::unique_ptr<MaterialPoint> prototype_; /* a point of this material, for the names of its state */
+  PetscInt                       saved_begin_ = 0, saved_end_ = 0;
+  PetscErrorCode                 Rebalance();
+  PetscErrorCode                 EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind);
+  std::vector<PetscInt>          offsets_; /* [ranks + 1] the owners' blocks of points */
 };
 
 } // namespace turgor

@@ -2,6 +2,7 @@
 /* Closed-form material: compressible neo-Hookean solid (plane strain) plus linear viscosity,
      sigma = (mu/J)(F F^T - I) + (lambda/J) ln J I + eta (l + l^T),   l = Fdot F^{-1},  rho = rho0/J,
    with its analytic tangents, to verify the finite-difference tangents and the coarse solver. */
+#include <turgor/core/parameters.h>
 #include <turgor/material/material_point.h>
 
 namespace turgor {
@@ -12,7 +13,7 @@ struct NeoHookeanSpec {
   PetscReal density   = 0.0126;          /* rho0 [ng/µm^2] */
 
   /* -nh_mu, -nh_lambda, -nh_viscosity, -nh_density */
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
 
 class NeoHookean : public MaterialPoint {
@@ -33,7 +34,7 @@ public:
 class NeoHookeanMaterial : public MaterialModel {
 public:
   const char              *Name() const override { return "neo_hookean"; }
-  PetscErrorCode           SetFromOptions(MPI_Comm comm) override { return spec.SetFromOptions(comm); }
+  PetscErrorCode           SetFromOptions(MPI_Comm comm, ParameterList *params) override { return spec.SetFromOptions(comm, params); }
   PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
   std::vector<std::string> Physics() const override { return {"neo_hookean"}; }
   bool                     HasStressDerivatives() const override { return true; }

@@ -26,12 +26,8 @@ public:
   PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
   PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */
 
-  /* Checkpoints: the dashpot's dissipation and its last power sample. */
-  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
-  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
-  bool           RestartsOnOtherRanks() const override { return true; }
-  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override { return SaveState(in, state); }
-  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
+  /* Declared state: the dashpots' dissipation and their last power sample. */
+  void DeclareState(const ParticleSet &P, StateDeclaration &d) override;
 
 private:
   std::vector<PetscReal> gamma_; /* per bar (all `damping`) */

@@ -48,21 +48,11 @@ public:
   PetscReal friction             = 0;     /* mu */
   PetscReal tangential_stiffness = -1;    /* k_t [N/m]; < 0: k_n */
 
-  /* Checkpoints: the live tangential histories by (node, bar) and the friction's dissipation; a
-     restart rebuilds the pair lists from the restored neighbour lists and re-attaches them. */
-  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override
-  {
-    WriteHistories(*in.P, state, false);
-    return PETSC_SUCCESS;
-  }
-  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
-  bool           RestartsOnOtherRanks() const override { return true; }
-  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override
-  {
-    WriteHistories(*in.P, state, true);
-    return PETSC_SUCCESS;
-  }
-  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
+  /* Declared state: the live tangential histories by (node, bar), the commits and the friction's
+     dissipation; after a restart the pair lists are rebuilt from the restored neighbour lists and the
+     histories attached to them. */
+  void           DeclareState(const ParticleSet &P, StateDeclaration &d) override;
+  PetscErrorCode AfterStateRead(const ForceInput &in) override;
 
 private:
   struct History {
@@ -82,7 +72,6 @@ private:
   void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
   bool           Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const;
   void           CommitTrial();
-  void           WriteHistories(const ParticleSet &P, StateBlob &state, bool global) const; /* SaveState, SaveGlobalState */
   /* the pair lists from the neighbour lists at in.x, then the histories `saved` by Key */
   PetscErrorCode AttachHistories(const ForceInput &in, const std::unordered_map<std::uint64_t, History> &saved);
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
@@ -104,6 +93,12 @@ private:
   PetscInt               evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
   PetscReal              sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
   size_t                 n_springs_ = 0;
+  struct SavedHistory { /* a live history as a checkpoint holds it */
+    PetscInt  node, bar;
+    PetscReal xi, lam_ref;
+    PetscInt  age; /* commits since it was set */
+  };
+  std::vector<SavedHistory> saved_; /* DeclareState's view of the histories; AfterStateRead attaches what was read */
 };
 
 } // namespace turgor

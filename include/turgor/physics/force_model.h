@@ -6,6 +6,7 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/physics/force_term.h>
 #include <algorithm>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -94,18 +95,13 @@ public:
   const PeriodicImages &Images() const { return images_; }
   PetscInt              Evaluations() const { return evaluations_; }
   PetscErrorCode        View(PetscViewer viewer) const;
-  /* Checkpoints (after AcceptStep at the accepted state (x, v) of time t): the neighbour lists'
-     positions and every term's SaveState, one sub-blob per term; LoadState restores them on a model
-     set up on the same scene (errors name the term). */
-  PetscErrorCode SaveState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
-  PetscErrorCode LoadState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
-  /* Restarts on another number of ranks (ForceTerm::SaveGlobalState): every term's state in the
-     tissue's numbering, one sub-blob per term; LoadGlobalState takes the blobs of all the writing
-     ranks, builds the neighbour lists afresh at x and hands each term its sub-blobs. A term that
-     cannot is named in *why (RestartsOnOtherRanks false). */
-  bool           RestartsOnOtherRanks(std::string *why) const;
-  PetscErrorCode SaveGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, StateBlob &state);
-  PetscErrorCode LoadGlobalState(const PetscReal *x, const PetscReal *v, PetscReal t, std::vector<StateBlob> &states, bool first);
+  /* Declared state: the neighbour lists' last build ("<prefix>neighbours": the positions it was
+     made at and the rebuilds, which only the layout that wrote them can use) and every term's
+     ("<prefix><term>"), appended to `decls`. AfterStateRead, once a checkpoint is read into them:
+     the lists as they were (`own_layout`: this rank holds what its writer held) or built afresh at x,
+     then every term's AfterStateRead at the state (x, v) of time t. */
+  void           DeclareState(std::deque<StateDeclaration> &decls, const std::string &prefix = "");
+  PetscErrorCode AfterStateRead(const PetscReal *x, const PetscReal *v, PetscReal t, bool own_layout);
 
 private:
   const ParticleSet                      *P_ = nullptr;
@@ -120,6 +116,8 @@ private:
   PetscInt                                evaluations_ = 0;
   PetscReal                               t_           = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;
+  std::vector<PetscReal>                  nb_ref_;          /* DeclareState's view of the lists' build positions */
+  PetscInt                                nb_rebuilds_ = 0; /* ... and of their rebuilds */
 };
 
 } // namespace turgor

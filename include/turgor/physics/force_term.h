@@ -7,7 +7,8 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
 #include <turgor/physics/load_spec.h>
-#include <turgor/core/state_blob.h>
+#include <turgor/core/parameters.h>
+#include <turgor/io/declared_state.h>
 #include <petscviewer.h>
 #include <memory>
 #include <string>
@@ -38,7 +39,8 @@ struct TimeStepLimit {
 
 /* What a term may take from the scene besides its own options. */
 struct TermContext {
-  const LoadSpec *load = nullptr; /* external loads (the body force); NULL where a scene has none */
+  const LoadSpec *load   = nullptr; /* external loads (the body force); NULL where a scene has none */
+  ParameterList  *params = nullptr; /* the run's physics parameters: every option the term reads is recorded here */
 };
 
 /* A counter for summary.json; keys start with the term's name. A distributed run reports the sum
@@ -132,22 +134,16 @@ public:
   virtual PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) { return PETSC_SUCCESS; }
   /* Counters for summary.json (TermStatistic; e.g. contact's mean number of contacts per evaluation). */
   virtual void Statistics(std::vector<TermStatistic> &stats) const { }
-  /* Checkpoints: SaveState appends the internal state at the accepted state (after AcceptStep);
-     LoadState reads it back into a term set up on the same scene, at the checkpoint's state `in`
-     (its neighbour lists already restored), so that the run continues bit for bit. A term without
-     internal state writes nothing. LoadState returns PETSC_ERR_FILE_UNEXPECTED on a blob that does
-     not fit (the caller names the file). */
-  virtual PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const { return PETSC_SUCCESS; }
-  virtual PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) { return PETSC_SUCCESS; }
-  /* Restarts on another number of ranks: the same internal state in the tissue's numbering
-     (ParticleSet::gid, SpringGid, PolygonGid; LocalNumbering translates back). LoadGlobalState gets
-     the blob of every rank of the run that wrote it, in rank order, and keeps the records of the
-     interactions this rank computes; a running sum (dissipation) is each writing rank's share, so
-     the first rank takes the total and the others none (the sums over ranks are what is reported).
-     A term with internal state and without these says false to RestartsOnOtherRanks. */
-  virtual bool           RestartsOnOtherRanks() const { return !HasInternalState(); }
-  virtual PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const { return PETSC_SUCCESS; }
-  virtual PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) { return PETSC_SUCCESS; }
+  /* Declared state (io/declared_state.h): what the term keeps from one accepted step to the next
+     (plastic angles, contact histories, glue bonds, dissipation counts), declared by name into `d`
+     (which carries the term's name) for checkpoints and restarts on any number of ranks: no checkpoint
+     code of its own. `P` numbers the particles, bars and cells its records name (its keys use their
+     ids: ParticleSet::gid, SpringGid, PolygonGid). Called at every checkpoint and restart, after
+     SetUp; the bindings hold until the next call. AfterStateRead rebuilds what the term derives from
+     that state (lists, trial values) at the restored state `in` (the neighbour lists restored). A term
+     without state declares nothing. */
+  virtual void           DeclareState(const ParticleSet &P, StateDeclaration &d) { }
+  virtual PetscErrorCode AfterStateRead(const ForceInput &in) { return PETSC_SUCCESS; }
 };
 
 /* Clone() for a term that is copyable while configured and not yet set up. */

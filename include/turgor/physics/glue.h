@@ -94,14 +94,11 @@ public:
   bool      has_unbonded_box     = false; /* -glue_unbonded_box: no bond whose bond point is inside (a pre-crack, a notch) */
   PetscReal unbonded_box[4]      = {0, 0, 0, 0};
 
-  /* Checkpoints: every bond as made (its geometry, intact, lmax) and the sums; a restart takes the
-     bonds from the checkpoint instead of making them again (-glue_start_time: made from the
-     positions of that time). */
-  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
-  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
-  bool           RestartsOnOtherRanks() const override { return true; }
-  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override;
-  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
+  /* Declared state: every bond as made (its node, bar and cells, geometry, intact flag, largest
+     opening), keyed by its node and bar, and the sums; a restart takes the bonds from the checkpoint
+     instead of making them again (-glue_start_time: made from the positions of that time). */
+  void           DeclareState(const ParticleSet &P, StateDeclaration &d) override;
+  PetscErrorCode AfterStateRead(const ForceInput &in) override;
 
 private:
   struct Bond {        /* what every evaluation reads */

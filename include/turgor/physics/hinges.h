@@ -36,12 +36,13 @@ public:
   PetscReal stiffness  = 1.0e4; /* k_r [µN µm / rad] */
   PetscReal max_moment = 0;     /* M_max [µN µm]; 0 = elastic */
 
-  /* Checkpoints: the plastic angles, the reference angles and the dissipation. */
-  PetscErrorCode SaveState(const ForceInput &in, StateBlob &state) const override;
-  PetscErrorCode LoadState(const ForceInput &in, StateBlob &state) override;
-  bool           RestartsOnOtherRanks() const override { return true; }
-  PetscErrorCode SaveGlobalState(const ForceInput &in, StateBlob &state) const override;
-  PetscErrorCode LoadGlobalState(const ForceInput &in, std::vector<StateBlob> &states, bool first) override;
+  /* Declared state: each hinge's reference and plastic angles (by its node), the dissipation. */
+  void           DeclareState(const ParticleSet &P, StateDeclaration &d) override;
+  PetscErrorCode AfterStateRead(const ForceInput &in) override
+  {
+    have_angles_ = false;
+    return PETSC_SUCCESS;
+  }
 
 private:
   struct Hinge {

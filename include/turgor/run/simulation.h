@@ -24,6 +24,9 @@ public:
   virtual PetscErrorCode WriteFailure(const std::string &reason) { return PETSC_SUCCESS; }
   /* The run stopped early on SIGINT/SIGTERM (its summary says "interrupted"). */
   virtual bool Interrupted() const { return false; }
+  /* The mode continues from checkpoints (-restart) and writes them (-checkpoint_interval): a mode that
+     does not refuses those options before any work. */
+  virtual bool Checkpoints() const { return false; }
 };
 
 using SimulationCreator = Registry<Simulation>::Creator;

@@ -8,11 +8,14 @@
    Order: SetFromOptions() creates the TS with the defaults and reads the options; programs may
    then adjust the TS or the specs through the API; SetUp() builds the model, calls
    TSSetFromOptions() and opens the outputs. */
-#include <turgor/core/state_blob.h>
+#include <turgor/core/parameters.h>
+#include <turgor/io/declared_state.h>
 #include <turgor/io/output.h>
 #include <turgor/io/time_sampler.h>
 #include <turgor/run/simulation.h>
+#include <turgor/ts/integrator_state.h>
 #include <petscts.h>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +47,7 @@ public:
   PetscErrorCode WriteSummary() final;
   PetscErrorCode WriteFailure(const std::string &reason) final;
   bool           Interrupted() const final { return interrupted_; }
+  bool           Checkpoints() const final { return Checkpointable(); }
 
   TS             GetTS() const { return ts_; }
   Vec            GetState() const { return U_; }
@@ -99,23 +103,30 @@ protected:
   /* Refuse integrators the mode cannot use (after TSSetFromOptions; the message says why). */
   virtual PetscErrorCode CheckIntegrator() { return PETSC_SUCCESS; }
 
-  /* Checkpoints (-checkpoint_interval, -checkpoint_wall_interval, -restart). TimeRun writes the
-     state Vec, time, step, next step size, the integrator's carried derivative and step-size
-     controller history (ts_checkpoint.h) and the outputs' sampling position; a mode that supports them returns true and adds its own
-     state and the fingerprint of its scene (name, value: a restart on another scene is refused,
-     naming the part that differs). */
+  /* Checkpoints (-checkpoint_interval, -checkpoint_wall_interval, -restart), written and read from
+     declared state (io/declared_state.h, io/checkpoint_file.h). TimeRun declares the time, step,
+     next step size and the samplers' positions ("run"), the solution as entries of the state in
+     StateOrder's numbering ("solution") and the integrator's history ("integrator"); a mode that
+     supports checkpoints returns true, declares its own state (DeclareState), numbers the entities
+     its tables name (EntityId, EntityLocal, EntityOwned; LayoutHash: which entities this rank holds,
+     in which order), and gives the fingerprint of its scene (name, value: a restart on another
+     scene is refused, naming the part that differs). */
   virtual bool           Checkpointable() const { return false; }
   virtual PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
-  virtual PetscErrorCode SaveState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
-  /* At the restored state U of time t (after TSSetUp, before the outputs are opened). */
-  virtual PetscErrorCode LoadState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
-  /* Restarts on another number of ranks: StateOrder gives each local entry of the state its index
-     in an order that does not depend on the ranks (NULL: the state's own order), in which the state
-     (and a carried derivative of the state's layout) is written; RestartsOnOtherRanks says whether
-     this run can continue from a checkpoint of another rank count (else why not), and
-     LoadStateOtherRanks then replaces LoadState: the per-rank run_state is not read, but every
-     writing rank's SaveGlobalState blob (global_state: the mode's state in a numbering that does
-     not depend on the ranks), handed to every rank in rank order. */
+  virtual PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls) { return PETSC_SUCCESS; }
+  virtual std::uint64_t  EntityId(StateEntity e, PetscInt local) const { return (std::uint64_t)local; }
+  virtual PetscInt       EntityLocal(StateEntity e, std::uint64_t id) const { return -1; }
+  virtual bool           EntityOwned(StateEntity e, PetscInt local) const { return true; }
+  virtual std::uint64_t  LayoutHash() const;
+  /* A restart: before the checkpoint's state is read into the declarations (references the model
+     takes lazily), and after (what the mode derives from its state), at the restored state U of
+     time t; `own_layout`: this rank holds what the rank that wrote its rows held. */
+  virtual PetscErrorCode BeforeStateRead() { return PETSC_SUCCESS; }
+  virtual PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) { return PETSC_SUCCESS; }
+  /* StateOrder gives each local entry of the state its index in an order that does not depend on
+     the ranks (NULL: the state's own order): the ids of the "solution" entries (and of the
+     integrator's history), and the order final_state_hash hashes in. RestartsOnOtherRanks says
+     whether this run can continue from a checkpoint of another layout (else why not). */
   virtual PetscErrorCode StateOrder(IS *order)
   {
     *order = NULL;
@@ -126,13 +137,29 @@ protected:
     *why = "this mode's checkpoint holds per-rank state";
     return false;
   }
-  virtual PetscErrorCode SaveGlobalState(PetscReal t, Vec U, StateBlob &state) { return PETSC_SUCCESS; }
-  virtual PetscErrorCode LoadStateOtherRanks(PetscReal t, Vec U, std::vector<StateBlob> &states) { return PETSC_SUCCESS; }
+  /* The mode's right-hand side asks first (a restarted run's first derivative, the FSAL stage):
+     *answered: F holds the derivative, the evaluation is not done. */
+  PetscErrorCode ObserveRHS(PetscReal t, Vec U, Vec F, PetscBool *answered) { return integrator_.ObserveRHS(ts_, t, U, F, answered); }
+  /* A CSV time series of the mode (groups.csv, energy.csv, breaks.csv; rank 0): opened here so that
+     checkpoints hold what it has written and a restart writes the checkpoint's rows again and goes
+     on after them. */
+  PetscErrorCode OpenSeries(CsvWriter &csv, const std::string &file, const std::vector<std::string> &columns);
   /* -checkpoint_interval, -checkpoint_wall_interval or -restart was given (after SetFromOptions). */
   bool CheckpointsRequested() const { return ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty(); }
   /* The checkpoint a run continues from ("" when none), and its step. */
   const std::string &RestartFile() const { return restart_file_; }
   PetscInt           RestartStep() const { return restart_step_; }
+
+  /* The run's physics parameters: the mode's objects record every option they read that changes the
+     physics (core/parameters.h); TimeRun adds the integrator's. A checkpoint keeps them, a restart
+     refuses any that differs unless -restart_allow names it. */
+  ParameterList &PhysicsParameters() { return params_; }
+
+  /* A fixed step, which TS does not clip at the final time: shortened so that whole steps from (t,
+     step) end there, and the steps counted to the end (round-off must not add one) unless
+     -ts_max_steps was given. A restart whose step or end time differs from the checkpoint's run
+     fits them again from its own start. */
+  PetscErrorCode FitFixedSteps(PetscReal t, PetscInt step);
 
   /* Seconds of wall time in TSSolve. */
   PetscReal WallTime() const { return (PetscReal)wall_; }
@@ -149,11 +176,12 @@ private:
   PetscErrorCode        Sample(PetscReal t, Vec U);
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
-  static PetscErrorCode PreStep(TS ts);
   PetscErrorCode        WriteCheckpoint(PetscReal t, PetscInt step);
   PetscErrorCode        ReadCheckpoint(); /* -restart: every check, then the state restored */
-  PetscErrorCode        ReadCheckpointFile(PetscViewer v, std::string *problem);
+  PetscErrorCode        ReadCheckpointFile(class CheckpointReader &file, std::string *problem);
   PetscErrorCode        CheckpointDue(PetscReal t, PetscBool *due);
+  class Numbering;
+  PetscErrorCode DeclareAll(std::deque<StateDeclaration> &decls); /* TimeRun's and the mode's */
 
   std::string                             mode_;
   CsvWriter                               tip_csv_;
@@ -164,19 +192,29 @@ private:
   PetscReal                               observed_    = 0;
   PetscLogStage                           stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent                           ev_output_   = 0;
-  bool                                    interrupted_ = false, solving_ = false;
-  PetscReal                               t_last_ = 0, stalled_ = -1, dt_min_ = 0; /* stalled_: the accepted step below dt_min_ (>= 0) */
-  static constexpr PetscReal              kMinStepFraction = 1e-10;                /* default -ts_adapt_dt_min / -ts_max_time */
+  bool                                    interrupted_ = false, solving_ = false, stopped_ = false; /* stopped_: at -ts_max_steps, before the end */
+  PetscReal                               t_last_ = 0, stalled_ = -1, dt_min_ = 0;                  /* stalled_: the accepted step below dt_min_ (>= 0) */
+  static constexpr PetscReal              kMinStepFraction = 1e-10;                                 /* default -ts_adapt_dt_min / -ts_max_time */
 
   /* checkpoints */
-  PetscReal             ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
-  PetscLogDouble        ckpt_wall_last_ = 0;
-  PetscInt              ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
-  PetscReal             ckpt_bytes_ = 0, ckpt_seconds_ = 0;
-  std::string           restart_file_;
-  std::vector<PetscInt> restart_series_rows_;
-  PetscInt              restart_tip_rows_ = 0;
-  PetscLogEvent         ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
+  PetscReal       ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
+  PetscLogDouble  ckpt_wall_last_ = 0;
+  PetscInt        ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
+  PetscReal       ckpt_bytes_ = 0, ckpt_seconds_ = 0;
+  std::string     restart_file_;
+  PetscLogEvent   ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
+  IntegratorState integrator_;
+  ParameterList   params_;
+  std::vector<std::string> restart_allow_, restart_changed_;            /* -restart_allow; the allowed differences found */
+  PetscReal                dt_start_  = 0;                              /* the first (or fixed) step, from the options */
+  bool                     fit_fixed_ = false, auto_max_steps_ = false; /* FitFixedSteps was used; it set the steps */
+  struct RunRecord {                                                    /* the "run" declaration: where the run is */
+    PetscReal time = 0, dt = 0, t_final = 0, first_step = 0;            /* first_step: the run's first (or fixed) step, from its options */
+    PetscInt  step = 0, sample = 0, snapshot = 0, samples = 0, snapshots = 0;
+  } record_;
+  std::vector<PetscReal>                           solution_;     /* the "solution" declaration's view of U */
+  std::vector<std::pair<std::string, CsvWriter *>> series_;       /* every CSV time series (rank 0), in the order opened */
+  std::vector<std::pair<std::string, std::string>> restart_text_; /* a restart: each series' text at the checkpoint */
 };
 
 } // namespace turgor

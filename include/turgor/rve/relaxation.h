@@ -41,8 +41,8 @@ public:
   /* Checkpoints: the Jacobian pattern (rebuilt with the neighbour lists), the kept G' and J = G' +
      shift I whose LU factor the next warm solve reuses (modified Newton; the factor is recomputed
      from J, bit for bit), and the Jacobian count. Collective on the RVE's communicator. */
-  PetscErrorCode SaveState(StateBlob &state);
-  PetscErrorCode LoadState(StateBlob &state);
+  void           DeclareState(StateDeclaration &d);
+  PetscErrorCode AfterStateRead(); /* collective on the group */
 
 private:
   static PetscErrorCode IFunction(TS ts, PetscReal t, Vec W, Vec Wdot, Vec F, void *ctx);
@@ -72,9 +72,12 @@ private:
   Mat                                factor_           = nullptr; /* LU of J, for the pseudo steps and the warm solves */
   PetscObjectState                   factor_state_     = -1;      /* J's state when factor_ was computed */
   PetscInt                           pattern_rebuilds_ = -1;
-  std::vector<std::vector<PetscInt>> pattern_cols_;        /* columns of each unknown pair in J_ */
-  bool                               have_K_      = false; /* K_ holds G' of a recent state */
-  PetscInt                           jacobians_   = 0;
+  std::vector<std::vector<PetscInt>> pattern_cols_;      /* columns of each unknown pair in J_ */
+  bool                               have_K_    = false; /* K_ holds G' of a recent state */
+  PetscInt                           jacobians_ = 0;
+  /* DeclareState's view of the pattern and of G' and J's values (this rank's rows, in row order) */
+  std::vector<std::vector<PetscInt>> saved_pattern_;
+  std::vector<PetscReal>             saved_K_, saved_J_;
   PetscLogEvent                      ev_jacobian_ = 0, ev_linearized_ = 0;
   KSP                                tangent_ksp_ = nullptr;                                 /* SolveLinearized's GMRES, made on first use */
   Mat                                tangent_op_  = nullptr;                                 /* its operator, a shell */

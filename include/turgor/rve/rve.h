@@ -33,11 +33,11 @@ public:
   PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
                                    Tensor2 *dsigma, MaterialResponse *status) override;
   void           AddCounters(MaterialCounters &c) const override;
-  /* The warm start (current and committed fine state and their flags), the relaxation's kept
-     Jacobian and pattern, the neighbour lists and the counters (rank 0 of the group holds the
-     unknowns; the other ranks save their flags and their empty parts). */
-  PetscErrorCode SaveState(StateBlob &state) override;
-  PetscErrorCode LoadState(StateBlob &state) override;
+  /* Declared state: the warm start (current and committed fine state and their flags), the
+     relaxation's kept Jacobian and pattern, the equations' neighbour lists and the counters (rank 0
+     of the group holds the unknowns; the other ranks their flags and their empty parts). */
+  void           DeclareState(StateDeclaration &d) override;
+  PetscErrorCode AfterStateRead() override;
 
   const PeriodicCell &Cell() const { return cell_; }
   PetscInt            NumUnknowns() const { return cell_.NumUnknowns(); }
@@ -71,7 +71,7 @@ class RVEMaterial : public MaterialModel {
 public:
   const char              *Name() const override { return "rve"; }
   void                     SetDefaultTolerance(PetscReal tol) override { spec.psi_atol = spec.psi_steptol = tol; }
-  PetscErrorCode           SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode           SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
   std::vector<std::string> Physics() const override { return physics.ActiveTerms(); }
   bool                     HasStressDerivatives() const override { return true; }

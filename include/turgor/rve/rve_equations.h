@@ -36,11 +36,11 @@ public:
   const PeriodicCell           &Cell() const { return *cell_; }
   PetscInt                      ForceEvaluations() const { return force_evals_; }
   PetscMPIInt                   Rank() const { return rank_; }
-  /* Checkpoints: the neighbour lists (the positions and the lattice they were last built at, so that
-     a restored RVE rebuilds them when the uninterrupted one does and visits its pairs in the same
-     order) and the force count. LoadState leaves the deformation at the identity. */
-  PetscErrorCode SaveState(StateBlob &state);
-  PetscErrorCode LoadState(StateBlob &state);
+  /* Declared state: the neighbour lists (the positions and the lattice they were last built at, so
+     that a restored RVE rebuilds them when the uninterrupted one does and visits its pairs in the
+     same order) and the force count. AfterStateRead leaves the deformation at the identity. */
+  void           DeclareState(StateDeclaration &d);
+  PetscErrorCode AfterStateRead();
 
 private:
   PetscErrorCode Compute(Vec W); /* forces and virial at W unless kept */

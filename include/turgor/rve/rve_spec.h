@@ -2,6 +2,7 @@
 /* Settings of the RVE material (prefix rve_), read once for all material points: the size of the
    periodic cell, how its fine structure is found, and the seed's Psi-tc schedule (TW 562 §3.2,
    eq 28) in units scaled by the cell size and a characteristic force. */
+#include <turgor/core/parameters.h>
 #include <turgor/core/petsc_compat.h>
 
 namespace turgor {
@@ -22,7 +23,7 @@ struct RVESpec {
   PetscReal      psi_atol = 1e-12, psi_steptol = 1e-12; /* stop at ||G|| < atol or ||step|| < steptol */
   PetscReal      warm_dt0 = 1e4;                        /* pseudo step of warm (modified Newton) solves */
 
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
 
 } // namespace turgor

@@ -2,6 +2,7 @@
 /* -tissue_type node_file: polygonal cells read from a node file in the format of the L-hyphen code
    (issue 10): one node per line "x y cellId", a cell's nodes listed together, in order around its
    polygon. Blank lines and lines starting with '#' are skipped. */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/polygon_tissue.h>
 #include <turgor/tissue/tissue_generator.h>
 #include <string>
@@ -14,7 +15,7 @@ struct NodeFileSpec {
   PetscReal             length_scale = 1; /* file coordinates x s = µm */
   std::vector<PetscInt> open_cells;       /* cell ids (as in the file) that are open chains */
 
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
 
 /* Read spec.path: cell ids must run in steps of one from the first (each cell's nodes together),
@@ -28,7 +29,7 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
 class NodeFileGenerator : public TissueGenerator {
 public:
   const char    *Name() const override { return "node_file"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateNodeFileTissue(comm, spec, poly, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;

@@ -5,6 +5,7 @@
    or a floor is a plate moved or held by a control group (-control_<name>_plates top). With side
    plates, the top and bottom plates stop 3 r short of their centrelines, so that a lid slides down
    between the walls without touching them and no node (2 r wide) fits through the gap left. */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/tissue.h>
 #include <array>
 #include <string>
@@ -19,7 +20,7 @@ struct PlateSpec {
   PetscReal                overhang = -1; /* µm past the tissue; < 0: 10% of the tissue's larger side */
 
   /* -tissue_plates, -tissue_plate_overhang (prefix tissue_). */
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
   bool           Any() const { return !sides.empty(); }
 };
 

@@ -2,6 +2,7 @@
 /* What the polygonal tissues (-tissue_type node_file, voronoi, polyline) share: the bar radius,
    the node mass and the bar subdivision (PolygonTissueSpec), the builder that turns rings of points
    into nodes, bars and PolygonCells, and the planar geometry their checks use. */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/plates.h>
 #include <turgor/tissue/tissue.h>
 #include <array>
@@ -20,7 +21,7 @@ struct PolygonTissueSpec {
 
   /* `subdivide`: the generator honours -tissue_bar_length (the polyline, whose node count is given,
      leaves it unread so that a stray one is reported as unused). */
-  PetscErrorCode SetFromOptions(MPI_Comm comm, bool subdivide);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, bool subdivide, ParameterList *params = nullptr);
 };
 
 using Point2 = std::array<PetscReal, 2>;

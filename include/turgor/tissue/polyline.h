@@ -1,5 +1,6 @@
 #pragma once
 /* -tissue_type polyline: one open chain of nodes and bars on a straight segment (a beam, a wall). */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/polygon_tissue.h>
 #include <turgor/tissue/tissue_generator.h>
 
@@ -12,7 +13,7 @@ struct PolylineSpec {
   PetscReal end[2]   = {1, 0};
   PetscInt  nodes    = 101;
 
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
 
 /* N equally spaced nodes from start to end, N - 1 bars, one open PolygonCell. */
@@ -21,7 +22,7 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
 class PolylineGenerator : public TissueGenerator {
 public:
   const char    *Name() const override { return "polyline"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GeneratePolylineTissue(comm, spec, poly, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;

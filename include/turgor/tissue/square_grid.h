@@ -1,6 +1,7 @@
 #pragma once
 /* The regular grid of square cells of the seed paper (TW 562 §5): shared walls discretised by
    springs, each cell filled with a square lattice of SPH particles. */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/tissue_generator.h>
 
 namespace turgor {
@@ -18,7 +19,7 @@ struct SquareGridSpec {
 
   /* The cell options, and with `layout` also -tissue_cells_x/y (an RVE sets its own number of
      cells, -rve_cells, and leaves those unread so that a stray one is reported as unused). */
-  PetscErrorCode SetFromOptions(MPI_Comm comm, bool layout);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, bool layout, ParameterList *params = nullptr);
   PetscReal      FluidParticleMass() const;
   /* Particles and springs of nx x ny cells, in floating point (a periodic grid has fewer walls). */
   void Count(PetscReal nx, PetscReal ny, bool periodic, PetscReal *particles, PetscReal *springs) const;
@@ -34,7 +35,7 @@ PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridS
 class SquareGridGenerator : public TissueGenerator {
 public:
   const char    *Name() const override { return "square_grid"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override { return spec.SetFromOptions(comm, true); }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override { return spec.SetFromOptions(comm, true, params); }
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateSquareGridTissue(comm, spec, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;

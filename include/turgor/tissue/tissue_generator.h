@@ -2,6 +2,7 @@
 /* Tissue generators: each builds a Tissue from its own options (prefix tissue_), chosen by
    -tissue_type. A new generator is one file (a class derived from TissueGenerator) plus one line
    in src/core/register_all.cpp: TissueGeneratorRegister("name", CreateInstance<TissueGenerator, G>). */
+#include <turgor/core/parameters.h>
 #include <turgor/core/registry.h>
 #include <turgor/tissue/tissue.h>
 #include <petscviewer.h>
@@ -12,10 +13,11 @@ namespace turgor {
 
 class TissueGenerator {
 public:
-  virtual ~TissueGenerator()                                           = default;
-  virtual const char    *Name() const                                  = 0;
-  virtual PetscErrorCode SetFromOptions(MPI_Comm comm)                 = 0;
-  virtual PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const = 0;
+  virtual ~TissueGenerator()       = default;
+  virtual const char *Name() const = 0;
+  /* params: where the options read are recorded as the run's physics parameters (may be NULL) */
+  virtual PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) = 0;
+  virtual PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const        = 0;
   /* Particles and springs the tissue will have, computed in floating point before anything is
      allocated (memory estimates; counts beyond PetscInt). */
   virtual PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const = 0;
@@ -33,7 +35,7 @@ class TissueSpec {
 public:
   std::string type = "square_grid";
 
-  PetscErrorCode   SetFromOptions(MPI_Comm comm);
+  PetscErrorCode   SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
   PetscErrorCode   Generate(MPI_Comm comm, Tissue *tissue) const;
   TissueGenerator *Generator() const { return generator_.get(); }
 

@@ -1,6 +1,7 @@
 #pragma once
 /* -tissue_type voronoi: Voronoi or Laguerre (power-diagram) cells in a box, from a seeded random
    point set, with Lloyd relaxation, shrunk by the bar radius so that neighbours are 2 r apart. */
+#include <turgor/core/parameters.h>
 #include <turgor/tissue/polygon_tissue.h>
 #include <turgor/tissue/tissue_generator.h>
 
@@ -15,7 +16,7 @@ struct VoronoiSpec {
   PetscInt  lloyd_steps = 0;
   PetscReal size_cv     = 0; /* target coefficient of variation of the cell areas; 0: plain Voronoi */
 
-  PetscErrorCode SetFromOptions(MPI_Comm comm);
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
 
 /* A convex cell of a power diagram, counter-clockwise: edge k joins v[k] to v[k+1]; across it lies
@@ -52,7 +53,7 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
 class VoronoiGenerator : public TissueGenerator {
 public:
   const char    *Name() const override { return "voronoi"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateVoronoiTissue(comm, spec, poly, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;

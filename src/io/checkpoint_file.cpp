@@ -1,0 +1,860 @@
+#include <turgor/io/checkpoint_file.h>
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+namespace turgor {
+
+namespace {
+
+/* An HDF5 call that returned a negative value (failure) becomes an error naming what and the file. */
+#define TG_H5(call, comm, ...) \
+  do { \
+    if ((call) < 0) SETERRQ(comm, PETSC_ERR_FILE_WRITE, __VA_ARGS__); \
+  } while (0)
+#define TG_H5R(call, ...) \
+  do { \
+    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_READ, __VA_ARGS__); \
+  } while (0)
+
+/* The values of a dataset as 64-bit words, and the hash that `checksum` holds: a sum over the values
+   of a mix of each value with its position, so that every rank can hash its own slab of the rows and
+   the slabs add up (a plain checksum would need the whole dataset on one rank). SplitMix64's
+   finaliser spreads every bit of its input over the output. */
+std::uint64_t Mix(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+std::uint64_t Word(PetscReal v)
+{
+  std::uint64_t w;
+  std::memcpy(&w, &v, sizeof w);
+  return w;
+}
+
+enum class Kind {
+  Real,
+  Int,
+  Key,
+  Byte
+};
+
+hid_t MemType(Kind k)
+{
+  switch (k) {
+  case Kind::Real:
+    return H5T_NATIVE_DOUBLE;
+  case Kind::Int:
+    return H5T_NATIVE_INT64;
+  case Kind::Key:
+    return H5T_NATIVE_UINT64;
+  case Kind::Byte:
+    return H5T_NATIVE_UCHAR;
+  }
+  return H5T_NATIVE_DOUBLE;
+}
+
+/* The rows of one table on one rank: keys, holders, owner flags and, per column, the values (a fixed
+   column: rows x width; a ragged one: concatenated, with each row's length). References are ids. */
+struct Rows {
+  std::vector<std::uint64_t>             key;
+  std::vector<std::int64_t>              holder, owned;
+  std::vector<std::vector<PetscReal>>    data;
+  std::vector<std::vector<std::int64_t>> length;
+  size_t                                 Count() const { return key.size(); }
+};
+
+/* The names and widths of every declaration's tables and columns: every rank must declare the same
+   ones (an object that declared according to its local sizes would make the ranks write different
+   datasets). Collective: an error on every rank that names the first declaration that differs. */
+PetscErrorCode CheckSameDeclarations(MPI_Comm comm, const std::vector<StateDeclaration *> &decls)
+{
+  PetscFunctionBeginUser;
+  for (const StateDeclaration *d : decls) {
+    std::uint64_t h   = 1469598103934665603ull, lo, hi;
+    auto          mix = [&h](const std::string &s) {
+      for (unsigned char ch : s) h = (h ^ ch) * 1099511628211ull;
+      h = (h ^ 0xff) * 1099511628211ull;
+    };
+    for (const StateTable &t : d->Tables()) {
+      mix(t.Name());
+      for (const StateColumn &c : t.Columns()) mix(c.name + "/" + std::to_string(c.width) + (c.integer ? "i" : "r"));
+    }
+    PetscCallMPI(MPI_Allreduce(&h, &lo, 1, MPI_UINT64_T, MPI_MIN, comm));
+    PetscCallMPI(MPI_Allreduce(&h, &hi, 1, MPI_UINT64_T, MPI_MAX, comm));
+    PetscCheck(lo == hi, comm, PETSC_ERR_PLIB, "Checkpoint: the ranks declare different state for %s (its tables depend on a rank's own sizes)",
+               d->Name().c_str());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+std::uint64_t ChecksumTerm(std::uint64_t position, std::uint64_t word)
+{
+  return Mix(Mix(position) ^ word);
+}
+std::uint64_t ChecksumTerm(std::uint64_t position, PetscReal value)
+{
+  return Mix(Mix(position) ^ Word(value));
+}
+
+/* ---- writer ---- */
+
+/* Left open on an error (Close() was not reached): closing is collective, and the other ranks may be
+   elsewhere; the process ends with the error. */
+CheckpointWriter::~CheckpointWriter() { }
+
+PetscErrorCode CheckpointWriter::Open(MPI_Comm comm, const std::string &path)
+{
+  PetscFunctionBeginUser;
+  comm_      = comm;
+  path_      = path;
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  TG_H5(H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL), comm, "Checkpoint %s: cannot set up MPI-IO", path.c_str());
+  file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  H5Pclose(fapl);
+  PetscCheck(file_ >= 0, comm, PETSC_ERR_FILE_OPEN, "Checkpoint: cannot create %s (is the output directory writable?)", path.c_str());
+  for (const char *g : {"/text", "/state"}) {
+    hid_t gid = H5Gcreate2(file_, g, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    TG_H5(gid, comm, "Checkpoint %s: cannot create group %s", path.c_str(), g);
+    H5Gclose(gid);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointWriter::Attribute(const std::string &name, const std::string &value)
+{
+  PetscFunctionBeginUser;
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, value.size() + 1);
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t a     = H5Acreate2(file_, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  TG_H5(a, comm_, "Checkpoint %s: cannot write attribute %s", path_.c_str(), name.c_str());
+  herr_t e = H5Awrite(a, type, value.c_str());
+  H5Aclose(a);
+  H5Sclose(space);
+  H5Tclose(type);
+  TG_H5(e, comm_, "Checkpoint %s: cannot write attribute %s", path_.c_str(), name.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointWriter::Attribute(const std::string &name, PetscInt value)
+{
+  const std::int64_t v = value;
+  PetscFunctionBeginUser;
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t a     = H5Acreate2(file_, name.c_str(), H5T_NATIVE_INT64, space, H5P_DEFAULT, H5P_DEFAULT);
+  TG_H5(a, comm_, "Checkpoint %s: cannot write attribute %s", path_.c_str(), name.c_str());
+  herr_t e = H5Awrite(a, H5T_NATIVE_INT64, &v);
+  H5Aclose(a);
+  H5Sclose(space);
+  TG_H5(e, comm_, "Checkpoint %s: cannot write attribute %s", path_.c_str(), name.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+namespace {
+
+/* One dataset of `rows` global rows of `width` values (width 0: a vector), this rank's `n` rows from
+   global row `first`, in chunks with Fletcher32, and its checksum attribute. Collective. */
+PetscErrorCode WriteDataset(MPI_Comm comm, const std::string &file, hid_t loc, const std::string &name, Kind kind, const void *data, std::uint64_t n,
+                            std::uint64_t first, std::uint64_t rows, int width)
+{
+  PetscFunctionBeginUser;
+  const int     ndims   = width > 0 ? 2 : 1;
+  const hsize_t w       = width > 0 ? (hsize_t)width : 1;
+  hsize_t       dims[2] = {(hsize_t)rows, w};
+  hid_t         space   = H5Screate_simple(ndims, dims, NULL);
+  hid_t         dcpl    = H5Pcreate(H5P_DATASET_CREATE);
+  if (rows > 0 && w > 0) {
+    /* chunks of about 64 k values: Fletcher32 needs a chunked layout */
+    hsize_t chunk[2] = {std::max<hsize_t>(1, std::min<hsize_t>(rows, 65536 / w)), w};
+    TG_H5(H5Pset_chunk(dcpl, ndims, chunk), comm, "Checkpoint %s: %s: cannot set its chunks", file.c_str(), name.c_str());
+    TG_H5(H5Pset_fletcher32(dcpl), comm, "Checkpoint %s: %s: cannot set its checksum filter", file.c_str(), name.c_str());
+  }
+  hid_t d = H5Dcreate2(loc, name.c_str(), MemType(kind), space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Pclose(dcpl);
+  TG_H5(d, comm, "Checkpoint %s: cannot create dataset %s", file.c_str(), name.c_str());
+  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE); /* filtered datasets are written collectively */
+  hsize_t start[2] = {(hsize_t)first, 0}, count[2] = {(hsize_t)n, w};
+  hid_t   mem = H5Screate_simple(ndims, count, NULL);
+  if (n > 0) H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
+  else {
+    H5Sselect_none(space);
+    H5Sselect_none(mem);
+  }
+  const std::uint64_t none = 0; /* a rank with nothing to write still passes a buffer (HDF5 refuses NULL) */
+  herr_t              e    = rows > 0 && w > 0 ? H5Dwrite(d, MemType(kind), mem, space, dxpl, n > 0 ? data : &none) : 0;
+  H5Sclose(mem);
+  H5Pclose(dxpl);
+  H5Sclose(space);
+  /* the checksum of the whole dataset: every rank's share of the sum */
+  std::uint64_t h  = 0, word;
+  const size_t  nv = (size_t)n * (size_t)w;
+  for (size_t k = 0; k < nv; k++) {
+    switch (kind) {
+    case Kind::Real:
+      word = Word(((const PetscReal *)data)[k]);
+      break;
+    case Kind::Int:
+      word = (std::uint64_t)((const std::int64_t *)data)[k];
+      break;
+    case Kind::Key:
+      word = ((const std::uint64_t *)data)[k];
+      break;
+    default:
+      word = ((const unsigned char *)data)[k];
+    }
+    h += Mix(Mix((std::uint64_t)first * w + k) ^ word);
+  }
+  int failed = e < 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &h, 1, MPI_UINT64_T, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
+  if (!failed) {
+    hid_t as = H5Screate(H5S_SCALAR);
+    hid_t a  = H5Acreate2(d, "checksum", H5T_NATIVE_UINT64, as, H5P_DEFAULT, H5P_DEFAULT);
+    failed   = a < 0 || H5Awrite(a, H5T_NATIVE_UINT64, &h) < 0;
+    if (a >= 0) H5Aclose(a);
+    H5Sclose(as);
+  }
+  H5Dclose(d);
+  PetscCheck(!failed, comm, PETSC_ERR_FILE_WRITE, "Checkpoint %s: cannot write dataset %s (disk full?)", file.c_str(), name.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Rows sent to the rank of their key's range (keys below kmax + 1 spread evenly over the ranks),
+   received and sorted by (key, holder): each rank then holds a contiguous, ordered slab. */
+PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols, Rows &R)
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::uint64_t kmax = 0;
+  for (std::uint64_t k : R.key) kmax = std::max(kmax, k);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPI_UINT64_T, MPI_MAX, comm));
+  const size_t                   ncol = cols.size();
+  std::vector<size_t>            first(ncol, 0); /* a ragged column's offset of the current row */
+  std::vector<std::vector<char>> out((size_t)size);
+  for (size_t r = 0; r < R.Count(); r++) {
+    const size_t       dest = (size_t)((unsigned __int128)R.key[r] * (unsigned)size / ((unsigned __int128)kmax + 1));
+    std::vector<char> &o    = out[dest];
+    auto               put  = [&o](const void *p, size_t n) { o.insert(o.end(), (const char *)p, (const char *)p + n); };
+    put(&R.key[r], 8);
+    put(&R.holder[r], 8);
+    put(&R.owned[r], 8);
+    for (size_t c = 0; c < ncol; c++) {
+      if (cols[c].width > 0) put(&R.data[c][r * cols[c].width], 8 * (size_t)cols[c].width);
+      else {
+        const std::int64_t n = R.length[c][r];
+        put(&n, 8);
+        put(R.data[c].data() + first[c], 8 * (size_t)n);
+        first[c] += (size_t)n;
+      }
+    }
+  }
+  std::vector<int> scount((size_t)size), rcount((size_t)size), sdisp((size_t)size, 0), rdisp((size_t)size, 0);
+  for (int q = 0; q < size; q++) {
+    PetscCheck(out[q].size() < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "Checkpoint: more than 2 GB of one table for one rank");
+    scount[q] = (int)out[q].size();
+  }
+  PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm));
+  std::vector<char> send, recv;
+  for (int q = 0; q < size; q++) {
+    sdisp[q] = (int)send.size();
+    send.insert(send.end(), out[q].begin(), out[q].end());
+    std::vector<char>().swap(out[q]);
+  }
+  size_t total = 0;
+  for (int q = 0; q < size; q++) {
+    rdisp[q] = (int)total;
+    total += (size_t)rcount[q];
+  }
+  PetscCheck(total < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "Checkpoint: more than 2 GB of one table on one rank");
+  recv.resize(total);
+  PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdisp.data(), MPI_CHAR, recv.data(), rcount.data(), rdisp.data(), MPI_CHAR, comm));
+  std::vector<char>().swap(send);
+  /* parse, then order */
+  Rows in;
+  in.data.assign(ncol, {});
+  in.length.assign(ncol, {});
+  std::vector<size_t> at; /* each row's byte offset */
+  for (size_t p = 0; p < recv.size();) {
+    at.push_back(p);
+    auto get = [&recv, &p](void *dst, size_t n) {
+      std::memcpy(dst, recv.data() + p, n);
+      p += n;
+    };
+    std::uint64_t k;
+    std::int64_t  h, o;
+    get(&k, 8), get(&h, 8), get(&o, 8);
+    in.key.push_back(k), in.holder.push_back(h), in.owned.push_back(o);
+    for (size_t c = 0; c < ncol; c++) {
+      std::int64_t n = cols[c].width;
+      if (cols[c].width == 0) {
+        get(&n, 8);
+        in.length[c].push_back(n);
+      }
+      const size_t s = in.data[c].size();
+      in.data[c].resize(s + (size_t)n);
+      get(in.data[c].data() + s, 8 * (size_t)n);
+    }
+  }
+  std::vector<size_t> perm(in.Count());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::stable_sort(perm.begin(), perm.end(),
+                   [&in](size_t a, size_t b) { return in.key[a] != in.key[b] ? in.key[a] < in.key[b] : in.holder[a] < in.holder[b]; });
+  R.key.clear(), R.holder.clear(), R.owned.clear();
+  R.data.assign(ncol, {});
+  R.length.assign(ncol, {});
+  std::vector<std::vector<size_t>> offset(ncol); /* ragged: each received row's first value */
+  for (size_t c = 0; c < ncol; c++)
+    if (cols[c].width == 0) {
+      size_t s = 0;
+      for (std::int64_t n : in.length[c]) offset[c].push_back(s), s += (size_t)n;
+    }
+  for (size_t i : perm) {
+    R.key.push_back(in.key[i]), R.holder.push_back(in.holder[i]), R.owned.push_back(in.owned[i]);
+    for (size_t c = 0; c < ncol; c++) {
+      if (cols[c].width > 0) {
+        const size_t w = (size_t)cols[c].width;
+        R.data[c].insert(R.data[c].end(), in.data[c].begin() + i * w, in.data[c].begin() + (i + 1) * w);
+      } else {
+        const std::int64_t n = in.length[c][i];
+        R.length[c].push_back(n);
+        R.data[c].insert(R.data[c].end(), in.data[c].begin() + offset[c][i], in.data[c].begin() + offset[c][i] + n);
+      }
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+PetscErrorCode CheckpointWriter::Text(const std::string &name, const std::string &value)
+{
+  PetscMPIInt   rank;
+  std::uint64_t n;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  n                   = rank == 0 ? value.size() : 0;
+  std::uint64_t total = n;
+  PetscCallMPI(MPI_Bcast(&total, 1, MPI_UINT64_T, 0, comm_));
+  hid_t g = H5Gopen2(file_, "/text", H5P_DEFAULT);
+  TG_H5(g, comm_, "Checkpoint %s: no group /text", path_.c_str());
+  PetscErrorCode ierr = WriteDataset(comm_, path_, g, name, Kind::Byte, value.data(), n, 0, total, 0);
+  H5Gclose(g);
+  PetscCall(ierr);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointWriter::WriteTable(const std::string &group, const StateTable &table, const StateNumbering &numbering)
+{
+  const std::vector<StateColumn> &cols = table.Columns();
+  const size_t                    ncol = cols.size(), n = table.Count();
+  const StateEntity               e = table.Entity();
+  PetscMPIInt                     rank;
+  Rows                            R;
+  std::vector<PetscReal>          buf;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  R.data.assign(ncol, {});
+  R.length.assign(ncol, {});
+  const int anchor = table.IsRecords() ? table.AnchorColumn() : -1;
+  for (size_t r = 0; r < n; r++) {
+    std::uint64_t key;
+    bool          owned = true;
+    if (e == StateEntity::Rank) key = (std::uint64_t)rank;
+    else if (table.IsRecords()) {
+      key = table.RecordKey(r);
+      if (anchor >= 0) {
+        PetscReal a;
+        cols[anchor].get(r, &a);
+        owned = numbering.Owned(cols[anchor].ref, (PetscInt)a);
+      }
+    } else {
+      key   = numbering.Id(e, table.Local(r));
+      owned = table.OwnedOverride() ? table.Owned(r) : numbering.Owned(e, table.Local(r));
+    }
+    R.key.push_back(key);
+    R.holder.push_back(rank);
+    R.owned.push_back(owned ? 1 : 0);
+    for (size_t c = 0; c < ncol; c++) {
+      const StateColumn &col = cols[c];
+      if (col.width > 0) {
+        buf.resize((size_t)col.width);
+        col.get(r, buf.data());
+      } else {
+        buf.clear();
+        col.get_ragged(r, buf);
+        R.length[c].push_back((std::int64_t)buf.size());
+      }
+      if (col.is_ref)
+        for (PetscReal &v : buf) v = v < 0 ? -1 : (PetscReal)numbering.Id(col.ref, (PetscInt)v);
+      R.data[c].insert(R.data[c].end(), buf.begin(), buf.end());
+    }
+  }
+  PetscCall(SortOverRanks(comm_, cols, R));
+  /* this rank's slab: its rows' place among all */
+  std::uint64_t nl = R.Count(), first = 0, total = 0;
+  PetscCallMPI(MPI_Exscan(&nl, &first, 1, MPI_UINT64_T, MPI_SUM, comm_));
+  if (rank == 0) first = 0;
+  PetscCallMPI(MPI_Allreduce(&nl, &total, 1, MPI_UINT64_T, MPI_SUM, comm_));
+  hid_t g = H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  TG_H5(g, comm_, "Checkpoint %s: cannot create group %s", path_.c_str(), group.c_str());
+  PetscErrorCode ierr = WriteDataset(comm_, path_, g, "key", Kind::Key, R.key.data(), nl, first, total, 0);
+  if (!ierr) ierr = WriteDataset(comm_, path_, g, "holder", Kind::Int, R.holder.data(), nl, first, total, 0);
+  if (!ierr) ierr = WriteDataset(comm_, path_, g, "owned", Kind::Int, R.owned.data(), nl, first, total, 0);
+  std::vector<std::int64_t> ints;
+  for (size_t c = 0; c < ncol && !ierr; c++) {
+    const StateColumn &col  = cols[c];
+    const Kind         kind = col.integer ? Kind::Int : Kind::Real;
+    const void        *data = R.data[c].data();
+    if (col.integer) {
+      ints.assign(R.data[c].begin(), R.data[c].end());
+      data = ints.data();
+    }
+    if (col.width > 0) ierr = WriteDataset(comm_, path_, g, col.name, kind, data, nl, first, total, col.width);
+    else {
+      std::uint64_t nv = R.data[c].size(), vfirst = 0, vtotal = 0;
+      PetscCallMPI(MPI_Exscan(&nv, &vfirst, 1, MPI_UINT64_T, MPI_SUM, comm_));
+      if (rank == 0) vfirst = 0;
+      PetscCallMPI(MPI_Allreduce(&nv, &vtotal, 1, MPI_UINT64_T, MPI_SUM, comm_));
+      ierr = WriteDataset(comm_, path_, g, col.name, kind, data, nv, vfirst, vtotal, 0);
+      if (!ierr) ierr = WriteDataset(comm_, path_, g, col.name + ".length", Kind::Int, R.length[c].data(), nl, first, total, 0);
+    }
+  }
+  H5Gclose(g);
+  PetscCall(ierr);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointWriter::State(const std::vector<StateDeclaration *> &decls, const StateNumbering &numbering)
+{
+  PetscMPIInt rank, size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(CheckSameDeclarations(comm_, decls));
+  {
+    const std::uint64_t layout = numbering.Layout();
+    PetscCall(WriteDataset(comm_, path_, file_, "layout", Kind::Key, &layout, 1, (std::uint64_t)rank, (std::uint64_t)size, 0));
+  }
+  for (const StateDeclaration *d : decls) {
+    const std::string group = "/state/" + d->Name();
+    hid_t             g     = H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    TG_H5(g, comm_, "Checkpoint %s: cannot create group %s (two objects of one name?)", path_.c_str(), group.c_str());
+    H5Gclose(g);
+    for (const StateTable &t : d->Tables()) PetscCall(WriteTable(group + "/" + t.Name(), t, numbering));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointWriter::Close()
+{
+  PetscFunctionBeginUser;
+  if (file_ >= 0) {
+    herr_t e = H5Fclose(file_);
+    file_    = -1;
+    int bad  = e < 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm_));
+    PetscCheck(!bad, comm_, PETSC_ERR_FILE_WRITE, "Checkpoint: cannot close %s (disk full?)", path_.c_str());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---- reader ---- */
+
+CheckpointReader::~CheckpointReader()
+{
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+PetscErrorCode CheckpointReader::Open(MPI_Comm comm, const std::string &path)
+{
+  PetscFunctionBeginUser;
+  comm_      = comm;
+  path_      = path;
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
+  file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+  H5Pclose(fapl);
+  PetscCheck(file_ >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "not an HDF5 file, or damaged");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::HasAttribute(const std::string &name, bool *has)
+{
+  PetscFunctionBeginUser;
+  *has = H5Aexists(file_, name.c_str()) > 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::Attribute(const std::string &name, std::string *value)
+{
+  PetscFunctionBeginUser;
+  hid_t a = H5Aopen(file_, name.c_str(), H5P_DEFAULT);
+  TG_H5R(a, "no attribute %s", name.c_str());
+  hid_t             type = H5Aget_type(a);
+  size_t            n    = H5Tget_size(type);
+  std::vector<char> s(n + 1, 0);
+  herr_t            e = H5Tget_class(type) == H5T_STRING ? H5Aread(a, type, s.data()) : -1;
+  H5Tclose(type);
+  H5Aclose(a);
+  TG_H5R(e, "attribute %s is not a text", name.c_str());
+  *value = s.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::Attribute(const std::string &name, PetscInt *value)
+{
+  std::int64_t v = 0;
+  PetscFunctionBeginUser;
+  hid_t a = H5Aopen(file_, name.c_str(), H5P_DEFAULT);
+  TG_H5R(a, "no attribute %s", name.c_str());
+  hid_t  type = H5Aget_type(a);
+  herr_t e    = H5Tget_class(type) == H5T_INTEGER ? H5Aread(a, H5T_NATIVE_INT64, &v) : -1;
+  H5Tclose(type);
+  H5Aclose(a);
+  TG_H5R(e, "attribute %s is not an integer", name.c_str());
+  *value = (PetscInt)v;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+namespace {
+
+/* A whole dataset on this rank (its values as `kind`), checked against its checksum; dims[1] = 0 for a
+   vector. Errors name the dataset. */
+template <class T>
+PetscErrorCode ReadDataset(hid_t loc, const std::string &path, Kind kind, std::vector<T> &out, hsize_t dims[2])
+{
+  PetscFunctionBeginUser;
+  hid_t d = H5Dopen2(loc, path.c_str(), H5P_DEFAULT);
+  TG_H5R(d, "the checkpoint has no dataset %s (written by another version of turgor, or for another scene?)", path.c_str());
+  hid_t space = H5Dget_space(d);
+  int   nd    = H5Sget_simple_extent_ndims(space);
+  dims[0] = dims[1] = 0;
+  if (nd >= 1 && nd <= 2) H5Sget_simple_extent_dims(space, dims, NULL);
+  H5Sclose(space);
+  if (nd < 1 || nd > 2) {
+    H5Dclose(d);
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "dataset %s has %d dimensions", path.c_str(), nd);
+  }
+  if (nd == 1) dims[1] = 0;
+  const size_t nv = (size_t)dims[0] * (size_t)(dims[1] ? dims[1] : 1);
+  out.resize(nv);
+  herr_t        e      = nv > 0 ? H5Dread(d, MemType(kind), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) : 0;
+  std::uint64_t stored = 0;
+  herr_t        ea     = -1;
+  if (H5Aexists(d, "checksum") > 0) {
+    hid_t a = H5Aopen(d, "checksum", H5P_DEFAULT);
+    ea      = H5Aread(a, H5T_NATIVE_UINT64, &stored);
+    H5Aclose(a);
+  }
+  H5Dclose(d);
+  TG_H5R(e, "dataset %s is damaged (HDF5 cannot read it, or its Fletcher32 checksum fails)", path.c_str());
+  TG_H5R(ea, "dataset %s has no checksum attribute", path.c_str());
+  std::uint64_t h = 0;
+  for (size_t k = 0; k < nv; k++) {
+    std::uint64_t w;
+    if constexpr (sizeof(T) == 8) std::memcpy(&w, &out[k], 8);
+    else w = (std::uint64_t)out[k];
+    h += Mix(Mix((std::uint64_t)k) ^ w);
+  }
+  PetscCheck(h == stored, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "dataset %s was changed after it was written (its values do not match its checksum)",
+             path.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+PetscErrorCode CheckpointReader::HasText(const std::string &name, bool *has)
+{
+  PetscFunctionBeginUser;
+  const std::string p = "/text/" + name;
+  *has                = H5Lexists(file_, "/text", H5P_DEFAULT) > 0 && H5Lexists(file_, p.c_str(), H5P_DEFAULT) > 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::Text(const std::string &name, std::string *value)
+{
+  std::vector<unsigned char> b;
+  hsize_t                    dims[2];
+  PetscFunctionBeginUser;
+  PetscCall(ReadDataset(file_, "/text/" + name, Kind::Byte, b, dims));
+  value->assign(b.begin(), b.end());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::Layouts(const StateNumbering &numbering, PetscInt *writers, bool *same_layout)
+{
+  std::vector<std::uint64_t> layout;
+  hsize_t                    dims[2];
+  PetscMPIInt                rank, size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  PetscCall(ReadDataset(file_, "/layout", Kind::Key, layout, dims));
+  writers_                        = (PetscInt)layout.size();
+  std::uint64_t              mine = numbering.Layout();
+  std::vector<std::uint64_t> ours((size_t)size);
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_UINT64_T, ours.data(), 1, MPI_UINT64_T, comm_));
+  /* every rank pairs the ranks of this run with the writers the same way: each with the first writer
+     of its layout not yet taken */
+  writer_taken_.assign(layout.size(), 0);
+  bool all = (size_t)size == layout.size();
+  for (PetscMPIInt q = 0; q < size; q++) {
+    PetscInt m = -1;
+    for (size_t w = 0; w < layout.size() && m < 0; w++)
+      if (!writer_taken_[w] && layout[w] == ours[q]) m = (PetscInt)w;
+    if (m >= 0) writer_taken_[m] = 1;
+    else all = false;
+    if (q == rank) matched_ = m;
+  }
+  *writers     = writers_;
+  *same_layout = all;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::ReadTable(const std::string &group, StateTable &table, const StateNumbering &numbering)
+{
+  const std::vector<StateColumn> &cols = table.Columns();
+  const size_t                    ncol = cols.size();
+  const StateEntity               e    = table.Entity();
+  PetscMPIInt                     rank;
+  hsize_t                         dims[2];
+  Rows                            R;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  {
+    hid_t g = H5Gopen2(file_, group.c_str(), H5P_DEFAULT);
+    TG_H5R(g, "the checkpoint has no %s (its run had other physics, or another version of turgor wrote it)", group.c_str());
+    /* every dataset of the group must be declared: key, holder, owned, the columns */
+    hsize_t    nlinks = 0;
+    H5G_info_t info;
+    if (H5Gget_info(g, &info) >= 0) nlinks = info.nlinks;
+    for (hsize_t i = 0; i < nlinks; i++) {
+      char name[256] = "";
+      H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof name, H5P_DEFAULT);
+      std::string s     = name;
+      bool        known = s == "key" || s == "holder" || s == "owned";
+      for (const StateColumn &c : cols) known = known || s == c.name || (c.width == 0 && s == c.name + ".length");
+      if (!known) {
+        H5Gclose(g);
+        SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "the checkpoint holds %s/%s, which this run does not keep (its run had other physics?)",
+                group.c_str(), name);
+      }
+    }
+    H5Gclose(g);
+  }
+  PetscCall(ReadDataset(file_, group + "/key", Kind::Key, R.key, dims));
+  const size_t N = R.key.size();
+  PetscCall(ReadDataset(file_, group + "/holder", Kind::Int, R.holder, dims));
+  PetscCall(ReadDataset(file_, group + "/owned", Kind::Int, R.owned, dims));
+  PetscCheck(R.holder.size() == N && R.owned.size() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: key, holder and owned differ in length",
+             group.c_str());
+  R.data.assign(ncol, {});
+  R.length.assign(ncol, {});
+  std::vector<std::vector<size_t>> offset(ncol);
+  for (size_t c = 0; c < ncol; c++) {
+    const StateColumn &col  = cols[c];
+    const std::string  path = group + "/" + col.name;
+    if (col.integer) {
+      std::vector<std::int64_t> v;
+      PetscCall(ReadDataset(file_, path, Kind::Int, v, dims));
+      R.data[c].assign(v.begin(), v.end());
+    } else PetscCall(ReadDataset(file_, path, Kind::Real, R.data[c], dims));
+    if (col.width > 0)
+      PetscCheck(dims[0] == N && dims[1] == (hsize_t)col.width, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                 "%s holds %llu x %llu values, this run keeps %zu x %d (another scene?)", path.c_str(), (unsigned long long)dims[0],
+                 (unsigned long long)dims[1], N, col.width);
+    else {
+      PetscCall(ReadDataset(file_, path + ".length", Kind::Int, R.length[c], dims));
+      PetscCheck(R.length[c].size() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length has %zu rows, the table %zu", path.c_str(), R.length[c].size(),
+                 N);
+      size_t s = 0;
+      for (std::int64_t n : R.length[c]) {
+        PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length: a negative length", path.c_str());
+        offset[c].push_back(s), s += (size_t)n;
+      }
+      PetscCheck(s == R.data[c].size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: %zu values, its lengths say %zu", path.c_str(), R.data[c].size(), s);
+    }
+  }
+  /* row i's values of column c into the table's row r (references made local) */
+  std::vector<PetscReal> buf;
+  auto                   put = [&](size_t i, size_t c, size_t r) -> PetscErrorCode {
+    const StateColumn &col = cols[c];
+    PetscFunctionBeginUser;
+    const size_t w = col.width > 0 ? (size_t)col.width : (size_t)R.length[c][i];
+    const size_t o = col.width > 0 ? i * w : offset[c][i];
+    buf.assign(R.data[c].begin() + o, R.data[c].begin() + o + w);
+    if (col.is_ref)
+      for (PetscReal &v : buf) {
+        if (v < 0) continue;
+        const PetscInt l = numbering.Local(col.ref, (std::uint64_t)v);
+        PetscCheck(l >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                                     "%s/%s names %s %.0f, which is not on rank %d (its halo is narrower than the run's that wrote it?)", group.c_str(), col.name.c_str(),
+                                     StateEntityName(col.ref), (double)v, rank);
+        v = (PetscReal)l;
+      }
+    if (col.width > 0) col.set(r, buf.data());
+    else PetscCall(col.set_ragged(r, buf.data(), buf.size()));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  auto value = [&](size_t i, size_t c, size_t k) { return R.data[c][i * (size_t)cols[c].width + k]; };
+
+  if (e == StateEntity::Rank) {
+    /* one row per writer: this rank's writer's, or the rules */
+    PetscCheck(N == (size_t)writers_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s has %zu rows, the file %" PetscInt_FMT " writers", group.c_str(), N,
+               writers_);
+    std::vector<PetscReal> v;
+    for (size_t c = 0; c < ncol; c++) {
+      const StateColumn &col = cols[c];
+      if (col.width == 0) { /* a sequence: its writer's, or the first writer's */
+        if (matched_ >= 0) PetscCall(put((size_t)matched_, c, 0));
+        else if (col.combine != Combine::Local && N > 0) PetscCall(put(0, c, 0));
+        continue;
+      }
+      if (matched_ >= 0 && (col.combine != Combine::Sum || rank != 0)) { /* its writer's value, as written */
+        PetscCall(put((size_t)matched_, c, 0));
+        continue;
+      }
+      const size_t w = (size_t)col.width;
+      v.assign(w, 0);
+      switch (col.combine) {
+      case Combine::Sum: /* the first rank: its writer's share and those of the writers nobody took */
+        if (matched_ >= 0)
+          for (size_t k = 0; k < w; k++) v[k] = value((size_t)matched_, c, k);
+        if (rank == 0)
+          for (size_t i = 0; i < N; i++)
+            if (!writer_taken_[i])
+              for (size_t k = 0; k < w; k++) v[k] += value(i, c, k);
+        col.set(0, v.data());
+        break;
+      case Combine::Max:
+        for (size_t k = 0; k < w; k++) {
+          v[k] = value(0, c, k);
+          for (size_t i = 1; i < N; i++) v[k] = std::max(v[k], value(i, c, k));
+        }
+        col.set(0, v.data());
+        break;
+      case Combine::Local:
+        break;
+      default: /* Owner, Copy: the first writer's, the same on every writer */
+        if (N > 0) PetscCall(put(0, c, 0));
+      }
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  if (table.IsRecords()) {
+    const int           anchor = table.AnchorColumn();
+    std::vector<size_t> keep;
+    for (size_t i = 0; i < N; i++) {
+      if (matched_ >= 0) {
+        if (R.holder[i] == matched_) keep.push_back(i);
+        continue;
+      }
+      if (!R.owned[i]) continue;
+      if (anchor < 0) { /* no anchor: the first rank keeps every record */
+        if (rank == 0) keep.push_back(i);
+        continue;
+      }
+      const PetscReal id = value(i, (size_t)anchor, 0);
+      const PetscInt  l  = id < 0 ? -1 : numbering.Local(cols[anchor].ref, (std::uint64_t)id);
+      if (l >= 0 && numbering.Owned(cols[anchor].ref, l)) keep.push_back(i);
+    }
+    table.Resize(keep.size());
+    for (size_t r = 0; r < keep.size(); r++)
+      for (size_t c = 0; c < ncol; c++) PetscCall(put(keep[r], c, r));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  /* indexed rows: each local row by its entity's id */
+  const size_t                              n = table.Count();
+  std::unordered_map<std::uint64_t, size_t> row_of;
+  std::vector<char>                         owned(n), found(n, 0);
+  for (size_t r = 0; r < n; r++) {
+    row_of.emplace(numbering.Id(e, table.Local(r)), r);
+    owned[r] = table.OwnedOverride() ? table.Owned(r) : numbering.Owned(e, table.Local(r));
+  }
+  if (matched_ >= 0) {
+    for (size_t i = 0; i < N; i++) {
+      if (R.holder[i] != matched_) continue;
+      auto it = row_of.find(R.key[i]);
+      PetscCheck(it != row_of.end(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint's %s %llu is not on rank %d", group.c_str(),
+                 StateEntityName(e), (unsigned long long)R.key[i], rank);
+      for (size_t c = 0; c < ncol; c++) PetscCall(put(i, c, it->second));
+      found[it->second] = 1;
+    }
+    for (size_t r = 0; r < n; r++)
+      PetscCheck(found[r], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint has no row for rank %d's %s %llu", group.c_str(), rank,
+                 StateEntityName(e), (unsigned long long)numbering.Id(e, table.Local(r)));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  /* another layout: sums start from zero on every local row, shares are added on the owner */
+  std::vector<PetscReal> zero;
+  for (size_t c = 0; c < ncol; c++)
+    if (cols[c].combine == Combine::Sum) {
+      PetscCheck(cols[c].width > 0, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s/%s: a ragged share", group.c_str(), cols[c].name.c_str());
+      zero.assign((size_t)cols[c].width, 0);
+      for (size_t r = 0; r < n; r++) cols[c].set(r, zero.data());
+    }
+  std::vector<PetscReal> acc, cur;
+  for (size_t i = 0; i < N; i++) {
+    auto it = row_of.find(R.key[i]);
+    if (it == row_of.end()) continue;
+    const size_t r = it->second;
+    for (size_t c = 0; c < ncol; c++) {
+      const StateColumn &col = cols[c];
+      switch (col.combine) {
+      case Combine::Sum:
+        if (!owned[r]) break;
+        cur.resize((size_t)col.width);
+        col.get(r, cur.data());
+        for (int k = 0; k < col.width; k++) cur[k] += value(i, c, (size_t)k);
+        col.set(r, cur.data());
+        break;
+      case Combine::Copy:
+        if (R.owned[i]) PetscCall(put(i, c, r));
+        break;
+      case Combine::Local:
+        break;
+      default:
+        if (R.owned[i] && owned[r]) PetscCall(put(i, c, r));
+      }
+    }
+    if (R.owned[i]) found[r] = 1;
+  }
+  for (size_t r = 0; r < n; r++)
+    PetscCheck(found[r] || !owned[r], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint has no row for %s %llu", group.c_str(),
+               StateEntityName(e), (unsigned long long)numbering.Id(e, table.Local(r)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::State(const std::vector<StateDeclaration *> &decls, const StateNumbering &numbering)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(writers_ > 0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "CheckpointReader::Layouts() first");
+  PetscCall(CheckSameDeclarations(comm_, decls));
+  for (StateDeclaration *d : decls)
+    for (StateTable &t : d->Tables()) PetscCall(ReadTable("/state/" + d->Name() + "/" + t.Name(), t, numbering));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CheckpointReader::Close()
+{
+  PetscFunctionBeginUser;
+  if (file_ >= 0) H5Fclose(file_);
+  file_ = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
