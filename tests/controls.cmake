@@ -17,7 +17,8 @@ turgor_add_test(controls_summary COMMAND ${CHECK} keys ctl_hold n_nodes n_cells 
   LABELS fine REQUIRES ctl_hold)
 
 # Polygon snapshots: a hand-built tissue of a quadrilateral and a pentagon (XDMF Mixed) and one of
-# two quadrilaterals (Polygon, NodesPerElement 4); where pvpython is found, they are opened in ParaView (cells, cell_id, area_ratio against the points' areas).
+# two quadrilaterals (Polygon, NodesPerElement 4); where pvpython is found, they are opened in ParaView (cells, cell_id, area_ratio against the points' areas):
+# the mixed one with the default reader in the default tier, the rest in the long one.
 turgor_test_program(test_polygon_snapshots)
 turgor_add_test(polygon_snapshots_mixed COMMAND test_polygon_snapshots -dir poly_mixed LABELS fine SETUP poly_mixed)
 turgor_add_test(polygon_snapshots_quads COMMAND test_polygon_snapshots -quads -dir poly_quads LABELS fine SETUP poly_quads)
@@ -26,8 +27,10 @@ if(TURGOR_PVPYTHON)
   set(PVPOLY ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py polygons)
   foreach(run mixed quads)
     turgor_add_test(paraview_polygons_${run} COMMAND ${PVPOLY} poly_${run} LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
-    turgor_add_test(paraview_polygons_${run}_legacy COMMAND ${PVPOLY} poly_${run} --reader XDMFReader LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
+    turgor_add_test(paraview_polygons_${run}_legacy COMMAND ${PVPOLY} poly_${run} --reader XDMFReader LABELS paraview fine long REQUIRES poly_${run}
+                    TIMEOUT 120)
   endforeach()
+  turgor_long(paraview_polygons_quads)
 endif()
 
 # -help lists the control options (with a placeholder group name when no -controls is given)
