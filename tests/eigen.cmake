@@ -48,17 +48,18 @@ turgor_add_test(eigen_bar_spectrum_png COMMAND ${PROJECT_SOURCE_DIR}/examples/pl
 
 # 1 and 2 ranks (the coarse mesh distributed, MUMPS's factorisations): the same eigenvalues to the
 # solver's tolerance, the closed-form material on 80 x 4 and the FE^2 bar's relaxed state (the RVEs'
-# relaxation at the seed's tolerance, so that the comparison sees the decomposition)
+# relaxation at the seed's tolerance, so that the comparison sees the decomposition; long: the
+# closed-form material compares the ranks in the default tier)
 set(EIGEN_MPI_NH -eigen_state reference ${EIGEN_NH} ${EIGEN_BEAM} -coarse_dm_plex_box_faces 80,4 -eigen_modes 5)
 set(EIGEN_MPI_BAR -options_file_yaml ${BAR} -mode eigen -rve_psi_atol 1e-12 -rve_psi_steptol 1e-12 -output_overwrite)
 foreach(np 1 2)
   turgor_add_test(eigen_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} ${EIGEN} ${EIGEN_MPI_NH} -output_dir eigen_np${np} LABELS fe2 eigen mpi TIMEOUT 60
     SETUP eigen_np${np})
   turgor_add_test(eigen_bar_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${EIGEN_MPI_BAR} -output_dir eigen_bar_np${np} LABELS fe2 eigen mpi
-    TIMEOUT 60 SETUP eigen_bar_np${np})
+    long TIMEOUT 60 SETUP eigen_bar_np${np})
 endforeach()
 turgor_add_test(eigen_ranks_agree COMMAND ${EIGCHECK} agree eigen_np1 eigen_np2 --rtol 1e-9 LABELS fe2 eigen mpi REQUIRES "eigen_np1;eigen_np2")
-turgor_add_test(eigen_bar_ranks_agree COMMAND ${EIGCHECK} agree eigen_bar_np1 eigen_bar_np2 --rtol 1e-8 LABELS fe2 eigen mpi
+turgor_add_test(eigen_bar_ranks_agree COMMAND ${EIGCHECK} agree eigen_bar_np1 eigen_bar_np2 --rtol 1e-8 LABELS fe2 eigen mpi long
   REQUIRES "eigen_bar_np1;eigen_bar_np2")
 
 # A snapshot state: the relaxed state written by -mode fe2_static (coarse.h5 on 1 rank), read back by

@@ -37,7 +37,7 @@ turgor_hard_run(fine_stiff_walls_verlet fine_stiff_walls ${VERLET})
 turgor_hard_run_np2(fine_stiff_walls_np2 fine_stiff_walls)
 turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 5e-4)
 turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tiprel hard/fine_stiff_walls_np2 hard/fine_stiff_walls 2e-8)
-turgor_long(hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks)
+turgor_long(hard_fine_stiff_walls hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks)
 # 500x load: DOPRI and Verlet agree
 turgor_hard_run(fine_large_load fine_large_load)
 turgor_hard_run(fine_large_load_verlet fine_large_load ${VERLET})
