@@ -1,6 +1,11 @@
 # The table-driven bad-input suite (label badinput): one test per line of bad_input.txt, and a
 # second one on two MPI ranks where the line says 1,2 (only that one where it says 2). Each runs expect_error.py (exit status,
 # no crash, the message, the output directory) with its own -output_dir in the build tree.
+#
+# Tiers: every one-rank case is in the default tier, and so are the cases only on two ranks; the
+# two-rank run of a case that has both is in the long tier, but for BAD_NP2_DEFAULT's: one case of
+# each mode, and a file read on rank 0 only.
+set(BAD_NP2_DEFAULT unknown_mode negative_stiffness rve_zero_cells fe2_unknown_material static_quadrature eigen_unknown_state mesh_missing_node)
 set(BAD_PRESET_none "")
 set(BAD_PRESET_fine -mode fine -tissue_cells_x 2 -tissue_cells_y 2 -ts_max_time 1 -fine_snapshots 0 -fine_progress_interval 0)
 set(BAD_PRESET_rve -mode rve -path_steps 2 -path_t_final 1)
@@ -9,6 +14,7 @@ set(BAD_PRESET_fe2 -mode fe2 -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/bad_input.txt)
 file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/bad_input.txt BAD_LINES ENCODING UTF-8)
 set(BAD_COUNT 0)
+set(BAD_NP2_DEFAULT_UNSEEN ${BAD_NP2_DEFAULT})
 foreach(line IN LISTS BAD_LINES)
   if(line MATCHES "^[ \t]*(#|$)")
     continue()
@@ -39,9 +45,17 @@ foreach(line IN LISTS BAD_LINES)
   endif()
   if(ranks MATCHES "2")
     set(run ${BAD_PRESET_${preset}} -output_dir bad_input/${name}_np2 -output_overwrite ${args})
-    turgor_add_test(bad_${name}_np2 COMMAND ${BAD} "${regex}" ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${run} LABELS badinput mpi TIMEOUT 60
+    set(labels badinput mpi)
+    if(ranks MATCHES "1" AND NOT name IN_LIST BAD_NP2_DEFAULT)
+      list(APPEND labels long)
+    endif()
+    list(REMOVE_ITEM BAD_NP2_DEFAULT_UNSEEN ${name})
+    turgor_add_test(bad_${name}_np2 COMMAND ${BAD} "${regex}" ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${run} LABELS ${labels} TIMEOUT 60
                     ${requires})
   endif()
   math(EXPR BAD_COUNT "${BAD_COUNT} + 1")
 endforeach()
+if(BAD_NP2_DEFAULT_UNSEEN)
+  message(FATAL_ERROR "tests/bad_input.cmake: BAD_NP2_DEFAULT names cases that do not run on two ranks: ${BAD_NP2_DEFAULT_UNSEEN}")
+endif()
 message(STATUS "bad-input suite: ${BAD_COUNT} cases (tests/bad_input.txt)")

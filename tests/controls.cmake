@@ -17,16 +17,22 @@ turgor_add_test(controls_summary COMMAND ${CHECK} keys ctl_hold n_nodes n_cells 
   LABELS fine REQUIRES ctl_hold)
 
 # Polygon snapshots: a hand-built tissue of a quadrilateral and a pentagon (XDMF Mixed) and one of
-# two quadrilaterals (Polygon, NodesPerElement 4); where pvpython is found, they are opened in ParaView (cells, cell_id, area_ratio against the points' areas).
+# two quadrilaterals (Polygon, NodesPerElement 4); the mixed one's XDMF agrees with its HDF5 data, and
+# where pvpython is found, they are opened in ParaView (cells, cell_id, area_ratio against the points' areas):
+# the mixed one with the default reader in the default tier, the quadrilaterals and the legacy reader in
+# the long one.
 turgor_test_program(test_polygon_snapshots)
 turgor_add_test(polygon_snapshots_mixed COMMAND test_polygon_snapshots -dir poly_mixed LABELS fine SETUP poly_mixed)
-turgor_add_test(polygon_snapshots_quads COMMAND test_polygon_snapshots -quads -dir poly_quads LABELS fine SETUP poly_quads)
+turgor_add_test(polygon_snapshots_mixed_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py poly_mixed/particles.xmf LABELS fine REQUIRES poly_mixed)
+turgor_add_test(polygon_snapshots_quads COMMAND test_polygon_snapshots -quads -dir poly_quads LABELS fine long SETUP poly_quads)
 find_program(TURGOR_PVPYTHON pvpython)
 if(TURGOR_PVPYTHON)
+  set(tier_quads long)
   set(PVPOLY ${TURGOR_PVPYTHON} --force-offscreen-rendering ${CMAKE_CURRENT_SOURCE_DIR}/check_paraview.py polygons)
   foreach(run mixed quads)
-    turgor_add_test(paraview_polygons_${run} COMMAND ${PVPOLY} poly_${run} LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
-    turgor_add_test(paraview_polygons_${run}_legacy COMMAND ${PVPOLY} poly_${run} --reader XDMFReader LABELS paraview fine REQUIRES poly_${run} TIMEOUT 120)
+    turgor_add_test(paraview_polygons_${run} COMMAND ${PVPOLY} poly_${run} LABELS paraview fine ${tier_${run}} REQUIRES poly_${run} TIMEOUT 120)
+    turgor_add_test(paraview_polygons_${run}_legacy COMMAND ${PVPOLY} poly_${run} --reader XDMFReader LABELS paraview fine long REQUIRES poly_${run}
+                    TIMEOUT 120)
   endforeach()
 endif()
 

@@ -6,9 +6,13 @@
 # name; OPTIONS: the scene; COMPARE: further compare_runs.py checks of each multi-rank run against
 # the 1-rank one, as "mode:file-or-key:tolerance" (csvrel and samekey)
 # RANKS: the rank counts compared with 1 (default 2 3; three ranks on two cores wait on each other
-# at every exchange, so the longer scenes are compared on two)
+# at every exchange, so the longer scenes are compared on two); LONG: the case is in the long tier
 function(turgor_ranks_agree name)
-  cmake_parse_arguments(D "" "TOL" "OPTIONS;COMPARE;RANKS" ${ARGN})
+  cmake_parse_arguments(D "LONG" "TOL" "OPTIONS;COMPARE;RANKS" ${ARGN})
+  set(labels fine mpi)
+  if(D_LONG)
+    list(APPEND labels long)
+  endif()
   if(NOT D_TOL)
     set(D_TOL 1e-10)
   endif()
@@ -17,10 +21,10 @@ function(turgor_ranks_agree name)
   endif()
   foreach(np 1 ${D_RANKS})
     turgor_add_test(dist_${name}_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${D_OPTIONS} -output_overwrite
-      -output_dir dist_${name}_np${np} LABELS fine mpi SETUP dist_${name}_np${np})
+      -output_dir dist_${name}_np${np} LABELS ${labels} SETUP dist_${name}_np${np})
   endforeach()
   foreach(np ${D_RANKS})
-    turgor_add_test(dist_${name}_np${np}_tip COMMAND ${CHECK} tiprel dist_${name}_np${np} dist_${name}_np1 ${D_TOL} LABELS fine mpi
+    turgor_add_test(dist_${name}_np${np}_tip COMMAND ${CHECK} tiprel dist_${name}_np${np} dist_${name}_np1 ${D_TOL} LABELS ${labels}
       REQUIRES "dist_${name}_np1;dist_${name}_np${np}")
     foreach(c ${D_COMPARE})
       string(REPLACE ":" ";" parts ${c})
@@ -28,14 +32,14 @@ function(turgor_ranks_agree name)
       list(GET parts 1 what)
       list(GET parts 2 tol)
       string(MAKE_C_IDENTIFIER ${what} id)
-      turgor_add_test(dist_${name}_np${np}_${id} COMMAND ${CHECK} ${mode} dist_${name}_np${np} dist_${name}_np1 ${what} ${tol} LABELS fine mpi
+      turgor_add_test(dist_${name}_np${np}_${id} COMMAND ${CHECK} ${mode} dist_${name}_np${np} dist_${name}_np1 ${what} ${tol} LABELS ${labels}
         REQUIRES "dist_${name}_np1;dist_${name}_np${np}")
     endforeach()
   endforeach()
   # the distribution's keys in summary.json
   list(GET D_RANKS 0 np)
   turgor_add_test(dist_${name}_keys COMMAND ${CHECK} keys dist_${name}_np${np} mpi_ranks particles_per_rank_max particles_per_rank_mean
-    halo_bytes_per_step load_imbalance LABELS fine mpi REQUIRES dist_${name}_np${np})
+    halo_bytes_per_step load_imbalance LABELS ${labels} REQUIRES dist_${name}_np${np})
 endfunction()
 
 # The seed's square-grid bending bar (springs, repulsion, SPH, gravity; DOPRI, adaptive) over 1 µs
@@ -50,10 +54,11 @@ set(DIST_BAR_VERLET -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_
 turgor_ranks_agree(bar_verlet RANKS 2 OPTIONS ${DIST_BAR_VERLET})
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
-# share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs).
+# share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s, and the
+# bar is compared on 3 ranks in the default tier).
 set(DIST_POLY -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
   -ts_max_time 4 -control_lid_delay 1 -control_lid_velocity 0,-3 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_tip_samples 200)
-turgor_ranks_agree(polygon_short RANKS 3 OPTIONS ${DIST_POLY} -ts_max_time 1.5 -control_lid_delay 0.5 COMPARE csvrel:groups.csv:1e-9
+turgor_ranks_agree(polygon_short RANKS 3 LONG OPTIONS ${DIST_POLY} -ts_max_time 1.5 -control_lid_delay 0.5 COMPARE csvrel:groups.csv:1e-9
   csvrel:energy.csv:1e-9)
 # (the list rebuilds are the busiest rank's, not the ranks' sum: TermStatistic::MAX)
 turgor_ranks_agree(polygon RANKS 2 OPTIONS ${DIST_POLY} COMPARE csvrel:groups.csv:1e-9 csvrel:energy.csv:1e-9 samekey:contact_friction_dissipation:1e-9
@@ -79,8 +84,9 @@ turgor_add_test(dist_box_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py 
 turgor_paraview_polygons(dist_box dist_box_snapshots 50)
 
 # Restart of a distributed run (the polygonal tissue above on 2 ranks, 6 µs, stopped after 3000
-# steps): bit for bit, with groups.csv and energy.csv.
-turgor_restart_case(dist_polygon 3000 INTERVAL 3 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_POLY} -ts_max_time 6 FILES groups.csv energy.csv)
+# steps): bit for bit, with groups.csv and energy.csv (long: 7 s; restart_xr_layout continues a
+# 16-cell polygonal tissue on 2 distributed ranks in the default tier).
+turgor_restart_case(dist_polygon 3000 INTERVAL 3 LONG LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_POLY} -ts_max_time 6 FILES groups.csv energy.csv)
 turgor_restart_case(dist_bar_verlet 400 INTERVAL 0.25 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_BAR_VERLET})
 
 # hard: cells that move farther than the halo's margin stop the run with an error naming the

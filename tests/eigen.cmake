@@ -30,34 +30,36 @@ turgor_add_test(eigen_cantilever_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_
 # The FE^2 bending bar (the default scene, RVE material) at the state relaxed under its load: the
 # names others rely on (summary keys, residuals < 1e-8), the lowest period against the tip
 # oscillation of the FE^2 run (100 µs, radauiia: measured 20.881 vs 20.828 µs), and omega_max against
-# DOPRI's accepted steps (30 µs: dt omega_max 2.71, 0.94 of the limit along the damped highest mode).
+# DOPRI's accepted steps (30 µs: dt omega_max 2.71, 0.94 of the limit along the damped highest mode);
+# these two runs (7 s) are long.
 turgor_add_test(eigen_bar COMMAND $<TARGET_FILE:turgor_app> -mode eigen -options_file_yaml ${BAR} -output_dir eigen_bar -output_overwrite
   LABELS fe2 eigen TIMEOUT 60 SETUP eigen_bar)
 turgor_add_test(eigen_bar_summary COMMAND ${EIGCHECK} summary eigen_bar LABELS fe2 eigen REQUIRES eigen_bar)
 turgor_add_test(eigen_bar_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py eigen_bar/modes.xmf LABELS fe2 eigen REQUIRES eigen_bar)
 turgor_add_test(eigen_bar_fe2_run COMMAND $<TARGET_FILE:turgor_app> -options_file_yaml ${BAR} -ts_max_time 100 -fe2_snapshots 0 -fe2_progress_interval 0
-  -output_dir eigen_bar_fe2 -output_overwrite LABELS fe2 eigen TIMEOUT 120 SETUP eigen_bar_fe2)
-turgor_add_test(eigen_bar_period COMMAND ${EIGCHECK} period eigen_bar eigen_bar_fe2 --tol 0.01 LABELS fe2 eigen REQUIRES "eigen_bar;eigen_bar_fe2")
+  -output_dir eigen_bar_fe2 -output_overwrite LABELS fe2 eigen long TIMEOUT 120 SETUP eigen_bar_fe2)
+turgor_add_test(eigen_bar_period COMMAND ${EIGCHECK} period eigen_bar eigen_bar_fe2 --tol 0.01 LABELS fe2 eigen long REQUIRES "eigen_bar;eigen_bar_fe2")
 turgor_add_test(eigen_bar_dopri_run COMMAND $<TARGET_FILE:turgor_app> -options_file_yaml ${BAR} -ts_type rk -ts_rk_type 5dp -ts_max_time 30 -fe2_snapshots 0
-  -fe2_progress_interval 0 -output_dir eigen_bar_dopri -output_overwrite LABELS fe2 eigen TIMEOUT 60 SETUP eigen_bar_dopri)
-turgor_add_test(eigen_bar_dopri_step COMMAND ${EIGCHECK} dopri eigen_bar eigen_bar_dopri LABELS fe2 eigen REQUIRES "eigen_bar;eigen_bar_dopri")
+  -fe2_progress_interval 0 -output_dir eigen_bar_dopri -output_overwrite LABELS fe2 eigen long TIMEOUT 60 SETUP eigen_bar_dopri)
+turgor_add_test(eigen_bar_dopri_step COMMAND ${EIGCHECK} dopri eigen_bar eigen_bar_dopri LABELS fe2 eigen long REQUIRES "eigen_bar;eigen_bar_dopri")
 # the spectrum as a PNG (examples/plot_spectrum.py), where matplotlib is installed
 turgor_add_test(eigen_bar_spectrum_png COMMAND ${PROJECT_SOURCE_DIR}/examples/plot_spectrum.py eigen_bar -o eigen_bar/spectrum.png LABELS eigen
   REQUIRES eigen_bar PASS_REGEX "wrote eigen_bar/spectrum.png")
 
 # 1 and 2 ranks (the coarse mesh distributed, MUMPS's factorisations): the same eigenvalues to the
 # solver's tolerance, the closed-form material on 80 x 4 and the FE^2 bar's relaxed state (the RVEs'
-# relaxation at the seed's tolerance, so that the comparison sees the decomposition)
+# relaxation at the seed's tolerance, so that the comparison sees the decomposition; long: the
+# closed-form material compares the ranks in the default tier)
 set(EIGEN_MPI_NH -eigen_state reference ${EIGEN_NH} ${EIGEN_BEAM} -coarse_dm_plex_box_faces 80,4 -eigen_modes 5)
 set(EIGEN_MPI_BAR -options_file_yaml ${BAR} -mode eigen -rve_psi_atol 1e-12 -rve_psi_steptol 1e-12 -output_overwrite)
 foreach(np 1 2)
   turgor_add_test(eigen_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} ${EIGEN} ${EIGEN_MPI_NH} -output_dir eigen_np${np} LABELS fe2 eigen mpi TIMEOUT 60
     SETUP eigen_np${np})
   turgor_add_test(eigen_bar_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${EIGEN_MPI_BAR} -output_dir eigen_bar_np${np} LABELS fe2 eigen mpi
-    TIMEOUT 60 SETUP eigen_bar_np${np})
+    long TIMEOUT 60 SETUP eigen_bar_np${np})
 endforeach()
 turgor_add_test(eigen_ranks_agree COMMAND ${EIGCHECK} agree eigen_np1 eigen_np2 --rtol 1e-9 LABELS fe2 eigen mpi REQUIRES "eigen_np1;eigen_np2")
-turgor_add_test(eigen_bar_ranks_agree COMMAND ${EIGCHECK} agree eigen_bar_np1 eigen_bar_np2 --rtol 1e-8 LABELS fe2 eigen mpi
+turgor_add_test(eigen_bar_ranks_agree COMMAND ${EIGCHECK} agree eigen_bar_np1 eigen_bar_np2 --rtol 1e-8 LABELS fe2 eigen mpi long
   REQUIRES "eigen_bar_np1;eigen_bar_np2")
 
 # A snapshot state: the relaxed state written by -mode fe2_static (coarse.h5 on 1 rank), read back by

@@ -10,19 +10,21 @@ turgor_add_test(output_refused_option_overwrites COMMAND sh -c
 
 # The traction scene (config/voronoi_traction.yaml) on 64 cells (200 x 200 µm, grips in the top and
 # bottom 20 µm) pulled at 0.2 µm/µs for 10 µs: the bonds break (every one accounted for), and the
-# energy balance closes to 1e-3 of the controls' work through the breaks.
+# energy balance closes to 1e-3 of the controls' work through the breaks. The traction runs are in
+# the long tier (32 s together); the crushing scene below keeps the balance through the breaks and
+# the bonds' accounts in the default one.
 set(TRACTION64 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.yaml -tissue_voronoi_cells 64 -tissue_box 0,0,200,200
   -control_top_box -1,180,201,201 -control_bottom_box -1,-1,201,20 -control_top_velocity 0,0.2 -control_bottom_velocity 0,-0.2
   -control_top_ramp_time 2.5 -control_bottom_ramp_time 2.5 -ts_max_time 10 -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
 set(FRACTURE ${CMAKE_CURRENT_SOURCE_DIR}/check_fracture.py)
-turgor_add_test(traction_64 COMMAND turgor_app ${TRACTION64} -output_dir traction64 LABELS fine hard SETUP traction64)
-turgor_add_test(traction_64_energy COMMAND ${FRACTURE} energy traction64 1e-3 LABELS fine hard REQUIRES traction64)
-turgor_add_test(traction_64_bonds COMMAND ${FRACTURE} bonds traction64 LABELS fine hard REQUIRES traction64)
+turgor_add_test(traction_64 COMMAND turgor_app ${TRACTION64} -output_dir traction64 LABELS fine hard long SETUP traction64)
+turgor_add_test(traction_64_energy COMMAND ${FRACTURE} energy traction64 1e-3 LABELS fine hard long REQUIRES traction64)
+turgor_add_test(traction_64_bonds COMMAND ${FRACTURE} bonds traction64 LABELS fine hard long REQUIRES traction64)
 # The same with a notch cut out of the left side at mid-height (80 µm deep, 30 high): its smoothed
 # peak force (the grips' force averaged over 0.3 µm of pull) is below 0.8 of the plain one's.
 turgor_add_test(traction_64_notched COMMAND turgor_app ${TRACTION64} -tissue_cut_box -1,85,80,115 -fine_energy 0 -output_dir traction64_notched
-  LABELS fine SETUP traction64_notched)
-turgor_add_test(traction_64_notch_weakens COMMAND ${FRACTURE} weaker 0.3 0.8 traction64_notched traction64 LABELS fine
+  LABELS fine long SETUP traction64_notched)
+turgor_add_test(traction_64_notch_weakens COMMAND ${FRACTURE} weaker 0.3 0.8 traction64_notched traction64 LABELS fine long
   REQUIRES "traction64;traction64_notched")
 # The quasi-static limit, on 16 cells (100 x 100 µm): pulled at 0.05, 0.025 and 0.0125 µm/µs, the
 # smoothed peak force of the two slowest within 2%.
@@ -30,12 +32,12 @@ set(TRACTION16 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.
   -control_top_box -1,87.5,101,101 -control_bottom_box -1,-1,101,12.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy 0 -fine_dt_safety 0.25
   -output_overwrite)
 turgor_add_test(traction_16_v1 COMMAND turgor_app ${TRACTION16} -control_top_velocity 0,0.05 -control_bottom_velocity 0,-0.05 -control_top_ramp_time 5
-  -control_bottom_ramp_time 5 -ts_max_time 20 -output_dir traction16_v1 LABELS fine SETUP traction16_v1)
+  -control_bottom_ramp_time 5 -ts_max_time 20 -output_dir traction16_v1 LABELS fine long SETUP traction16_v1)
 turgor_add_test(traction_16_v2 COMMAND turgor_app ${TRACTION16} -control_top_velocity 0,0.025 -control_bottom_velocity 0,-0.025 -control_top_ramp_time 10
-  -control_bottom_ramp_time 10 -ts_max_time 40 -output_dir traction16_v2 LABELS fine SETUP traction16_v2)
+  -control_bottom_ramp_time 10 -ts_max_time 40 -output_dir traction16_v2 LABELS fine long SETUP traction16_v2)
 turgor_add_test(traction_16_v3 COMMAND turgor_app ${TRACTION16} -control_top_velocity 0,0.0125 -control_bottom_velocity 0,-0.0125 -control_top_ramp_time 20
-  -control_bottom_ramp_time 20 -ts_max_time 80 -output_dir traction16_v3 LABELS fine SETUP traction16_v3)
-turgor_add_test(traction_16_quasistatic COMMAND ${FRACTURE} peaks 0.3 0.02 traction16_v1 traction16_v2 traction16_v3 LABELS fine
+  -control_bottom_ramp_time 20 -ts_max_time 80 -output_dir traction16_v3 LABELS fine long SETUP traction16_v3)
+turgor_add_test(traction_16_quasistatic COMMAND ${FRACTURE} peaks 0.3 0.02 traction16_v1 traction16_v2 traction16_v3 LABELS fine long
   REQUIRES "traction16_v1;traction16_v2;traction16_v3")
 
 # The crushing scene (config/voronoi_crushing.yaml) on 64 cells: the turgor builds up over 10 µs,

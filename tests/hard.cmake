@@ -2,7 +2,8 @@
 # expected outcome (written in the scene's header too): it completes and its answer is checked
 # against a second method, an analytic value or a tighter run -- or it fails cleanly: exit status 1,
 # the reason named, summary.json "failed" (tests/expect_error.py). Cases marked np2 run on two
-# MPI ranks as well.
+# MPI ranks as well. The long tier holds the slow runs (over 5 s) and the second runs whose check
+# repeats another case's: another integrator, more ranks or a tighter tolerance for the same scene.
 set(HARD ${PROJECT_SOURCE_DIR}/config/hard)
 set(VERLET -ts_type basicsymplectic -fine_dt_safety 0.5)
 # a run of scene NAME (extra options after it) into hard/OUT, a fixture for the checks
@@ -36,6 +37,7 @@ turgor_hard_run(fine_stiff_walls_verlet fine_stiff_walls ${VERLET})
 turgor_hard_run_np2(fine_stiff_walls_np2 fine_stiff_walls)
 turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 5e-4)
 turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tiprel hard/fine_stiff_walls_np2 hard/fine_stiff_walls 2e-8)
+turgor_long(hard_fine_stiff_walls hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks)
 # 500x load: DOPRI and Verlet agree
 turgor_hard_run(fine_large_load fine_large_load)
 turgor_hard_run(fine_large_load_verlet fine_large_load ${VERLET})
@@ -50,11 +52,13 @@ turgor_hard_check(fine_tight_tolerance_agrees "hard_fine_tight_tolerance;hard_fi
   5e-5)
 turgor_hard_check(fine_verlet_at_limit_agrees "hard_fine_tight_tolerance;hard_fine_verlet_at_limit" ${HCHECK} tiprel hard/fine_verlet_at_limit hard/fine_tight_tolerance
   5e-4)
+turgor_long(hard_fine_verlet_tenth_limit hard_fine_tight_tolerance_agrees)
 turgor_hard_fails(fine_verlet_twice_limit fine_verlet_at_limit "Non-finite acceleration of particle [0-9]+ at t = .*the fixed step is above the stability limit"
   -ts_dt 0.0027)
 # a long run: a damped oscillation about the static deflection
 turgor_hard_run(fine_long_time fine_long_time)
 turgor_hard_check(fine_long_time_settles hard_fine_long_time ${HCHECK} settling hard/fine_long_time 3e-2)
+turgor_long(hard_fine_long_time hard_fine_long_time_settles)
 # loss of turgor and flaccid cells: DOPRI's answer does not depend on its tolerance
 foreach(case loss_of_turgor flaccid)
   turgor_hard_run(fine_${case} fine_${case})
@@ -69,6 +73,7 @@ turgor_hard_check(fine_zero_stiffness_walls_fall hard_fine_zero_stiffness_walls 
 # shear to 500%: a wall is crossed near F12 = 0.9 (named, failed summary), on 1 and 2 ranks
 turgor_hard_fails(rve_shear_500 rve_shear_500 "evaluation failed: .*(F = \\[1\\. 1\\.3; 0\\. 1\\.\\])")
 turgor_hard_fails_np2(rve_shear_500_np2 rve_shear_500 "evaluation failed: .*(F = \\[1\\. 1\\.3; 0\\. 1\\.\\])")
+turgor_long(hard_rve_shear_500_np2)
 # compression to 1%: relaxes down to 3%, fails cleanly at 1%
 turgor_hard_fails(rve_compression_99 rve_compression_99 "t = 68\\. µs: evaluation failed: the relaxed RVE has fluid particles outside their cell")
 # 1000x stiffer walls: the stress and the tangent of the stretched walls, k_w eps / 2 and k_w / 2
@@ -80,10 +85,12 @@ turgor_hard_check(rve_stiff_walls_tangent hard_rve_stiff_walls ${HCHECK} column 
 # 100x load: the RVEs' walls are crossed; the run fails cleanly, naming where and why (np2 too)
 turgor_hard_fails(fe2_large_load fe2_large_load "material points failed at t = .*(fluid particles outside their cell|Psi-tc did not converge)")
 turgor_hard_fails_np2(fe2_large_load_np2 fe2_large_load "material points failed at t = .*(fluid particles outside their cell|Psi-tc did not converge)")
+turgor_long(hard_fe2_large_load_np2)
 # tolerances 1e-1 and 1e-9
 turgor_hard_run(fe2_loose_tolerance fe2_loose_tolerance)
 turgor_hard_run(fe2_tight_tolerance fe2_tight_tolerance)
 turgor_hard_check(fe2_loose_tolerance_bound "hard_fe2_loose_tolerance;hard_fe2_tight_tolerance" ${HCHECK} tiprel hard/fe2_loose_tolerance hard/fe2_tight_tolerance 5e-3)
+turgor_long(hard_fe2_loose_tolerance hard_fe2_tight_tolerance hard_fe2_loose_tolerance_bound)
 # 1000x stiffer walls: Radau IIA and DOPRI agree; 1 and 2 ranks agree
 turgor_hard_run(fe2_stiff_walls fe2_stiff_walls)
 turgor_hard_run(fe2_stiff_walls_rk fe2_stiff_walls -ts_type rk)
@@ -96,6 +103,7 @@ turgor_hard_run(fe2_neo_hookean_crush_tight fe2_neo_hookean_crush -ts_rtol 1e-7 
 turgor_hard_check(fe2_neo_hookean_crush_rejects hard_fe2_neo_hookean_crush ${HCHECK} positive hard/fe2_neo_hookean_crush rejected_steps)
 turgor_hard_check(fe2_neo_hookean_crush_converged "hard_fe2_neo_hookean_crush;hard_fe2_neo_hookean_crush_tight" ${HCHECK} tiprel hard/fe2_neo_hookean_crush
   hard/fe2_neo_hookean_crush_tight 1e-3)
+turgor_long(hard_fe2_neo_hookean_crush_tight hard_fe2_neo_hookean_crush_converged)
 # inverted and collapsed elements in the mesh: refused before any work
 turgor_hard_fails(fe2_folded_element fe2_loose_tolerance "Coarse mesh: element [0-9]+ with vertices .* is degenerate or folded"
   -coarse_dm_plex_filename ${CMAKE_CURRENT_SOURCE_DIR}/data/folded_quad.msh)

@@ -13,38 +13,40 @@ turgor_add_test(polygon_cantilever COMMAND turgor_app ${CANT} -output_dir cant_s
 turgor_add_test(polygon_cantilever_check COMMAND ${CANT_CHECK} cant_scene 100 2e5 101 1 0.01 0.02 1e-6 LABELS fine REQUIRES cant_scene)
 # Plastic hinges (M_max = 40 µN µm: the hinges near the root yield) committed once per accepted step
 # by velocity Verlet and by DOPRI (rtol 1e-8): the same static tip and plastic dissipation within 1e-5.
-turgor_add_test(polygon_cantilever_plastic_verlet COMMAND turgor_app ${CANT} -hinge_max_moment 40 -output_dir cant_plastic_verlet LABELS fine
+# Long (8 s; test_polygon_forces checks the hinges' return mapping in the default tier).
+turgor_add_test(polygon_cantilever_plastic_verlet COMMAND turgor_app ${CANT} -hinge_max_moment 40 -output_dir cant_plastic_verlet LABELS fine long
   SETUP cant_plastic_verlet)
 turgor_add_test(polygon_cantilever_plastic_dopri COMMAND turgor_app ${CANT} -hinge_max_moment 40 -ts_type rk -ts_rk_type 5dp -ts_rtol 1e-8 -ts_atol 1e-10
-  -output_dir cant_plastic_dopri LABELS fine SETUP cant_plastic_dopri)
-turgor_add_test(polygon_cantilever_plastic_agree COMMAND ${CHECK} final cant_plastic_dopri cant_plastic_verlet 1e-5 LABELS fine
+  -output_dir cant_plastic_dopri LABELS fine long SETUP cant_plastic_dopri)
+turgor_add_test(polygon_cantilever_plastic_agree COMMAND ${CHECK} final cant_plastic_dopri cant_plastic_verlet 1e-5 LABELS fine long
   REQUIRES "cant_plastic_verlet;cant_plastic_dopri")
 turgor_add_test(polygon_cantilever_plastic_dissipation COMMAND ${CHECK} samekey cant_plastic_dopri cant_plastic_verlet hinge_plastic_dissipation 1e-5
-  LABELS fine REQUIRES "cant_plastic_verlet;cant_plastic_dopri")
+  LABELS fine long REQUIRES "cant_plastic_verlet;cant_plastic_dopri")
 
 # The box compression: the cells settle under their turgor for 10 µs with the lid held, when the
 # lid's and the other plates' vertical reactions balance (0.5%); and the first 1.5 µs of the lid's
-# descent with the default step and half of it: the lid force within 1%.
+# descent with the default step and half of it: the lid force within 1% (long: the half step takes 8 s).
 set(BOX -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -fine_snapshots 0 -fine_progress_interval 0 -fine_tip_samples 23
   -ts_max_time 11.5 -output_overwrite)
 turgor_add_test(polygon_compression COMMAND turgor_app ${BOX} -output_dir box_scene LABELS fine SETUP box_scene)
-turgor_add_test(polygon_compression_half_step COMMAND turgor_app ${BOX} -fine_dt_safety 0.25 -output_dir box_half LABELS fine SETUP box_half)
+turgor_add_test(polygon_compression_half_step COMMAND turgor_app ${BOX} -fine_dt_safety 0.25 -output_dir box_half LABELS fine long SETUP box_half)
 turgor_add_test(polygon_compression_settled COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_groups.py balance box_scene/groups.csv lid walls 5 9.5 0.005
   LABELS fine REQUIRES box_scene)
 turgor_add_test(polygon_compression_converged COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_groups.py agree box_half/groups.csv box_scene/groups.csv lid_fy 10
-  11.5 0.01 LABELS fine REQUIRES "box_scene;box_half")
+  11.5 0.01 LABELS fine long REQUIRES "box_scene;box_half")
 turgor_add_test(polygon_compression_summary COMMAND ${CHECK} keys box_scene n_nodes n_cells n_bars steps wall_time_s node_steps_per_s contact_mean_contacts
   stability_limits_dt hinge_plastic_dissipation LABELS fine REQUIRES box_scene)
 
 # The 400-cell uniaxial compression scene, its first µs with the default step and half of it: the top
 # plate's reaction within 1%. (Its sides are free: the tissue keeps spreading under its turgor, so
-# the plates' reactions do not settle to a balance within the scene's 10 µs delay.)
+# the plates' reactions do not settle to a balance within the scene's 10 µs delay.) Long: 9 s; the box
+# above is a Voronoi tissue too.
 set(VOR -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_compression.yaml -ts_max_time 1 -fine_tip_samples 10 -fine_snapshots 0
   -fine_progress_interval 0 -output_overwrite)
-turgor_add_test(voronoi_compression COMMAND turgor_app ${VOR} -output_dir voronoi_scene LABELS fine SETUP voronoi_scene)
-turgor_add_test(voronoi_compression_half_step COMMAND turgor_app ${VOR} -fine_dt_safety 0.25 -output_dir voronoi_half LABELS fine SETUP voronoi_half)
+turgor_add_test(voronoi_compression COMMAND turgor_app ${VOR} -output_dir voronoi_scene LABELS fine long SETUP voronoi_scene)
+turgor_add_test(voronoi_compression_half_step COMMAND turgor_app ${VOR} -fine_dt_safety 0.25 -output_dir voronoi_half LABELS fine long SETUP voronoi_half)
 turgor_add_test(voronoi_compression_converged COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_groups.py agree voronoi_half/groups.csv voronoi_scene/groups.csv
-  top_fy 0.1 1 0.01 LABELS fine REQUIRES "voronoi_scene;voronoi_half")
+  top_fy 0.1 1 0.01 LABELS fine long REQUIRES "voronoi_scene;voronoi_half")
 
 # SIGTERM: once, the run stops after its step (exit 130, summary "interrupted"); twice, at once.
 set(INTERRUPT ${CMAKE_CURRENT_SOURCE_DIR}/interrupt_run.py)

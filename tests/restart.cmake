@@ -7,14 +7,19 @@ set(RESTART_HELPER ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_helper.py)
 
 # name; leg1: the steps of the first leg; INTERVAL: -checkpoint_interval of the full run (it writes
 # one checkpoint there and one at the end); FILES: further outputs that must be the same; LAUNCH:
-# mpiexec and its arguments; MODE: the label of the mode (fine by default, fe2)
+# mpiexec and its arguments; MODE: the label of the mode (fine by default, fe2); LONG: the case is
+# in the long tier
 function(turgor_restart_case name leg1)
-  cmake_parse_arguments(R "" "INTERVAL;MODE" "OPTIONS;FILES;LAUNCH" ${ARGN})
+  cmake_parse_arguments(R "LONG" "INTERVAL;MODE" "OPTIONS;FILES;LAUNCH" ${ARGN})
   if(NOT R_MODE)
     set(R_MODE fine)
   endif()
   set(run ${R_LAUNCH} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite)
-  set(labels ${R_MODE} restart)
+  set(tier "")
+  if(R_LONG)
+    set(tier long)
+  endif()
+  set(labels ${R_MODE} restart ${tier})
   if(R_LAUNCH)
     list(APPEND labels mpi)
   endif()
@@ -25,10 +30,10 @@ function(turgor_restart_case name leg1)
   turgor_add_test(restart_${name}_leg2 COMMAND ${R_LAUNCH} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_dir restart_${name}_legs
     -restart restart_${name}_legs/checkpoint.h5 LABELS ${labels} REQUIRES restart_${name}_leg1 SETUP restart_${name}_leg2)
   turgor_add_test(restart_${name}_identical COMMAND ${CHECK} identical restart_${name}_full restart_${name}_legs final_state_hash tip_displacement_final
-    steps LABELS ${R_MODE} restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
+    steps LABELS ${R_MODE} restart ${tier} REQUIRES "restart_${name}_full;restart_${name}_leg2")
   if(R_FILES)
     turgor_add_test(restart_${name}_series COMMAND ${CHECK} samefiles restart_${name}_full restart_${name}_legs ${R_FILES}
-      LABELS ${R_MODE} restart REQUIRES "restart_${name}_full;restart_${name}_leg2")
+      LABELS ${R_MODE} restart ${tier} REQUIRES "restart_${name}_full;restart_${name}_leg2")
   endif()
 endfunction()
 
@@ -84,13 +89,14 @@ turgor_restart_case(mpi2 150 INTERVAL 5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS -mod
 # kept Jacobian and neighbour lists are restored, so the relaxations after the restart take the same
 # iterations and the run ends bit for bit as the uninterrupted one (rve_solves, psi_tc_iterations
 # too). On two ranks (two material-point groups, each rank saving its own points), with snapshots
-# (the restart's go to coarse_restart_<step>.h5).
+# (the restart's go to coarse_restart_<step>.h5): long, as fe2_rebalance below restarts the bar on
+# two ranks bit for bit in the default tier.
 set(RESTART_FE2 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fe2.yaml -ts_max_time 30 -fe2_snapshots 0 -fe2_progress_interval 0
   -ts_type rk -ts_rk_type 5dp)
 turgor_restart_case(fe2 80 MODE fe2 INTERVAL 15 OPTIONS ${RESTART_FE2})
 turgor_add_test(restart_fe2_work COMMAND ${CHECK} identical restart_fe2_full restart_fe2_legs rve_solves psi_tc_iterations rhs_evals rejected_steps
   LABELS fe2 restart REQUIRES "restart_fe2_full;restart_fe2_leg2")
-turgor_restart_case(fe2_mpi2 80 MODE fe2 INTERVAL 15 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -fe2_snapshots 2)
+turgor_restart_case(fe2_mpi2 80 MODE fe2 INTERVAL 15 LONG LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -fe2_snapshots 2)
 # ... and under ssp, which cannot interpolate (its tip.csv rows are its step ends; they stopped the
 # run before this stop), 2 µs with a checkpoint at 1 µs
 turgor_restart_case(fe2_ssp 10 MODE fe2 INTERVAL 1 OPTIONS ${RESTART_FE2} -ts_type ssp -ts_max_time 2 FILES tip.csv)
@@ -131,16 +137,20 @@ turgor_add_test(restart_polygon_int_identical COMMAND ${CHECK} identical restart
 # springs, repulsion, SPH, gravity; DOPRI) stopped on 2 ranks, continued on 1 and on 3. The state and
 # DOPRI's carried derivative are written in the tissue's particle order; the neighbour lists are
 # built afresh, so the forces are summed in another order: the final tip agrees with the
-# uninterrupted 1-rank run to 1e-10 of it.
+# uninterrupted 1-rank run to 1e-10 of it. (On 3 ranks: long, 6 s on CI's 2 cores.)
 set(RESTART_XR -mode fine -tissue_cells_x 4 -tissue_cells_y 4 -ts_max_time 10 -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
 turgor_add_test(restart_ranks_full COMMAND turgor_app ${RESTART_XR} -output_dir restart_ranks_full LABELS fine restart SETUP restart_ranks_full)
 turgor_add_test(restart_ranks_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${RESTART_XR} -ts_max_steps 150 -checkpoint_interval 1e6
   -output_dir restart_ranks_leg1 LABELS fine restart mpi SETUP restart_ranks_leg1)
 foreach(np 1 3)
+  set(tier "")
+  if(np EQUAL 3)
+    set(tier long)
+  endif()
   turgor_add_test(restart_ranks_to${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${RESTART_XR} -restart restart_ranks_leg1/checkpoint.h5
-    -output_dir restart_ranks_to${np} LABELS fine restart mpi REQUIRES restart_ranks_leg1 SETUP restart_ranks_to${np})
+    -output_dir restart_ranks_to${np} LABELS fine restart mpi ${tier} REQUIRES restart_ranks_leg1 SETUP restart_ranks_to${np})
   turgor_add_test(restart_ranks_to${np}_agrees COMMAND ${CHECK} samekey restart_ranks_to${np} restart_ranks_full tip_displacement_final 1e-10
-    LABELS fine restart mpi REQUIRES "restart_ranks_full;restart_ranks_to${np}")
+    LABELS fine restart mpi ${tier} REQUIRES "restart_ranks_full;restart_ranks_to${np}")
 endforeach()
 
 # Another rank count with internal state: a run stopped on 2 ranks, continued on 1 and on 3 in a copy
@@ -152,9 +162,10 @@ endforeach()
 # "mode:file-or-key:tolerance" (or "samerows:file:columns,..."), against the 1-rank run
 # FULL_RANKS: the uninterrupted run's ranks (default 1); MODE: the mode's label (fine by default);
 # RANKS: the continued runs' rank counts (default 1 3; three ranks on CI's two cores wait on each
-# other at every exchange, so the long scenes continue on one)
+# other at every exchange, so the long scenes continue on one, and a continuation on 3 ranks is in
+# the long tier: the one on 1 rank reads the same global_state); LONG: the whole case is long
 function(turgor_restart_other_ranks name leg1)
-  cmake_parse_arguments(R "" "TOL;FULL_RANKS;MODE" "OPTIONS;COMPARE;RANKS" ${ARGN})
+  cmake_parse_arguments(R "LONG" "TOL;FULL_RANKS;MODE" "OPTIONS;COMPARE;RANKS" ${ARGN})
   if(NOT R_RANKS)
     set(R_RANKS 1 3)
   endif()
@@ -165,17 +176,25 @@ function(turgor_restart_other_ranks name leg1)
     set(R_MODE fine)
   endif()
   set(base restart_xr_${name})
+  set(tier "")
+  if(R_LONG)
+    set(tier long)
+  endif()
   turgor_add_test(${base}_full COMMAND ${MPIEXEC_ROOT} -n ${R_FULL_RANKS} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite -output_dir ${base}_full
-    LABELS ${R_MODE} restart mpi SETUP ${base}_full)
+    LABELS ${R_MODE} restart mpi ${tier} SETUP ${base}_full)
   turgor_add_test(${base}_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite -ts_max_steps ${leg1}
-    -checkpoint_interval 1e6 -output_dir ${base}_leg1 LABELS ${R_MODE} restart mpi SETUP ${base}_leg1)
+    -checkpoint_interval 1e6 -output_dir ${base}_leg1 LABELS ${R_MODE} restart mpi ${tier} SETUP ${base}_leg1)
   foreach(np ${R_RANKS})
     set(dir ${base}_to${np})
-    turgor_add_test(${dir}_copy COMMAND ${CMAKE_COMMAND} -E copy_directory ${base}_leg1 ${dir} LABELS ${R_MODE} restart mpi REQUIRES ${base}_leg1
+    set(labels ${R_MODE} restart mpi ${tier})
+    if(np GREATER 2)
+      set(labels ${R_MODE} restart mpi long)
+    endif()
+    turgor_add_test(${dir}_copy COMMAND ${CMAKE_COMMAND} -E copy_directory ${base}_leg1 ${dir} LABELS ${labels} REQUIRES ${base}_leg1
       SETUP ${dir}_copy)
     turgor_add_test(${dir} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -restart ${dir}/checkpoint.h5 -output_dir ${dir}
-      LABELS ${R_MODE} restart mpi REQUIRES ${dir}_copy SETUP ${dir})
-    turgor_add_test(${dir}_tip COMMAND ${CHECK} tiprel ${dir} ${base}_full ${R_TOL} LABELS ${R_MODE} restart mpi REQUIRES "${base}_full;${dir}")
+      LABELS ${labels} REQUIRES ${dir}_copy SETUP ${dir})
+    turgor_add_test(${dir}_tip COMMAND ${CHECK} tiprel ${dir} ${base}_full ${R_TOL} LABELS ${labels} REQUIRES "${base}_full;${dir}")
     foreach(c ${R_COMPARE})
       string(REPLACE ":" ";" parts ${c})
       list(GET parts 0 mode)
@@ -183,7 +202,7 @@ function(turgor_restart_other_ranks name leg1)
       list(GET parts 2 rest)
       string(REPLACE "," ";" rest "${rest}")
       string(MAKE_C_IDENTIFIER ${what} id)
-      turgor_add_test(${dir}_${id} COMMAND ${CHECK} ${mode} ${dir} ${base}_full ${what} ${rest} LABELS ${R_MODE} restart mpi
+      turgor_add_test(${dir}_${id} COMMAND ${CHECK} ${mode} ${dir} ${base}_full ${what} ${rest} LABELS ${labels}
         REQUIRES "${base}_full;${dir}")
     endforeach()
   endforeach()
@@ -212,8 +231,9 @@ turgor_add_test(restart_xr_layout_energy COMMAND ${CHECK} csvrel restart_xr_layo
 # same 111 breaks (breaks.csv names the same bonds) and the tip to 1e-7, as the uninterrupted runs on
 # 1, 2 and 3 ranks agree (fracture amplifies round-off: a break a step earlier or later; measured
 # 4.2e-9; continued on 3 ranks by hand: 4.3e-9). Over 20 µs (205 breaks) even uninterrupted runs on
-# 1 and 2 ranks differ by 8e-4.
-turgor_restart_other_ranks(glue 6000 TOL 1e-7 RANKS 1 OPTIONS ${RESTART_GLUE} -ts_max_time 12
+# 1 and 2 ranks differ by 8e-4. Long: restart_glue restarts the glue's state and restart_xr_polygon
+# another rank count's global_state in the default tier.
+turgor_restart_other_ranks(glue 6000 TOL 1e-7 RANKS 1 LONG OPTIONS ${RESTART_GLUE} -ts_max_time 12
   COMPARE samekey:bonds_broken:0 samekey:glue_fracture_dissipation:1e-7 samerows:breaks.csv:cell_node,cell_bar,node,bar)
 
 # FE² (the seed's bar, DOPRI with the DSP controller, 80 RVEs on one rank each): stopped on 2 ranks

@@ -7,6 +7,7 @@ static const char help[] = "The am TS type (variable-order Adams-Moulton with fu
                            "IFunction is refused; (8) TSSetFunctionDomainError rejections; (9) TSRollBack; (10) the TSAMSet*() defaults:\n"
                            "used, overridden by -ts_am_* options, checked, and a no-op on another TS type.\n";
 #include "test_util.h"
+#include "ode_util.h"
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/radau_iia.h>
 
@@ -92,8 +93,7 @@ PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
     f[2] = -y[0] / r3;
     f[3] = -y[1] / r3;
   } else if (p->kind == Kind::vdp) {
-    f[0] = y[1];
-    f[1] = (1 - y[0] * y[0]) * y[1] - y[0];
+    turgor_test::VanDerPol(1, y, f);
   } else f[0] = -p->lambda * (y[0] - std::cos(t));
   PetscCall(VecRestoreArray(F, &f));
   PetscCall(VecRestoreArrayRead(Y, &y));
@@ -105,18 +105,12 @@ PetscErrorCode VdPJacobian(TS ts, PetscReal t, Vec Y, Mat A, Mat B, void *ctx)
 {
   const PetscScalar *y;
   PetscScalar        v[4];
-  const PetscInt     idx[2] = {0, 1};
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(Y, &y));
-  v[0] = 0;
-  v[1] = 1;
-  v[2] = -2 * y[0] * y[1] - 1;
-  v[3] = 1 - y[0] * y[0];
+  turgor_test::VanDerPolJacobian(1, y, v);
   PetscCall(VecRestoreArrayRead(Y, &y));
-  PetscCall(MatSetValues(B, 2, idx, 2, idx, v, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+  PetscCall(turgor_test::SetDenseMatrix(B, 2, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -178,6 +172,25 @@ struct RunSpec {
   const PetscReal *reference = NULL; /* the solution at tf, if Exact() has none */
 };
 
+/* A run to tf at rtol = atol = tol with the first step dt (0: PETSc's automatic choice). */
+RunSpec Spec(PetscReal tf, PetscReal dt, PetscReal tol)
+{
+  RunSpec s;
+  s.tf  = tf;
+  s.dt  = dt;
+  s.tol = tol;
+  return s;
+}
+
+/* y' = -lambda (y - cos t) */
+Problem Relaxation(PetscReal lambda)
+{
+  Problem p;
+  p.kind   = Kind::relax;
+  p.lambda = lambda;
+  return p;
+}
+
 struct Result {
   TSConvergedReason reason;
   PetscReal         t, solve_time, err_max, err_scaled;
@@ -197,12 +210,9 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   p.interp_err = 0;
   p.step_err   = 0;
   p.tol        = spec.tol;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, p.Size(), &Y));
-  PetscCall(VecDuplicate(Y, &p.X));
   p.Exact(0, y0);
-  for (PetscInt i = 0; i < p.Size(); i++) PetscCall(VecSetValue(Y, i, y0[i], INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(Y));
-  PetscCall(VecAssemblyEnd(Y));
+  PetscCall(turgor_test::CreateSeqVec(p.Size(), y0, &Y));
+  PetscCall(VecDuplicate(Y, &p.X));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetApplicationContext(ts, &p));
   PetscCall(TSSetType(ts, TSAM));
@@ -286,14 +296,11 @@ PetscErrorCode CheckOrders()
     PetscReal e[4], ie[4];
     for (int k = 0; k < 4; k++) {
       Problem p;
-      RunSpec s;
+      RunSpec s = Spec(T, hs[k], 1e-12); /* only the fixed-point test sees the tolerance: iterate to convergence (the AM corrector itself) */
       Result  r;
       p.kind        = Kind::forced;
       p.sample      = PETSC_TRUE;
       p.t_sample    = 20;
-      s.tf          = T;
-      s.dt          = hs[k];
-      s.tol         = 1e-12; /* only the fixed-point test sees it: iterate to convergence (the AM corrector itself) */
       s.fixed_steps = PETSC_TRUE;
       s.max_order   = q;
       s.fixed_order = PETSC_TRUE;
@@ -333,13 +340,11 @@ PetscErrorCode VdPReference(PetscReal tf, PetscReal ref[2])
     TS                 ts;
     Vec                Y;
     Mat                J;
+    PetscReal          y0[2];
     const PetscScalar *y;
     p.kind = Kind::vdp;
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &Y));
-    PetscCall(VecSetValue(Y, 0, 2.0, INSERT_VALUES));
-    PetscCall(VecSetValue(Y, 1, 0.0, INSERT_VALUES));
-    PetscCall(VecAssemblyBegin(Y));
-    PetscCall(VecAssemblyEnd(Y));
+    p.Exact(0, y0);
+    PetscCall(turgor_test::CreateSeqVec(2, y0, &Y));
     PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));
     PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
     PetscCall(TSSetType(ts, TSRADAUIIA));
@@ -379,13 +384,10 @@ PetscErrorCode CheckAdaptive()
   PetscCall(VdPReference(2, ref));
   for (int k = 0; k < 3; k++) {
     Problem p;
-    RunSpec s;
+    RunSpec s = Spec(2, 0, tols[k]);
     Result  r;
     char    what[64];
     p.kind      = Kind::vdp;
-    s.tf        = 2;
-    s.dt        = 0; /* PETSc's default: the first step is chosen automatically */
-    s.tol       = tols[k];
     s.reference = ref;
     PetscCall(Run(p, s, &r));
     PetscCall(PetscSNPrintf(what, sizeof(what), "    rtol = atol = %g", (double)tols[k]));
@@ -405,15 +407,12 @@ PetscErrorCode CheckAdaptive()
                         "    Kepler e = 0.5 on [0, pi] (perihelion to aphelion) against the exact orbit; (3) TSInterpolate at 0.2, 0.5, 0.8 of every step\n"));
   for (int k = 0; k < 3; k++) {
     Problem p;
-    RunSpec s;
+    RunSpec s = Spec(PETSC_PI, 0, tols[k]);
     Result  r;
     char    what[64];
     p.kind   = Kind::kepler;
     p.sample = PETSC_TRUE;
     p.scaled = PETSC_TRUE;
-    s.tf     = PETSC_PI;
-    s.dt     = 0;
-    s.tol    = tols[k];
     PetscCall(Run(p, s, &r));
     PetscCall(PetscSNPrintf(what, sizeof(what), "    rtol = atol = %g", (double)tols[k]));
     PetscCall(PrintRun(what, r));
@@ -432,12 +431,9 @@ PetscErrorCode CheckAdaptive()
   /* (4) INTERPOLATE: the solution returned at max_time comes from the dense output */
   {
     Problem p;
-    RunSpec s;
+    RunSpec s = Spec(2.5, 0, 1e-6);
     Result  r;
     p.kind  = Kind::kepler;
-    s.tf    = 2.5;
-    s.dt    = 0;
-    s.tol   = 1e-6;
     s.final = TS_EXACTFINALTIME_INTERPOLATE;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(4) Kepler, INTERPOLATE to t = 2.5, rtol = atol = 1e-6", r));
@@ -452,14 +448,9 @@ PetscErrorCode CheckStiff()
 {
   PetscFunctionBeginUser;
   {
-    Problem p;
-    RunSpec s;
+    Problem p = Relaxation(1e4);
+    RunSpec s = Spec(1, 0, 1e-6);
     Result  r;
-    p.kind   = Kind::relax;
-    p.lambda = 1e4;
-    s.tf     = 1;
-    s.dt     = 0;
-    s.tol    = 1e-6;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(5) stiff y' = -1e4 (y - cos t) on [0, 1], rtol = atol = 1e-6", r));
     TG_CHECK(r.finite, "the state must stay finite");
@@ -472,14 +463,9 @@ PetscErrorCode CheckStiff()
     }
   }
   {
-    Problem p;
-    RunSpec s;
+    Problem p = Relaxation(50);
+    RunSpec s = Spec(2, 0, 1e-6);
     Result  r;
-    p.kind   = Kind::relax;
-    p.lambda = 50;
-    s.tf     = 2;
-    s.dt     = 0;
-    s.tol    = 1e-6;
     s.max_it = 1;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(6) y' = -50 (y - cos t) on [0, 2], TSAMSetMaxIterations(ts, 1)", r));
@@ -491,14 +477,9 @@ PetscErrorCode CheckStiff()
   }
   {
     /* a first step of 1 on the stiff problem needs 7 cuts by 4 before the iteration contracts */
-    Problem p;
-    RunSpec s;
+    Problem p = Relaxation(1e4);
+    RunSpec s = Spec(1, 1, 1e-6);
     Result  r;
-    p.kind           = Kind::relax;
-    p.lambda         = 1e4;
-    s.tf             = 1;
-    s.dt             = 1;
-    s.tol            = 1e-6;
     s.max_conv_fails = 3;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(6) stiff, first step 1, TSAMSetMaxConvergenceFailures(ts, 3)", r));
@@ -527,14 +508,11 @@ PetscErrorCode CheckErrorsAndDomain()
   }
   {
     Problem p;
-    RunSpec s;
+    RunSpec s = Spec(2, 0.5, 1e-6);
     Result  r;
     p.kind   = Kind::kepler;
     p.hlim   = 0.02;
     s.domain = PETSC_TRUE;
-    s.tf     = 2;
-    s.dt     = 0.5;
-    s.tol    = 1e-6;
     PetscCall(Run(p, s, &r));
     PetscCall(PrintRun("(8) Kepler, TSSetFunctionDomainError rejects steps longer than 0.02 (first step 0.5)", r));
     TG_CHECK(r.reason > 0 && std::fabs(r.t - 2) < 1e-14, "%s at t = %g", TSConvergedReasons[r.reason], (double)r.t);
@@ -554,11 +532,8 @@ PetscErrorCode CheckRollBack()
 
   PetscFunctionBeginUser;
   p.kind = Kind::kepler;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 4, &Y));
   p.Exact(0, y0);
-  for (PetscInt i = 0; i < 4; i++) PetscCall(VecSetValue(Y, i, y0[i], INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(Y));
-  PetscCall(VecAssemblyEnd(Y));
+  PetscCall(turgor_test::CreateSeqVec(4, y0, &Y));
   PetscCall(VecDuplicate(Y, &Y2));
   PetscCall(VecDuplicate(Y, &Y3));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));

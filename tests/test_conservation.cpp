@@ -3,6 +3,7 @@ static const char help[] = "Momentum conservation of the fine model, term by ter
                            "angular momentum over 1000 steps of velocity Verlet (basicsymplectic and verlet, which keep\n"
                            "sum x cross m v exactly when every force is torque-free).\n";
 #include "test_util.h"
+#include "fine_run_util.h"
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 
@@ -48,23 +49,15 @@ static std::vector<std::string> Split(const std::string &list)
 static PetscErrorCode RunCase(const char *physics, TSType ts_type, const Tissue &T, PetscReal *dP, PetscReal *dL)
 {
   FineRun run(PETSC_COMM_SELF);
-  TSAdapt adapt;
   PetscFunctionBeginUser;
-  run.Spec().clamp               = {"none"};
-  run.Spec().dt                  = 5e-4;
-  run.Physics().names            = Split(physics);
-  run.Output().dir               = "test_conservation_out";
-  run.Output().samples           = 1;
-  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
-  run.Output().snapshots         = 0;
-  run.Output().progress_interval = 0;
+  run.Spec().clamp    = {"none"};
+  run.Spec().dt       = 5e-4;
+  run.Physics().names = Split(physics);
+  turgor_test::QuietOutput(run, "test_conservation_out");
   PetscCall(run.SetFromOptions());
   run.SetTissue(T);
   PetscCall(TSSetType(run.GetTS(), ts_type));
-  PetscCall(TSSetMaxSteps(run.GetTS(), 1000));
-  PetscCall(TSSetMaxTime(run.GetTS(), 1e6));
-  PetscCall(TSGetAdapt(run.GetTS(), &adapt));
-  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
+  PetscCall(turgor_test::FixedSteps(run.GetTS(), 1000));
   PetscCall(run.SetUp());
   const Momenta a = Measure(T.particles, run.GetState());
   PetscCall(run.Solve());
@@ -85,10 +78,8 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
   /* 3 x 3 cells, perturbed positions and random velocities: every term is active */
-  SquareGridSpec spec;
-  Tissue         T;
-  spec.cells_x = spec.cells_y = 3;
-  PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &T));
+  Tissue T;
+  PetscCall(turgor_test::SquareGridTissue(3, &T));
   turgor_test::Random rnd(3);
   for (PetscReal &x : T.X) x += 0.3 * rnd();
   T.V.resize(T.X.size());

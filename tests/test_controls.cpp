@@ -7,6 +7,7 @@ static const char help[] = "Load controls of the fine run against closed forms, 
                            "4. the reaction of a node pulling a spring chain equals the last spring's tension k (l - l0);\n"
                            "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy, _mz and one row per sample.\n";
 #include "test_util.h"
+#include "fine_run_util.h"
 #include <string>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/wall_springs.h>
@@ -51,13 +52,9 @@ static PetscErrorCode Run(const Tissue &tissue, std::vector<std::unique_ptr<Forc
   run.Physics().names = {};
   for (auto &t : terms) run.Physics().Add(std::move(t));
   for (const ControlGroup &g : groups) run.GetControls().Add(g);
-  run.Spec().clamp               = clamp;
-  run.Spec().dt                  = dt;
-  run.Output().dir               = "test_controls_out";
-  run.Output().samples           = samples;
-  run.Output().overwrite         = true;
-  run.Output().snapshots         = 0;
-  run.Output().progress_interval = 0;
+  run.Spec().clamp = clamp;
+  run.Spec().dt    = dt;
+  turgor_test::QuietOutput(run, "test_controls_out", samples);
   PetscCall(run.SetFromOptions());
   run.SetTissue(tissue);
   PetscCall(TSSetType(run.GetTS(), type));

@@ -4,6 +4,7 @@ static const char help[] = "Each physics term's forces against an independent ch
                            "damping against their formulas, and the viscous power\n"
                            "identity sum_k f_k . v_k = -sum_i V_i tau_i : grad v_i of the corrected SPH viscosity.\n";
 #include "test_util.h"
+#include "fine_run_util.h"
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
@@ -13,10 +14,8 @@ using namespace turgor;
 /* A 2 x 2 cell tissue with every particle displaced at random (up to `amp` µm). */
 static PetscErrorCode DisorderedTissue(PetscReal amp, Tissue *T)
 {
-  SquareGridSpec spec;
   PetscFunctionBeginUser;
-  spec.cells_x = spec.cells_y = 2;
-  PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, T));
+  PetscCall(turgor_test::SquareGridTissue(2, T));
   turgor_test::Random rnd(7);
   for (PetscReal &x : T->X) x += amp * rnd();
   PetscFunctionReturn(PETSC_SUCCESS);

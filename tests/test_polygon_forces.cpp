@@ -236,6 +236,20 @@ static PetscErrorCode TestPressurisedNgon()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The forces of contact alone (normal stiffness kn) on the builder's cells (bar radius r) at rest:
+   the model M, the positions x and the forces f. */
+static PetscErrorCode ContactAtRest(PolygonBuilder &B, PetscReal r, PetscReal kn, ForceModel &M, std::vector<PetscReal> &x, std::vector<PetscReal> &f)
+{
+  PetscFunctionBeginUser;
+  Tissue &T    = B.Finish(r);
+  auto    c    = std::make_unique<Contact>();
+  c->stiffness = kn;
+  PetscCall(MakeModel(T.particles, List(std::move(c)), M));
+  x = T.X;
+  PetscCall(Forces(M, x, std::vector<PetscReal>(x.size(), 0.0), f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* 4a. A node pressed on a bar: k_n delta split by the lever rule; momenta; a corner counted once. */
 static PetscErrorCode TestContactNormal()
 {
@@ -254,13 +268,9 @@ static PetscErrorCode TestContactNormal()
         {3, 2 * r - delta}
     },
       true, 1.0);
-    Tissue &T    = B.Finish(r);
-    auto    c    = std::make_unique<Contact>();
-    c->stiffness = kn;
-    ForceModel M;
-    PetscCall(MakeModel(T.particles, List(std::move(c)), M));
-    std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f;
-    PetscCall(Forces(M, x, v, f));
+    ForceModel             M;
+    std::vector<PetscReal> x, f;
+    PetscCall(ContactAtRest(B, r, kn, M, x, f));
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "contact: node %.12g, bar ends %.12g %.12g (k_n delta = %g, lever 0.7/0.3)\n", f[5], f[1], f[3], kn * delta));
     TG_CHECK_CLOSE(f[5], kn * delta, 1e-9, 1, "normal force k_n delta");
     TG_CHECK_CLOSE(f[1], -0.7 * kn * delta, 1e-9, 1, "lever rule, near end");
@@ -284,13 +294,9 @@ static PetscErrorCode TestContactNormal()
         {px, py}
     },
       true, 1.0);
-    Tissue &T    = B.Finish(r);
-    auto    c    = std::make_unique<Contact>();
-    c->stiffness = kn;
-    ForceModel M;
-    PetscCall(MakeModel(T.particles, List(std::move(c)), M));
-    std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f;
-    PetscCall(Forces(M, x, v, f));
+    ForceModel             M;
+    std::vector<PetscReal> x, f;
+    PetscCall(ContactAtRest(B, r, kn, M, x, f));
     Contact        *C   = dynamic_cast<Contact *>(M.Term("contact"));
     const PetscReal dst = pass == 0 ? std::hypot(px, py) : -px;
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "contact %s: %" PetscInt_FMT " contact(s), |f| = %.12g (k_n delta = %.12g)\n",

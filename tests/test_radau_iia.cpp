@@ -9,6 +9,7 @@ static const char help[] = "The radauiia TS type (Radau IIA, order 5): (a) its c
                            "(h) defaults set with TSRadauIIASet*() before TSSetFromOptions() are used, options override them,\n"
                            "and the setters are a no-op on another TS type.\n";
 #include "test_util.h"
+#include "ode_util.h"
 #include <turgor/ts/radau_iia.h>
 #include <complex>
 
@@ -113,7 +114,6 @@ PetscErrorCode IJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shift, M
   Problem           *p = (Problem *)ctx;
   const PetscScalar *u;
   PetscScalar        v[2][2];
-  const PetscInt     idx[2] = {0, 1};
 
   PetscFunctionBeginUser;
   p->nj++;
@@ -128,9 +128,7 @@ PetscErrorCode IJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shift, M
     v[1][1] = 2 * shift + 4 * u[1];
   }
   PetscCall(VecRestoreArrayRead(U, &u));
-  PetscCall(MatSetValues(B, 2, idx, 2, idx, &v[0][0], INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+  PetscCall(turgor_test::SetDenseMatrix(B, 2, &v[0][0]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -157,7 +155,6 @@ PetscErrorCode RHSJacobian(TS ts, PetscReal t, Vec U, Mat A, Mat B, void *ctx)
   Problem           *p = (Problem *)ctx;
   const PetscScalar *u;
   PetscScalar        v[4];
-  const PetscInt     idx[2] = {0, 1};
 
   PetscFunctionBeginUser;
   p->nj++;
@@ -167,9 +164,7 @@ PetscErrorCode RHSJacobian(TS ts, PetscReal t, Vec U, Mat A, Mat B, void *ctx)
   v[2] = 0;
   v[3] = -2 * u[1];
   PetscCall(VecRestoreArrayRead(U, &u));
-  PetscCall(MatSetValues(B, 2, idx, 2, idx, v, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+  PetscCall(turgor_test::SetDenseMatrix(B, 2, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -236,13 +231,9 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   PetscFunctionBeginUser;
   p.nf = p.nj  = 0;
   p.interp_err = 0;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &U));
-  PetscCall(VecDuplicate(U, &p.X));
   p.Initial(u0);
-  PetscCall(VecSetValue(U, 0, u0[0], INSERT_VALUES));
-  PetscCall(VecSetValue(U, 1, u0[1], INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(U));
-  PetscCall(VecAssemblyEnd(U));
+  PetscCall(turgor_test::CreateSeqVec(2, u0, &U));
+  PetscCall(VecDuplicate(U, &p.X));
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetApplicationContext(ts, &p));
@@ -418,12 +409,8 @@ PetscErrorCode CheckRollBack()
   PetscReal t, u0[2], d2, d3;
   PetscInt  jac_before, jac_after;
   PetscFunctionBeginUser;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &U));
   p.Initial(u0);
-  PetscCall(VecSetValue(U, 0, u0[0], INSERT_VALUES));
-  PetscCall(VecSetValue(U, 1, u0[1], INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(U));
-  PetscCall(VecAssemblyEnd(U));
+  PetscCall(turgor_test::CreateSeqVec(2, u0, &U));
   PetscCall(VecDuplicate(U, &U2));
   PetscCall(VecDuplicate(U, &U3));
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 2, 2, 2, NULL, &J));

@@ -11,6 +11,7 @@ static const char help[] = "Accuracy of the radauiia TS type against SciPy's Rad
                            "Options: -acc_problem hires|vdp -acc_rtol r [-acc_atol a]: one run, printed, nothing checked (any -ts_ option applies);\n"
                            "-acc_check false: the tables of (a) without the checks; -acc_trace: t and U after every step.\n";
 #include "test_util.h"
+#include "ode_util.h"
 #include <turgor/ts/radau_iia.h>
 #include <cmath>
 #include <cstdio>
@@ -108,20 +109,16 @@ void HiresJac(const PetscScalar *y, PetscScalar *J)
   a(7, 5, -280 * y[7]), a(7, 6, 1.81), a(7, 7, -280 * y[5]);
 }
 
-/* Van der Pol, mu = 1e3, scaled as in examples/van_der_pol.cpp: y1' = y2, y2' = ((1 - y1^2) y2 - y1) / eps */
+/* Van der Pol, mu = 1e3, scaled as in examples/van_der_pol.cpp (eps = 1/mu^2) */
 const PetscReal kEps = 1e-6;
 void            VdpF(const PetscScalar *y, PetscScalar *f)
 {
-  f[0] = y[1];
-  f[1] = ((1 - y[0] * y[0]) * y[1] - y[0]) / kEps;
+  turgor_test::VanDerPol(kEps, y, f);
 }
 
 void VdpJac(const PetscScalar *y, PetscScalar *J)
 {
-  J[0] = 0;
-  J[1] = 1;
-  J[2] = (-2 * y[0] * y[1] - 1) / kEps;
-  J[3] = (1 - y[0] * y[0]) / kEps;
+  turgor_test::VanDerPolJacobian(kEps, y, J);
 }
 
 Ode Hires()
@@ -180,20 +177,15 @@ PetscErrorCode IJacobian(TS ts, PetscReal t, Vec U, Vec Udot, PetscReal shift, M
   Ode                     *p = (Ode *)ctx;
   const PetscScalar       *u;
   std::vector<PetscScalar> J(p->n * p->n);
-  std::vector<PetscInt>    idx(p->n);
 
   PetscFunctionBeginUser;
   p->nj++;
   PetscCall(VecGetArrayRead(U, &u));
   p->jac(u, J.data());
   PetscCall(VecRestoreArrayRead(U, &u));
-  for (PetscInt i = 0; i < p->n; i++) {
-    idx[i] = i;
+  for (PetscInt i = 0; i < p->n; i++)
     for (PetscInt j = 0; j < p->n; j++) J[i * p->n + j] = (i == j ? shift : 0) - J[i * p->n + j];
-  }
-  PetscCall(MatSetValues(B, p->n, idx.data(), p->n, idx.data(), J.data(), INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+  PetscCall(turgor_test::SetDenseMatrix(B, p->n, J.data()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -268,11 +260,8 @@ PetscErrorCode Run(Ode &p, PetscReal rtol, PetscReal atol, Result *res, const Ru
   p.nf = p.nj   = 0;
   p.sample_err  = 0;
   p.next_sample = 0;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, p.n, &U));
+  PetscCall(turgor_test::CreateSeqVec(p.n, p.y0.data(), &U));
   PetscCall(VecDuplicate(U, &p.X));
-  for (PetscInt i = 0; i < p.n; i++) PetscCall(VecSetValue(U, i, p.y0[i], INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(U));
-  PetscCall(VecAssemblyEnd(U));
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, p.n, p.n, p.n, NULL, &J));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetType(ts, TSRADAUIIA));

@@ -4,6 +4,7 @@ static const char help[] = "Bonet-Lok correction of the SPH velocity gradient (T
                            "3. a closed cell spinning rigidly keeps its angular momentum over one revolution\n"
                            "   (velocity Verlet) with the correction, and loses it without (>= 100x more drift).\n";
 #include "test_util.h"
+#include "fine_run_util.h"
 #include <turgor/physics/sph_fluid.h>
 
 using namespace turgor;
@@ -61,13 +62,11 @@ static PetscErrorCode LinearField(PetscBool correction, PetscReal *err_grad, Pet
    returns |L(T) - L(0)| / |L(0)|. */
 static PetscErrorCode SpinningCell(PetscBool correction, PetscReal *drift)
 {
-  SquareGridSpec spec;
-  Tissue         T;
-  FineRun        run(PETSC_COMM_SELF);
-  auto           sph = std::make_unique<SPHFluid>();
+  Tissue  T;
+  FineRun run(PETSC_COMM_SELF);
+  auto    sph = std::make_unique<SPHFluid>();
   PetscFunctionBeginUser;
-  spec.cells_x = spec.cells_y = 1;
-  PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &T));
+  PetscCall(turgor_test::SquareGridTissue(1, &T));
   turgor_test::Random rnd(9);
   const PetscReal     omega = 2 * PETSC_PI / 10.0, c = 12.5;
   T.V.resize(T.X.size());
@@ -84,13 +83,9 @@ static PetscErrorCode SpinningCell(PetscBool correction, PetscReal *drift)
   sph->correction     = correction;
   run.Physics().names = {"springs", "repulsion"};
   run.Physics().Add(std::move(sph));
-  run.Spec().clamp               = {"none"};
-  run.Spec().dt                  = 1e-3;
-  run.Output().dir               = "test_sph_correction_out";
-  run.Output().samples           = 1;
-  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
-  run.Output().snapshots         = 0;
-  run.Output().progress_interval = 0;
+  run.Spec().clamp = {"none"};
+  run.Spec().dt    = 1e-3;
+  turgor_test::QuietOutput(run, "test_sph_correction_out");
   PetscCall(run.SetFromOptions());
   run.SetTissue(T);
   PetscCall(TSSetType(run.GetTS(), TSBASICSYMPLECTIC));

@@ -8,6 +8,7 @@ static const char help[] = "Undamped chain of wall springs with clamped ends:\n"
                            "   and at a step's start the previous step's state to round-off.\n";
 #include <turgor/ts/velocity_verlet.h>
 #include "test_util.h"
+#include "fine_run_util.h"
 #include <turgor/physics/wall_springs.h>
 
 using namespace turgor;
@@ -46,7 +47,6 @@ static PetscErrorCode RunChain(TSType ts_type, PetscReal dt, PetscInt steps, boo
   Tissue   T;
   FineRun *own = new FineRun(PETSC_COMM_SELF), &run = *own; /* *keep takes it (the caller inspects the TS), else deleted */
   auto     springs = std::make_unique<WallSprings>();
-  TSAdapt  adapt;
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < N + 2; i++) T.AddParticle(i * l0, 0, m, KIND_WALL);
   for (PetscInt i = 0; i + 1 < N + 2; i++) T.AddSpring(i, i + 1);
@@ -57,20 +57,13 @@ static PetscErrorCode RunChain(TSType ts_type, PetscReal dt, PetscInt steps, boo
   springs->damping_ratio = 0;
   run.Physics().names    = {}; /* no listed terms: the springs below only */
   run.Physics().Add(std::move(springs));
-  run.Spec().clamp               = {"left", "right"};
-  run.Spec().dt                  = dt;
-  run.Output().dir               = "test_spring_chain_out";
-  run.Output().samples           = 1;
-  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
-  run.Output().snapshots         = 0;
-  run.Output().progress_interval = 0;
+  run.Spec().clamp = {"left", "right"};
+  run.Spec().dt    = dt;
+  turgor_test::QuietOutput(run, "test_spring_chain_out");
   PetscCall(run.SetFromOptions());
   run.SetTissue(T);
   PetscCall(TSSetType(run.GetTS(), ts_type));
-  PetscCall(TSSetMaxSteps(run.GetTS(), steps));
-  PetscCall(TSSetMaxTime(run.GetTS(), 1e6));
-  PetscCall(TSGetAdapt(run.GetTS(), &adapt));
-  PetscCall(TSAdaptSetType(adapt, TSADAPTNONE));
+  PetscCall(turgor_test::FixedSteps(run.GetTS(), steps));
   PetscCall(run.SetUp());
   PetscCall(TSMonitorSet(run.GetTS(), Record, rec, NULL));
   PetscCall(run.Solve());

@@ -3,6 +3,7 @@ static const char help[] = "A single closed square cell reaches a turgid equilib
                            "a half cell is carried by the two walls it cuts). The cell has one spring per side, so it stays\n"
                            "square; p = c_s^2 rho of the interior fluid (more than 4h from the walls), from the SPH density.\n";
 #include "test_util.h"
+#include "fine_run_util.h"
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
 
@@ -19,12 +20,8 @@ static PetscErrorCode LaplaceRatio(const Tissue &cell, PetscReal h, PetscReal *r
   fluid->viscosity        = 5;
   run.Physics().names     = {"springs", "repulsion"};
   run.Physics().Add(std::move(fluid));
-  run.Spec().clamp               = {"none"};
-  run.Output().dir               = "test_turgid_cell_out";
-  run.Output().samples           = 1;
-  run.Output().overwrite         = true; /* its own directory, reused by every run of the test */
-  run.Output().snapshots         = 0;
-  run.Output().progress_interval = 0;
+  run.Spec().clamp = {"none"};
+  turgor_test::QuietOutput(run, "test_turgid_cell_out");
   PetscCall(run.SetFromOptions());
   run.SetTissue(cell);
   PetscCall(TSSetMaxTime(run.GetTS(), 50));
