@@ -5,7 +5,8 @@ static const char help[] = "The repulsion is smooth across the joints of bent wa
                            "- the force on every particle is minus the gradient of the energy (central differences) at\n"
                            "  and across joints bent by 0 to 60 degrees, with and without the angle factor, around\n"
                            "  walls of long and of short springs (both wedges of a spring at once, the extension's tip);\n"
-                           "- linear and angular momentum are conserved there, with damping and the angle factor.\n";
+                           "- linear and angular momentum are conserved there, with damping and the angle factor, and the\n"
+                           "  virial is that of the forces.\n";
 #include "test_util.h"
 #include <turgor/physics/repulsion.h>
 
@@ -186,13 +187,14 @@ static PetscErrorCode GradientAndMomenta(const char *name, PetscInt n, PetscReal
     TG_CHECK(fmax > 0, "%s: no force at all", name);
     TG_CHECK(err <= 1e-7 * fmax, "%s, angle factor %s: forces are not the gradient of the energy (%.3e)", name, angle ? "on" : "off", (double)(err / fmax));
   }
-  PetscReal Pr = 0, Lr = 0;
+  PetscReal Pr = 0, Lr = 0, Vr = 0;
   {
     ForceModel model;
     PetscCall(RepulsionModel(T, {PETSC_TRUE, PETSC_TRUE, -1}, &model));
     std::vector<PetscReal> v(2 * np), f(2 * np);
     for (PetscReal &vk : v) vk = rnd();
-    PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), NULL));
+    PetscReal W[4] = {0, 0, 0, 0}, Wf[4] = {0, 0, 0, 0}, Ws = 0;
+    PetscCall(model.ComputeForces(T.X.data(), v.data(), f.data(), W));
     PetscReal P[2] = {0, 0}, L = 0, Ps = 0, Ls = 0;
     for (PetscInt i = 0; i < np; i++) {
       const PetscReal *xi = &T.X[2 * i], *fi = &f[2 * i];
@@ -201,14 +203,21 @@ static PetscErrorCode GradientAndMomenta(const char *name, PetscInt n, PetscReal
       L += xi[0] * fi[1] - xi[1] * fi[0];
       Ps += std::hypot(fi[0], fi[1]);
       Ls += std::hypot(xi[0], xi[1]) * std::hypot(fi[0], fi[1]);
+      for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) Wf[2 * a + b] -= fi[a] * xi[b];
     }
+    /* the virial the term reports (its interactions' -sum f (x) x, built from relative positions) is
+       that of the forces it applied: the weight's gradient and the extensions' tips included */
+    for (int k = 0; k < 4; k++) Ws = PetscMax(Ws, std::fabs(W[k] - Wf[k]));
+    Vr = Ws / Ls;
+    TG_CHECK(Vr <= 1e-13, "%s: the virial is not -sum f (x) x of the forces (%.3e)", name, (double)Vr);
     Pr = std::hypot(P[0], P[1]) / Ps;
     Lr = std::fabs(L) / Ls;
     TG_CHECK(Pr <= 1e-14, "%s: linear momentum not conserved (%.3e)", name, (double)Pr);
     TG_CHECK(Lr <= 1e-14, "%s: angular momentum not conserved (%.3e)", name, (double)Lr);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-44s max |f + dE/dx| / max |f| = %.2e, |sum f|/sum|f| = %.1e, |sum x x f|/sum |x||f| = %.1e\n", name, (double)worst,
-                        (double)Pr, (double)Lr));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%-44s max |f + dE/dx| / max |f| = %.2e, |sum f|/sum|f| = %.1e, |sum x x f|/sum |x||f| = %.1e, virial %.1e\n", name,
+                        (double)worst, (double)Pr, (double)Lr, (double)Vr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -51,10 +51,9 @@ PetscErrorCode Repulsion::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   const size_t ns = P.springs.size();
   PetscFunctionBeginUser;
-  sin_blend_ = std::sin(joint_blend * PETSC_PI / 180.0);
-  extension_ = Extension();
-  constants_ = {cutoff * cutoff, sin_blend_, sin_blend_ * sin_blend_, extension_};
-  nb.RequestParticleSpringPairs(cutoff + extension_);
+  const PetscReal sb = std::sin(joint_blend * PETSC_PI / 180.0);
+  derived_           = {cutoff * cutoff, sb, sb * sb, Extension()};
+  nb.RequestParticleSpringPairs(cutoff + derived_.extension);
   seg_.resize(ns);
   joint_.resize(2 * ns);
   joined_.assign(ns, 0);
@@ -116,7 +115,7 @@ inline bool Repulsion::Pair(const ForceInput &in, const PointSegmentList &L, siz
   const PetscReal *px = in.images->x[L.Image(q)]; /* the spring's image near p */
   const PetscReal  wx = x[2 * p] - x[2 * i1] - px[0], wy = x[2 * p + 1] - x[2 * i1 + 1] - px[1];
   const unsigned   joined = joined_[s];
-  const Constants &c      = constants_;
+  const Derived   &c      = derived_;
   PetscReal        lo = 0, hi = 1, w0 = 1, w1 = 1;
   unsigned         blend = 0;
   /* the joints first: a particle on the other spring's side is rejected at once. Outside the
@@ -180,7 +179,7 @@ void Repulsion::BlendForces(const ForceInput &in, PetscInt p, PetscInt s, int e,
   const PetscReal ux = lax * a.inv_L, uy = lay * a.inv_L, vx = lbx * b.inv_L, vy = lby * b.inv_L;
   const PetscReal gx = ux - vx, gy = uy - vy, gn = std::sqrt(gx * gx + gy * gy);
   const PetscReal nx = a.nx[e], ny = a.ny[e];
-  const PetscReal rho2 = q[0] * q[0] + q[1] * q[1], rho = std::sqrt(rho2), xi = q[0] * nx + q[1] * ny, c = 1.0 / (rho * sin_blend_);
+  const PetscReal rho2 = q[0] * q[0] + q[1] * q[1], rho = std::sqrt(rho2), xi = q[0] * nx + q[1] * ny, c = 1.0 / (rho * derived_.sin_blend);
   /* dz/dq = (n - (xi/rho^2) q) / (rho sin beta) */
   const PetscReal fpx = coef * c * (nx - xi / rho2 * q[0]), fpy = coef * c * (ny - xi / rho2 * q[1]);
   /* dz/dg = (q - xi n) / (|g| rho sin beta), g = u - u', du/da = (I - u u^T)/La, du'/da' = (I - u' u'^T)/Lb */
@@ -215,16 +214,16 @@ void Repulsion::TipReaction(const ForceInput &in, PetscInt s, int e, PetscReal f
 {
   const Segment  &sg = seg_[s];
   const PetscInt  J = e ? in.P->springs[s].j : in.P->springs[s].i, A = e ? in.P->springs[s].i : in.P->springs[s].j;
-  const PetscReal ux = (e ? -sg.tx : sg.tx) * sg.inv_L, uy = (e ? -sg.ty : sg.ty) * sg.inv_L, uF = ux * fx + uy * fy, k = extension_ * sg.inv_L;
+  const PetscReal ux = (e ? -sg.tx : sg.tx) * sg.inv_L, uy = (e ? -sg.ty : sg.ty) * sg.inv_L, uF = ux * fx + uy * fy, k = derived_.extension * sg.inv_L;
   f[2 * J] -= fx + k * (fx - uF * ux);
   f[2 * J + 1] -= fy + k * (fy - uF * uy);
   f[2 * A] += k * (fx - uF * ux);
   f[2 * A + 1] += k * (fy - uF * uy);
   if (virial) {
-    virial[0] += extension_ * uF * ux * ux;
-    virial[1] += extension_ * uF * ux * uy;
-    virial[2] += extension_ * uF * uy * ux;
-    virial[3] += extension_ * uF * uy * uy;
+    virial[0] += derived_.extension * uF * ux * ux;
+    virial[1] += derived_.extension * uF * ux * uy;
+    virial[2] += derived_.extension * uF * uy * ux;
+    virial[3] += derived_.extension * uF * uy * uy;
   }
 }
 

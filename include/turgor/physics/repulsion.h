@@ -66,10 +66,9 @@ private:
   std::vector<PetscInt>      joint_;               /* [2 s + e] the joined spring end (Spring::joint), fixed */
   std::vector<unsigned char> joined_;              /* [s] bit e: end e is joined to another spring */
   std::vector<PetscReal>     damping_coefficient_; /* 2 sqrt(6 lambda m_p) per particle */
-  PetscReal                  sin_blend_ = 0, extension_ = 0;
-  struct Constants { /* what Pair reads, in one place */
+  struct Derived {                                 /* from the options, in SetUp: x0^2, sin(beta), sin^2(beta), Extension() */
     PetscReal cutoff2, sin_blend, sin_blend2, extension;
-  } constants_ = {0, 0, 0, 0};
+  } derived_ = {0, 0, 0, 0};
 };
 
 } // namespace turgor
