@@ -35,8 +35,8 @@ set(HCHECK ${CMAKE_CURRENT_SOURCE_DIR}/compare_runs.py)
 turgor_hard_run(fine_stiff_walls fine_stiff_walls)
 turgor_hard_run(fine_stiff_walls_verlet fine_stiff_walls ${VERLET})
 turgor_hard_run_np2(fine_stiff_walls_np2 fine_stiff_walls)
-turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 5e-4)
-turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tiprel hard/fine_stiff_walls_np2 hard/fine_stiff_walls 2e-8)
+turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 1e-5)
+turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tip hard/fine_stiff_walls_np2 hard/fine_stiff_walls 1e-10)
 turgor_long(hard_fine_stiff_walls hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks)
 # 500x load: DOPRI and Verlet agree
 turgor_hard_run(fine_large_load fine_large_load)
@@ -63,11 +63,11 @@ turgor_long(hard_fine_long_time hard_fine_long_time_settles)
 foreach(case loss_of_turgor flaccid)
   turgor_hard_run(fine_${case} fine_${case})
   turgor_hard_run(fine_${case}_tight fine_${case} -ts_rtol 1e-6 -ts_atol 1e-6)
-  turgor_hard_check(fine_${case}_converged "hard_fine_${case};hard_fine_${case}_tight" ${HCHECK} tiprel hard/fine_${case} hard/fine_${case}_tight 5e-4)
+  turgor_hard_check(fine_${case}_converged "hard_fine_${case};hard_fine_${case}_tight" ${HCHECK} tiprel hard/fine_${case} hard/fine_${case}_tight 2e-4)
 endforeach()
 # walls without springs: the tissue falls freely
 turgor_hard_run(fine_zero_stiffness_walls fine_zero_stiffness_walls)
-turgor_hard_check(fine_zero_stiffness_walls_fall hard_fine_zero_stiffness_walls ${HCHECK} freefall hard/fine_zero_stiffness_walls 0.2 0.6)
+turgor_hard_check(fine_zero_stiffness_walls_fall hard_fine_zero_stiffness_walls ${HCHECK} freefall hard/fine_zero_stiffness_walls 0.2 1e-4)
 
 # --- rve
 # shear to 500%: a wall is crossed near F12 = 0.9 (named, failed summary), on 1 and 2 ranks

@@ -4,11 +4,14 @@
    except the springs it is an end point of; the reaction -F is split c, 1-c over the spring's end
    points, so linear and angular momentum are preserved exactly (F is parallel to x - x^).
 
-   Each wall pushes once: where two springs continue one straight wall (Spring::joint), a particle
-   belongs to one of them only, the one on its side of the bisector of the joint, so that the force
-   near a straight wall does not depend on how many springs it is cut into. Walls that meet at a
-   corner push independently (docs/model.md). */
+   Each wall pushes once, smoothly: where two springs continue one wall (Spring::joint), each
+   counts for a particle with a weight that goes from 1 on its side of the joint's bisector to 0 on
+   the other, smoothly across a wedge of half-angle beta around the bisector, and it reaches into
+   that wedge as the straight continuation of itself. A straight wall then pushes exactly as one
+   line, however it is cut into springs, and the force is continuously differentiable across the
+   joints of bent walls. Walls that meet at a corner push independently (docs/model.md). */
 #include <turgor/physics/force_term.h>
+#include <cmath>
 #include <vector>
 
 namespace turgor {
@@ -18,10 +21,12 @@ public:
   const char    *Name() const override { return "repulsion"; }
   PetscErrorCode SetFromOptions(MPI_Comm comm, const TermContext &ctx) override;
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
-  PetscReal      Reach(const ParticleSet &P) const override { return cutoff; }
+  /* a spring reaches x0 beyond its joints' extensions (see Extension()) */
+  PetscReal      Reach(const ParticleSet &P) const override { return cutoff + Extension(); }
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
-  /* Energy lambda (r^-5/5 + r/x0^6 - 6/(5 x0^5)) per pair that counts; the force is its gradient
-     wherever the angle factor is 1 (closest point inside the spring) or when the angle factor is off. */
+  /* Energy sum over pairs of w lambda (r^-5/5 + r/x0^6 - 6/(5 x0^5)), w the pair's joint weight;
+     the force is its gradient (joint weights included) wherever the angle factor is 1 (everywhere
+     but beyond a free end of a wall) or when the angle factor is off. */
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   PetscErrorCode View(PetscViewer viewer) const override;
@@ -31,24 +36,39 @@ public:
   PetscBool angle_factor  = PETSC_TRUE;
   PetscBool damping       = PETSC_TRUE;
   PetscBool damping_taper = PETSC_TRUE; /* damping x (1 - (r/x0)^6): zero at the cutoff */
+  PetscReal joint_blend   = 10.0;       /* beta [degrees]: half-angle of the wedge around a joint's bisector where its two springs share a particle */
 
 private:
-  struct Segment {                   /* 64 B; the image shifts of x2 are read from PeriodicImages (issue 13: 32 B a spring less) */
+  struct Segment {                   /* 64 B */
     PetscReal tx, ty, inv_L2, inv_L; /* x2 - x1 and its inverse squared length and length */
-    PetscReal gx[2], gy[2];          /* at end i (0) and j (1): u - u', u' the joined spring's outward
-                                        direction (0 where the wall ends): p counts iff (p - x_end) . g > 0 */
+    PetscReal nx[2], ny[2];          /* at end i (0) and j (1) if joined: the unit normal of the joint's bisector, into this spring's side */
   };
   struct PairGeometry {
+    PetscReal wx, wy;        /* x - x1 */
     PetscReal dx, dy, t, r2; /* d = x - x^, x^ = x1 + t (x2 - x1), r2 = |d|^2 */
+    PetscReal weight;        /* the product of the joint weights of both ends */
+    PetscReal we[2], z[2];   /* each end's weight, and its wedge coordinate where it blends (blend bit e) */
+    unsigned  blend;         /* bit e: end e's weight is inside the wedge (0 < w < 1) */
+    int       clamp;         /* -1: x^ is an end point of a free end (angle factor), 0: not clamped, 1: the tip of a joint's extension */
   };
+  /* How far a spring continues itself beyond a joint: x0 tan(beta), so that on a straight wall every
+     particle a spring shares with its neighbour is pushed from the common line. */
+  PetscReal   Extension() const { return cutoff * std::tan(joint_blend * PETSC_PI / 180.0); }
   void        Segments(const ForceInput &in);
   inline bool Pair(const ForceInput &in, const PointSegmentList &L, size_t q, PairGeometry &g) const;
+  void        BlendForces(const ForceInput &in, PetscInt p, PetscInt s, int e, const PetscReal q[2], PetscReal coef, PetscReal *f, PetscReal *virial) const;
+  void        TipReaction(const ForceInput &in, PetscInt s, int e, PetscReal fx, PetscReal fy, PetscReal *f, PetscReal *virial) const PETSC_ATTRIBUTE_COLD;
+  PetscInt    WeightGradientForces(const ForceInput &in, PetscInt p, PetscInt s, const PairGeometry &g, PetscReal *f,
+                                   PetscReal *virial) const PETSC_ATTRIBUTE_COLD;
   template <bool VIRIAL>
   PetscErrorCode             Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   std::vector<Segment>       seg_;                 /* per spring, refreshed each evaluation */
   std::vector<PetscInt>      joint_;               /* [2 s + e] the joined spring end (Spring::joint), fixed */
-  std::vector<unsigned char> ties_;                /* [s] bit e: end e takes a particle exactly on the bisector */
+  std::vector<unsigned char> joined_;              /* [s] bit e: end e is joined to another spring */
   std::vector<PetscReal>     damping_coefficient_; /* 2 sqrt(6 lambda m_p) per particle */
+  struct Derived {                                 /* from the options, in SetUp: x0^2, sin(beta), sin^2(beta), Extension() */
+    PetscReal cutoff2, sin_blend, sin_blend2, extension;
+  } derived_ = {0, 0, 0, 0};
 };
 
 } // namespace turgor
