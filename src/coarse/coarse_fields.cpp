@@ -1,4 +1,5 @@
 #include <turgor/coarse/coarse_fields.h>
+#include <turgor/core/geometry.h>
 #include <petscviewerhdf5.h>
 #include <hdf5.h>
 
@@ -24,14 +25,10 @@ static PetscErrorCode GatherToZero(MPI_Comm comm, const std::vector<PetscReal> &
    x + u (x: 2 per vertex; u: 3 per vertex, or NULL). */
 static PetscReal QuadArea(const PetscInt *cell, const std::vector<PetscReal> &x, const PetscReal *u)
 {
-  PetscReal a = 0;
-  for (int k = 0; k < 4; k++) {
-    const PetscInt  i = cell[k], j = cell[(k + 1) % 4];
-    const PetscReal xi = x[2 * i] + (u ? u[3 * i] : 0), yi = x[2 * i + 1] + (u ? u[3 * i + 1] : 0);
-    const PetscReal xj = x[2 * j] + (u ? u[3 * j] : 0), yj = x[2 * j + 1] + (u ? u[3 * j + 1] : 0);
-    a += xi * yj - xj * yi;
-  }
-  return 0.5 * a;
+  return PolygonSignedArea(4, [&](size_t k) {
+    const PetscInt i = cell[k];
+    return Point2{x[2 * i] + (u ? u[3 * i] : 0), x[2 * i + 1] + (u ? u[3 * i + 1] : 0)};
+  });
 }
 
 PetscErrorCode CoarseFieldsWriter::WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs)

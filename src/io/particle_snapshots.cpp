@@ -1,5 +1,5 @@
 #include <turgor/io/particle_snapshots.h>
-#include <turgor/tissue/tissue.h>
+#include <turgor/core/geometry.h>
 #include <algorithm>
 #include <cmath>
 #include <petscdmswarm.h>

@@ -1,4 +1,5 @@
 #include <turgor/particles/neighbour_search.h>
+#include <turgor/core/geometry.h>
 #include <algorithm>
 #include <cmath>
 
@@ -99,17 +100,6 @@ void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, Pet
   bin_items_.resize(P.n);
   std::vector<PetscInt> fill(bin_start_.begin(), bin_start_.end() - 1);
   for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[BinOf(x, k)]++] = k;
-}
-
-/* Squared distance from point p to segment [a, b]. */
-static inline PetscReal PointSegmentDistance2(const PetscReal *p, const PetscReal *a, const PetscReal *b)
-{
-  const PetscReal tx = b[0] - a[0], ty = b[1] - a[1], wx = p[0] - a[0], wy = p[1] - a[1];
-  const PetscReal L2 = tx * tx + ty * ty;
-  PetscReal       c  = L2 > 0 ? (wx * tx + wy * ty) / L2 : 0;
-  c                  = std::min((PetscReal)1, std::max((PetscReal)0, c));
-  const PetscReal dx = wx - c * tx, dy = wy - c * ty;
-  return dx * dx + dy * dy;
 }
 
 /* Empty the lists but keep their storage: a rebuild of about the same size then allocates nothing

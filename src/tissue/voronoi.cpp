@@ -17,25 +17,17 @@ namespace turgor {
 
 PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm)
 {
-  PetscReal b[5] = {box[0], box[1], box[2], box[3], 0};
-  PetscInt  nb   = 5;
-  PetscBool set;
+  BoxOption b(box);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Voronoi / Laguerre tissue (-tissue_type voronoi; µm)", "turgor");
   PetscCall(PetscOptionsInt("-voronoi_cells", "Cells (seeds)", "VoronoiSpec", cells, &cells, NULL));
-  PetscCall(PetscOptionsRealArray("-box", "Box xmin,ymin,xmax,ymax [µm] (default 0,0,400,400)", "VoronoiSpec", b, &nb, &set));
+  PetscCall(PetscOptionsRealArray("-box", "Box xmin,ymin,xmax,ymax [µm] (default 0,0,400,400)", "VoronoiSpec", b.value, &b.n, &b.set));
   PetscCall(PetscOptionsInt("-seed", "Seed of the random seeds (same seed: same tissue, bit for bit)", "VoronoiSpec", seed, &seed, NULL));
   PetscCall(PetscOptionsInt("-lloyd_steps", "Lloyd relaxations: each seed moved to its cell's centroid", "VoronoiSpec", lloyd_steps, &lloyd_steps, NULL));
   PetscCall(PetscOptionsReal("-size_cv", "Coefficient of variation of the cell areas, 0 <= c <= 0.5 (Laguerre weights; 0: Voronoi)", "VoronoiSpec", size_cv,
                              &size_cv, NULL));
   PetscOptionsEnd();
-  PetscCall(CheckNotEmpty(comm, "-tissue_box", "four values xmin,ymin,xmax,ymax"));
-  PetscCheck(!set || nb == 4, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_box needs four values xmin,ymin,xmax,ymax (got %s%" PetscInt_FMT ")",
-             nb > 4 ? "more than " : "", nb > 4 ? (PetscInt)4 : nb);
-  for (int d = 0; d < 4; d++) box[d] = b[d];
-  PetscCheck(std::isfinite(box[0]) && std::isfinite(box[1]) && std::isfinite(box[2]) && std::isfinite(box[3]) && box[2] > box[0] && box[3] > box[1], comm,
-             PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_box = %g,%g,%g,%g: must be finite with xmax > xmin and ymax > ymin", (double)box[0], (double)box[1],
-             (double)box[2], (double)box[3]);
+  PetscCall(b.Take(comm, "-tissue_box", BoxShape::HasArea, box, NULL));
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_voronoi_cells = %" PetscInt_FMT ": must be >= 1", cells);
   PetscCheck(lloyd_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_lloyd_steps = %" PetscInt_FMT ": must be >= 0", lloyd_steps);
   /* the areas are drawn uniform in [1 - sqrt(3) c, 1 + sqrt(3) c] (arithmetic only, see above);
