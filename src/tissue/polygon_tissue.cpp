@@ -4,6 +4,8 @@
 #include <turgor/tissue/polygon_tissue.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 
 namespace turgor {
 
@@ -30,6 +32,26 @@ PetscErrorCode PolygonTissueSpec::SetFromOptions(MPI_Comm comm, bool subdivide)
              "Option -tissue_bar_length = %g: must be finite and > 0 (or 0: one bar per polygon edge)", (double)bar_length);
   PetscCall(plates.SetFromOptions(comm));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::string PolygonTissueSpec::BarLengthOption(bool subdivide) const
+{
+  if (!subdivide || !(bar_length > 0)) return "";
+  std::ostringstream s;
+  s << " -tissue_bar_length " << bar_length;
+  return s.str();
+}
+
+std::string PolygonTissueSpec::Description(bool subdivide) const
+{
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "bar radius %g µm, node mass %g ng", (double)bar_radius, (double)node_mass);
+  std::string s = buf;
+  if (subdivide) {
+    std::snprintf(buf, sizeof buf, ", bar length %g µm", (double)bar_length);
+    s += buf;
+  }
+  return s;
 }
 
 PetscReal BarsPerEdge(PetscReal L, PetscReal h)

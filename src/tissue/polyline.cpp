@@ -54,14 +54,6 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PolylineGenerator::SetFromOptions(MPI_Comm comm)
-{
-  PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, false));
-  PetscCall(spec.SetFromOptions(comm));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode PolylineGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
 {
   PetscFunctionBeginUser;
@@ -78,9 +70,8 @@ std::string PolylineGenerator::SizeOptions() const
 PetscErrorCode PolylineGenerator::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue polyline: %" PetscInt_FMT " nodes from (%g, %g) to (%g, %g), bar radius %g µm, node mass %g ng\n",
-                                   spec.nodes, (double)spec.start[0], (double)spec.start[1], (double)spec.end[0], (double)spec.end[1], (double)poly.bar_radius,
-                                   (double)poly.node_mass));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue polyline: %" PetscInt_FMT " nodes from (%g, %g) to (%g, %g), %s\n", spec.nodes, (double)spec.start[0],
+                                   (double)spec.start[1], (double)spec.end[0], (double)spec.end[1], PolygonDescription().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

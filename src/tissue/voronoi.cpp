@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <sstream>
 
 namespace turgor {
 
@@ -379,14 +378,6 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode VoronoiGenerator::SetFromOptions(MPI_Comm comm)
-{
-  PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, true));
-  PetscCall(spec.SetFromOptions(comm));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* Six corners per cell, plus the subdivision of the perimeters: a hexagon of area a has perimeter
    3.72 sqrt(a), so N cells about 3.8 sqrt(A N) in all. */
 PetscErrorCode VoronoiGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
@@ -400,10 +391,7 @@ PetscErrorCode VoronoiGenerator::Estimate(PetscReal *particles, PetscReal *sprin
 
 std::string VoronoiGenerator::SizeOptions() const
 {
-  std::ostringstream s;
-  s << "-tissue_voronoi_cells " << spec.cells;
-  if (poly.bar_length > 0) s << " -tissue_bar_length " << poly.bar_length;
-  return s.str();
+  return "-tissue_voronoi_cells " + std::to_string((long long)spec.cells) + BarLengthOption();
 }
 
 PetscErrorCode VoronoiGenerator::View(PetscViewer viewer) const
@@ -411,9 +399,9 @@ PetscErrorCode VoronoiGenerator::View(PetscViewer viewer) const
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "tissue voronoi: %" PetscInt_FMT " cells in [%g, %g] x [%g, %g], seed %" PetscInt_FMT ", %" PetscInt_FMT
-                                   " Lloyd steps, size cv %g, bar radius %g µm, bar length %g µm, node mass %g ng\n",
+                                   " Lloyd steps, size cv %g, %s\n",
                                    spec.cells, (double)spec.box[0], (double)spec.box[2], (double)spec.box[1], (double)spec.box[3], spec.seed, spec.lloyd_steps,
-                                   (double)spec.size_cv, (double)poly.bar_radius, (double)poly.bar_length, (double)poly.node_mass));
+                                   (double)spec.size_cv, PolygonDescription().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -5,7 +5,9 @@
 #include <turgor/core/geometry.h>
 #include <turgor/tissue/plates.h>
 #include <turgor/tissue/tissue.h>
+#include <turgor/tissue/tissue_generator.h>
 #include <cstddef>
+#include <string>
 
 namespace turgor {
 
@@ -21,6 +23,10 @@ struct PolygonTissueSpec {
   /* `subdivide`: the generator honours -tissue_bar_length (the polyline, whose node count is given,
      leaves it unread so that a stray one is reported as unused). */
   PetscErrorCode SetFromOptions(MPI_Comm comm, bool subdivide);
+  /* For messages: " -tissue_bar_length h" where the edges are cut into bars (else ""), and "bar
+     radius r µm, node mass m ng[, bar length h µm]". */
+  std::string BarLengthOption(bool subdivide) const;
+  std::string Description(bool subdivide) const;
 };
 
 /* A cell before it becomes nodes: its corner points in order (closed rings counter-clockwise). */
@@ -41,5 +47,29 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h);
    ParticleSet::polygons/node_polygon/bar_radius, Tissue::cell_walls and named_cells; then
    Tissue::Finalize(). */
 void BuildPolygonTissue(const std::vector<PolygonRing> &rings, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue);
+
+/* What the polygonal generators (node_file, voronoi, polyline) share: their own Spec and the
+   PolygonTissueSpec, read in that order (the shared options first), and the shared spec's part of
+   their messages. `Subdivides`: the generator cuts polygon edges into bars of -tissue_bar_length
+   (the polyline, whose node count is given, does not: the option is then left unread, so that a
+   stray one is reported as unused). */
+template <class Spec, bool Subdivides = true>
+class PolygonGenerator : public TissueGenerator {
+public:
+  PetscErrorCode SetFromOptions(MPI_Comm comm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(poly.SetFromOptions(comm, Subdivides));
+    PetscCall(spec.SetFromOptions(comm));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  Spec              spec;
+  PolygonTissueSpec poly;
+
+protected:
+  std::string BarLengthOption() const { return poly.BarLengthOption(Subdivides); }
+  std::string PolygonDescription() const { return poly.Description(Subdivides); }
+};
 
 } // namespace turgor

@@ -1,7 +1,6 @@
 #pragma once
 /* -tissue_type polyline: one open chain of nodes and bars on a straight segment (a beam, a wall). */
 #include <turgor/tissue/polygon_tissue.h>
-#include <turgor/tissue/tissue_generator.h>
 
 namespace turgor {
 
@@ -18,17 +17,13 @@ struct PolylineSpec {
 /* N equally spaced nodes from start to end, N - 1 bars, one open PolygonCell. */
 PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue);
 
-class PolylineGenerator : public TissueGenerator {
+class PolylineGenerator : public PolygonGenerator<PolylineSpec, false> {
 public:
   const char    *Name() const override { return "polyline"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm) override;
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GeneratePolylineTissue(comm, spec, poly, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;
   PetscErrorCode View(PetscViewer viewer) const override;
-
-  PolylineSpec      spec;
-  PolygonTissueSpec poly;
 };
 
 } // namespace turgor
