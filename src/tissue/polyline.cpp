@@ -1,4 +1,4 @@
-/* -tissue_type polyline: one open chain (issue 10's cantilever: 101 nodes 0.01 apart). */
+/* -tissue_type polyline: one open chain (by default the L-hyphen model's cantilever: 101 nodes 0.01 apart). */
 #include <turgor/tissue/polyline.h>
 #include <turgor/core/options.h>
 #include <cmath>

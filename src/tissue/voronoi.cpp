@@ -1,4 +1,4 @@
-/* -tissue_type voronoi: Voronoi / Laguerre cells in a box (issue 10), reproducible from -tissue_seed.
+/* -tissue_type voronoi: Voronoi / Laguerre cells in a box, reproducible from -tissue_seed.
 
    Every cell is built on its own: the box, clipped by the power bisector of each nearby seed (a
    convex polygon stays convex under clipping, so the construction cannot tangle), nearby seeds

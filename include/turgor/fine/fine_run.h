@@ -95,7 +95,7 @@ protected:
   /* The tissue's reference positions and initial velocities are read only at set-up (the initial
      state, the swarm, the controls' groups, a restart's PrimeReferences): released once the state
      holds them (a restart: after its checkpoint is read), before the set-up's first force
-     evaluation, 32 B a particle off the peak (issue 13's memory per particle). */
+     evaluation: 32 B a particle off the peak memory. */
   PetscErrorCode AfterSetUp() override
   {
     ReleaseReferences();

@@ -33,7 +33,7 @@ public:
   PetscBool damping_taper = PETSC_TRUE; /* damping x (1 - (r/x0)^6): zero at the cutoff */
 
 private:
-  struct Segment {                   /* 64 B; the image shifts of x2 are read from PeriodicImages (issue 13: 32 B a spring less) */
+  struct Segment {                   /* 64 B; the image shifts of x2 are read from PeriodicImages (32 B a spring less than stored) */
     PetscReal tx, ty, inv_L2, inv_L; /* x2 - x1 and its inverse squared length and length */
     PetscReal gx[2], gy[2];          /* at end i (0) and j (1): u - u', u' the joined spring's outward
                                         direction (0 where the wall ends): p counts iff (p - x_end) . g > 0 */

@@ -1,7 +1,7 @@
 #pragma once
-/* -tissue_type node_file: polygonal cells read from a node file in the format of the L-hyphen code
-   (issue 10): one node per line "x y cellId", a cell's nodes listed together, in order around its
-   polygon. Blank lines and lines starting with '#' are skipped. */
+/* -tissue_type node_file: polygonal cells read from a node file in the format of the L-hyphen code:
+   one node per line "x y cellId", a cell's nodes listed together, in order around its polygon.
+   Blank lines and lines starting with '#' are skipped. */
 #include <turgor/tissue/polygon_tissue.h>
 #include <string>
 

@@ -5,7 +5,7 @@
 namespace turgor {
 
 /* Options -tissue_polyline_start x,y, -tissue_polyline_end x,y, -tissue_polyline_nodes N (prefix
-   tissue_polyline_). The default is the cantilever chain of issue 10: 101 nodes 0.01 apart. */
+   tissue_polyline_). The default is the L-hyphen model's cantilever chain: 101 nodes 0.01 apart. */
 struct PolylineSpec {
   PetscReal start[2] = {0, 0};
   PetscReal end[2]   = {1, 0};
