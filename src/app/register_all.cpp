@@ -1,6 +1,6 @@
 /* TurgorRegisterAll(): every pluggable part of turgor, one line each -- TS types, physics terms,
    (later) materials, tissue generators and run modes. */
-#include <turgor/core/register_all.h>
+#include <turgor/app/register_all.h>
 #include <turgor/analysis/eigen_run.h>
 #include <turgor/coarse/fe2_run.h>
 #include <turgor/coarse/fe2_static_run.h>
