@@ -11,7 +11,7 @@
 #include <turgor/core/state_blob.h>
 #include <turgor/io/output.h>
 #include <turgor/io/time_sampler.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <petscts.h>
 #include <memory>
 #include <string>

@@ -3,7 +3,7 @@
    rigid rotation, or hold; options path_*), writing sigma, rho, D^e, D^v and iteration counts per
    step to rve.csv and a summary.json. The material is chosen by -material (the RVE by default). */
 #include <turgor/material/material_pool.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <turgor/io/output.h>
 
 namespace turgor {

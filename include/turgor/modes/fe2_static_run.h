@@ -15,7 +15,7 @@
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/io/output.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <petscsnes.h>
 
 namespace turgor {

@@ -1,4 +1,4 @@
-#include <turgor/analysis/eigen_run.h>
+#include <turgor/modes/eigen_run.h>
 #include <turgor/analysis/explicit_stability.h>
 #include <turgor/coarse/coarse_snapshot_reader.h>
 #include <turgor/core/errors.h>

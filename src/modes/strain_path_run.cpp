@@ -1,4 +1,4 @@
-#include <turgor/material/strain_path_run.h>
+#include <turgor/modes/strain_path_run.h>
 #include <cmath>
 #include <fstream>
 

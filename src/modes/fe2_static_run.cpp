@@ -1,6 +1,6 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/log.h>
-#include <turgor/coarse/fe2_static_run.h>
+#include <turgor/modes/fe2_static_run.h>
 #include <cmath>
 
 namespace turgor {

@@ -22,9 +22,9 @@
 #include <turgor/analysis/damped_modes.h>
 #include <turgor/analysis/pencil_eigensolver.h>
 #include <turgor/coarse/coarse_fields.h>
-#include <turgor/coarse/fe2_static_run.h>
+#include <turgor/modes/fe2_static_run.h>
 #include <turgor/io/output.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <memory>
 
 namespace turgor {
