@@ -5,7 +5,7 @@ static const char help[] = "RVE benchmark: wall time of a cold RVE solve, a warm
                            "options as for turgor).\n\n"
                            "  bench_rve [-cells 1,4] [-repeats 5]\n";
 
-#include <turgor/core/register_all.h>
+#include <turgor/app/register_all.h>
 #include <turgor/rve/rve.h>
 
 using namespace turgor;

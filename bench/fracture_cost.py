@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What the fracture answer costs (issue 11): the glued traction scene (config/voronoi_traction.yaml,
+"""What the fracture answer costs: the glued traction scene (config/voronoi_traction.yaml,
 by default on 64 cells, 200 x 200 µm) pulled apart at several loading speeds (same step rule) and
 with several time steps (-fine_dt_safety, same speed). Per run: the raw and smoothed peak of the top
 grip's force, the fracture energy dissipated by the glue, the bonds broken and their interface

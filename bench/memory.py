@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Memory per particle of a fine run: the slope of the largest rank's maximum resident set between
-two sizes of the bending bar (issue 13's target: below 400 B a particle per rank, halo included).
+two sizes of the bending bar (the target: below 400 B a particle per rank, halo included).
 
 Each case runs `-ts_max_steps 5` (the set-up and the run's steady state: the lists, the integrator's
 work vectors) under `/usr/bin/time -f %M` on every rank; the particles of the largest rank are

@@ -4,7 +4,7 @@
 patch compressed with the same edge speed (0.1 µm/µs) so that its nodes see the same motion, and
 run for the same 400 steps (after 40 of warm-up), so that every size is timed over the same
 physical history (neighbour rebuilds and contacts per node alike). Prints ns of CPU per node-step
-per size and the spread about the median (issue 10 asks for flat within 25%).
+per size and the spread about the median (the target: flat within 25%).
 
   bench/node_cost_flatness.py [--bench build/bench/bench_polygon_forces] [--repeats 3]
 """

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Scaling studies of turgor (issue 13): strong and weak scaling of the fine and FE^2 modes.
+"""Scaling studies of turgor: strong and weak scaling of the fine and FE^2 modes.
 
 Strong scaling: the same tissue on every rank count of --ranks. Weak scaling: the tissue grows with
 the ranks so that the work per rank stays fixed: at R ranks the base size (--size, else the

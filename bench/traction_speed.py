@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed of a polygonal-tissue scene (default: the 400-cell glued traction scene of issue 11):
+"""Speed of a polygonal-tissue scene (default: the 400-cell glued traction scene):
 turgor runs it for a fixed number of steps with -log_view, and this prints node-steps per second
 (solve stage only, and the whole process) and the cost of each force term in ns per node-step,
 from the -log_view events Tg_<term>. Compare with the L-hyphen seed code's 1.05e7 node-steps/s on

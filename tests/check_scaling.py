@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks bench/scaling.py (the scaling-study driver, issue 13). Each check works in WORKDIR (in the
+"""Checks bench/scaling.py (the scaling-study driver). Each check works in WORKDIR (in the
 build tree), which it empties first.
 
   check_scaling.py collect SCALING_PY WORKDIR

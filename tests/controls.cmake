@@ -1,4 +1,4 @@
-# Load controls (-controls, -control_<name>_*) and the fine driver's polygon outputs (issue 10, part C).
+# Load controls (-controls, -control_<name>_*) and the fine driver's polygon outputs.
 turgor_test_program(test_controls)
 turgor_add_test(test_controls COMMAND test_controls LABELS unit fine)
 

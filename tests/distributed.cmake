@@ -1,4 +1,4 @@
-# Distributed fine runs (issue 13; labels fine mpi): every particle on the rank of its cell, a halo
+# Distributed fine runs (labels fine mpi): every particle on the rank of its cell, a halo
 # exchanged before each evaluation, every interaction computed once. The same scene on 1, 2 and 3
 # ranks (oversubscribed on CI's 2 cores) must give the same tip history to 1e-10 of its largest
 # value; only the order of the force sums differs.

@@ -1,4 +1,4 @@
-# -mode eigen (src/analysis/eigen_run.cpp) and the stability monitors (-fe2_eigen_monitor,
+# -mode eigen (src/modes/eigen_run.cpp) and the stability monitors (-fe2_eigen_monitor,
 # -fe2_static_eigen_monitor): label eigen. Each run is checked against a closed form (Timoshenko's
 # beam, Greenhill's column), a second method (the FE^2 run's measured period and DOPRI steps, dense
 # LAPACK in test_eigen) or another run (1 vs 2 ranks, snapshot vs relaxed state, monitor vs mode).

@@ -1,4 +1,4 @@
-# -mode fe2_static (src/coarse/fe2_static_run.cpp): static equilibrium of the coarse model with load
+# -mode fe2_static (src/modes/fe2_static_run.cpp): static equilibrium of the coarse model with load
 # stepping, both quadrature rules (-coarse_quadrature sri|full).
 #
 # The cantilever (config/cantilever_static.yaml) at a small load, 16 x 4 elements, against an

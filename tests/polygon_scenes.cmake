@@ -1,4 +1,4 @@
-# The polygonal-tissue scenes of issue 10 (config/polygon_*.yaml, config/voronoi_compression.yaml),
+# The polygonal-tissue scenes (config/polygon_*.yaml, config/voronoi_compression.yaml),
 # each run by a test against a closed form, a balance law or a second method.
 set(CANT -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_cantilever.yaml -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
 set(CANT_CHECK ${CMAKE_CURRENT_SOURCE_DIR}/check_cantilever.py)

@@ -1,7 +1,7 @@
 #pragma once
-/* Polygonal tissues built by hand for the polygon force tests and benchmark (part A's generators
-   are separate): cells of nodes and bars in a Tissue, with ParticleSet::polygons, node_polygon and
-   bar_radius filled as the generators fill them. */
+/* Polygonal tissues built by hand for the polygon force tests and benchmark (the generators of
+   src/tissue/ are separate): cells of nodes and bars in a Tissue, with ParticleSet::polygons,
+   node_polygon and bar_radius filled as the generators fill them. */
 #include <turgor/turgor.hpp>
 #include <turgor/physics/force_model.h>
 #include <array>

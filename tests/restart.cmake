@@ -1,4 +1,4 @@
-# Checkpoint and restart of fine and FE^2 runs (issue 13; label restart): a run of 2T in one go, and the same
+# Checkpoint and restart of fine and FE^2 runs (label restart): a run of 2T in one go, and the same
 # run stopped after some steps (-ts_max_steps) with its end-of-run checkpoint, then continued with
 # -restart in the same output directory, end bit for bit the same: tip.csv (and the other time
 # series) byte for byte, without duplicated rows, and the same final_state_hash (FNV-1a of the final

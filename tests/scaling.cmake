@@ -1,4 +1,4 @@
-# The scaling-study driver bench/scaling.py (issue 13, docs/scaling.md "Running a scaling study"),
+# The scaling-study driver bench/scaling.py (docs/scaling.md "Running a scaling study"),
 # checked by tests/check_scaling.py: --collect on a fabricated study (CSV columns, best of repeats,
 # strong and weak efficiencies, missing summary keys), --slurm job scripts and their collection, and
 # a real strong and weak study of the fine mode on 1 and 2 ranks (4 x 4 cells, 5 steps, seconds;

@@ -8,6 +8,7 @@
    state with the run that was not stopped. */
 #include <turgor/turgor.hpp>
 #include <turgor/core/errors.h>
+#include <turgor/modes/run_mode.h>
 #include <turgor/physics/force_term.h>
 #include <cmath>
 

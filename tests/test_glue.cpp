@@ -1,4 +1,4 @@
-static const char help[] = "Glue bonds between polygonal cells (issue 11), driven kinematically (positions prescribed, no integrator):\n"
+static const char help[] = "Glue bonds between polygonal cells, driven kinematically (positions prescribed, no integrator):\n"
                            "1. two squares 2 r apart with 1, 3 and 7 bars per side: every node of the shared faces is bonded, the length\n"
                            "   shares sum to the face length (1e-12) and none is zero;\n"
                            "2. forces = -dE/dx by central differences, zero total force and torque, on a sheared and opened pair;\n"

@@ -1,4 +1,4 @@
-static const char help[] = "METIS cell partition (issue 13): the cell graph of a square grid and of a Voronoi tissue, edge cut against the bound of a "
+static const char help[] = "METIS cell partition: the cell graph of a square grid and of a Voronoi tissue, edge cut against the bound of a "
                            "square split, balance, connected parts, reproducibility, refusals.\n"
                            "  -grid N            cells per side of the square grid (default 64)\n"
                            "  -parts P           parts (default 4)\n"

@@ -218,7 +218,7 @@ static PetscErrorCode TestPressurisedNgon()
     PetscCall(M.ComputeAcceleration(x.data(), v.data(), a.data())); /* viscosity with the half-step velocity */
     for (size_t q = 0; q < x.size(); q++) v[q] += 0.5 * dt * a[q];
   }
-  const PetscReal Asim = PolygonCellArea(T.particles.polygons[0], x.data());
+  const PetscReal Asim = PolygonArea(T.particles.polygons[0].nodes, x.data());
   PetscReal       lmin = PETSC_MAX_REAL, lmax = 0;
   for (PetscInt q = 0; q < N; q++) {
     const PetscInt  i = q, j = (q + 1) % N;

@@ -1,4 +1,4 @@
-static const char help[] = "Polygonal tissues (issue 10 part A): Voronoi/Laguerre tiling, shrinking, reproducibility, Lloyd, size cv; node-file round trip "
+static const char help[] = "Polygonal tissues: Voronoi/Laguerre tiling, shrinking, reproducibility, Lloyd, size cv; node-file round trip "
                            "and errors; polyline.\n";
 #include "test_util.h"
 #include <algorithm>

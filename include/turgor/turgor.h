@@ -11,7 +11,7 @@
 
    examples/c_api.c is a complete C program. */
 #include <petscts.h>
-#include <turgor/core/register_all.h>  /* TurgorRegisterAll() */
+#include <turgor/app/register_all.h>   /* TurgorRegisterAll() */
 #include <turgor/ts/ts_register.h>     /* TurgorTSRegisterAll() */
 #include <turgor/ts/radau_iia.h>       /* TSRADAUIIA, TSRadauIIA*() */
 #include <turgor/ts/adams_moulton.h>   /* TSAM, TSAM*() */

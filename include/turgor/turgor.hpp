@@ -9,7 +9,7 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/parallel/cell_partition.h>
 #include <turgor/particles/particles.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <turgor/tissue/node_file.h>
 #include <turgor/tissue/polygon_tissue.h>
 #include <turgor/tissue/polyline.h>

@@ -20,6 +20,7 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
 
 #include <turgor/turgor.hpp>
 #include <turgor/core/errors.h>
+#include <turgor/modes/run_mode.h>
 #include <turgor/core/yaml_check.h>
 
 int main(int argc, char **argv)

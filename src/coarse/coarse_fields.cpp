@@ -1,4 +1,6 @@
 #include <turgor/coarse/coarse_fields.h>
+#include <turgor/core/geometry.h>
+#include <turgor/io/xdmf.h>
 #include <petscviewerhdf5.h>
 #include <hdf5.h>
 
@@ -24,14 +26,10 @@ static PetscErrorCode GatherToZero(MPI_Comm comm, const std::vector<PetscReal> &
    x + u (x: 2 per vertex; u: 3 per vertex, or NULL). */
 static PetscReal QuadArea(const PetscInt *cell, const std::vector<PetscReal> &x, const PetscReal *u)
 {
-  PetscReal a = 0;
-  for (int k = 0; k < 4; k++) {
-    const PetscInt  i = cell[k], j = cell[(k + 1) % 4];
-    const PetscReal xi = x[2 * i] + (u ? u[3 * i] : 0), yi = x[2 * i + 1] + (u ? u[3 * i + 1] : 0);
-    const PetscReal xj = x[2 * j] + (u ? u[3 * j] : 0), yj = x[2 * j + 1] + (u ? u[3 * j + 1] : 0);
-    a += xi * yj - xj * yi;
-  }
-  return 0.5 * a;
+  return PolygonSignedArea(4, [&](size_t k) {
+    const PetscInt i = cell[k];
+    return Point2{x[2 * i] + (u ? u[3 * i] : 0), x[2 * i + 1] + (u ? u[3 * i + 1] : 0)};
+  });
 }
 
 PetscErrorCode CoarseFieldsWriter::WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs)
@@ -212,62 +210,43 @@ PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal ti
 }
 
 /* The XDMF (2.0, read by ParaView's Xdmf3 readers and by its legacy XDMF reader): per snapshot the
-   quadrilaterals on the reference vertices with the vertex and element fields. Units are
-   <Information> elements: the unit system on the Domain, Name="unit" on the geometry and each
-   attribute. The stress is a 9-component Tensor, not a Tensor6: the two readers order a Tensor6's
-   six values differently (the legacy reader as xx xy xz yy yz zz, the Xdmf3 readers pass them on
-   as VTK's xx yy zz xy yz xz), a full tensor means the same to both. */
+   quadrilaterals on the reference vertices with the vertex and element fields (io/xdmf.h). The
+   stress is a 9-component Tensor, not a Tensor6: the two readers order a Tensor6's six values
+   differently (the legacy reader as xx xy xz yy yz zz, the Xdmf3 readers pass them on as VTK's
+   xx yy zz xy yz xz), a full tensor means the same to both. */
 PetscErrorCode CoarseFieldsWriter::WriteXdmf()
 {
-  FILE *fp;
-  PetscFunctionBeginUser;
+  XdmfWriter      xdmf;
   const long long NV = n_vertices_, NC = n_cells_;
-  const char     *h5 = h5name_.c_str();
-  PetscCall(PetscFOpen(comm_, xmfpath_.c_str(), "w", &fp));
-  PetscCall(PetscFPrintf(comm_, fp,
-                         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
-                         "  <Information Name=\"units\" Value=\"length µm, time µs, mass ng; velocity µm/µs, force µN, 2D stress N/m, 2D density ng/µm²\"/>\n"
-                         "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
-                         grid_.c_str()));
+  struct Attribute {
+    std::string name, type, center, unit;
+    long long   n, ncomp;
+  };
+  std::vector<Attribute> attrs = {
+    {"displacement", "Vector", "Node", "µm",      NV, 3},
+    {"velocity",     "Vector", "Node", "µm/µs",  NV, 3},
+    {"stress",       "Tensor", "Cell", "N/m",      NC, 9},
+    {"stress_xx",    "Scalar", "Cell", "N/m",      NC, 1},
+    {"stress_yy",    "Scalar", "Cell", "N/m",      NC, 1},
+    {"stress_xy",    "Scalar", "Cell", "N/m",      NC, 1},
+    {"density",      "Scalar", "Cell", "ng/µm²", NC, 1}
+  };
+  if (acoustic_) attrs.push_back({"acoustic_min_det", "Scalar", "Cell", "(N/m)²", NC, 1});
+  for (const Field &f : extra_) attrs.push_back({f.name, "Vector", "Node", f.unit, NV, 3});
+  PetscFunctionBeginUser;
+  PetscCall(xdmf.Open(comm_, xmfpath_, h5name_, "length µm, time µs, mass ng; velocity µm/µs, force µN, 2D stress N/m, 2D density ng/µm²"));
+  PetscCall(xdmf.BeginCollection(grid_));
   for (size_t k = 0; k < times_.size(); k++) {
-    PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grid_.c_str(), k, (double)times_[k]));
-    PetscCall(PetscFPrintf(comm_, fp,
-                           "    <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 4\" NumberType=\"Int\" "
-                           "Precision=\"%d\" Format=\"HDF\">%s:/mesh/cells</DataItem>\n    </Topology>\n",
-                           NC, NC, (int)sizeof(PetscInt), h5));
-    PetscCall(PetscFPrintf(comm_, fp,
-                           "    <Geometry GeometryType=\"XY\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 2\" "
-                           "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/mesh/vertices</DataItem>\n    </Geometry>\n",
-                           NV, h5));
-    struct Attribute {
-      std::string name, type, center, unit;
-      long long   n, ncomp;
-    };
-    std::vector<Attribute> attrs = {
-      {"displacement", "Vector", "Node", "µm",      NV, 3},
-      {"velocity",     "Vector", "Node", "µm/µs",  NV, 3},
-      {"stress",       "Tensor", "Cell", "N/m",      NC, 9},
-      {"stress_xx",    "Scalar", "Cell", "N/m",      NC, 1},
-      {"stress_yy",    "Scalar", "Cell", "N/m",      NC, 1},
-      {"stress_xy",    "Scalar", "Cell", "N/m",      NC, 1},
-      {"density",      "Scalar", "Cell", "ng/µm²", NC, 1}
-    };
-    if (acoustic_) attrs.push_back({"acoustic_min_det", "Scalar", "Cell", "(N/m)²", NC, 1});
-    for (const Field &f : extra_) attrs.push_back({f.name, "Vector", "Node", f.unit, NV, 3});
-    for (const auto &a : attrs) {
-      char dims[64];
-      if (a.ncomp > 1) PetscCall(PetscSNPrintf(dims, sizeof dims, "%lld %lld", a.n, a.ncomp));
-      else PetscCall(PetscSNPrintf(dims, sizeof dims, "%lld", a.n));
-      PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
-                             "     <DataItem Dimensions=\"%s\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    "
-                             "</Attribute>\n",
-                             a.name.c_str(), a.type.c_str(), a.center.c_str(), a.unit.c_str(), dims, h5, k, a.name.c_str()));
-    }
-    PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+    PetscCall(xdmf.BeginGrid(grid_, k, times_[k]));
+    PetscCall(xdmf.Topology("Quadrilateral", NC, 0, {XdmfDims(NC, 4), true, "/mesh/cells"}));
+    PetscCall(xdmf.Geometry("XY", "µm", {XdmfDims(NV, 2), false, "/mesh/vertices"}));
+    for (const Attribute &a : attrs)
+      PetscCall(xdmf.Attribute(a.name, a.type.c_str(), a.center.c_str(), "unit", a.unit,
+                               {XdmfDims(a.n, a.ncomp > 1 ? a.ncomp : 0), false, XdmfSnapshotPath(k, a.name)}));
+    PetscCall(xdmf.EndGrid());
   }
-  PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n </Domain>\n</Xdmf>\n"));
-  PetscCall(PetscFClose(comm_, fp));
+  PetscCall(xdmf.EndCollection());
+  PetscCall(xdmf.Close());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -59,21 +59,21 @@ static PetscErrorCode CountValues(const std::string &name, PetscInt *count)
 static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool help_only, ControlGroup *g, ParameterList *params)
 {
   const std::string pre = "-control_" + name + "_";
-  PetscInt          nn = 0, nc = 0, nbox = 4, nf = 2, nv = 2, np = 5;
-  PetscBool         set_nodes = PETSC_FALSE, set_cells = PETSC_FALSE, set_plates = PETSC_FALSE, set_box = PETSC_FALSE, set_v = PETSC_FALSE, set_f = PETSC_FALSE,
-            set_ramp, set_half;
-  char *vel[3]    = {NULL, NULL, NULL};
-  char *plates[5] = {NULL, NULL, NULL, NULL, NULL};
+  PetscInt          nn = 0, nc = 0, nf = 2, nv = 2, np = 5;
+  PetscBool         set_nodes = PETSC_FALSE, set_cells = PETSC_FALSE, set_plates = PETSC_FALSE, set_v = PETSC_FALSE, set_f = PETSC_FALSE, set_ramp, set_half;
+  char             *vel[3]    = {NULL, NULL, NULL};
+  char             *plates[5] = {NULL, NULL, NULL, NULL, NULL};
   /* In the order of ControlProfile, read as a PetscInt (PETSc 3.18's PetscEnum holds only 0 and 1). */
   const char *const profiles[] = {"step", "ramp", "cyclic"};
   PetscInt          profile    = (PetscInt)g->profile;
-  PetscReal         box[5] = {0, 0, 0, 0, 0}, force[3] = {0, 0, 0};
+  PetscReal         force[3]   = {0, 0, 0};
+  BoxOption         box(g->box);
   PetscFunctionBeginUser;
   PetscCall(CountValues(pre + "nodes", &nn));
   PetscCall(CountValues(pre + "cells", &nc));
   std::vector<PetscInt> nodes(nn + 1), cells(nc + 1);
   nn++, nc++;
-  nv = 3, nf = 3, nbox = 5;
+  nv = 3, nf = 3;
   PetscOptionsBegin(comm, ("control_" + name + "_").c_str(), ("Load control group '" + name + "'").c_str(), "turgor");
   PetscCall(TurgorOptionsIntArray(params, "-nodes", "Particle ids of the group", "Controls", nodes.data(), &nn, &set_nodes));
   PetscCall(TurgorOptionsIntArray(params, "-cells", "Cells whose nodes (polygon nodes, or the square grid's wall particles) join the group", "Controls",
@@ -81,7 +81,7 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   PetscCall(TurgorOptionsStringArray(params, "-plates", "Plates (-tissue_plates) whose nodes join the group: any of bottom,right,top,left", "Controls", plates,
                                      &np, &set_plates));
   PetscCall(TurgorOptionsRealArray(params, "-box", "xmin,ymin,xmax,ymax: wall particles whose reference position is inside join the group [µm]", "Controls",
-                                   box, &nbox, &set_box));
+                                   box.value, &box.n, &box.set));
   PetscCall(TurgorOptionsStringArray(params, "-velocity", "vx,vy imposed velocity [µm/µs]; a component may be 'free'", "Controls", vel, &nv, &set_v));
   PetscCall(TurgorOptionsRealArray(params, "-force", "fx,fy total force on the group [µN], shared by mass", "Controls", force, &nf, &set_f));
   PetscCall(TurgorOptionsEList(params, "-profile", "Time profile: step (constant), ramp (0 to full over -ramp_time), cyclic (sign reverses every -half_period)",
@@ -97,7 +97,6 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   PetscCall(CheckNotEmpty(comm, (pre + "nodes").c_str(), "particle ids"));
   PetscCall(CheckNotEmpty(comm, (pre + "cells").c_str(), "cell ids"));
   PetscCall(CheckNotEmpty(comm, (pre + "plates").c_str(), "plates: bottom, right, top, left"));
-  PetscCall(CheckNotEmpty(comm, (pre + "box").c_str(), "xmin,ymin,xmax,ymax"));
   PetscCall(CheckNotEmpty(comm, (pre + "velocity").c_str(), "vx,vy (numbers or free)"));
   PetscCall(CheckNotEmpty(comm, (pre + "force").c_str(), "fx,fy"));
   if (set_nodes) g->node_ids.assign(nodes.begin(), nodes.begin() + nn);
@@ -110,17 +109,8 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
       PetscCall(PetscFree(plates[k]));
     }
   }
-  if (set_box) {
-    PetscCheck(nbox == 4, comm, PETSC_ERR_ARG_SIZ, "Option %sbox: %" PetscInt_FMT " values given, expected 4 (xmin,ymin,xmax,ymax)", pre.c_str(), nbox);
-    for (int k = 0; k < 4; k++)
-      PetscCheck(std::isfinite(box[k]), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %sbox = %g,%g,%g,%g: must be finite", pre.c_str(), (double)box[0],
-                 (double)box[1], (double)box[2], (double)box[3]);
-    PetscCheck(box[0] <= box[2] && box[1] <= box[3], comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %sbox = %g,%g,%g,%g: needs xmin <= xmax and ymin <= ymax",
-               pre.c_str(), (double)box[0], (double)box[1], (double)box[2], (double)box[3]);
-    g->has_box = true;
-    for (int k = 0; k < 4; k++) g->box[k] = box[k];
-  }
-  PetscCheck(set_nodes || set_cells || set_plates || set_box || !g->node_ids.empty() || !g->cells.empty() || !g->named.empty() || g->has_box, comm,
+  PetscCall(box.Take(comm, (pre + "box").c_str(), BoxShape::MayBeFlat, g->box, &g->has_box));
+  PetscCheck(set_nodes || set_cells || set_plates || box.set || !g->node_ids.empty() || !g->cells.empty() || !g->named.empty() || g->has_box, comm,
              PETSC_ERR_ARG_WRONG, "Control group '%s' selects no nodes: give %snodes, %scells, %splates or %sbox", name.c_str(), pre.c_str(), pre.c_str(),
              pre.c_str(), pre.c_str());
   PetscCheck(!(set_v && set_f), comm, PETSC_ERR_ARG_INCOMP, "Options %svelocity and %sforce: a group imposes either a velocity or a force, not both",

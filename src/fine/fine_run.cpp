@@ -846,7 +846,7 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
   js.Set("dt_initial", dt_initial_);
   js.Set("neighbour_rebuilds", rebuilds);
   {
-    /* issue 10's sizes: nodes are the wall particles, bars the springs */
+    /* a polygonal tissue's sizes: nodes are the wall particles, bars the springs */
     PetscInt  ncells = tissue_.particles.polygons.empty() ? tissue_.NumCells() : (PetscInt)tissue_.particles.OwnedPolygons(), steps;
     PetscReal wall   = WallTime();
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm_));

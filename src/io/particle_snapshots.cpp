@@ -1,5 +1,6 @@
 #include <turgor/io/particle_snapshots.h>
-#include <turgor/tissue/tissue.h>
+#include <turgor/io/xdmf.h>
+#include <turgor/core/geometry.h>
 #include <algorithm>
 #include <cmath>
 #include <petscdmswarm.h>
@@ -258,136 +259,65 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Pet
 
 /* The XDMF (2.0, read by ParaView's Xdmf3 readers and by its legacy XDMF reader): per snapshot a
    grid of the particles (a Polyvertex of one vertex cell per particle) and one of the wall springs
-   (a Polyline of two-point cells) through the same points. Units are <Information> elements: the
-   unit system on the Domain, Name="unit" on the geometry and each attribute. */
+   (a Polyline of two-point cells) through the same points; polygonal tissues add the cells, and
+   segment terms their segments (io/xdmf.h: the elements and their units). */
 PetscErrorCode ParticleSnapshotWriter::WriteXdmf()
 {
-  FILE *fp;
+  XdmfWriter      xdmf;
+  const long long N = n_global_, S = n_springs_, NP = n_polys_;
   PetscFunctionBeginUser;
-  const long long N = n_global_, S = n_springs_;
-  const int       ip = (int)sizeof(PetscInt);
-  const char     *h5 = h5name_.c_str();
-  PetscCall(PetscFOpen(comm_, xmfpath_.c_str(), "w", &fp));
-  PetscCall(PetscFPrintf(comm_, fp,
-                         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
-                         "  <Information Name=\"units\" Value=\"length µm, time µs, mass ng; velocity µm/µs, force µN\"/>\n"));
+  PetscCall(xdmf.Open(comm_, xmfpath_, h5name_, "length µm, time µs, mass ng; velocity µm/µs, force µN"));
   const char *grids[3] = {"particles", "walls", "cells"};
   for (int grid = 0; grid < (n_polys_ > 0 ? 3 : 2); grid++) {
-    PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", grids[grid]));
+    PetscCall(xdmf.BeginCollection(grids[grid]));
     for (size_t k = 0; k < times_.size(); k++) {
-      PetscCall(PetscFPrintf(comm_, fp, "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", grids[grid], k, (double)times_[k]));
-      if (grid == 2 && nodes_per_poly_)
-        PetscCall(
-          PetscFPrintf(comm_, fp,
-                       "    <Topology TopologyType=\"Polygon\" NumberOfElements=\"%lld\" NodesPerElement=\"%lld\">\n     <DataItem Dimensions=\"%lld %lld\" "
-                       "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/polygons</DataItem>\n    </Topology>\n",
-                       (long long)n_polys_, (long long)nodes_per_poly_, (long long)n_polys_, (long long)nodes_per_poly_, ip, h5));
-      else if (grid == 2)
-        PetscCall(PetscFPrintf(comm_, fp,
-                               "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"%lld\">\n     <DataItem Dimensions=\"%lld 1\" "
-                               "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/polygons</DataItem>\n    </Topology>\n",
-                               (long long)n_polys_, (long long)mixed_size_, ip, h5));
-      else if (grid)
-        PetscCall(PetscFPrintf(comm_, fp,
-                               "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "
-                               "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/springs</DataItem>\n    </Topology>\n",
-                               S, S, ip, h5));
-      else
-        PetscCall(
-          PetscFPrintf(comm_, fp,
-                       "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n     <DataItem Dimensions=\"%lld 1\" "
-                       "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/vertices</DataItem>\n    </Topology>\n",
-                       N, N, ip, h5));
-      PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Geometry GeometryType=\"XY\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 2\" "
-                             "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/position</DataItem>\n    </Geometry>\n",
-                             N, h5, k));
-      PetscCall(PetscFPrintf(comm_, fp,
-                             "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n     <Information Name=\"unit\" Value=\"µm/µs\"/>\n"
-                             "     <DataItem Dimensions=\"%lld 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/velocity</DataItem>\n"
-                             "    </Attribute>\n",
-                             N, h5, k));
+      auto snapshot = [k](const std::string &name, const std::string &dims) { return XdmfData{dims, false, XdmfSnapshotPath(k, name)}; };
+      PetscCall(xdmf.BeginGrid(grids[grid], k, times_[k]));
+      if (grid == 2 && nodes_per_poly_) PetscCall(xdmf.Topology("Polygon", NP, nodes_per_poly_, {XdmfDims(NP, nodes_per_poly_), true, "/static/polygons"}));
+      else if (grid == 2) PetscCall(xdmf.Topology("Mixed", NP, 0, {XdmfDims(mixed_size_, 1), true, "/static/polygons"}));
+      else if (grid) PetscCall(xdmf.Topology("Polyline", S, 2, {XdmfDims(S, 2), true, "/static/springs"}));
+      else PetscCall(xdmf.Topology("Polyvertex", N, 1, {XdmfDims(N, 1), true, "/static/vertices"}));
+      PetscCall(xdmf.Geometry("XY", "µm", snapshot("position", XdmfDims(N, 2))));
+      PetscCall(xdmf.Attribute("velocity", "Vector", "Node", "unit", "µm/µs", snapshot("velocity", XdmfDims(N, 3))));
       if (grid < 2)
-        for (const Field &f : node_meta_) { /* a scalar is written (N), a vector (N x 3) */
-          char dims[64];
-          PetscCall(f.components == 2 ? PetscSNPrintf(dims, sizeof dims, "%lld 3", N) : PetscSNPrintf(dims, sizeof dims, "%lld", N));
-          PetscCall(PetscFPrintf(comm_, fp,
-                                 "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
-                                 "     <DataItem Dimensions=\"%s\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n"
-                                 "    </Attribute>\n",
-                                 f.name.c_str(), f.components == 2 ? "Vector" : "Scalar", f.unit.c_str(), dims, h5, k, f.name.c_str()));
-        }
+        for (const Field &f : node_meta_) /* a scalar is written (N), a vector (N x 3) */
+          PetscCall(
+            xdmf.Attribute(f.name, f.components == 2 ? "Vector" : "Scalar", "Node", "unit", f.unit, snapshot(f.name, XdmfDims(N, f.components == 2 ? 3 : 0))));
       if (grid == 1)
-        for (const Field &f : bar_meta_)
-          PetscCall(PetscFPrintf(comm_, fp,
-                                 "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
-                                 "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n"
-                                 "    </Attribute>\n",
-                                 f.name.c_str(), f.unit.c_str(), S, h5, k, f.name.c_str()));
+        for (const Field &f : bar_meta_) PetscCall(xdmf.Attribute(f.name, "Scalar", "Cell", "unit", f.unit, snapshot(f.name, XdmfDims(S))));
       if (grid == 2) {
-        PetscCall(PetscFPrintf(comm_, fp,
-                               "    <Attribute Name=\"cell_id\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"values\" Value=\"index in "
-                               "the tissue's polygons\"/>\n"
-                               "     <DataItem Dimensions=\"%lld 1\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/cell_id</DataItem>\n    "
-                               "</Attribute>\n",
-                               (long long)n_polys_, ip, h5));
-        std::vector<std::pair<std::string, std::string>> reals = {
-          {"area_ratio", "1"}
-        };
-        for (size_t f = 0; f < field_names_.size(); f++) reals.push_back({field_names_[f], field_units_[f]});
-        for (auto &a : reals)
-          PetscCall(PetscFPrintf(comm_, fp,
-                                 "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
-                                 "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s</DataItem>\n    "
-                                 "</Attribute>\n",
-                                 a.first.c_str(), a.second.c_str(), (long long)n_polys_, h5, k, a.first.c_str()));
-        PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+        PetscCall(xdmf.Attribute("cell_id", "Scalar", "Cell", "values", "index in the tissue's polygons", {XdmfDims(NP, 1), true, "/static/cell_id"}));
+        PetscCall(xdmf.Attribute("area_ratio", "Scalar", "Cell", "unit", "1", snapshot("area_ratio", XdmfDims(NP))));
+        for (size_t f = 0; f < field_names_.size(); f++)
+          PetscCall(xdmf.Attribute(field_names_[f], "Scalar", "Cell", "unit", field_units_[f], snapshot(field_names_[f], XdmfDims(NP))));
+        PetscCall(xdmf.EndGrid());
         continue;
       }
-      if (grid == 1 && n_polys_ > 0)
-        PetscCall(PetscFPrintf(
-          comm_, fp,
-          "    <Attribute Name=\"bar_strain\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"1 (l / l0 - 1)\"/>\n"
-          "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/bar_strain</DataItem>\n    </Attribute>\n",
-          S, h5, k));
+      if (grid == 1 && n_polys_ > 0) PetscCall(xdmf.Attribute("bar_strain", "Scalar", "Cell", "unit", "1 (l / l0 - 1)", snapshot("bar_strain", XdmfDims(S))));
       const char *ints[3][2] = {
         {"kind",  "0 wall, 1 fluid"                                        },
         {"cell",  "tissue cell of a fluid particle, -1 for a wall particle"},
         {"fixed", "1 clamped (position and velocity held), 0 free"         }
       };
-      for (const auto &a : ints)
-        PetscCall(
-          PetscFPrintf(comm_, fp,
-                       "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n     <Information Name=\"values\" Value=\"%s\"/>\n"
-                       "     <DataItem Dimensions=\"%lld 1\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/%s</DataItem>\n    </Attribute>\n",
-                       a[0], a[1], N, ip, h5, a[0]));
-      PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+      for (const auto &a : ints) PetscCall(xdmf.Attribute(a[0], "Scalar", "Node", "values", a[1], {XdmfDims(N, 1), true, std::string("/static/") + a[0]}));
+      PetscCall(xdmf.EndGrid());
     }
-    PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n"));
+    PetscCall(xdmf.EndCollection());
   }
   for (const SegmentsMeta &m : segment_meta_) { /* line segments with their own end points (the glue bonds) */
     const long long M = m.count;
-    PetscCall(PetscFPrintf(comm_, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", m.name.c_str()));
+    PetscCall(xdmf.BeginCollection(m.name));
     for (size_t k = m.first; k < times_.size(); k++) {
-      PetscCall(PetscFPrintf(comm_, fp,
-                             "   <Grid Name=\"%s_%04zu\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n"
-                             "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"%lld\" NodesPerElement=\"2\">\n     <DataItem Dimensions=\"%lld 2\" "
-                             "NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s:/static/%s_segments</DataItem>\n    </Topology>\n"
-                             "    <Geometry GeometryType=\"XYZ\">\n     <Information Name=\"unit\" Value=\"µm\"/>\n     <DataItem Dimensions=\"%lld 3\" "
-                             "NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s_xy</DataItem>\n    </Geometry>\n",
-                             m.name.c_str(), k, (double)times_[k], M, M, ip, h5, m.name.c_str(), 2 * M, h5, k, m.name.c_str()));
+      PetscCall(xdmf.BeginGrid(m.name, k, times_[k]));
+      PetscCall(xdmf.Topology("Polyline", M, 2, {XdmfDims(M, 2), true, "/static/" + m.name + "_segments"}));
+      PetscCall(xdmf.Geometry("XYZ", "µm", {XdmfDims(2 * M, 3), false, XdmfSnapshotPath(k, m.name + "_xy")}));
       for (const Field &f : m.fields)
-        PetscCall(PetscFPrintf(comm_, fp,
-                               "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n     <Information Name=\"unit\" Value=\"%s\"/>\n"
-                               "     <DataItem Dimensions=\"%lld\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/snapshot_%04zu/%s_%s</DataItem>\n"
-                               "    </Attribute>\n",
-                               f.name.c_str(), f.unit.c_str(), M, h5, k, m.name.c_str(), f.name.c_str()));
-      PetscCall(PetscFPrintf(comm_, fp, "   </Grid>\n"));
+        PetscCall(xdmf.Attribute(f.name, "Scalar", "Cell", "unit", f.unit, {XdmfDims(M), false, XdmfSnapshotPath(k, m.name + "_" + f.name)}));
+      PetscCall(xdmf.EndGrid());
     }
-    PetscCall(PetscFPrintf(comm_, fp, "  </Grid>\n"));
+    PetscCall(xdmf.EndCollection());
   }
-  PetscCall(PetscFPrintf(comm_, fp, " </Domain>\n</Xdmf>\n"));
-  PetscCall(PetscFClose(comm_, fp));
+  PetscCall(xdmf.Close());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

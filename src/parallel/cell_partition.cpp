@@ -1,4 +1,5 @@
 #include <turgor/parallel/cell_partition.h>
+#include <turgor/core/geometry.h>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -27,15 +28,6 @@ void OwnerCells(const Tissue &tissue, std::vector<PetscInt> *owner)
     if (!P.node_polygon.empty() && P.node_polygon[i] >= 0) (*owner)[i] = P.node_polygon[i];
     if (P.kind[i] == KIND_FLUID && P.cell[i] >= 0) (*owner)[i] = P.cell[i];
   }
-}
-
-static PetscReal PointSegmentDistance(const PetscReal p[2], const PetscReal a[2], const PetscReal b[2])
-{
-  const PetscReal dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
-  PetscReal       t  = l2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 : 0;
-  t                  = std::min((PetscReal)1, std::max((PetscReal)0, t));
-  const PetscReal ex = a[0] + t * dx - p[0], ey = a[1] + t * dy - p[1];
-  return std::sqrt(ex * ex + ey * ey);
 }
 
 /* Shared wall length between cells a < b. */
@@ -113,7 +105,7 @@ static void NearbyBars(const Tissue &tissue, PairLengths *shared)
       for (PetscInt k : grid[(size_t)iy(p[1]) * gx + ix(p[0])]) { /* every bar within d of p is in p's grid cell */
         const Bar &B = bars[k];
         if (B.cell == A.cell || std::find(near.begin(), near.end(), B.cell) != near.end()) continue;
-        if (PointSegmentDistance(p, B.a, B.b) <= d) near.push_back(B.cell);
+        if (std::sqrt(PointSegmentDistance2(p, B.a, B.b)) <= d) near.push_back(B.cell);
       }
       for (PetscInt c : near) oneway[{A.cell, c}] += A.length / samples;
     }

@@ -1,4 +1,5 @@
 #include <turgor/particles/neighbour_search.h>
+#include <turgor/core/geometry.h>
 #include <algorithm>
 #include <cmath>
 
@@ -101,36 +102,28 @@ void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, Pet
   for (PetscInt k = 0; k < P.n; k++) bin_items_[fill[BinOf(x, k)]++] = k;
 }
 
-/* Squared distance from point p to segment [a, b]. */
-static inline PetscReal PointSegmentDistance2(const PetscReal *p, const PetscReal *a, const PetscReal *b)
+/* What every build starts with: count it, keep the positions it is built at, and empty the lists
+   but keep their storage (a rebuild of about the same size then allocates nothing: no old list
+   plus a growing new one at the same time); a non-finite position is an error. */
+PetscErrorCode NeighbourSearch::StartBuild(const ParticleSet &P, const PetscReal *x)
 {
-  const PetscReal tx = b[0] - a[0], ty = b[1] - a[1], wx = p[0] - a[0], wy = p[1] - a[1];
-  const PetscReal L2 = tx * tx + ty * ty;
-  PetscReal       c  = L2 > 0 ? (wx * tx + wy * ty) / L2 : 0;
-  c                  = std::min((PetscReal)1, std::max((PetscReal)0, c));
-  const PetscReal dx = wx - c * tx, dy = wy - c * ty;
-  return dx * dx + dy * dy;
-}
-
-/* Empty the lists but keep their storage: a rebuild of about the same size then allocates nothing
-   (no old list plus a growing new one at the same time). */
-void NeighbourSearch::ClearLists()
-{
+  PetscFunctionBeginUser;
+  rebuilds_++;
+  x_ref_.assign(x, x + 2 * P.n);
   fluid_pairs_.i.clear();
   fluid_pairs_.j.clear();
   particle_spring_.p.clear();
   particle_spring_.s.clear();
   particle_spring_.img.clear();
+  for (PetscInt k = 0; k < 2 * P.n; k++)
+    PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
 {
   PetscFunctionBeginUser;
-  rebuilds_++;
-  x_ref_.assign(x, x + 2 * P.n);
-  ClearLists();
-  for (PetscInt k = 0; k < 2 * P.n; k++)
-    PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+  PetscCall(StartBuild(P, x));
 
   const PetscReal rf = fluid_cutoff_ + skin_, rs = spring_cutoff_ + skin_;
   BinParticles(P, x, std::max(WantsFluidPairs() ? rf : 0, WantsParticleSpringPairs() ? rs : 0));
@@ -190,11 +183,7 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
 PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images)
 {
   PetscFunctionBeginUser;
-  rebuilds_++;
-  x_ref_.assign(x, x + 2 * P.n);
-  ClearLists();
-  for (PetscInt k = 0; k < 2 * P.n; k++)
-    PetscCheck(std::isfinite(x[k]), PETSC_COMM_SELF, PETSC_ERR_FP, "Neighbour search: particle %" PetscInt_FMT " has a non-finite position", k / 2);
+  PetscCall(StartBuild(P, x));
   if (WantsFluidPairs()) {
     const PetscReal rf = fluid_cutoff_ + skin_, rf2 = rf * rf;
     for (PetscInt i = 0; i < P.n; i++) {

@@ -1,4 +1,5 @@
 #include <turgor/physics/cell_pressure.h>
+#include <turgor/core/geometry.h>
 #include <cmath>
 
 namespace turgor {
@@ -28,17 +29,6 @@ PetscErrorCode CellPressure::SetFromOptions(MPI_Comm comm, const TermContext &ct
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscReal PolygonCellArea(const PolygonCell &c, const PetscReal *x)
-{
-  PetscReal    A = 0;
-  const size_t N = c.nodes.size();
-  for (size_t k = 0; k < N; k++) {
-    const PetscInt i = c.nodes[k], j = c.nodes[(k + 1) % N];
-    A += x[2 * i] * x[2 * j + 1] - x[2 * j] * x[2 * i + 1];
-  }
-  return 0.5 * A;
-}
-
 PetscErrorCode CellPressure::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
@@ -53,7 +43,7 @@ PetscErrorCode CellPressure::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 
 void CellPressure::SetReference(const PetscReal *X)
 {
-  for (PetscInt c : closed_) A0_[c] = PolygonCellArea(P_->polygons[c], X);
+  for (PetscInt c : closed_) A0_[c] = PolygonArea(P_->polygons[c].nodes, X);
   have_ref_ = true;
 }
 
@@ -77,7 +67,7 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
   PetscReal        w[4] = {0, 0, 0, 0};
   for (PetscInt c : closed_) {
     const PolygonCell &C = in.P->polygons[c];
-    const PetscReal    A = PolygonCellArea(C, x);
+    const PetscReal    A = PolygonArea(C.nodes, x);
     PetscCheck(law != GAS || A > 0, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Cell %" PetscInt_FMT " has area %g: the gas law needs A > 0 (inverted cell)", c,
                (double)A);
     const PetscReal hp = 0.5 * Scale(in.t) * Pressure(A, A0_[c]);
@@ -111,7 +101,7 @@ PetscErrorCode CellPressure::Energy(const ForceInput &in, PetscReal *E, PetscBoo
   if (!have_ref_) SetReference(in.x);
   *E = 0;
   for (PetscInt c : closed_) {
-    const PetscReal A = PolygonCellArea(in.P->polygons[c], in.x), A0 = A0_[c], dA = A - A0;
+    const PetscReal A = PolygonArea(in.P->polygons[c].nodes, in.x), A0 = A0_[c], dA = A - A0;
     switch (law) {
     case GAS:
       *E -= p0 * A0 * std::log(A / A0);
@@ -149,7 +139,7 @@ PetscErrorCode CellPressure::OutputFields(const ForceInput &in, std::vector<Term
   for (size_t c = 0; c < in.P->polygons.size(); c++) {
     const PolygonCell &C = in.P->polygons[c];
     if (C.open) continue;
-    F.values.push_back(C.nodes.size() >= 3 ? Scale(in.t) * Pressure(PolygonCellArea(C, in.x), A0_[c]) : 0.0);
+    F.values.push_back(C.nodes.size() >= 3 ? Scale(in.t) * Pressure(PolygonArea(C.nodes, in.x), A0_[c]) : 0.0);
   }
   fields.push_back(std::move(F));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -1,3 +1,4 @@
+#include <turgor/core/geometry.h>
 #include <turgor/core/options.h>
 #include <turgor/physics/glue.h>
 #include <algorithm>
@@ -12,10 +13,9 @@ static const char *const kLaws[] = {"energy", "strength", "softening"};
 
 PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
-  PetscInt  e      = (PetscInt)law;
-  PetscBool oc     = open_cells ? PETSC_TRUE : PETSC_FALSE, set_box;
-  PetscReal box[5] = {0, 0, 0, 0, 0};
-  PetscInt  nbox   = 5;
+  PetscInt  e  = (PetscInt)law;
+  PetscBool oc = open_cells ? PETSC_TRUE : PETSC_FALSE;
+  BoxOption unbonded(unbonded_box);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "glue_", "Glue bonds between polygonal cells, and their fracture", "turgor");
   PetscCall(TurgorOptionsEList(ctx.params, "-law",
@@ -37,17 +37,9 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
                               "The bonds are made at the first accepted state at or after this time [µs] (0: the first evaluation, the reference geometry)",
                               "Glue", start_time, &start_time, NULL));
   PetscCall(TurgorOptionsRealArray(ctx.params, "-unbonded_box", "xmin,ymin,xmax,ymax [µm]: no bond whose bond point is inside (a pre-crack or notch)", "Glue",
-                                   box, &nbox, &set_box));
+                                   unbonded.value, &unbonded.n, &unbonded.set));
   PetscOptionsEnd();
-  PetscCall(CheckNotEmpty(comm, "-glue_unbonded_box", "xmin,ymin,xmax,ymax"));
-  if (set_box) {
-    PetscCheck(nbox == 4, comm, PETSC_ERR_ARG_SIZ, "Option -glue_unbonded_box: %" PetscInt_FMT " values given, expected 4 (xmin,ymin,xmax,ymax)", nbox);
-    PetscCheck(std::isfinite(box[0]) && std::isfinite(box[1]) && std::isfinite(box[2]) && std::isfinite(box[3]) && box[0] <= box[2] && box[1] <= box[3], comm,
-               PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_unbonded_box = %g,%g,%g,%g: needs finite values with xmin <= xmax and ymin <= ymax", (double)box[0],
-               (double)box[1], (double)box[2], (double)box[3]);
-    has_unbonded_box = true;
-    for (int k = 0; k < 4; k++) unbonded_box[k] = box[k];
-  }
+  PetscCall(unbonded.Take(comm, "-glue_unbonded_box", BoxShape::MayBeFlat, unbonded_box, &has_unbonded_box));
   law        = (Law)e;
   open_cells = oc;
   PetscCheck(std::isfinite(start_time) && start_time >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_start_time = %g: must be finite and >= 0",
@@ -165,7 +157,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     if (cs < 0 || (P.polygons[cs].open && !open_cells)) continue;
     const PetscInt   a = P.springs[s].i, b = P.springs[s].j;
     const PetscReal *xa = &X[2 * a], *xb = &X[2 * b];
-    const PetscReal  ex = xb[0] - xa[0], ey = xb[1] - xa[1], L2 = ex * ex + ey * ey;
+    const PetscReal  ex = xb[0] - xa[0], ey = xb[1] - xa[1];
     const PetscInt   bx0 = std::max<PetscInt>(0, (PetscInt)std::floor((std::min(xa[0], xb[0]) - R - lo[0]) / h));
     const PetscInt   bx1 = std::min<PetscInt>(nbx - 1, (PetscInt)std::floor((std::max(xa[0], xb[0]) + R - lo[0]) / h));
     const PetscInt   by0 = std::max<PetscInt>(0, (PetscInt)std::floor((std::min(xa[1], xb[1]) - R - lo[1]) / h));
@@ -176,7 +168,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
           const PetscInt p = items[t], cp = P.node_polygon[p];
           if (cp < 0 || cp == cs || (P.polygons[cp].open && !open_cells)) continue;
           const PetscReal px = X[2 * p] - xa[0], py = X[2 * p + 1] - xa[1];
-          const PetscReal lam = std::clamp((px * ex + py * ey) / L2, (PetscReal)0, (PetscReal)1);
+          const PetscReal lam = SegmentClosestParameter(&X[2 * p], xa, xb);
           const PetscReal dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
           if (d2 > R2 || d2 == 0) continue;
           auto it = best.find({p, cs});
@@ -191,7 +183,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     B.a = P.springs[s].i, B.b = P.springs[s].j, B.lam = kv.second.lam, B.sign = 1, B.L = 0;
     if (has_unbonded_box) { /* a pre-crack: no bond whose bond point is in the box */
       const PetscReal cx = (1 - B.lam) * X[2 * B.a] + B.lam * X[2 * B.b], cy = (1 - B.lam) * X[2 * B.a + 1] + B.lam * X[2 * B.b + 1];
-      if (cx >= unbonded_box[0] && cx <= unbonded_box[2] && cy >= unbonded_box[1] && cy <= unbonded_box[3]) {
+      if (InBox(unbonded_box, cx, cy)) {
         unbonded_ += B.p < P.NumOwned();
         continue;
       }

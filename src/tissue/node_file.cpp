@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 namespace turgor {
 
@@ -152,14 +151,6 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode NodeFileGenerator::SetFromOptions(MPI_Comm comm, ParameterList *params)
-{
-  PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, true, params));
-  PetscCall(spec.SetFromOptions(comm, params));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* A streaming pass over the file (nothing stored): nodes after subdivision and bars. Malformed lines
    are skipped here; Generate reports them. */
 PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
@@ -194,18 +185,14 @@ PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *spri
 
 std::string NodeFileGenerator::SizeOptions() const
 {
-  std::ostringstream s;
-  s << "-tissue_node_file " << spec.path;
-  if (poly.bar_length > 0) s << " -tissue_bar_length " << poly.bar_length;
-  return s.str();
+  return "-tissue_node_file " + spec.path + BarLengthOption();
 }
 
 PetscErrorCode NodeFileGenerator::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue node_file: %s x %g µm, %zu open cells, bar radius %g µm, node mass %g ng, bar length %g µm\n",
-                                   spec.path.c_str(), (double)spec.length_scale, spec.open_cells.size(), (double)poly.bar_radius, (double)poly.node_mass,
-                                   (double)poly.bar_length));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue node_file: %s x %g µm, %zu open cells, %s\n", spec.path.c_str(), (double)spec.length_scale,
+                                   spec.open_cells.size(), PolygonDescription().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

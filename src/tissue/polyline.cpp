@@ -1,4 +1,4 @@
-/* -tissue_type polyline: one open chain (issue 10's cantilever: 101 nodes 0.01 apart). */
+/* -tissue_type polyline: one open chain (by default the L-hyphen model's cantilever: 101 nodes 0.01 apart). */
 #include <turgor/tissue/polyline.h>
 #include <turgor/core/options.h>
 #include <cmath>
@@ -54,14 +54,6 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PolylineGenerator::SetFromOptions(MPI_Comm comm, ParameterList *params)
-{
-  PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, false, params));
-  PetscCall(spec.SetFromOptions(comm, params));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode PolylineGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
 {
   PetscFunctionBeginUser;
@@ -78,9 +70,8 @@ std::string PolylineGenerator::SizeOptions() const
 PetscErrorCode PolylineGenerator::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue polyline: %" PetscInt_FMT " nodes from (%g, %g) to (%g, %g), bar radius %g µm, node mass %g ng\n",
-                                   spec.nodes, (double)spec.start[0], (double)spec.start[1], (double)spec.end[0], (double)spec.end[1], (double)poly.bar_radius,
-                                   (double)poly.node_mass));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "tissue polyline: %" PetscInt_FMT " nodes from (%g, %g) to (%g, %g), %s\n", spec.nodes, (double)spec.start[0],
+                                   (double)spec.start[1], (double)spec.end[0], (double)spec.end[1], PolygonDescription().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -7,17 +7,47 @@
 
 namespace turgor {
 
+namespace {
+
+/* What both grids take from the spec: nx x ny cells of s springs per side (lattice spacing dl),
+   each with a k x k lattice of fluid particles of mass mf. */
+struct GridLattice {
+  PetscInt  nx, ny, s, k;
+  PetscReal dl, mf;
+};
+
+PetscErrorCode GetGridLattice(MPI_Comm comm, const SquareGridSpec &spec, GridLattice *L)
+{
+  PetscFunctionBeginUser;
+  L->nx = spec.cells_x;
+  L->ny = spec.cells_y;
+  L->s  = spec.springs_per_side;
+  L->dl = spec.cell_size / (PetscReal)L->s;
+  L->k  = (PetscInt)std::lround(std::sqrt((double)spec.fluid_per_cell));
+  L->mf = spec.FluidParticleMass();
+  PetscCheck(spec.fluid_per_cell == 0 || L->mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)", (double)L->mf);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The fluid of cell (cx, cy): its k x k lattice, row by row. */
+void AddCellFluid(const SquareGridSpec &spec, const GridLattice &L, PetscInt cx, PetscInt cy, Tissue &T)
+{
+  for (PetscInt j = 0; j < L.k; j++)
+    for (PetscInt i = 0; i < L.k; i++)
+      T.AddParticle((cx + (i + 0.5) / L.k) * spec.cell_size, (cy + (j + 0.5) / L.k) * spec.cell_size, L.mf, KIND_FLUID, cy * L.nx + cx);
+}
+
+} // namespace
+
 PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue)
 {
-  const PetscInt  nx = spec.cells_x, ny = spec.cells_y, s = spec.springs_per_side;
-  const PetscInt  ax = nx * s + 1, ay = ny * s + 1; /* lattice points per direction */
-  const PetscReal dl = spec.cell_size / (PetscReal)s;
-  const PetscInt  k  = (PetscInt)std::lround(std::sqrt((double)spec.fluid_per_cell));
-  const PetscReal mf = spec.FluidParticleMass();
-
+  GridLattice L;
   PetscFunctionBeginUser;
-  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)",
-             (double)mf);
+  PetscCall(GetGridLattice(comm, spec, &L));
+  const PetscInt  nx = L.nx, ny = L.ny, s = L.s, k = L.k;
+  const PetscInt  ax = nx * s + 1, ay = ny * s + 1; /* lattice points per direction */
+  const PetscReal dl      = L.dl;
   *tissue                 = Tissue();
   Tissue               &T = *tissue;
   std::vector<PetscInt> id((size_t)ax * ay, -1);
@@ -32,11 +62,10 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spe
      right column of wall points come last. */
   for (PetscInt cy = 0; cy < ny; cy++)
     for (PetscInt cx = 0; cx < nx; cx++) {
-      const PetscInt a0 = cx * s, b0 = cy * s, c = cy * nx + cx;
+      const PetscInt a0 = cx * s, b0 = cy * s;
       for (PetscInt t = 0; t < s; t++) wall(a0 + t, b0);
       for (PetscInt t = 1; t < s; t++) wall(a0, b0 + t);
-      for (PetscInt j = 0; j < k; j++)
-        for (PetscInt i = 0; i < k; i++) T.AddParticle((cx + (i + 0.5) / k) * spec.cell_size, (cy + (j + 0.5) / k) * spec.cell_size, mf, KIND_FLUID, c);
+      AddCellFluid(spec, L, cx, cy, T);
     }
   for (PetscInt a = 0; a < ax; a++) wall(a, ay - 1);
   for (PetscInt b = 0; b + 1 < ay; b++)
@@ -69,25 +98,21 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spe
 
 PetscErrorCode GeneratePeriodicSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue)
 {
-  const PetscInt  nx = spec.cells_x, ny = spec.cells_y, s = spec.springs_per_side;
-  const PetscInt  ax = nx * s, ay = ny * s; /* unique lattice points per direction */
-  const PetscReal dl = spec.cell_size / (PetscReal)s;
-  const PetscInt  k  = (PetscInt)std::lround(std::sqrt((double)spec.fluid_per_cell));
-  const PetscReal mf = spec.FluidParticleMass();
-
+  GridLattice L;
   PetscFunctionBeginUser;
-  PetscCheck(spec.fluid_per_cell == 0 || mf > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_fluid_particle_mass: fluid particle mass must be > 0 (got %g)",
-             (double)mf);
+  PetscCall(GetGridLattice(comm, spec, &L));
+  const PetscInt  nx = L.nx, ny = L.ny, s = L.s;
+  const PetscInt  ax = nx * s, ay = ny * s; /* unique lattice points per direction */
+  const PetscReal dl      = L.dl;
   *tissue                 = Tissue();
   Tissue               &T = *tissue;
   std::vector<PetscInt> id((size_t)ax * ay, -1);
   for (PetscInt cy = 0; cy < ny; cy++)
     for (PetscInt cx = 0; cx < nx; cx++) {
-      const PetscInt a0 = cx * s, b0 = cy * s, c = cy * nx + cx;
+      const PetscInt a0 = cx * s, b0 = cy * s;
       for (PetscInt t = 0; t < s; t++) id[b0 * ax + a0 + t] = T.AddParticle((a0 + t) * dl, b0 * dl, spec.wall_mass, KIND_WALL);
       for (PetscInt t = 1; t < s; t++) id[(b0 + t) * ax + a0] = T.AddParticle(a0 * dl, (b0 + t) * dl, spec.wall_mass, KIND_WALL);
-      for (PetscInt j = 0; j < k; j++)
-        for (PetscInt i = 0; i < k; i++) T.AddParticle((cx + (i + 0.5) / k) * spec.cell_size, (cy + (j + 0.5) / k) * spec.cell_size, mf, KIND_FLUID, c);
+      AddCellFluid(spec, L, cx, cy, T);
     }
   /* springs to the next lattice point, wrapping to the image across the boundary */
   for (PetscInt cy = 0; cy < ny; cy++)

@@ -125,14 +125,4 @@ PetscErrorCode Tissue::Clamp(MPI_Comm comm, const std::vector<std::string> &side
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscReal PolygonArea(const std::vector<PetscInt> &ring, const PetscReal *x)
-{
-  PetscReal a = 0;
-  for (size_t t = 0; t < ring.size(); t++) {
-    const PetscInt i = ring[t], j = ring[(t + 1) % ring.size()];
-    a += x[2 * i] * x[2 * j + 1] - x[2 * j] * x[2 * i + 1];
-  }
-  return 0.5 * a;
-}
-
 } // namespace turgor

@@ -1,4 +1,4 @@
-/* -tissue_type voronoi: Voronoi / Laguerre cells in a box (issue 10), reproducible from -tissue_seed.
+/* -tissue_type voronoi: Voronoi / Laguerre cells in a box, reproducible from -tissue_seed.
 
    Every cell is built on its own: the box, clipped by the power bisector of each nearby seed (a
    convex polygon stays convex under clipping, so the construction cannot tangle), nearby seeds
@@ -11,32 +11,23 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <sstream>
 
 namespace turgor {
 
 PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
-  PetscReal b[5] = {box[0], box[1], box[2], box[3], 0};
-  PetscInt  nb   = 5;
-  PetscBool set;
+  BoxOption b(box);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "tissue_", "Voronoi / Laguerre tissue (-tissue_type voronoi; µm)", "turgor");
   PetscCall(TurgorOptionsInt(params, "-voronoi_cells", "Cells (seeds)", "VoronoiSpec", cells, &cells, NULL));
-  PetscCall(TurgorOptionsRealArray(params, "-box", "Box xmin,ymin,xmax,ymax [µm] (default 0,0,400,400)", "VoronoiSpec", b, &nb, &set));
+  PetscCall(TurgorOptionsRealArray(params, "-box", "Box xmin,ymin,xmax,ymax [µm] (default 0,0,400,400)", "VoronoiSpec", b.value, &b.n, &b.set));
   PetscCall(TurgorOptionsInt(params, "-seed", "Seed of the random seeds (same seed: same tissue, bit for bit)", "VoronoiSpec", seed, &seed, NULL));
   PetscCall(
     TurgorOptionsInt(params, "-lloyd_steps", "Lloyd relaxations: each seed moved to its cell's centroid", "VoronoiSpec", lloyd_steps, &lloyd_steps, NULL));
   PetscCall(TurgorOptionsReal(params, "-size_cv", "Coefficient of variation of the cell areas, 0 <= c <= 0.5 (Laguerre weights; 0: Voronoi)", "VoronoiSpec",
                               size_cv, &size_cv, NULL));
   PetscOptionsEnd();
-  PetscCall(CheckNotEmpty(comm, "-tissue_box", "four values xmin,ymin,xmax,ymax"));
-  PetscCheck(!set || nb == 4, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_box needs four values xmin,ymin,xmax,ymax (got %s%" PetscInt_FMT ")",
-             nb > 4 ? "more than " : "", nb > 4 ? (PetscInt)4 : nb);
-  for (int d = 0; d < 4; d++) box[d] = b[d];
-  PetscCheck(std::isfinite(box[0]) && std::isfinite(box[1]) && std::isfinite(box[2]) && std::isfinite(box[3]) && box[2] > box[0] && box[3] > box[1], comm,
-             PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_box = %g,%g,%g,%g: must be finite with xmax > xmin and ymax > ymin", (double)box[0], (double)box[1],
-             (double)box[2], (double)box[3]);
+  PetscCall(b.Take(comm, "-tissue_box", BoxShape::HasArea, box, NULL));
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_voronoi_cells = %" PetscInt_FMT ": must be >= 1", cells);
   PetscCheck(lloyd_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_lloyd_steps = %" PetscInt_FMT ": must be >= 0", lloyd_steps);
   /* the areas are drawn uniform in [1 - sqrt(3) c, 1 + sqrt(3) c] (arithmetic only, see above);
@@ -388,14 +379,6 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode VoronoiGenerator::SetFromOptions(MPI_Comm comm, ParameterList *params)
-{
-  PetscFunctionBeginUser;
-  PetscCall(poly.SetFromOptions(comm, true, params));
-  PetscCall(spec.SetFromOptions(comm, params));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* Six corners per cell, plus the subdivision of the perimeters: a hexagon of area a has perimeter
    3.72 sqrt(a), so N cells about 3.8 sqrt(A N) in all. */
 PetscErrorCode VoronoiGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
@@ -409,10 +392,7 @@ PetscErrorCode VoronoiGenerator::Estimate(PetscReal *particles, PetscReal *sprin
 
 std::string VoronoiGenerator::SizeOptions() const
 {
-  std::ostringstream s;
-  s << "-tissue_voronoi_cells " << spec.cells;
-  if (poly.bar_length > 0) s << " -tissue_bar_length " << poly.bar_length;
-  return s.str();
+  return "-tissue_voronoi_cells " + std::to_string((long long)spec.cells) + BarLengthOption();
 }
 
 PetscErrorCode VoronoiGenerator::View(PetscViewer viewer) const
@@ -420,9 +400,9 @@ PetscErrorCode VoronoiGenerator::View(PetscViewer viewer) const
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "tissue voronoi: %" PetscInt_FMT " cells in [%g, %g] x [%g, %g], seed %" PetscInt_FMT ", %" PetscInt_FMT
-                                   " Lloyd steps, size cv %g, bar radius %g µm, bar length %g µm, node mass %g ng\n",
+                                   " Lloyd steps, size cv %g, %s\n",
                                    spec.cells, (double)spec.box[0], (double)spec.box[2], (double)spec.box[1], (double)spec.box[3], spec.seed, spec.lloyd_steps,
-                                   (double)spec.size_cv, (double)poly.bar_radius, (double)poly.bar_length, (double)poly.node_mass));
+                                   (double)spec.size_cv, PolygonDescription().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -15,7 +15,6 @@
 #include <turgor/ts/radau_iia.h>
 #include "ts_types_internal.h"
 #include <petsc/private/tsimpl.h>
-#include <petsc/private/snesimpl.h> /* to clear a domain error raised with SNESSetFunctionDomainError() */
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -148,7 +147,9 @@ struct RadauIIA {
   Vec Z[3] = {NULL, NULL, NULL}, Y[3] = {NULL, NULL, NULL}, R[3] = {NULL, NULL, NULL}, dW[3] = {NULL, NULL, NULL}, D[3] = {NULL, NULL, NULL};
 
   /* state of the integration */
-  PetscReal t0 = 0, h = 0;           /* the attempt in progress */
+  PetscReal t0 = 0, h = 0; /* the attempt in progress */
+  PetscReal eval_t    = 0; /* the residual evaluation in progress (its SNES view: SNESFormFunction_RadauIIA) */
+  Vec       eval_Udot = NULL;
   PetscReal cont_t0 = 0, cont_h = 0; /* the last accepted step, whose polynomial D describes */
   PetscBool have_cont = PETSC_FALSE, started = PETSC_FALSE;
   PetscBool need_jac = PETSC_TRUE, jac_fresh = PETSC_FALSE, jac_fresh_prev = PETSC_FALSE;
@@ -206,19 +207,35 @@ PetscErrorCode RadauIIAEnsureKSPs(TS ts, RadauIIA *r)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* F(t, U, Udot) into Fv; *bad when the application flagged a domain error or F is not finite. */
+/* The residual of RadauIIAResidual's evaluation in progress as the TS's SNES sees it
+   (ts->ops->snesfunction, which SNESTSFormFunction calls): F at that evaluation's t and U'. */
+PetscErrorCode SNESFormFunction_RadauIIA(SNES snes, Vec U, Vec F, TS ts)
+{
+  RadauIIA *r = (RadauIIA *)ts->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSComputeIFunction(ts, r->eval_t, U, r->eval_Udot, F, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* F(t, U, Udot) into Fv; *bad when the application flagged a domain error or F is not finite. An
+   application flags one with SNESSetFunctionDomainError() on the TS's SNES (TSGetSNES); where it
+   has that SNES, F is evaluated through it (SNESComputeFunction), which clears the flag before the
+   evaluation, so the flag read after it is this evaluation's. */
 PetscErrorCode RadauIIAResidual(TS ts, RadauIIA *r, PetscReal t, Vec U, Vec Udot, Vec Fv, PetscBool *bad)
 {
   PetscBool domain = PETSC_FALSE;
   PetscReal nrm;
+  SNES      snes;
 
   PetscFunctionBeginUser;
-  PetscCall(TSComputeIFunction(ts, t, U, Udot, Fv, PETSC_FALSE));
+  PetscCall(TSGetSNES(ts, &snes));
+  r->eval_t    = t;
+  r->eval_Udot = Udot;
+  PetscCall(SNESComputeFunction(snes, U, Fv));
+  r->eval_Udot = NULL;
   r->n_ifunc++;
-  if (ts->snes) {
-    PetscCall(SNESGetFunctionDomainError(ts->snes, &domain));
-    ts->snes->domainerror = PETSC_FALSE;
-  }
+  PetscCall(SNESGetFunctionDomainError(snes, &domain));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &domain, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm((PetscObject)ts)));
   PetscCall(VecNorm(Fv, NORM_INFINITY, &nrm));
   *bad = (PetscBool)(domain || PetscIsInfOrNanReal(nrm));
@@ -1145,6 +1162,7 @@ PetscErrorCode TSCreate_RadauIIA(TS ts)
   ts->ops->view           = TSView_RadauIIA;
   ts->ops->reset          = TSReset_RadauIIA;
   ts->ops->destroy        = TSDestroy_RadauIIA;
+  ts->ops->snesfunction   = SNESFormFunction_RadauIIA;
   ts->usessnes            = PETSC_FALSE; /* Newton is done here, on the transformed stage system */
   ts->default_adapt_type  = TSADAPTBASIC;
   PetscCall(PetscObjectComposeFunction((PetscObject)ts, "TSRadauIIAGetCounters_C", TSRadauIIAGetCounters_RadauIIA));

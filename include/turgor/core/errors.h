@@ -52,12 +52,6 @@ PetscErrorCode CatchExceptions(const char func[], int line, const char file[], B
 /* The body of a function PETSc calls (a callback) or a C entry point, guarded by CatchExceptions. */
 #define TURGOR_GUARDED(...) turgor::CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, [&]() -> PetscErrorCode __VA_ARGS__)
 
-/* Runs one mode as the turgor executable does: -mode (default `mode`, NULL: fe2), -strict, set-up,
-   the unused-option check, solve, summary; after a failure in any phase it leaves summary.json
-   with status "failed". *status: 0 completed, 130 interrupted (SIGINT/SIGTERM); a failure is
-   returned as the error. */
-PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status);
-
 /* The non-empty `mine` of the lowest rank that has one, on every rank ("" if none): a problem
    found on one rank, reported by a collective error on all. */
 PetscErrorCode FirstMessage(MPI_Comm comm, const std::string &mine, std::string *first);

@@ -1,7 +1,7 @@
 #pragma once
 /* Named families of constructors on PETSc's PetscFunctionList, the mechanism behind TSRegister():
    physics terms, materials, tissue generators and run modes. Adding one is one new file plus one
-   registration line in src/core/register_all.cpp; nothing else names the concrete types, and no
+   registration line in src/app/register_all.cpp; nothing else names the concrete types, and no
    code asks an object what it is.
 
    The lists are process-wide like PETSc's own type lists (TSList, ...): they are filled by

@@ -1,5 +1,5 @@
 #pragma once
-/* The energy balance of a fine run (-fine_energy, energy.csv; issue 11): kinetic energy, each
+/* The energy balance of a fine run (-fine_energy, energy.csv): kinetic energy, each
    term's stored energy, the work of the controls and of the loads (the body force), and what is
    dissipated -- by global viscosity (its work), plasticity, friction and fracture (each term's own
    count, from its committed internal state) -- and the residual

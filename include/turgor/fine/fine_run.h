@@ -102,7 +102,7 @@ protected:
   /* The tissue's reference positions and initial velocities are read only at set-up (the initial
      state, the swarm, the controls' groups, a restart's PrimeReferences): released once the state
      holds them (a restart: after its checkpoint is read), before the set-up's first force
-     evaluation, 32 B a particle off the peak (the memory per particle). */
+     evaluation: 32 B a particle off the peak memory. */
   PetscErrorCode AfterSetUp() override
   {
     ReleaseReferences();

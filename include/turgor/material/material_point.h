@@ -8,7 +8,7 @@
    A MaterialModel is a material configured once from its options (an RVE's geometry, physics and
    relaxation settings; a closed-form law's constants); it creates the material points, one per
    coarse quadrature point, each on its group's communicator. A new material is one file (a
-   MaterialModel and its MaterialPoint) plus one line in src/core/register_all.cpp:
+   MaterialModel and its MaterialPoint) plus one line in src/app/register_all.cpp:
    MaterialModelRegister("name", CreateInstance<MaterialModel, Model>).
 
    An evaluation never aborts: a material point that cannot answer (no convergence, NaN, inverted

@@ -60,7 +60,7 @@ private:
   PetscErrorCode Build(const ParticleSet &P, const PetscReal *x);
   PetscErrorCode BuildPeriodic(const ParticleSet &P, const PetscReal *x, const PeriodicImages &images);
   void           SortFluidPairs();
-  void           ClearLists();
+  PetscErrorCode StartBuild(const ParticleSet &P, const PetscReal *x);
   void           BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin);
 
   PetscReal                      fluid_cutoff_ = 0, spring_cutoff_ = 0, skin_ = 1.0;

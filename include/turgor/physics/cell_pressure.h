@@ -45,6 +45,4 @@ private:
   bool                   have_ref_ = false;
 };
 
-PetscReal PolygonCellArea(const PolygonCell &c, const PetscReal *x);
-
 } // namespace turgor

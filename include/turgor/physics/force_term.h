@@ -3,7 +3,7 @@
    not in the list is never constructed, so it costs nothing: no neighbour lists, no passes.
 
    A new term is one file (a class derived from ForceTermBase<Term>) plus one line in
-   src/core/register_all.cpp: ForceTermRegister("name", CreateInstance<ForceTerm, Term>). */
+   src/app/register_all.cpp: ForceTermRegister("name", CreateInstance<ForceTerm, Term>). */
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
 #include <turgor/physics/load_spec.h>

@@ -1,6 +1,6 @@
 #pragma once
-/* Glue bonds between neighbouring polygonal cells, and their fracture (issue 11; the middle lamella
-   of the L-hyphen seed, ../shared/seeds/004_b974c0f68c63d63f.txt, "Details of the model").
+/* Glue bonds between neighbouring polygonal cells, and their fracture (the middle lamella of the
+   L-hyphen model, its "Details of the model").
 
    Bonds are made once, at the first evaluation (the reference geometry; with -glue_start_time T, at
    the first accepted state at or after T, e.g. once the cells are inflated): every node within the

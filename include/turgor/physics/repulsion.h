@@ -39,7 +39,7 @@ public:
   PetscReal joint_blend   = 10.0;       /* beta [degrees]: half-angle of the wedge around a joint's bisector where its two springs share a particle */
 
 private:
-  struct Segment {                   /* 64 B */
+  struct Segment {                   /* 64 B; the image shifts of x2 are read from PeriodicImages (32 B a spring less than stored) */
     PetscReal tx, ty, inv_L2, inv_L; /* x2 - x1 and its inverse squared length and length */
     PetscReal nx[2], ny[2];          /* at end i (0) and j (1) if joined: the unit normal of the joint's bisector, into this spring's side */
   };

@@ -50,7 +50,7 @@ private:
   template <bool VIRIAL>
   PetscErrorCode ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial);
 
-  /* Memory (issue 13): the per-particle arrays are over the fluid only, indexed by slot s
+  /* Memory: the per-particle arrays are over the fluid only, indexed by slot s
      (particle fluid_[s]); the pairs within 2h are rows of slots, pair_start_[s] .. pair_start_[s+1],
      each with the slot of j and F = W'(r)/r only (12 B): e = x_i - x_j is read again from x. */
   PetscReal              norm_ = 0, W0_ = 0;

@@ -12,7 +12,7 @@
 #include <turgor/io/declared_state.h>
 #include <turgor/io/output.h>
 #include <turgor/io/time_sampler.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <turgor/ts/integrator_state.h>
 #include <petscts.h>
 #include <deque>

@@ -1,10 +1,8 @@
 #pragma once
-/* -tissue_type node_file: polygonal cells read from a node file in the format of the L-hyphen code
-   (issue 10): one node per line "x y cellId", a cell's nodes listed together, in order around its
-   polygon. Blank lines and lines starting with '#' are skipped. */
-#include <turgor/core/parameters.h>
+/* -tissue_type node_file: polygonal cells read from a node file in the format of the L-hyphen code:
+   one node per line "x y cellId", a cell's nodes listed together, in order around its polygon.
+   Blank lines and lines starting with '#' are skipped. */
 #include <turgor/tissue/polygon_tissue.h>
-#include <turgor/tissue/tissue_generator.h>
 #include <string>
 
 namespace turgor {
@@ -26,17 +24,13 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
    reading it back with -tissue_length_scale 1 gives the same tissue bit for bit). */
 PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissue &tissue);
 
-class NodeFileGenerator : public TissueGenerator {
+class NodeFileGenerator : public PolygonGenerator<NodeFileSpec> {
 public:
   const char    *Name() const override { return "node_file"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateNodeFileTissue(comm, spec, poly, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;
   PetscErrorCode View(PetscViewer viewer) const override;
-
-  NodeFileSpec      spec;
-  PolygonTissueSpec poly;
 };
 
 } // namespace turgor

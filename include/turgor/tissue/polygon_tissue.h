@@ -1,12 +1,13 @@
 #pragma once
 /* What the polygonal tissues (-tissue_type node_file, voronoi, polyline) share: the bar radius,
    the node mass and the bar subdivision (PolygonTissueSpec), the builder that turns rings of points
-   into nodes, bars and PolygonCells, and the planar geometry their checks use. */
-#include <turgor/core/parameters.h>
+   into nodes, bars and PolygonCells. Their plane geometry is core/geometry.h's. */
+#include <turgor/core/geometry.h>
 #include <turgor/tissue/plates.h>
 #include <turgor/tissue/tissue.h>
-#include <array>
+#include <turgor/tissue/tissue_generator.h>
 #include <cstddef>
+#include <string>
 
 namespace turgor {
 
@@ -22,9 +23,11 @@ struct PolygonTissueSpec {
   /* `subdivide`: the generator honours -tissue_bar_length (the polyline, whose node count is given,
      leaves it unread so that a stray one is reported as unused). */
   PetscErrorCode SetFromOptions(MPI_Comm comm, bool subdivide, ParameterList *params = nullptr);
+  /* For messages: " -tissue_bar_length h" where the edges are cut into bars (else ""), and "bar
+     radius r µm, node mass m ng[, bar length h µm]". */
+  std::string BarLengthOption(bool subdivide) const;
+  std::string Description(bool subdivide) const;
 };
-
-using Point2 = std::array<PetscReal, 2>;
 
 /* A cell before it becomes nodes: its corner points in order (closed rings counter-clockwise). */
 struct PolygonRing {
@@ -45,18 +48,28 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h);
    Tissue::Finalize(). */
 void BuildPolygonTissue(const std::vector<PolygonRing> &rings, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue);
 
-/* Signed area (counter-clockwise positive) and centroid of a closed ring. */
-PetscReal RingSignedArea(const std::vector<Point2> &p);
-Point2    RingCentroid(const std::vector<Point2> &p);
-/* Do the closed segments ab and cd share a point (touching counts)? */
-bool SegmentsIntersect(const Point2 &a, const Point2 &b, const Point2 &c, const Point2 &d);
-/* Distance between the segments ab and cd (0 if they intersect). */
-PetscReal SegmentDistance(const Point2 &a, const Point2 &b, const Point2 &c, const Point2 &d);
-/* Is the ring simple? If not, *e1 < *e2 are two edges (edge k joins p[k] and p[k+1]) that cross or
-   touch, or two consecutive edges that fold back onto each other. Uses a grid of the edges, so that
-   a ring of n points costs about O(n) rather than O(n^2). */
-bool FindSelfIntersection(const std::vector<Point2> &p, bool open, size_t *e1, size_t *e2);
-/* Is the point strictly inside the closed ring (crossing number)? */
-bool PointInRing(const Point2 &q, const std::vector<Point2> &p);
+/* What the polygonal generators (node_file, voronoi, polyline) share: their own Spec and the
+   PolygonTissueSpec, read in that order (the shared options first), and the shared spec's part of
+   their messages. `Subdivides`: the generator cuts polygon edges into bars of -tissue_bar_length
+   (the polyline, whose node count is given, does not: the option is then left unread, so that a
+   stray one is reported as unused). */
+template <class Spec, bool Subdivides = true>
+class PolygonGenerator : public TissueGenerator {
+public:
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(poly.SetFromOptions(comm, Subdivides, params));
+    PetscCall(spec.SetFromOptions(comm, params));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  Spec              spec;
+  PolygonTissueSpec poly;
+
+protected:
+  std::string BarLengthOption() const { return poly.BarLengthOption(Subdivides); }
+  std::string PolygonDescription() const { return poly.Description(Subdivides); }
+};
 
 } // namespace turgor

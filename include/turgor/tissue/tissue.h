@@ -35,7 +35,4 @@ struct Tissue {
   PetscErrorCode Clamp(MPI_Comm comm, const std::vector<std::string> &sides, const char *option);
 };
 
-/* Signed area of the polygon through the given particles (counter-clockwise positive). */
-PetscReal PolygonArea(const std::vector<PetscInt> &ring, const PetscReal *x);
-
 } // namespace turgor

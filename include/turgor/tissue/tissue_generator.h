@@ -1,7 +1,7 @@
 #pragma once
 /* Tissue generators: each builds a Tissue from its own options (prefix tissue_), chosen by
    -tissue_type. A new generator is one file (a class derived from TissueGenerator) plus one line
-   in src/core/register_all.cpp: TissueGeneratorRegister("name", CreateInstance<TissueGenerator, G>). */
+   in src/app/register_all.cpp: TissueGeneratorRegister("name", CreateInstance<TissueGenerator, G>). */
 #include <turgor/core/parameters.h>
 #include <turgor/core/registry.h>
 #include <turgor/tissue/tissue.h>

@@ -3,7 +3,6 @@
    point set, with Lloyd relaxation, shrunk by the bar radius so that neighbours are 2 r apart. */
 #include <turgor/core/parameters.h>
 #include <turgor/tissue/polygon_tissue.h>
-#include <turgor/tissue/tissue_generator.h>
 
 namespace turgor {
 
@@ -50,17 +49,13 @@ void ShrinkPowerCell(const PowerCell &cell, PetscReal r, PetscReal min_edge, std
    (optional) receives the diagram before shrinking. */
 PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue, VoronoiDiagram *diagram = nullptr);
 
-class VoronoiGenerator : public TissueGenerator {
+class VoronoiGenerator : public PolygonGenerator<VoronoiSpec> {
 public:
   const char    *Name() const override { return "voronoi"; }
-  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode Generate(MPI_Comm comm, Tissue *tissue) const override { return GenerateVoronoiTissue(comm, spec, poly, tissue); }
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;
   PetscErrorCode View(PetscViewer viewer) const override;
-
-  VoronoiSpec       spec;
-  PolygonTissueSpec poly;
 };
 
 } // namespace turgor

@@ -1,6 +1,6 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/log.h>
-#include <turgor/coarse/fe2_static_run.h>
+#include <turgor/modes/fe2_static_run.h>
 #include <cmath>
 
 namespace turgor {
@@ -43,7 +43,7 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
   PC          pc;
   PetscFunctionBeginUser;
   /* the output directory first: an option refused below then leaves a summary.json that says so */
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_)); /* not prepared under -help */
+  PetscCall(PrepareOutputDirectory()); /* not prepared under -help */
   /* as -mode fe2: an RVE's Psi-tc tolerance 1e-9 unless -rve_psi_atol says otherwise */
   model_.Pool().SetDefaultTolerance(1e-9);
   /* v = 0: the damping C (from D^v) never enters the static system, so its 3 perturbed
@@ -171,10 +171,10 @@ PetscErrorCode FE2StaticRun::SetUp()
                   "lambda in increments of 1/%" PetscInt_FMT " (at least %g); SNES %s, rtol = %g, atol = %g\n",
                   (double)load_.body_acceleration[0], (double)load_.body_acceleration[1], (double)model_.ReferenceDensity(), (double)scale[1], (double)scale[0],
                   spec_.load_steps, (double)spec_.min_increment, type, (double)rtol, (double)atol));
-    if (rank == 0 && have_dir_) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, output_dir_ + "/tip.csv", {"load_factor", "tip_displacement_y", "snes_its"}));
+    if (rank == 0 && HasOutputDirectory()) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, OutputPath("tip.csv"), {"load_factor", "tip_displacement_y", "snes_its"}));
   }
-  if (spec_.snapshot && have_dir_) PetscCall(fields_.Open(model_, output_dir_, "coarse"));
-  PetscCall(monitor_.SetUp(model_, have_dir_ ? output_dir_ : std::string()));
+  if (spec_.snapshot && HasOutputDirectory()) PetscCall(fields_.Open(model_, OutputDir(), "coarse"));
+  PetscCall(monitor_.SetUp(model_, HasOutputDirectory() ? OutputDir() : std::string()));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -393,7 +393,7 @@ PetscErrorCode FE2StaticRun::Solve()
 }
 
 /* The keys a run reports completed or not; not collective (rank-local counts where it matters). */
-PetscErrorCode FE2StaticRun::Summary(JsonObject &js, const char *status)
+PetscErrorCode FE2StaticRun::AddSummary(JsonObject &js)
 {
   PetscMPIInt size;
   PetscReal   atol = 0, rtol = 0, stol = 0;
@@ -401,8 +401,6 @@ PetscErrorCode FE2StaticRun::Summary(JsonObject &js, const char *status)
   SNESType    type = NULL;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  js.Set("mode", "fe2_static");
-  js.Set("status", status);
   js.Set("material", model_.Pool().MaterialName());
   js.Set("element", model_.ElementName());
   js.Set("quadrature", model_.QuadratureName());
@@ -453,13 +451,13 @@ PetscErrorCode FE2StaticRun::WriteSummary()
   js.Set("rve_output_solves", rc.output_solves);
   js.Set("psi_tc_iterations", rc.iterations);
   js.Set("rve_failures", rc.failures);
-  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+  PetscCall(WriteSummaryFile(js));
   PetscCall(PetscPrintf(comm_,
                         "%s: load factor %g in %" PetscInt_FMT " increments (%" PetscInt_FMT " cut back), %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT
                         " function and %" PetscInt_FMT " Jacobian evaluations, %" PetscInt_FMT " RVE solves, %.3f s wall; final tip displacement %.8g µm\n"
                         "Outputs in %s: tip.csv, summary.json%s\n",
                         interrupted_ ? "Interrupted" : "Done", (double)lambda_, increments_, cutbacks_, snes_its_, model_.Counters().residuals,
-                        model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, output_dir_.c_str(),
+                        model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, OutputDir().c_str(),
                         fields_.Count() ? ", coarse.h5 + coarse.xmf" : ""));
   if (monitor_.Active())
     PetscCall(
@@ -467,21 +465,14 @@ PetscErrorCode FE2StaticRun::WriteSummary()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FE2StaticRun::WriteFailure(const std::string &reason)
+PetscErrorCode FE2StaticRun::AddFailure(const std::string &reason, JsonObject &js)
 {
-  JsonObject  js;
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  if (rank != 0 || !have_dir_) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(Summary(js, "failed"));
-  js.Set("reason", reason);
   if (solving_) {
     js.Set("last_failure", last_failure_);
     js.Set("partial_outputs", std::vector<std::string>{"tip.csv", "coarse.h5 + coarse.xmf"});
   }
   PetscCall(tip_csv_.Close());
-  PetscCall(js.Write(PETSC_COMM_SELF, output_dir_ + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -22,9 +22,9 @@
 #include <turgor/analysis/damped_modes.h>
 #include <turgor/analysis/pencil_eigensolver.h>
 #include <turgor/coarse/coarse_fields.h>
-#include <turgor/coarse/fe2_static_run.h>
+#include <turgor/modes/fe2_static_run.h>
 #include <turgor/io/output.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/single_shot_run.h>
 #include <memory>
 
 namespace turgor {
@@ -49,9 +49,9 @@ struct EigenSpec {
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
 
-class EigenRun : public Simulation {
+class EigenRun : public SingleShotRun {
 public:
-  explicit EigenRun(MPI_Comm comm) : comm_(comm), lowest_(comm), largest_(comm), damped_(comm) { }
+  explicit EigenRun(MPI_Comm comm) : SingleShotRun(comm, "eigen"), lowest_(comm), largest_(comm), damped_(comm) { }
   ~EigenRun() override;
   EigenRun(const EigenRun &)            = delete;
   EigenRun &operator=(const EigenRun &) = delete;
@@ -60,7 +60,6 @@ public:
   PetscErrorCode SetUp() override;
   PetscErrorCode Solve() override;
   PetscErrorCode WriteSummary() override;
-  PetscErrorCode WriteFailure(const std::string &reason) override;
   /* SIGINT/SIGTERM during the relaxed state's static solve (the eigen analysis is then not made) */
   bool Interrupted() const override { return static_ && static_->Interrupted(); }
 
@@ -75,10 +74,10 @@ public:
   PetscReal OmegaMin() const;
 
 private:
-  PetscErrorCode Summary(JsonObject &js, const char *status);
+  PetscErrorCode AddSummary(JsonObject &js) override;
+  PetscErrorCode AddFailure(const std::string &reason, JsonObject &js) override;
   PetscErrorCode WriteModes();
 
-  MPI_Comm                         comm_;
   EigenSpec                        spec_;
   LoadSpec                         load_;
   std::unique_ptr<FE2StaticRun>    static_; /* the relaxed state's solve, and its model */
@@ -87,9 +86,8 @@ private:
   std::unique_ptr<CoarseOperators> ops_;
   PencilEigensolver                lowest_, largest_;
   DampedModes                      damped_;
-  Vec                              U_ = nullptr;
-  std::string                      output_dir_;
-  bool                             overwrite_ = false, have_dir_ = false, solved_ = false;
+  Vec                              U_           = nullptr;
+  bool                             solved_      = false;
   PetscLogStage                    stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent                    ev_assemble_ = 0, ev_output_ = 0;
   /* results */

@@ -1,6 +1,6 @@
 /* The C entry point of <turgor/turgor.h> that is not a TS type's own: TurgorRunMode(). */
 #include <turgor/turgor.h>
-#include <turgor/core/errors.h>
+#include <turgor/modes/run_mode.h>
 
 PetscErrorCode TurgorRunMode(MPI_Comm comm, const char mode[])
 {

@@ -15,7 +15,7 @@
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/coarse/coarse_model.h>
 #include <turgor/io/output.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/single_shot_run.h>
 #include <petscsnes.h>
 
 namespace turgor {
@@ -29,9 +29,9 @@ struct StaticLoadSpec {
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
 
-class FE2StaticRun : public Simulation {
+class FE2StaticRun : public SingleShotRun {
 public:
-  explicit FE2StaticRun(MPI_Comm comm) : comm_(comm), model_(comm), monitor_(comm) { }
+  explicit FE2StaticRun(MPI_Comm comm) : SingleShotRun(comm, "fe2_static"), model_(comm), monitor_(comm) { }
   ~FE2StaticRun() override;
   FE2StaticRun(const FE2StaticRun &)            = delete;
   FE2StaticRun &operator=(const FE2StaticRun &) = delete;
@@ -40,7 +40,6 @@ public:
   PetscErrorCode SetUp() override;
   PetscErrorCode Solve() override;
   PetscErrorCode WriteSummary() override;
-  PetscErrorCode WriteFailure(const std::string &reason) override;
   bool           Interrupted() const override { return interrupted_; }
 
   CoarseModel    &Model() { return model_; }
@@ -60,9 +59,9 @@ private:
   /* one nonlinear solve at load factor lambda from x (the last converged state); *converged */
   PetscErrorCode SolveAt(PetscReal lambda, bool *converged, std::string *why);
   PetscErrorCode Record(PetscReal lambda, PetscInt its); /* a converged level: tip.csv */
-  PetscErrorCode Summary(JsonObject &js, const char *status);
+  PetscErrorCode AddSummary(JsonObject &js) override;
+  PetscErrorCode AddFailure(const std::string &reason, JsonObject &js) override;
 
-  MPI_Comm           comm_;
   LoadSpec           load_;
   StaticLoadSpec     spec_;
   CoarseModel        model_;
@@ -71,8 +70,7 @@ private:
   IS                 is_u_ = nullptr, is_v_ = nullptr;
   Vec                U_ = nullptr, Udot_ = nullptr, Ffull_ = nullptr; /* full states [u; v] */
   Vec                x_ = nullptr, x_conv_ = nullptr;                 /* displacements */
-  std::string        output_dir_;
-  bool               overwrite_ = false, have_dir_ = false, solving_ = false, interrupted_ = false;
+  bool               solving_ = false, interrupted_ = false;
   CsvWriter          tip_csv_;
   CoarseFieldsWriter fields_;
   StabilityMonitor   monitor_; /* -fe2_static_eigen_monitor: eigenvalues of K along the load path */

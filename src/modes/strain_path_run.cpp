@@ -1,6 +1,5 @@
-#include <turgor/material/strain_path_run.h>
+#include <turgor/modes/strain_path_run.h>
 #include <cmath>
-#include <fstream>
 
 namespace turgor {
 
@@ -10,7 +9,7 @@ PetscErrorCode StrainPathRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
   /* the output directory first: an option refused below then leaves a summary.json that says so */
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
+  PetscCall(PrepareOutputDirectory());
   PetscOptionsBegin(comm_, NULL, "Renamed options of -mode rve", "turgor");
   for (const char *o : {"type", "rate", "t_final", "steps", "tangents"}) {
     const std::string old_name = std::string("-rve_") + (std::string(o) == "type" ? "path" : o), new_name = std::string("-path_") + o;
@@ -88,7 +87,7 @@ PetscErrorCode StrainPathRun::Solve()
   for (const char *m : {"De", "Dv"})
     for (const char *ij : {"11_11", "11_22", "11_12", "22_11", "22_22", "22_12", "12_11", "12_22", "12_12"}) cols.push_back(std::string(m) + ij);
   for (const char *c : {"iterations", "residual", "ok"}) cols.push_back(c);
-  if (rank == 0) PetscCall(csv_.Open(PETSC_COMM_SELF, output_dir_ + "/rve.csv", cols));
+  if (rank == 0) PetscCall(csv_.Open(PETSC_COMM_SELF, OutputPath("rve.csv"), cols));
   PetscCall(PetscTime(&t0));
   for (PetscInt k = 0; k <= steps_; k++) {
     const PetscReal  t = t_final_ * k / steps_;
@@ -129,11 +128,9 @@ PetscErrorCode StrainPathRun::Solve()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode StrainPathRun::Summary(JsonObject &js, const char *status) const
+PetscErrorCode StrainPathRun::AddSummary(JsonObject &js)
 {
   PetscFunctionBeginUser;
-  js.Set("mode", "rve");
-  js.Set("status", status);
   js.Set("material", pool_.MaterialName());
   js.Set("path", kPaths[path_]);
   js.Set("rate", rate_);
@@ -172,29 +169,21 @@ PetscErrorCode StrainPathRun::WriteSummary()
   js.Set("ksp_its", c.ksp_its);
   js.Set("jacobian_evals", c.jacobians);
   js.Set("force_evals", c.force_evals);
-  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+  PetscCall(WriteSummaryFile(js, failed)); /* a failed one says why: WriteFailure leaves it */
   PetscCall(PetscPrintf(comm_,
                         "%s: %" PetscInt_FMT " evaluations (%" PetscInt_FMT " failed), %" PetscInt_FMT " RVE solves, %" PetscInt_FMT
                         " Psi-tc iterations, %.3f s; outputs in %s: rve.csv, summary.json\n",
-                        failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, output_dir_.c_str()));
+                        failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, OutputDir().c_str()));
   PetscCheck(!failed, comm_, PETSC_ERR_NOT_CONVERGED,
              "%" PetscInt_FMT " of %" PetscInt_FMT " material-point evaluations failed along the path (-path_allow_failures to accept that)", failures_,
              steps_ + 1);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode StrainPathRun::WriteFailure(const std::string &reason)
+PetscErrorCode StrainPathRun::AddFailure(const std::string &reason, JsonObject &js)
 {
-  JsonObject  js;
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  if (rank != 0 || !have_dir_) PetscFunctionReturn(PETSC_SUCCESS);
   if (csv_.IsOpen()) PetscCall(csv_.Close());
-  if (std::ifstream(output_dir_ + "/summary.json").good()) PetscFunctionReturn(PETSC_SUCCESS); /* WriteSummary said it already */
-  PetscCall(Summary(js, "failed"));
-  js.Set("reason", reason);
-  PetscCall(js.Write(PETSC_COMM_SELF, output_dir_ + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

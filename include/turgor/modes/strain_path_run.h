@@ -3,32 +3,28 @@
    rigid rotation, or hold; options path_*), writing sigma, rho, D^e, D^v and iteration counts per
    step to rve.csv and a summary.json. The material is chosen by -material (the RVE by default). */
 #include <turgor/material/material_pool.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/single_shot_run.h>
 #include <turgor/io/output.h>
 
 namespace turgor {
 
-class StrainPathRun : public Simulation {
+class StrainPathRun : public SingleShotRun {
 public:
-  explicit StrainPathRun(MPI_Comm comm) : comm_(comm), pool_(comm) { }
+  explicit StrainPathRun(MPI_Comm comm) : SingleShotRun(comm, "rve"), pool_(comm) { }
   PetscErrorCode SetFromOptions() override;
   PetscErrorCode SetUp() override;
   PetscErrorCode Solve() override;
   PetscErrorCode WriteSummary() override;
-  PetscErrorCode WriteFailure(const std::string &reason) override;
 
   /* The imposed deformation at time t. */
   void Path(PetscReal t, Tensor2 *F, Tensor2 *Fdot) const;
 
 private:
-  MPI_Comm          comm_;
   MaterialPointPool pool_;
-  std::string       output_dir_;
   PetscInt          path_ = 0, steps_ = 20;
   PetscReal         rate_ = 1e-3, t_final_ = 50.0; /* [1/µs], [µs] */
   PetscBool         tangents_       = PETSC_TRUE;
   PetscBool         allow_failures_ = PETSC_FALSE;
-  bool              overwrite_ = false, have_dir_ = false;
   /* results */
   CsvWriter        csv_;
   PetscInt         failures_ = 0;
@@ -36,7 +32,8 @@ private:
   PetscReal        t_last_ = 0, max_asymmetry_ = 0, wall_ = 0;
   std::string      first_failure_;
 
-  PetscErrorCode Summary(JsonObject &js, const char *status) const;
+  PetscErrorCode AddSummary(JsonObject &js) override;
+  PetscErrorCode AddFailure(const std::string &reason, JsonObject &js) override;
 };
 
 } // namespace turgor

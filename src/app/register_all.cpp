@@ -1,12 +1,12 @@
 /* TurgorRegisterAll(): every pluggable part of turgor, one line each -- TS types, physics terms,
    (later) materials, tissue generators and run modes. */
-#include <turgor/core/register_all.h>
-#include <turgor/analysis/eigen_run.h>
+#include <turgor/app/register_all.h>
+#include <turgor/modes/eigen_run.h>
 #include <turgor/coarse/fe2_run.h>
-#include <turgor/coarse/fe2_static_run.h>
+#include <turgor/modes/fe2_static_run.h>
 #include <turgor/fine/fine_run.h>
 #include <turgor/material/neo_hookean.h>
-#include <turgor/material/strain_path_run.h>
+#include <turgor/modes/strain_path_run.h>
 #include <turgor/physics/bars.h>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/cell_pressure.h>

@@ -1,4 +1,4 @@
-#include <turgor/analysis/eigen_run.h>
+#include <turgor/modes/eigen_run.h>
 #include <turgor/analysis/explicit_stability.h>
 #include <turgor/coarse/coarse_snapshot_reader.h>
 #include <turgor/core/errors.h>
@@ -75,7 +75,7 @@ PetscErrorCode EigenRun::SetFromOptions()
 {
   PetscFunctionBeginUser;
   /* the output directory first: an option refused below then leaves a summary.json that says so */
-  PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
+  PetscCall(PrepareOutputDirectory());
   PetscCall(spec_.SetFromOptions(comm_));
   if (spec_.state == EigenState::Relaxed) {
     /* the relaxed state is -mode fe2_static's answer: its run, options and outputs (tip.csv, the
@@ -120,7 +120,7 @@ PetscErrorCode EigenRun::SetUp()
   PetscCall(model_->CreateGlobalVector(&U_));
   PetscCall(PetscObjectSetName((PetscObject)U_, "state"));
   PetscCall(VecZeroEntries(U_));
-  if (spec_.state == EigenState::Snapshot && have_dir_) { /* read (and checked) before any work; not under -help */
+  if (spec_.state == EigenState::Snapshot && HasOutputDirectory()) { /* read (and checked) before any work; not under -help */
     CoarseSnapshotRequest req;
     req.path        = spec_.snapshot_file;
     req.has_time    = spec_.has_snapshot_time;
@@ -245,7 +245,7 @@ PetscErrorCode EigenRun::Solve()
   PetscCall(PetscTime(&t1));
   wall_   = t1 - t0_;
   solved_ = true;
-  if (have_dir_ && spec_.shapes) PetscCall(WriteModes());
+  if (HasOutputDirectory() && spec_.shapes) PetscCall(WriteModes());
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -262,7 +262,7 @@ PetscErrorCode EigenRun::WriteModes()
   PetscCall(ops_->CreateVector(&x));
   PetscCall(VecDuplicate(U_, &V));
   fields.AddVertexVector("mode", "µm (mode shape, largest 1)");
-  PetscCall(fields.Open(*model_, output_dir_, "modes"));
+  PetscCall(fields.Open(*model_, OutputDir(), "modes"));
   PetscCall(model_->EvaluateCellStress(U_, &ok));
   for (size_t k = 0; k < lowest_.Pairs().size(); k++) {
     PetscCall(lowest_.GetVector((PetscInt)k, x));
@@ -285,13 +285,11 @@ PetscReal EigenRun::OmegaMin() const
 }
 
 /* The keys a run reports, completed or not (rank-local where it matters: not collective). */
-PetscErrorCode EigenRun::Summary(JsonObject &js, const char *status)
+PetscErrorCode EigenRun::AddSummary(JsonObject &js)
 {
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  js.Set("mode", "eigen");
-  js.Set("status", status);
   js.Set("state", kStates[(int)spec_.state]);
   if (spec_.state == EigenState::Snapshot) {
     js.Set("snapshot_file", spec_.snapshot_file);
@@ -381,21 +379,21 @@ PetscErrorCode EigenRun::WriteSummary()
     PetscCall(PetscSNPrintf(reason, sizeof reason, "interrupted (SIGINT/SIGTERM) during the relaxed state's static solve, at load factor %g: no eigen analysis",
                             (double)state_time_));
     js.Set("reason", reason);
-    PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+    PetscCall(WriteSummaryFile(js));
     PetscCall(PetscPrintf(comm_, "Interrupted during the relaxed state's static solve: no eigen analysis; outputs in %s: summary.json, tip.csv\n",
-                          output_dir_.c_str()));
+                          OutputDir().c_str()));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(Summary(js, "completed"));
   PetscCall(model_->Pool().GlobalCounters(&rc));
   js.Set("rve_solves", rc.solves);
   js.Set("rve_output_solves", rc.output_solves);
-  PetscCall(js.Write(comm_, output_dir_ + "/summary.json"));
+  PetscCall(WriteSummaryFile(js));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   {
     CsvWriter csv;
     if (rank == 0) {
-      PetscCall(csv.Open(PETSC_COMM_SELF, output_dir_ + "/eigen.csv",
+      PetscCall(csv.Open(PETSC_COMM_SELF, OutputPath("eigen.csv"),
                          {"mode", "eigenvalue", "omega", "frequency", "period", "residual_norm", "x_fraction", "iterations"}));
       for (size_t k = 0; k < lowest_.Pairs().size(); k++) {
         const Eigenpair &p = lowest_.Pairs()[k];
@@ -409,22 +407,15 @@ PetscErrorCode EigenRun::WriteSummary()
                         lowest_.Pairs().size(), (double)lowest_.Pairs().front().lambda,
                         lowest_.Pairs().front().lambda > 0 ? ("period " + std::to_string(2 * PETSC_PI / OmegaMin()) + " µs").c_str()
                                                            : "negative: K is not positive definite at this state",
-                        (double)wall_, output_dir_.c_str(), spec_.shapes ? ", modes.h5 + modes.xmf" : "",
+                        (double)wall_, OutputDir().c_str(), spec_.shapes ? ", modes.h5 + modes.xmf" : "",
                         static_ ? ", tip.csv and coarse.h5 + coarse.xmf (the relaxed state)" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode EigenRun::WriteFailure(const std::string &reason)
+PetscErrorCode EigenRun::AddFailure(const std::string &reason, JsonObject &js)
 {
-  JsonObject  js;
-  PetscMPIInt rank;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  if (rank != 0 || !have_dir_) PetscFunctionReturn(PETSC_SUCCESS);
   if (static_) PetscCall(static_->WriteFailure(reason)); /* its partial outputs, then our summary over its */
-  PetscCall(Summary(js, "failed"));
-  js.Set("reason", reason);
-  PetscCall(js.Write(PETSC_COMM_SELF, output_dir_ + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /* A run mode (-mode): configure, set up, solve, summarise. A new mode is one file (a class derived
    from Simulation, or from TimeRun for a time-dependent one) plus one line in
-   src/core/register_all.cpp: SimulationRegister("name", CreateInstance<Simulation, Mode>). */
+   src/app/register_all.cpp: SimulationRegister("name", CreateInstance<Simulation, Mode>). */
 #include <turgor/core/registry.h>
 #include <memory>
 #include <string>

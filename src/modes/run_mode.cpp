@@ -1,6 +1,7 @@
 /* turgor::RunMode(): one mode, start to end, as the turgor executable and TurgorRunMode() run it. */
+#include <turgor/modes/run_mode.h>
 #include <turgor/core/errors.h>
-#include <turgor/run/simulation.h>
+#include <turgor/modes/simulation.h>
 #include <cstring>
 
 namespace turgor {
