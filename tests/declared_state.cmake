@@ -34,7 +34,7 @@ foreach(way "1;2" "2;1")
 endforeach()
 # distributed on 2 ranks -> 1: the damage of each spring found by its id (to round-off: the forces
 # of the halo are summed in another order)
-turgor_add_test(declared_term_dist_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 ${DAMAGE_RUN} -ts_max_steps 150 -checkpoint_interval 1e6 -output_dir declared_term_dist
+turgor_add_test(declared_term_dist_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 ${DAMAGE_RUN} -fine_halo_margin 20 -ts_max_steps 150 -checkpoint_interval 1e6 -output_dir declared_term_dist
   LABELS fine restart mpi SETUP declared_term_dist_leg1)
 turgor_add_test(declared_term_dist_leg2 COMMAND ${DAMAGE_RUN} -restart declared_term_dist/checkpoint.h5 -output_dir declared_term_dist
   LABELS fine restart mpi REQUIRES declared_term_dist_leg1 SETUP declared_term_dist_leg2)
