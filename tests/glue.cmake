@@ -50,3 +50,22 @@ turgor_add_test(crushing_64_energy COMMAND ${FRACTURE} energy crushing64 1e-2 LA
 turgor_add_test(crushing_64_bonds COMMAND ${FRACTURE} bonds crushing64 LABELS fine hard REQUIRES crushing64)
 turgor_add_test(crushing_64_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py crushing64/particles.xmf LABELS fine REQUIRES crushing64)
 turgor_paraview_polygons(crushing_64 crushing64 5)
+
+# Observing does not change what is observed: the energy balance (-fine_energy) keeps each term's
+# force as what the term added to the total, which is summed as without it, so the trajectory is
+# the same bit for bit (tip.csv and final_state_hash) on the glued traction scene and on the
+# compressed tissue (contact with friction, pressure, the lid).
+set(OBSERVE_GLUE -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_traction.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -control_top_box -1,87.5,101,101 -control_bottom_box -1,-1,101,12.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_dt_safety 0.25
+  -control_top_velocity 0,0.5 -control_bottom_velocity 0,-0.5 -control_top_ramp_time 1 -control_bottom_ramp_time 1 -ts_max_time 1.5)
+set(OBSERVE_BOX -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -ts_max_time 1 -fine_snapshots 0 -fine_progress_interval 0)
+foreach(scene GLUE BOX)
+  string(TOLOWER ${scene} s)
+  foreach(e 0 1)
+    turgor_add_test(observe_${s}_energy${e} COMMAND $<TARGET_FILE:turgor_app> ${OBSERVE_${scene}} -fine_energy ${e} -output_overwrite
+      -output_dir observe_${s}_energy${e} LABELS fine hard SETUP observe_${s}_energy${e})
+  endforeach()
+  turgor_add_test(observe_${s}_same COMMAND ${CHECK} identical observe_${s}_energy0 observe_${s}_energy1 final_state_hash LABELS fine hard
+    REQUIRES "observe_${s}_energy0;observe_${s}_energy1")
+endforeach()

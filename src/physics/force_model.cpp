@@ -150,11 +150,14 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   if (keep_term_forces_) term_f_.resize(terms_.size());
   for (size_t t = 0; t < terms_.size(); t++) {
     PetscCall(PetscLogEventBegin(events_[t], 0, 0, 0, 0));
-    if (keep_term_forces_) { /* the term's own force, then added to the total */
+    if (keep_term_forces_) { /* the term's own force: what it added to the total. Observing must not
+                                change what is observed: the total is summed in the same order as
+                                without (so the trajectory is the same bit for bit), and the term's
+                                share is the difference, exact to the total's round-off */
       std::vector<PetscReal> &ft = term_f_[t];
-      ft.assign(2 * P_->n, 0.0);
-      PetscCall(terms_[t]->AddForces(in, ft.data(), virial));
-      for (PetscInt k = 0; k < 2 * P_->n; k++) f[k] += ft[k];
+      ft.assign(f, f + 2 * P_->n);
+      PetscCall(terms_[t]->AddForces(in, f, virial));
+      for (PetscInt k = 0; k < 2 * P_->n; k++) ft[k] = f[k] - ft[k];
     } else PetscCall(terms_[t]->AddForces(in, f, virial));
     PetscCall(PetscLogEventEnd(events_[t], 0, 0, 0, 0));
   }
