@@ -1,4 +1,5 @@
 #include <turgor/core/options.h>
+#include <turgor/core/geometry.h>
 #include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
@@ -165,6 +166,12 @@ PetscErrorCode FineRun::SetUpModel()
   }
   n_all_   = tissue_.particles.n;
   n_local_ = tissue_.particles.NumOwned();
+  { /* the closed cells this rank owns, as their reference orientation (a cell's nodes are its owner's) */
+    const ParticleSet &P = tissue_.particles;
+    cell_area0_.assign(P.OwnedPolygons(), 0);
+    for (size_t c = 0; c < P.OwnedPolygons(); c++)
+      if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3) cell_area0_[c] = PolygonArea(P.polygons[c].nodes, tissue_.X.data());
+  }
   PetscCall(CreateSwarm());
   PetscCall(model_.SetUp(physics_, tissue_.particles));
   equations_.SetUp(model_, controls_, placement_.Halo(), tissue_.particles, fields_);
@@ -357,7 +364,7 @@ PetscErrorCode FineRun::OpenOutputs()
 PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
 {
   const PetscScalar *u;
-  PetscReal          vals[2] = {0, 0}, ke = 0;
+  PetscReal          vals[3] = {0, 0, 0}, ke = 0;
   PetscFunctionBeginUser;
   const PetscReal *x, *v;
   PetscCall(VecGetArrayRead(U, &u));
@@ -366,11 +373,44 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
   if (controls_.Active()) PetscCall(equations_.LocalState(t, u, &x, &v));
   for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
   if (tip_ >= 0) vals[0] = x[2 * tip_ + 1] - tip_y0_;
-  PetscCall(VecRestoreArrayRead(U, &u));
   vals[1] = ke;
-  PetscCall(SumOverRanks(comm_, vals, 2));
+  vals[2] = (PetscReal)CountCellsInverted(x);
+  PetscCall(SumOverRanks(comm_, vals, 3));
+  if (vals[2] > 0) PetscCall(CheckCellsInverted(t, x, (PetscInt)vals[2]));
+  PetscCall(VecRestoreArrayRead(U, &u));
   row = {vals[0], vals[1]};
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A cell whose signed area changed sign (or vanished) has turned inside out: its walls crossed, the
+   state is unphysical whatever the integrator reports. Checked at every sample (the tip's cadence,
+   -fine_tip_samples), by the cell's owner. */
+PetscInt FineRun::CountCellsInverted(const PetscReal *x) const
+{
+  PetscInt n = 0;
+  for (size_t c = 0; c < cell_area0_.size(); c++)
+    if (cell_area0_[c] != 0) n += !(PolygonArea(tissue_.particles.polygons[c].nodes, x) / cell_area0_[c] > 0);
+  return n;
+}
+
+PetscErrorCode FineRun::CheckCellsInverted(PetscReal t, const PetscReal *x, PetscInt inverted)
+{
+  PetscReal first[3] = {PETSC_MAX_REAL, 0, 0}; /* the lowest inverted cell id, its area and its reference area */
+  PetscFunctionBeginUser;
+  for (size_t c = 0; c < cell_area0_.size(); c++) {
+    if (cell_area0_[c] == 0) continue;
+    const PetscReal a = PolygonArea(tissue_.particles.polygons[c].nodes, x), id = (PetscReal)tissue_.particles.PolygonGid(c);
+    if (!(a / cell_area0_[c] > 0) && id < first[0]) first[0] = id, first[1] = a, first[2] = cell_area0_[c];
+  }
+  PetscReal lowest = first[0];
+  PetscCall(MinOverRanks(comm_, &lowest));
+  if (first[0] != lowest) first[1] = first[2] = 0;
+  PetscCall(SumOverRanks(comm_, first + 1, 2)); /* only the owner of the lowest id contributes */
+  SETERRQ(comm_, PETSC_ERR_NOT_CONVERGED,
+          "Cell %.0f turned inside out at t = %g µs: its area is %g µm² (signed, in its orientation at rest) against %g µm² at rest (%" PetscInt_FMT
+          " cell%s inverted); the walls crossed and the state is unphysical -- a smaller step (-fine_dt_safety), stiffer walls or contact, or a "
+          "milder load",
+          (double)lowest, (double)t, (double)(first[2] > 0 ? first[1] : -first[1]), (double)std::fabs(first[2]), inverted, inverted == 1 ? "" : "s");
 }
 
 std::vector<TimeRun::Series> FineRun::ObservedSeries() const

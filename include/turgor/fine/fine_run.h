@@ -72,17 +72,20 @@ protected:
   PetscErrorCode           Report() override;
   std::vector<std::string> ObservedColumns() const override { return {"tip_displacement_y", "kinetic_energy"}; }
   PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) override;
-  std::vector<Series>      ObservedSeries() const override;
-  PetscErrorCode           ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) override;
-  PetscErrorCode           OpenSnapshots() override;
-  PetscErrorCode           OpenOutputs() override;
-  PetscErrorCode           WriteSnapshot(PetscReal t, Vec U) override;
-  PetscInt                 SnapshotCount() const override { return snapshots_writer_.Count(); }
-  const char              *SnapshotFiles() const override { return "particles.h5 + particles.xmf"; }
-  PetscInt                 FunctionEvaluations() const override { return equations_.RHSEvaluations(); }
-  PetscErrorCode           AddSummary(JsonObject &js) override;
-  PetscErrorCode           DoneDetails(std::string *details) override;
-  const char              *FailureAdvice() const override
+  /* Collective: an error naming the first inverted cell (its signed area through zero) at time t. */
+  PetscErrorCode      CheckCellsInverted(PetscReal t, const PetscReal *x, PetscInt inverted);
+  PetscInt            CountCellsInverted(const PetscReal *x) const;
+  std::vector<Series> ObservedSeries() const override;
+  PetscErrorCode      ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) override;
+  PetscErrorCode      OpenSnapshots() override;
+  PetscErrorCode      OpenOutputs() override;
+  PetscErrorCode      WriteSnapshot(PetscReal t, Vec U) override;
+  PetscInt            SnapshotCount() const override { return snapshots_writer_.Count(); }
+  const char         *SnapshotFiles() const override { return "particles.h5 + particles.xmf"; }
+  PetscInt            FunctionEvaluations() const override { return equations_.RHSEvaluations(); }
+  PetscErrorCode      AddSummary(JsonObject &js) override;
+  PetscErrorCode      DoneDetails(std::string *details) override;
+  const char         *FailureAdvice() const override
   {
     return "the step was rejected repeatedly; for fixed steps lower -ts_dt or -fine_dt_safety, for adaptive ones check the scene's parameters";
   }
@@ -151,6 +154,7 @@ private:
   /* observation */
   PetscInt               tip_    = -1; /* local index of the tip particle on its owner, -1 elsewhere */
   PetscReal              tip_y0_ = 0;
+  std::vector<PetscReal> cell_area0_; /* this rank's closed cells' reference signed areas (the inversion check) */
   ParticleSnapshotWriter snapshots_writer_;
   std::vector<PetscReal> force_;   /* the snapshots' force field (every local particle) */
   std::vector<PetscReal> rank_of_; /* the snapshots' rank field (a distributed run) */
