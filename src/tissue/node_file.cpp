@@ -129,7 +129,7 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
       if (A < 0) std::reverse(R.points.begin() + 1, R.points.end()); /* clockwise: the same polygon counter-clockwise, from the same first node */
     }
   }
-  BuildPolygonTissue(rings, poly, true, tissue);
+  PetscCall(BuildPolygonTissue(comm, rings, poly, true, tissue));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

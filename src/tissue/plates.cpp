@@ -39,9 +39,11 @@ PetscErrorCode PlateSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings, std::vector<std::pair<std::string, PetscInt>> *names)
+PetscErrorCode AddPlateRings(MPI_Comm comm, const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings,
+                             std::vector<std::pair<std::string, PetscInt>> *names)
 {
-  if (!spec.Any() || rings->empty()) return;
+  PetscFunctionBeginUser;
+  if (!spec.Any() || rings->empty()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscReal lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
   for (const PolygonRing &R : *rings)
     for (const Point2 &p : R.points)
@@ -81,6 +83,7 @@ void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> 
     names->push_back({s, (PetscInt)rings->size()});
     rings->push_back(P);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

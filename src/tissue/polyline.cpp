@@ -42,7 +42,6 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
 {
   PolygonRing ring;
   PetscFunctionBeginUser;
-  (void)comm;
   ring.open = true;
   /* node k at start + k/(N-1) (end - start): the spacing is as even as floating point allows */
   for (PetscInt k = 0; k < spec.nodes; k++) {
@@ -50,7 +49,7 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
     ring.points.push_back({spec.start[0] + s * (spec.end[0] - spec.start[0]), spec.start[1] + s * (spec.end[1] - spec.start[1])});
   }
   ring.points.back() = {spec.end[0], spec.end[1]};
-  BuildPolygonTissue({ring}, poly, false, tissue);
+  PetscCall(BuildPolygonTissue(comm, {ring}, poly, false, tissue));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

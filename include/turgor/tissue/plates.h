@@ -26,6 +26,7 @@ struct PlateSpec {
 
 /* The plate rings for a tissue whose rings are `rings` (bar radius r), appended to `rings` after the
    tissue's cells in the order bottom, right, top, left; *names gets ("bottom", cell id), ... */
-void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings, std::vector<std::pair<std::string, PetscInt>> *names);
+PetscErrorCode AddPlateRings(MPI_Comm comm, const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings,
+                             std::vector<std::pair<std::string, PetscInt>> *names);
 
 } // namespace turgor
