@@ -35,6 +35,12 @@ PetscErrorCode PolylineSpec::SetFromOptions(MPI_Comm comm, ParameterList *params
   PetscCheck(start[0] != end[0] || start[1] != end[1], comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Options -tissue_polyline_start = %g,%g and -tissue_polyline_end = %g,%g: the chain has zero length", (double)start[0], (double)start[1],
              (double)end[0], (double)end[1]);
+  /* the forces multiply lengths (moments, areas): a chain whose length squared overflows has no finite state */
+  const PetscReal length = std::hypot(end[0] - start[0], end[1] - start[1]);
+  PetscCheck(std::isfinite(length * length), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Options -tissue_polyline_start = %g,%g and -tissue_polyline_end = %g,%g: the chain is %g µm long, beyond double precision (its length "
+             "squared is not finite); give coordinates below 1e150 µm",
+             (double)start[0], (double)start[1], (double)end[0], (double)end[1], (double)length);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
