@@ -96,7 +96,11 @@ PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params
              (double)length_scale);
   PetscCheck(!set_open || n < 1025, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_open_cells: more than 1024 cells listed");
   if (set_open) open_cells.assign(ids, ids + n);
-  for (PetscInt id : open_cells) PetscCheck(id >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell id %" PetscInt_FMT " is negative", id);
+  for (size_t k = 0; k < open_cells.size(); k++) {
+    PetscCheck(open_cells[k] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell id %" PetscInt_FMT " is negative", open_cells[k]);
+    PetscCheck(std::find(open_cells.begin(), open_cells.begin() + k, open_cells[k]) == open_cells.begin() + k, comm, PETSC_ERR_ARG_WRONG,
+               "Option -tissue_open_cells: cell %" PetscInt_FMT " is listed twice", open_cells[k]);
+  }
   /* the file must exist now, before any allocation; it is read in Generate */
   PetscCall(CheckNodeFilePath(comm, path));
   std::ifstream f(path);
