@@ -3,6 +3,8 @@
 
   checkpoint_helper.py first DIR DEST       copy DIR's earliest checkpoint_<step>.h5 to DEST (a restart
                                             from a checkpoint written at -checkpoint_interval, not the end)
+  checkpoint_helper.py count DIR N          DIR holds exactly N checkpoint_<step>.h5 files, the last of them the
+                                            same bytes as DIR/checkpoint.h5 (-checkpoint_keep N)
   checkpoint_helper.py truncate SRC DEST    copy the first half of SRC to DEST (a checkpoint cut short,
                                             as a full disk or a killed copy leaves it)
   checkpoint_helper.py damage SRC DEST DATASET
@@ -35,6 +37,13 @@ def main(argv):
             sys.exit(f"FAIL: {src} holds {len(files)} checkpoint_<step>.h5 files, expected one at an interval and one at the end")
         shutil.copyfile(files[0], dest)
         print(f"{files[0]} -> {dest}")
+    elif mode == "count":
+        files = sorted(glob.glob(os.path.join(src, "checkpoint_*.h5")))
+        if len(files) != int(dest):
+            sys.exit(f"FAIL: {src} holds {len(files)} checkpoint_<step>.h5 files, expected {dest}")
+        if open(files[-1], "rb").read() != open(os.path.join(src, "checkpoint.h5"), "rb").read():
+            sys.exit(f"FAIL: {files[-1]} is not the latest checkpoint, checkpoint.h5")
+        print(f"{src}: {len(files)} checkpoints kept, {os.path.basename(files[0])} to {os.path.basename(files[-1])}")
     elif mode == "truncate":
         data = open(src, "rb").read()
         open(dest, "wb").write(data[: len(data) // 2])

@@ -55,6 +55,16 @@ turgor_hard_check(fine_verlet_at_limit_agrees "hard_fine_tight_tolerance;hard_fi
 turgor_long(hard_fine_verlet_tenth_limit hard_fine_tight_tolerance_agrees)
 turgor_hard_fails(fine_verlet_twice_limit fine_verlet_at_limit "Non-finite acceleration of particle [0-9]+ at t = .*the fixed step is above the stability limit"
   -ts_dt 0.0027)
+# a bar 100 times shorter with plastic hinges: below the hinges' limit the plastic dissipation
+# converges (dt 3e-5 and 2e-5 agree); at 1.8 times the limit the step is warned about by its term
+turgor_hard_run(fine_short_bar_hinges fine_short_bar_hinges -tissue_node_file ${HARD}/short_bar.nodes)
+turgor_hard_run(fine_short_bar_hinges_finer fine_short_bar_hinges -tissue_node_file ${HARD}/short_bar.nodes -ts_dt 2e-5)
+turgor_hard_check(fine_short_bar_hinges_converged "hard_fine_short_bar_hinges;hard_fine_short_bar_hinges_finer" ${HCHECK} samekey hard/fine_short_bar_hinges
+  hard/fine_short_bar_hinges_finer hinge_plastic_dissipation 1e-5)
+turgor_hard_check(fine_short_bar_hinges_balance hard_fine_short_bar_hinges ${HCHECK} between hard/fine_short_bar_hinges energy_residual_max 0 1e-5)
+turgor_add_test(hard_fine_short_bar_hinges_above COMMAND turgor_app -options_file_yaml ${HARD}/fine_short_bar_hinges.yaml -tissue_node_file
+  ${HARD}/short_bar.nodes -ts_dt 5e-5 -output_dir hard/fine_short_bar_hinges_above -output_overwrite LABELS hard PASS_REGEX
+  "WARNING: the fixed step 5e-05 µs exceeds the smallest stability limit 2.788e-05 µs \\(hinges: .*\\) 1.79 times.*plastic hinges")
 # a long run: a damped oscillation about the static deflection
 turgor_hard_run(fine_long_time fine_long_time)
 turgor_hard_check(fine_long_time_settles hard_fine_long_time ${HCHECK} settling hard/fine_long_time 3e-2)

@@ -62,3 +62,9 @@ turgor_add_test(polygon_compression_snapshots COMMAND turgor_app ${BOX} -ts_max_
 turgor_add_test(polygon_compression_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py box_snapshots/particles.xmf LABELS fine
   REQUIRES box_snapshots)
 turgor_paraview_polygons(polygon_compression box_snapshots 50)
+
+# The neighbour lists' skin (a length in µm) against a scene of smaller lengths: the default 1 µm in a
+# 1 µm long chain is warned about.
+turgor_add_test(skin_scene_scale COMMAND turgor_app -mode fine -tissue_type polyline -tissue_bar_radius 0.005 -physics bars,hinges -ts_type verlet
+  -ts_max_time 0.01 -fine_snapshots 0 -fine_progress_interval 0 -output_dir skin_scene_scale -output_overwrite LABELS fine
+  PASS_REGEX "WARNING: -neighbour_skin 1\\.? µm is more than a quarter of the tissue's size \\(1\\.? µm\\).*about 0\\.005 µm \\(the bar radius\\)")

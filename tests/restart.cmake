@@ -103,6 +103,11 @@ turgor_restart_case(fe2_ssp 10 MODE fe2 INTERVAL 1 OPTIONS ${RESTART_FE2} -ts_ty
 # ... and from the checkpoint written at t = 15 µs (in the run, not at its end) into a fresh directory
 turgor_restart_fresh(fe2 fe2 ${RESTART_FE2})
 
+# -checkpoint_keep: a checkpoint at every step (warned) of which only the last 3 stay.
+turgor_add_test(restart_keep COMMAND turgor_app ${BAD_PRESET_fine} -ts_type rk -output_dir restart_keep -output_overwrite -checkpoint_interval 1e-9
+  -checkpoint_keep 3 LABELS fine restart SETUP restart_keep PASS_REGEX "WARNING: a checkpoint at every step.*only the last 3 are kept")
+turgor_add_test(restart_keep_count COMMAND ${RESTART_HELPER} count restart_keep 3 LABELS fine restart REQUIRES restart_keep)
+
 # The fixture of the bad-checkpoint cases (tests/bad_input.txt, @RESTART@): a checkpoint of the
 # bad-input suite's fine preset, and a copy cut in half; a checkpoint of its fe2 preset (rk 5dp) in
 # restart_fixture/fe2.

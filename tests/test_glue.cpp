@@ -1,6 +1,7 @@
 static const char help[] = "Glue bonds between polygonal cells, driven kinematically (positions prescribed, no integrator):\n"
                            "1. two squares 2 r apart with 1, 3 and 7 bars per side: every node of the shared faces is bonded, the length\n"
-                           "   shares sum to the face length (1e-12) and none is zero;\n"
+                           "   shares sum to the face length (1e-12) and none is zero; so too where the two nodes of a bar 100 times shorter\n"
+                           "   bond to the same end of the other cell's bar (coincident bond points);\n"
                            "2. forces = -dE/dx by central differences, zero total force and torque, on a sheared and opened pair;\n"
                            "3. energy law: a bond pulled open in steps of 1e-4 delta_c breaks within one step of delta_c = sqrt(2 G_c / k_n)\n"
                            "   and releases (1/2) k_n delta^2 L;\n"
@@ -82,6 +83,34 @@ static PetscErrorCode TestShares()
                           n, g.Created(), g.Created() / 2, (double)sum, (double)W, (double)smallest));
     TG_CHECK(g.Created() == 2 * (n + 1), "expected %" PetscInt_FMT " bonds (every node of both faces), got %" PetscInt_FMT, 2 * (n + 1), g.Created());
     TG_CHECK_CLOSE(sum, W, 1e-12, 0, "the length shares of an interface sum to its length");
+    TG_CHECK(smallest > 0, "a bond without a length share");
+  }
+  { /* a bar 100 times shorter: cell B's nodes (W + 2r, W + 0.1) and (W + 2r, W) both bond to A's
+       corner (W, W), the end of A's bars: their bond points coincide and share their part of the face */
+    PolygonBuilder B;
+    AddSquare(B, 0, W, 1);
+    const PetscReal x0 = W + 2 * r;
+    B.AddCell(
+      {
+        {x0,     0      },
+        {x0 + W, 0      },
+        {x0 + W, W + 0.1},
+        {x0,     W + 0.1},
+        {x0,     W      }
+    },
+      false, 1.0);
+    Tissue &T = B.Finish(r);
+    Glue    g = *MakeGlue(Glue::ENERGY, 1e3, 1e3, 1);
+    PetscCall(Configure(g));
+    NeighbourSearch nb;
+    PetscCall(g.SetUp(T.particles, nb));
+    PetscCall(g.CreateBonds(T.particles, T.X.data()));
+    PetscReal sum = 0, smallest = PETSC_MAX_REAL;
+    for (PetscInt b = 0; b < g.Created(); b++) sum += g.LengthShare(b), smallest = std::min(smallest, g.LengthShare(b));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "a bar 100 times shorter: %" PetscInt_FMT " bonds, sum of shares %.15g (face %g), smallest %g\n", g.Created(),
+                          (double)sum, (double)W, (double)smallest));
+    TG_CHECK(g.Created() == 5, "expected 5 bonds (2 of A's nodes, 3 of B's), got %" PetscInt_FMT, g.Created());
+    TG_CHECK_CLOSE(sum, W, 1e-12, 0, "the length shares of an interface with coincident bond points sum to its length");
     TG_CHECK(smallest > 0, "a bond without a length share");
   }
   { /* -glue_unbonded_box: a pre-crack over the lower half of the interface (7 bars per side: nodes at

@@ -5,6 +5,7 @@ static const char help[] = "Polygonal tissues: Voronoi/Laguerre tiling, shrinkin
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <unistd.h>
 
 using namespace turgor;
 
@@ -375,7 +376,28 @@ static PetscErrorCode TestNodeFile(const std::string &data)
     s += "150.5 -1 0\n150.5 1 0\n";
     PetscCall(ExpectFailure("bad_long.nodes", s, {0}));
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "node file: round trips identical (2 squares, 50 Voronoi cells, an open cell); 13 bad files refused\n"));
+  /* bounded reading: a line without end, a NUL byte, a file beyond 1 GiB (sparse: no disk used), a
+     directory, a device */
+  PetscCall(ExpectFailure("bad_long_line.nodes", std::string(5000, '1') + " 0 0\n"));
+  PetscCall(ExpectFailure("bad_nul.nodes", std::string("0 0 0\n1 0 0\0 junk\n1 1 0\n", 22)));
+  {
+    std::ofstream("bad_huge.nodes") << "0 0 0\n1 0 0\n1 1 0\n";
+    TG_CHECK(truncate("bad_huge.nodes", (1LL << 30) + 1) == 0, "cannot make the sparse file bad_huge.nodes");
+    Tissue         Th;
+    PetscErrorCode ierr;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = ReadNodes("bad_huge.nodes", &Th);
+    PetscCall(PetscPopErrorHandler());
+    std::remove("bad_huge.nodes");
+    TG_CHECK(ierr != 0, "a node file of more than 1 GiB was accepted");
+    for (const char *path : {".", "/dev/zero"}) {
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      ierr = ReadNodes(path, &Th);
+      PetscCall(PetscPopErrorHandler());
+      TG_CHECK(ierr != 0, "%s was read as a node file", path);
+    }
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "node file: round trips identical (2 squares, 50 Voronoi cells, an open cell); 18 bad files refused\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

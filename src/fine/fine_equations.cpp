@@ -242,11 +242,17 @@ PetscErrorCode FineEquations::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, v
     PetscCall(eq->LocalState(t, x, eq->v_stale_.data(), &xc, &vc));
     PetscCall(eq->Accelerations(xc, vc, a, eq->acceleration_room_));
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, a);
-    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++)
+    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) {
+      /* before any step the step cannot be the cause: the scene itself leaves double precision */
+      PetscCheck(std::isfinite(a[k]) || eq->rhs_evals_ > 0, PETSC_COMM_SELF, PETSC_ERR_FP,
+                 "Non-finite acceleration of particle %" PetscInt_FMT " at (%g, %g) µm in the starting state (t = %g µs, before any step): the scene's "
+                 "lengths or parameters are beyond double precision (the tissue's coordinates and size, its stiffnesses, masses and pressures)",
+                 k / 2, (double)xc[k - k % 2], (double)xc[k - k % 2 + 1], (double)t);
       PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
                  "Non-finite acceleration of particle %" PetscInt_FMT
                  " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)",
                  k / 2, (double)t);
+    }
     PetscCall(VecRestoreArray(Vdot, &a));
     PetscCall(VecRestoreArrayRead(X, &x));
     eq->rhs_evals_++;

@@ -143,6 +143,15 @@ PetscErrorCode FineRun::SetUpModel()
     PetscCall(tissues_.Generate(comm_, &tissue_));
   }
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
+  { /* the skin is a length in µm: in a scene of much smaller lengths every neighbour list would hold most of the tissue */
+    const PetscReal extent = std::max(tissue_.hi[0] - tissue_.lo[0], tissue_.hi[1] - tissue_.lo[1]), r = tissue_.particles.bar_radius;
+    if (extent > 0 && physics_.neighbour_skin > 0.25 * extent)
+      PetscCall(PetscPrintf(comm_,
+                            "WARNING: -neighbour_skin %g µm is more than a quarter of the tissue's size (%g µm): every neighbour list holds most of the "
+                            "tissue; a skin of about %g µm (%s) suits this scene\n",
+                            (double)physics_.neighbour_skin, (double)extent, (double)(r > 0 ? r : 0.02 * extent),
+                            r > 0 ? "the bar radius" : "2% of the tissue's size"));
+  }
   PetscCall(TissueReferenceHash(comm_, tissue_, &reference_hash_)); /* of the whole tissue, which every rank holds here */
   const bool distributed = size > 1 && spec_.distribute;
   PetscCall(controls_.SetUp(comm_, tissue_, rank == 0 || distributed));
@@ -263,9 +272,14 @@ PetscErrorCode FineRun::Report()
   PetscCall(TSGetTimeStep(ts_, &dt));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &fixed, TSBASICSYMPLECTIC, TSVERLET, ""));
   PetscCall(PetscPrintf(comm_, "Time integration: %s to t = %g µs, %s dt = %.4g µs\n", type, (double)t_final_, fixed ? "fixed" : "initial", (double)dt));
+  /* above the limit an elastic mode grows; a plastic or damaging term may absorb the energy it
+     gains, so the run completes with that energy counted as dissipation */
   if (fixed && dt > dt_stable_)
-    PetscCall(PetscPrintf(comm_, "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs; the run will likely diverge\n", (double)dt,
-                          (double)dt_stable_));
+    PetscCall(PetscPrintf(comm_,
+                          "WARNING: the fixed step %.4g µs exceeds the smallest stability limit %.4g µs (%s) %.3g times; the run will likely diverge, or, "
+                          "where plastic hinges or damage absorb the energy the unstable mode gains, complete with that energy counted as dissipation "
+                          "and a drifting energy balance\n",
+                          (double)dt, (double)dt_stable_, limits_.empty() ? "no force term" : limits_[0].why.c_str(), (double)(dt / dt_stable_)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

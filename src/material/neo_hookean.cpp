@@ -3,6 +3,11 @@
 
 namespace turgor {
 
+/* The moduli a neo-Hookean point accepts [N/m]: magnitudes in [kModulusMin, kModulusMax], and
+   mu >= kShearRatioMin (lambda + mu) (a smaller shear modulus is below the round-off of the tangent:
+   at 1e-15 of the bulk modulus the lowest eigenvalue is 8% off, at 1e-17 the stiffness is singular). */
+static const PetscReal kModulusMin = 1e-100, kModulusMax = 1e100, kShearRatioMin = 1e-12;
+
 PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscFunctionBeginUser;
@@ -12,8 +17,23 @@ PetscErrorCode NeoHookeanSpec::SetFromOptions(MPI_Comm comm, ParameterList *para
   PetscCall(TurgorOptionsReal(params, "-viscosity", "Viscosity eta in eta (l + l^T) [ng/µs]", "NeoHookeanSpec", viscosity, &viscosity, NULL));
   PetscCall(TurgorOptionsReal(params, "-density", "Reference density rho0 [ng/µm^2]", "NeoHookeanSpec", density, &density, NULL));
   PetscOptionsEnd();
-  PetscCheck(mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_mu = %g: must be > 0", (double)mu);
-  PetscCheck(lambda > -mu, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_lambda = %g: must be > -mu", (double)lambda);
+  PetscCheck(mu > 0 && std::isfinite(mu), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_mu = %g: must be finite and > 0", (double)mu);
+  PetscCheck(lambda > -mu && std::isfinite(lambda), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_lambda = %g: must be finite and > -mu", (double)lambda);
+  /* the tangents, and the eigen solvers' products of them, square the moduli: beyond this range
+     they leave double precision (the shift-and-invert solves break down) */
+  for (auto [name, value] : {
+         std::pair<const char *, PetscReal>{"-nh_mu",     mu    },
+            {"-nh_lambda", lambda}
+  })
+    PetscCheck(value == 0 || (std::fabs(value) >= kModulusMin && std::fabs(value) <= kModulusMax), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option %s = %g N/m: outside [%g, %g] N/m (in magnitude), where the stiffness and its products stay within double precision", name,
+               (double)value, (double)kModulusMin, (double)kModulusMax);
+  /* a shear modulus below the round-off of the bulk one is lost from the tangent: the stiffness is
+     singular (the eigen mode's factorisation fails, a static solve diverges) */
+  PetscCheck(mu >= kShearRatioMin * (lambda + mu), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -nh_mu = %g N/m: below %g of the bulk modulus lambda + mu = %g N/m (-nh_lambda %g): the shear stiffness is lost to round-off and the "
+             "tangent stiffness is singular; the material must resist shear",
+             (double)mu, (double)kShearRatioMin, (double)(lambda + mu), (double)lambda);
   PetscCheck(viscosity >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_viscosity = %g: must be >= 0", (double)viscosity);
   PetscCheck(density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -nh_density = %g: a density must be > 0", (double)density);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -18,9 +18,29 @@ bool ReadAtFirstSolve(const char name[])
   return false;
 }
 
-/* Options nobody read are reported before any work (misspelled, or not for this -mode; those
-   ReadAtFirstSolve() after the solve, `after_solve`): an error with -strict, a warning otherwise. */
-PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool strict, bool after_solve)
+/* Options of the PETSc objects a mode configures in its set-up (the integrator, the mesh, the solvers:
+   -ts_*, -coarse_dm_plex_*, ...): unread before the set-up, so they are reported after it. */
+bool ReadAtSetUp(const char name[])
+{
+  for (const char *object :
+       {"ts_", "snes_", "ksp_", "pc_", "mat_", "dm_", "eps_", "pep_", "nep_", "svd_", "st_", "bv_", "ds_", "rg_", "fn_", "tao_", "vec_", "sf_", "petsc"}) {
+    const std::string inner = std::string("_") + object;
+    if (std::strncmp(name, object, std::strlen(object)) == 0 || std::strstr(name, inner.c_str())) return true;
+  }
+  return false;
+}
+
+/* When CheckUnusedOptions() reports an option: before the set-up (most: misspelled, or not for this
+   -mode), after it (ReadAtSetUp()), or after the solve (ReadAtFirstSolve()). */
+enum class UnusedCheck {
+  BeforeSetUp,
+  AfterSetUp,
+  AfterSolve
+};
+
+/* Options nobody read are reported before any work they could have changed: an error with -strict,
+   a warning otherwise. */
+PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool strict, UnusedCheck when)
 {
   PetscInt    n;
   char      **names, **values;
@@ -28,7 +48,7 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool strict, bool after_so
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt k = 0; k < n; k++)
-    if (ReadAtFirstSolve(names[k]) == after_solve)
+    if ((ReadAtFirstSolve(names[k]) ? UnusedCheck::AfterSolve : ReadAtSetUp(names[k]) ? UnusedCheck::AfterSetUp : UnusedCheck::BeforeSetUp) == when)
       list += std::string(list.empty() ? "" : ", ") + "-" + names[k] + (values[k] ? std::string(" ") + values[k] : std::string());
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   if (list.empty()) PetscFunctionReturn(PETSC_SUCCESS);
@@ -63,12 +83,13 @@ PetscErrorCode Run(MPI_Comm comm, const char default_mode[], std::unique_ptr<Sim
     }
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscCall(sim->SetFromOptions());
+  if (!help) PetscCall(CheckUnusedOptions(comm, strict, UnusedCheck::BeforeSetUp)); /* before a long set-up (a large tissue) */
   PetscCall(sim->SetUp());
   if (help) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(CheckUnusedOptions(comm, strict, false));
+  PetscCall(CheckUnusedOptions(comm, strict, UnusedCheck::AfterSetUp));
   PetscCall(sim->Solve());
   PetscCall(sim->WriteSummary());
-  PetscCall(CheckUnusedOptions(comm, strict, true));
+  PetscCall(CheckUnusedOptions(comm, strict, UnusedCheck::AfterSolve));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

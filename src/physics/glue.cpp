@@ -225,26 +225,45 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
         runs.back().insert(runs.back().end(), runs.front().begin(), runs.front().end());
         runs.erase(runs.begin());
       }
+      auto lone = [&](PetscInt bond) { /* a lone bond: half its node's shorter bar */
+                                       const Bond    &B = bonds_[bond];
+                                       const PetscInt k = (PetscInt)(std::find(C.nodes.begin(), C.nodes.end(), B.p) - C.nodes.begin());
+                                       PetscReal      l = PETSC_MAX_REAL;
+                                       for (PetscInt q : {k - 1, k + 1}) {
+                                         if (C.open && (q < 0 || q >= N)) continue;
+                                         const PetscInt o = C.nodes[(q + N) % N];
+                                         l                = std::min(l, std::hypot(X[2 * o] - X[2 * B.p], X[2 * o + 1] - X[2 * B.p + 1]));
+                                       }
+                                       return 0.5 * (l < PETSC_MAX_REAL ? l : 2 * P.bar_radius);
+      };
       for (const auto &run : runs) {
-        if (run.size() == 1) { /* a lone bond: half its node's shorter bar */
-          const Bond    &B = bonds_[run[0]];
-          const PetscInt k = (PetscInt)(std::find(C.nodes.begin(), C.nodes.end(), B.p) - C.nodes.begin());
-          PetscReal      l = PETSC_MAX_REAL;
-          for (PetscInt q : {k - 1, k + 1}) {
-            if (C.open && (q < 0 || q >= N)) continue;
-            const PetscInt o = C.nodes[(q + N) % N];
-            l                = std::min(l, std::hypot(X[2 * o] - X[2 * B.p], X[2 * o + 1] - X[2 * B.p + 1]));
-          }
-          share[run[0]] = 0.5 * (l < PETSC_MAX_REAL ? l : 2 * P.bar_radius);
-        } else
-          for (size_t i = 0; i + 1 < run.size(); i++) {
+        /* consecutive bonds whose bond points coincide (nodes on a very short bar, bonded to the same
+           end of a bar) are one point of the interface: they split its share; a run that is all one
+           point is a lone bond for each of them */
+        std::vector<size_t> group_start = {0};
+        for (size_t i = 1; i < run.size(); i++) {
+          PetscReal c0[2], c1[2];
+          point(bonds_[run[i - 1]], c0);
+          point(bonds_[run[i]], c1);
+          if (c0[0] != c1[0] || c0[1] != c1[1]) group_start.push_back(i);
+        }
+        group_start.push_back(run.size());
+        const size_t groups = group_start.size() - 1;
+        if (groups == 1)
+          for (PetscInt b : run) share[b] = lone(b);
+        else {
+          std::vector<PetscReal> group_share(groups, 0);
+          for (size_t g = 0; g + 1 < groups; g++) {
             PetscReal c0[2], c1[2];
-            point(bonds_[run[i]], c0);
-            point(bonds_[run[i + 1]], c1);
-            const PetscReal g = std::hypot(c1[0] - c0[0], c1[1] - c0[1]);
-            share[run[i]] += 0.5 * g;
-            share[run[i + 1]] += 0.5 * g;
+            point(bonds_[run[group_start[g]]], c0);
+            point(bonds_[run[group_start[g + 1]]], c1);
+            const PetscReal d = std::hypot(c1[0] - c0[0], c1[1] - c0[1]);
+            group_share[g] += 0.5 * d;
+            group_share[g + 1] += 0.5 * d;
           }
+          for (size_t g = 0; g < groups; g++)
+            for (size_t i = group_start[g]; i < group_start[g + 1]; i++) share[run[i]] = group_share[g] / (PetscReal)(group_start[g + 1] - group_start[g]);
+        }
         for (PetscInt b : run) span[{(PetscInt)A, kv.first}] += share[b];
       }
     }
@@ -264,8 +283,9 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
     info_.resize(kept);
   }
   for (size_t k = 0; k < bonds_.size(); k++)
-    PetscCheck(bonds_[k].L > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: bond %zu (node %" PetscInt_FMT ", bar %" PetscInt_FMT ") got no length share", k,
-               bonds_[k].p, info_[k].s);
+    PetscCheck(bonds_[k].L > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "glue: bond %zu (node %" PetscInt_FMT ", bar %" PetscInt_FMT ") got no length share (-glue_distance %g)", k, bonds_[k].p, info_[k].s,
+               (double)distance);
   intact_     = (PetscInt)bonds_.size();
   have_bonds_ = true;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -80,6 +80,9 @@ PetscErrorCode TimeRun::SetFromOptions()
                                "TimeRun", ckpt_interval_, &ckpt_interval_, NULL));
     PetscCall(PetscOptionsReal("-checkpoint_wall_interval", "Write a checkpoint every S seconds of wall time (at the next accepted step); 0 = off", "TimeRun",
                                ckpt_wall_, &ckpt_wall_, NULL));
+    PetscCall(PetscOptionsInt("-checkpoint_keep",
+                              "Keep only the last K numbered checkpoints this run writes (checkpoint_<step>.h5; checkpoint.h5 is the latest); 0 = keep all",
+                              "TimeRun", ckpt_keep_, &ckpt_keep_, NULL));
     PetscCall(PetscOptionsString("-restart",
                                  "Continue from this checkpoint file (-mode fine, or -mode fe2 with its RVE states): the same scene options, integrator and "
                                  "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, euler, ssp)",
@@ -103,6 +106,7 @@ PetscErrorCode TimeRun::SetFromOptions()
                "Option -checkpoint_interval = %g: must be finite and >= 0", (double)ckpt_interval_);
     PetscCheck(std::isfinite(ckpt_wall_) && ckpt_wall_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -checkpoint_wall_interval = %g: must be finite and >= 0",
                (double)ckpt_wall_);
+    PetscCheck(ckpt_keep_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -checkpoint_keep = %" PetscInt_FMT ": must be >= 0 (0 keeps all)", ckpt_keep_);
     PetscCheck(!set || file[0], comm_, PETSC_ERR_ARG_WRONG, "Option -restart: empty (give the checkpoint file to continue from)");
     restart_file_ = set ? file : "";
     PetscCheck(restart_allow_.empty() || set, comm_, PETSC_ERR_ARG_WRONG, "Option -restart_allow: only with -restart");

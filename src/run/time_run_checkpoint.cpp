@@ -234,11 +234,26 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     }
     failed = ec ? 1 : 0;
     if (!failed) bytes = (PetscReal)fs::file_size(path, ec);
+    if (!failed) { /* the oldest beyond -checkpoint_keep go (checkpoint.h5 links the latest) */
+      ckpt_kept_.push_back(path);
+      while (ckpt_keep_ > 0 && (PetscInt)ckpt_kept_.size() > ckpt_keep_) {
+        fs::remove(ckpt_kept_.front(), ec);
+        ckpt_kept_.pop_front();
+      }
+    }
   }
   PetscCallMPI(MPI_Bcast(&failed, 1, MPI_INT, 0, comm_));
   PetscCheck(!failed, comm_, PETSC_ERR_FILE_WRITE, "Checkpoint: cannot rename %s to %s and link it as %s", tmp.c_str(), path.c_str(), latest.c_str());
   PetscCallMPI(MPI_Bcast(&bytes, 1, MPIU_REAL, 0, comm_));
   PetscCall(PetscTime(&t1));
+  if (step == ckpt_last_step_ + 1 && ckpt_count_ > 0 && !ckpt_every_step_warned_) { /* checkpoints as many as steps */
+    ckpt_every_step_warned_ = true;
+    PetscCall(PetscPrintf(comm_,
+                          "WARNING: a checkpoint at every step (steps %" PetscInt_FMT " and %" PetscInt_FMT
+                          "): -checkpoint_interval %g µs or -checkpoint_wall_interval %g s is shorter than a step or a checkpoint's writing (%.3g s); "
+                          "only the last %" PetscInt_FMT " are kept (-checkpoint_keep)\n",
+                          ckpt_last_step_, step, (double)ckpt_interval_, (double)ckpt_wall_, t1 - t0, ckpt_keep_));
+  }
   ckpt_seconds_ += t1 - t0;
   ckpt_bytes_     = bytes;
   ckpt_wall_last_ = t1;

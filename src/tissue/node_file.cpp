@@ -8,8 +8,71 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sys/stat.h>
 
 namespace turgor {
+
+/* What a node file may hold: a line "x y cellId" needs fewer than 80 characters (comments may be
+   longer), and 1 GiB of such lines is about 20 million nodes, beyond what a fine run can hold on
+   one node; a stream without line breaks (a device, a binary file) stops at these bounds. */
+static const size_t    kMaxLineChars = 4096;
+static const long long kMaxFileBytes = 1LL << 30;
+
+/* A path that can be a node file: no directory, device or socket (a named pipe may be, it is read
+   as a stream), and a regular file of at most kMaxFileBytes. */
+static PetscErrorCode CheckNodeFilePath(MPI_Comm comm, const std::string &path)
+{
+  struct stat st;
+  PetscFunctionBeginUser;
+  PetscCheck(stat(path.c_str(), &st) == 0, comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", path.c_str(),
+             std::strerror(errno));
+  const char *kind = S_ISDIR(st.st_mode)  ? "a directory"
+                   : S_ISCHR(st.st_mode)  ? "a character device"
+                   : S_ISBLK(st.st_mode)  ? "a block device"
+                   : S_ISSOCK(st.st_mode) ? "a socket"
+                                          : nullptr;
+  PetscCheck(!kind, comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: is %s, not a file", path.c_str(), kind);
+  PetscCheck(!S_ISREG(st.st_mode) || (long long)st.st_size <= kMaxFileBytes, comm, PETSC_ERR_FILE_UNEXPECTED,
+             "Option -tissue_node_file = %s: the file has %lld bytes, more than the %lld bytes (1 GiB, about 20 million nodes) a node file may have",
+             path.c_str(), (long long)st.st_size, kMaxFileBytes);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Reads a node file line by line within the bounds above. */
+class NodeFileLines {
+public:
+  explicit NodeFileLines(const std::string &path) : f_(std::fopen(path.c_str(), "r")) { }
+  ~NodeFileLines()
+  {
+    if (f_) std::fclose(f_);
+  }
+  NodeFileLines(const NodeFileLines &)            = delete;
+  NodeFileLines &operator=(const NodeFileLines &) = delete;
+  bool           Opened() const { return f_ != nullptr; }
+  /* The next line (without its line break) in *line: true, or false at the end, on a read error,
+     or at a bound (then Failure() says which). */
+  bool Next(std::string *line)
+  {
+    line->clear();
+    if (!f_ || failure_) return false;
+    for (int c; (c = std::getc(f_)) != EOF;) {
+      if (++bytes_ > kMaxFileBytes) failure_ = "more than 1 GiB (about 20 million nodes) read: a node file may not be larger";
+      else if (c == '\0') failure_ = "a NUL byte: not a text file";
+      else if (c == '\n') return true;
+      else if (line->size() == kMaxLineChars) failure_ = "longer than 4096 characters: not a node file's line 'x y cellId'";
+      if (failure_) return false;
+      line->push_back((char)c);
+    }
+    if (std::ferror(f_)) failure_ = "read error";
+    return !failure_ && !line->empty();
+  }
+  const char *Failure() const { return failure_; }
+
+private:
+  FILE       *f_;
+  long long   bytes_   = 0;
+  const char *failure_ = nullptr;
+};
 
 PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
@@ -33,8 +96,13 @@ PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params
              (double)length_scale);
   PetscCheck(!set_open || n < 1025, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_open_cells: more than 1024 cells listed");
   if (set_open) open_cells.assign(ids, ids + n);
-  for (PetscInt id : open_cells) PetscCheck(id >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell id %" PetscInt_FMT " is negative", id);
+  for (size_t k = 0; k < open_cells.size(); k++) {
+    PetscCheck(open_cells[k] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell id %" PetscInt_FMT " is negative", open_cells[k]);
+    PetscCheck(std::find(open_cells.begin(), open_cells.begin() + k, open_cells[k]) == open_cells.begin() + k, comm, PETSC_ERR_ARG_WRONG,
+               "Option -tissue_open_cells: cell %" PetscInt_FMT " is listed twice", open_cells[k]);
+  }
   /* the file must exist now, before any allocation; it is read in Generate */
+  PetscCall(CheckNodeFilePath(comm, path));
   std::ifstream f(path);
   PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", path.c_str(), std::strerror(errno));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -71,9 +139,10 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
   long long                           id0 = -1, lineno = 0;
   std::string                         line;
   PetscFunctionBeginUser;
-  std::ifstream f(spec.path);
-  PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
-  while (std::getline(f, line)) {
+  PetscCall(CheckNodeFilePath(comm, spec.path));
+  NodeFileLines f(spec.path);
+  PetscCheck(f.Opened(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
+  while (f.Next(&line)) {
     PetscReal x, y;
     long long id;
     lineno++;
@@ -95,8 +164,19 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
     rings.back().points.push_back({x * spec.length_scale, y * spec.length_scale});
     lines.back().push_back(lineno);
   }
-  PetscCheck(!f.bad(), comm, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: read error after line %lld", fn, lineno);
+  PetscCheck(!f.Failure(), comm, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: line %lld: %s", fn, lineno + 1, f.Failure());
   PetscCheck(!rings.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: no nodes in the file", fn);
+  /* the forces multiply lengths (areas, moments): a tissue whose extent squared overflows (or whose
+     scaled coordinates do) has no finite state */
+  PetscReal lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
+  for (const PolygonRing &R : rings)
+    for (const Point2 &p : R.points)
+      for (int d = 0; d < 2; d++) lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+  const PetscReal extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  PetscCheck(std::isfinite(extent * extent), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -tissue_node_file = %s with -tissue_length_scale %g: the tissue spans (%g, %g) to (%g, %g) µm, beyond double precision (its areas "
+             "are not finite); give coordinates below 1e150 µm",
+             fn, (double)spec.length_scale, (double)lo[0], (double)lo[1], (double)hi[0], (double)hi[1]);
   for (PetscInt id : spec.open_cells) {
     PetscCheck(id >= id0 && id < id0 + (long long)rings.size(), comm, PETSC_ERR_ARG_OUTOFRANGE,
                "Option -tissue_open_cells: cell %" PetscInt_FMT " is not in %s (its cells are %lld to %lld)", id, fn, id0, id0 + (long long)rings.size() - 1);
@@ -125,11 +205,12 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
               fn, first_line[c], id, lines[c][e1], lines[c][(e1 + 1) % n], lines[c][e2], lines[c][(e2 + 1) % n]);
     if (!R.open) {
       const PetscReal A = RingSignedArea(R.points);
-      PetscCheck(A != 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: line %lld: closed cell %lld has zero area", fn, first_line[c], id);
+      PetscCheck(A != 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: line %lld: closed cell %lld has zero area (-tissue_length_scale %g)",
+                 fn, first_line[c], id, (double)spec.length_scale);
       if (A < 0) std::reverse(R.points.begin() + 1, R.points.end()); /* clockwise: the same polygon counter-clockwise, from the same first node */
     }
   }
-  BuildPolygonTissue(rings, poly, true, tissue);
+  PetscCall(BuildPolygonTissue(comm, rings, poly, true, tissue));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -155,7 +236,7 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
    are skipped here; Generate reports them. */
 PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
 {
-  std::ifstream f(spec.path);
+  NodeFileLines f(spec.path); /* a line beyond the bounds ends the estimate; Generate reports it */
   std::string   line;
   PetscReal     nodes = 0, first[2] = {0, 0}, prev[2] = {0, 0};
   long long     cur  = -1;
@@ -163,7 +244,7 @@ PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *spri
     return BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]) * spec.length_scale, poly.bar_length);
   };
   PetscFunctionBeginUser;
-  while (std::getline(f, line)) {
+  while (f.Next(&line)) {
     PetscReal x, y;
     long long id;
     if (ParseNodeLine(line, &x, &y, &id) <= 0) continue;

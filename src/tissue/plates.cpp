@@ -39,9 +39,11 @@ PetscErrorCode PlateSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings, std::vector<std::pair<std::string, PetscInt>> *names)
+PetscErrorCode AddPlateRings(MPI_Comm comm, const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings,
+                             std::vector<std::pair<std::string, PetscInt>> *names)
 {
-  if (!spec.Any() || rings->empty()) return;
+  PetscFunctionBeginUser;
+  if (!spec.Any() || rings->empty()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscReal lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
   for (const PolygonRing &R : *rings)
     for (const Point2 &p : R.points)
@@ -52,6 +54,19 @@ void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> 
   /* horizontal plates: between the side plates (3 r from their centrelines) where there are some */
   const PetscReal x0 = left ? lo[0] + r : lo[0] - e, x1 = right ? hi[0] - r : hi[0] + e;
   const PetscReal y0 = lo[1] - 2 * r - e, y1 = hi[1] + 2 * r + e;
+  std::string     list;
+  for (const std::string &s : spec.sides) list += (list.empty() ? "" : ",") + s;
+  /* a plate of no length (or turned back on itself) has no direction: its bar could not be made;
+     the side plates always reach past the tissue (by 2 r + the overhang) */
+  if ((has("bottom") || has("top")) && !(x1 > x0)) {
+    const char *what = left && right ? "between the left and right plates" : left ? "from the left plate" : right ? "to the right plate" : "across the tissue";
+    const PetscReal need = (left ? r : -e) + (right ? r : -e); /* the plate is the tissue's width less this */
+    SETERRQ(comm, PETSC_ERR_ARG_INCOMP,
+            "Option -tissue_plates = %s: the %s plate %s would be %g µm long: the tissue is %g µm wide%s, and these plates need it wider than %g µm "
+            "(-tissue_bar_radius %g, -tissue_plate_overhang %g); leave out the side plates, or give a wider tissue",
+            list.c_str(), has("bottom") ? "bottom" : "top", what, (double)(x1 - x0), (double)(hi[0] - lo[0]), hi[0] > lo[0] ? "" : " (a vertical tissue)",
+            (double)need, (double)r, (double)e);
+  }
   for (const char *side : kSides) {
     if (!has(side)) continue;
     PolygonRing       P;
@@ -81,6 +96,7 @@ void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> 
     names->push_back({s, (PetscInt)rings->size()});
     rings->push_back(P);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

@@ -72,18 +72,28 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h)
   return c;
 }
 
-void BuildPolygonTissue(const std::vector<PolygonRing> &cells, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
+PetscErrorCode BuildPolygonTissue(MPI_Comm comm, const std::vector<PolygonRing> &cells, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
 {
   std::vector<PolygonRing> rings;
+  size_t                   closed = 0, cut = 0;
+  PetscFunctionBeginUser;
   for (const PolygonRing &R : cells) { /* the notch: closed cells whose centroid is in the cut box are left out */
+    if (!R.open) closed++;
     if (spec.has_cut_box && !R.open && R.points.size() >= 3) {
       const Point2 c = RingCentroid(R.points);
-      if (InBox(spec.cut_box, c[0], c[1])) continue;
+      if (InBox(spec.cut_box, c[0], c[1])) {
+        cut++;
+        continue;
+      }
     }
     rings.push_back(R);
   }
+  /* a notch that takes every cell leaves nothing to simulate (an empty tissue would run to the end) */
+  PetscCheck(cut == 0 || cut < closed, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -tissue_cut_box = %g,%g,%g,%g: removes all %zu closed cells of the tissue (their centroids are all inside it); a notch must leave some",
+             (double)spec.cut_box[0], (double)spec.cut_box[1], (double)spec.cut_box[2], (double)spec.cut_box[3], closed);
   std::vector<std::pair<std::string, PetscInt>> names;
-  AddPlateRings(spec.plates, spec.bar_radius, &rings, &names);
+  PetscCall(AddPlateRings(comm, spec.plates, spec.bar_radius, &rings, &names));
   *tissue        = Tissue();
   Tissue &T      = *tissue;
   T.named_cells  = names;
@@ -116,6 +126,7 @@ void BuildPolygonTissue(const std::vector<PolygonRing> &cells, const PolygonTiss
   for (size_t c = 0; c < P.polygons.size(); c++)
     for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;
   T.Finalize();
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 } // namespace turgor

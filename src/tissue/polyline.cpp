@@ -35,6 +35,12 @@ PetscErrorCode PolylineSpec::SetFromOptions(MPI_Comm comm, ParameterList *params
   PetscCheck(start[0] != end[0] || start[1] != end[1], comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Options -tissue_polyline_start = %g,%g and -tissue_polyline_end = %g,%g: the chain has zero length", (double)start[0], (double)start[1],
              (double)end[0], (double)end[1]);
+  /* the forces multiply lengths (moments, areas): a chain whose length squared overflows has no finite state */
+  const PetscReal length = std::hypot(end[0] - start[0], end[1] - start[1]);
+  PetscCheck(std::isfinite(length * length), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Options -tissue_polyline_start = %g,%g and -tissue_polyline_end = %g,%g: the chain is %g µm long, beyond double precision (its length "
+             "squared is not finite); give coordinates below 1e150 µm",
+             (double)start[0], (double)start[1], (double)end[0], (double)end[1], (double)length);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -42,7 +48,6 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
 {
   PolygonRing ring;
   PetscFunctionBeginUser;
-  (void)comm;
   ring.open = true;
   /* node k at start + k/(N-1) (end - start): the spacing is as even as floating point allows */
   for (PetscInt k = 0; k < spec.nodes; k++) {
@@ -50,7 +55,7 @@ PetscErrorCode GeneratePolylineTissue(MPI_Comm comm, const PolylineSpec &spec, c
     ring.points.push_back({spec.start[0] + s * (spec.end[0] - spec.start[0]), spec.start[1] + s * (spec.end[1] - spec.start[1])});
   }
   ring.points.back() = {spec.end[0], spec.end[1]};
-  BuildPolygonTissue({ring}, poly, false, tissue);
+  PetscCall(BuildPolygonTissue(comm, {ring}, poly, false, tissue));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

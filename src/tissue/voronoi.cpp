@@ -374,7 +374,7 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
                (double)poly.bar_radius, i, D.cells[i].v.empty() ? 0.0 : (double)RingSignedArea(D.cells[i].v), spec.cells, (double)W, (double)H,
                (double)std::sqrt(W * H / (PetscReal)spec.cells));
   }
-  BuildPolygonTissue(rings, poly, true, tissue);
+  PetscCall(BuildPolygonTissue(comm, rings, poly, true, tissue));
   PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

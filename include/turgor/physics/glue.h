@@ -9,7 +9,8 @@
    cell, c = (1 - lambda) x_a + lambda x_b with lambda fixed. A bond carries a length share L of its
    interface (docs/model.md "Glue"): along each run of consecutive bonded nodes of cell A on cell B,
    each bond gets half the distances to its neighbours' bond points, so that the shares of a straight
-   interface sum to its length; a lone bond gets half its shorter bar; and where both cells' nodes are
+   interface sum to its length (bonds whose bond points coincide split one point's share); a lone bond
+   gets half its shorter bar; and where both cells' nodes are
    bonded to each other, each side counts half.
 
    Opening: g = x_p - c in the bar's frame (t along the bar, n towards the node), delta_n = g.n -

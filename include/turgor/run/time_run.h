@@ -201,14 +201,17 @@ private:
   static constexpr PetscReal              kMinStepFraction = 1e-10;                                 /* default -ts_adapt_dt_min / -ts_max_time */
 
   /* checkpoints */
-  PetscReal       ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
-  PetscLogDouble  ckpt_wall_last_ = 0;
-  PetscInt        ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
-  PetscReal       ckpt_bytes_ = 0, ckpt_seconds_ = 0;
-  std::string     restart_file_;
-  PetscLogEvent   ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
-  IntegratorState integrator_;
-  ParameterList   params_;
+  PetscReal               ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
+  PetscLogDouble          ckpt_wall_last_ = 0;
+  PetscInt                ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
+  PetscInt                ckpt_keep_ = 2; /* -checkpoint_keep: the numbered checkpoints kept (0: all) */
+  std::deque<std::string> ckpt_kept_;     /* this run's numbered checkpoints, oldest first (rank 0) */
+  bool                    ckpt_every_step_warned_ = false;
+  PetscReal               ckpt_bytes_ = 0, ckpt_seconds_ = 0;
+  std::string             restart_file_;
+  PetscLogEvent           ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
+  IntegratorState         integrator_;
+  ParameterList           params_;
   std::vector<std::string> restart_allow_, restart_changed_;            /* -restart_allow; the allowed differences found */
   PetscReal                dt_start_  = 0;                              /* the first (or fixed) step, from the options */
   bool                     fit_fixed_ = false, auto_max_steps_ = false; /* FitFixedSteps was used; it set the steps */

@@ -25,7 +25,10 @@ struct PlateSpec {
 };
 
 /* The plate rings for a tissue whose rings are `rings` (bar radius r), appended to `rings` after the
-   tissue's cells in the order bottom, right, top, left; *names gets ("bottom", cell id), ... */
-void AddPlateRings(const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings, std::vector<std::pair<std::string, PetscInt>> *names);
+   tissue's cells in the order bottom, right, top, left; *names gets ("bottom", cell id), ... A bottom
+   or top plate that would have no length (a tissue no wider than 2 r between side plates) is an
+   error naming -tissue_plates. */
+PetscErrorCode AddPlateRings(MPI_Comm comm, const PlateSpec &spec, PetscReal r, std::vector<PolygonRing> *rings,
+                             std::vector<std::pair<std::string, PetscInt>> *names);
 
 } // namespace turgor

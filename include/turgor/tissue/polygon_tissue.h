@@ -45,8 +45,9 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h);
    spec.node_mass) cell by cell in ring order, each edge cut into BarsPerEdge(L, h) equal bars
    (h = spec.bar_length if `subdivide`, else none), bars as springs with the geometric rest length,
    ParticleSet::polygons/node_polygon/bar_radius, Tissue::cell_walls and named_cells; then
-   Tissue::Finalize(). */
-void BuildPolygonTissue(const std::vector<PolygonRing> &rings, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue);
+   Tissue::Finalize(). Refused (errors naming the option): a -tissue_cut_box that removes every closed
+   cell, plates that would have no length (plates.h). */
+PetscErrorCode BuildPolygonTissue(MPI_Comm comm, const std::vector<PolygonRing> &rings, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue);
 
 /* What the polygonal generators (node_file, voronoi, polyline) share: their own Spec and the
    PolygonTissueSpec, read in that order (the shared options first), and the shared spec's part of
