@@ -1,5 +1,6 @@
 /* -tissue_type node_file: cells of nodes and bars from the L-hyphen code's node file. */
 #include <turgor/tissue/node_file.h>
+#include <turgor/core/errors.h>
 #include <turgor/core/options.h>
 #include <algorithm>
 #include <cerrno>
@@ -34,8 +35,11 @@ PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params
   PetscCheck(!set_open || n < 1025, comm, PETSC_ERR_ARG_SIZ, "Option -tissue_open_cells: more than 1024 cells listed");
   if (set_open) open_cells.assign(ids, ids + n);
   for (PetscInt id : open_cells) PetscCheck(id >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell id %" PetscInt_FMT " is negative", id);
-  /* the file must exist now, before any allocation; it is read in Generate */
-  std::ifstream f(path);
+  /* the file must exist now, before any allocation; it is read in Generate. Opening a FIFO waits for
+     its writer: SIGINT/SIGTERM end that wait */
+  InterruptibleCalls interruptible;
+  std::ifstream      f(path);
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: opening -tissue_node_file %s", path.c_str());
   PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", path.c_str(), std::strerror(errno));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -71,12 +75,16 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
   long long                           id0 = -1, lineno = 0;
   std::string                         line;
   PetscFunctionBeginUser;
-  std::ifstream f(spec.path);
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: before reading -tissue_node_file %s", fn);
+  InterruptibleCalls interruptible;
+  std::ifstream      f(spec.path);
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: opening -tissue_node_file %s", fn);
   PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
   while (std::getline(f, line)) {
     PetscReal x, y;
     long long id;
     lineno++;
+    PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s at line %lld", fn, lineno);
     const int kind = ParseNodeLine(line, &x, &y, &id);
     if (kind == 0) continue;
     PetscCheck(kind > 0, comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -155,17 +163,22 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
    are skipped here; Generate reports them. */
 PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
 {
-  std::ifstream f(spec.path);
-  std::string   line;
-  PetscReal     nodes = 0, first[2] = {0, 0}, prev[2] = {0, 0};
-  long long     cur  = -1;
-  auto          bars = [&](const PetscReal a[2], const PetscReal b[2]) {
+  PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: before reading -tissue_node_file %s",
+             spec.path.c_str());
+  InterruptibleCalls interruptible;
+  std::ifstream      f(spec.path);
+  std::string        line;
+  PetscReal          nodes = 0, first[2] = {0, 0}, prev[2] = {0, 0};
+  long long          cur  = -1;
+  auto               bars = [&](const PetscReal a[2], const PetscReal b[2]) {
     return BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]) * spec.length_scale, poly.bar_length);
   };
   PetscFunctionBeginUser;
   while (std::getline(f, line)) {
     PetscReal x, y;
     long long id;
+    PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s",
+               spec.path.c_str());
     if (ParseNodeLine(line, &x, &y, &id) <= 0) continue;
     const PetscReal p[2] = {x, y};
     if (id != cur) {
@@ -177,6 +190,8 @@ PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *spri
     prev[0] = x;
     prev[1] = y;
   }
+  PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s",
+             spec.path.c_str());
   if (cur >= 0) nodes += bars(prev, first) + 1;
   *particles = nodes;
   *springs   = nodes;

@@ -7,6 +7,7 @@
    the same tissue bit for bit wherever IEEE doubles are (std::mt19937_64 is fully specified; the
    uniform mapping is our own, std::uniform_real_distribution is not portable). */
 #include <turgor/tissue/voronoi.h>
+#include <turgor/core/errors.h>
 #include <turgor/core/options.h>
 #include <algorithm>
 #include <cmath>
@@ -215,6 +216,7 @@ static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], Vorono
   }
   D.max_area_error = MaxAreaError(D.cells, D.targets);
   for (PetscInt it = 0; it < max_its && D.max_area_error >= tol; it++) {
+    PetscCall(StopIfInterrupted(comm, "set-up: the Laguerre weights of the Voronoi tissue (-tissue_size_cv)")); /* every rank iterates alike */
     CellAreas(D.cells, &A);
     for (size_t i = 0; i < N; i++) {
       const PowerCell &c = D.cells[i];
@@ -305,6 +307,7 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
     for (size_t k = N; k > 1; k--) std::swap(D.targets[k - 1], D.targets[(size_t)(u() * (PetscReal)k)]);
   }
   for (PetscInt step = 0;; step++) {
+    PetscCall(StopIfInterrupted(comm, "set-up: the Voronoi tissue (-tissue_voronoi_cells, -tissue_lloyd_steps)")); /* every rank builds it alike */
     if (spec.size_cv > 0) PetscCall(AdaptWeights(comm, spec.box, D));
     else PetscCall(ComputePowerDiagram(spec.box, D.seeds, D.weights, &D.cells));
     if (step == spec.lloyd_steps) break;
