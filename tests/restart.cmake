@@ -116,9 +116,9 @@ turgor_add_test(restart_fixture_truncated COMMAND ${RESTART_HELPER} truncate res
 # solution; the run's time set to -5 with turgor's checksum made to match) and of an older format
 # (tests/bad_input.txt, restart_damaged, restart_edited, restart_forged_time, restart_old_format)
 turgor_add_test(restart_fixture_damaged COMMAND ${RESTART_HELPER} damage restart_fixture/checkpoint.h5 restart_fixture/damaged.h5
-  /state/solution/entries/value LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+  /state/fine/particles/position LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
 turgor_add_test(restart_fixture_edited COMMAND ${RESTART_HELPER} edit restart_fixture/checkpoint.h5 restart_fixture/edited.h5
-  /state/solution/entries/value 3 0.125 LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
+  /state/fine/particles/position 3 0.125 LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
 turgor_add_test(restart_fixture_forged COMMAND ${RESTART_HELPER} forge restart_fixture/checkpoint.h5 restart_fixture/forged_time.h5
   /state/run/scalars/time 0 -5 LABELS badinput restart REQUIRES restart_fixture_run SETUP restart_fixture)
 turgor_add_test(restart_fixture_old COMMAND ${RESTART_HELPER} attribute restart_fixture/checkpoint.h5 restart_fixture/old_format.h5

@@ -289,7 +289,7 @@ PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols
   for (size_t p = 0; p < recv.size();) {
     at.push_back(p);
     auto get = [&recv, &p](void *dst, size_t n) {
-      std::memcpy(dst, recv.data() + p, n);
+      if (n) std::memcpy(dst, recv.data() + p, n); /* an empty ragged entry's destination may be null */
       p += n;
     };
     std::uint64_t k;

@@ -236,15 +236,13 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TissueDistribution::Gather(PetscReal *a, PetscReal *b) const
+PetscErrorCode TissueDistribution::Gather(const std::vector<PetscReal *> &arrays) const
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_exchange_, 0, 0, 0, 0));
-  PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
-  if (b) PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, b, b + 2 * n_owned_, MPI_REPLACE));
-  PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
-  if (b) PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, b, b + 2 * n_owned_, MPI_REPLACE));
-  bytes_ += (b ? 4.0 : 2.0) * n_halo_ * sizeof(PetscReal);
+  for (PetscReal *a : arrays) PetscCall(PetscSFBcastBegin(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
+  for (PetscReal *a : arrays) PetscCall(PetscSFBcastEnd(sf_, MPIU_REAL, a, a + 2 * n_owned_, MPI_REPLACE));
+  bytes_ += 2.0 * arrays.size() * n_halo_ * sizeof(PetscReal);
   PetscCall(PetscLogEventEnd(ev_exchange_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

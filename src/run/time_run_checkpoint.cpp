@@ -73,8 +73,10 @@ PetscErrorCode TimeRun::DeclareAll(std::deque<StateDeclaration> &decls)
   r.Scalar("schedule_end_time", &record_.t_final, Combine::Owner);
   r.Scalar("schedule_samples", &record_.samples, Combine::Owner);
   r.Scalar("schedule_snapshots", &record_.snapshots, Combine::Owner);
-  decls.emplace_back("solution");
-  decls.back().Table("entries", StateEntity::StateEntry).Rows([this] { return solution_.size(); }).Column("value", solution_);
+  if (!DeclaresSolution()) {
+    decls.emplace_back("solution");
+    decls.back().Table("entries", StateEntity::StateEntry).Rows([this] { return solution_.size(); }).Column("value", solution_);
+  }
   decls.emplace_back("integrator");
   PetscCall(integrator_.Declare(ts_, decls.back()));
   PetscCall(DeclareState(decls));

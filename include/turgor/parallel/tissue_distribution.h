@@ -41,9 +41,9 @@ public:
   PetscErrorCode SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin, Tissue *local,
                        std::vector<PetscInt> *local_of);
 
-  /* a[2n] (n local particles): fill the halo part a[2 n_owned ...] from the owners' owned parts;
-     b likewise if not NULL (both in flight at once: one latency). */
-  PetscErrorCode Gather(PetscReal *a, PetscReal *b = nullptr) const;
+  /* Each array a[2n] (n local particles: a field of two components per particle): fill the halo
+     part a[2 n_owned ...] from the owners' owned parts (all in flight at once: one latency). */
+  PetscErrorCode Gather(const std::vector<PetscReal *> &arrays) const;
   /* f[2n]: add the halo part to the owners' owned parts (on their ranks); the halo part is left. */
   PetscErrorCode Return(PetscReal *f) const;
   /* Collective: is the halo still enough at these local positions x[2n]? (see above) */

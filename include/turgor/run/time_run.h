@@ -114,13 +114,17 @@ protected:
      its tables name (EntityId, EntityLocal, EntityOwned; LayoutHash: which entities this rank holds,
      in which order), and gives the fingerprint of its scene (name, value: a restart on another
      scene is refused, naming the part that differs). */
-  virtual bool           Checkpointable() const { return false; }
-  virtual PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
-  virtual PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls) { return PETSC_SUCCESS; }
-  virtual std::uint64_t  EntityId(StateEntity e, PetscInt local) const { return (std::uint64_t)local; }
-  virtual PetscInt       EntityLocal(StateEntity e, std::uint64_t id) const { return -1; }
-  virtual bool           EntityOwned(StateEntity e, PetscInt local) const { return true; }
-  virtual std::uint64_t  LayoutHash() const;
+  virtual bool Checkpointable() const { return false; }
+  /* The mode declares the solution's values itself (through SolutionView: U's local values, filled
+     before a checkpoint is written, copied into U after one is read), not as "solution" entries. */
+  virtual bool            DeclaresSolution() const { return false; }
+  std::vector<PetscReal> &SolutionView() { return solution_; }
+  virtual PetscErrorCode  CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode  DeclareState(std::deque<StateDeclaration> &decls) { return PETSC_SUCCESS; }
+  virtual std::uint64_t   EntityId(StateEntity e, PetscInt local) const { return (std::uint64_t)local; }
+  virtual PetscInt        EntityLocal(StateEntity e, std::uint64_t id) const { return -1; }
+  virtual bool            EntityOwned(StateEntity e, PetscInt local) const { return true; }
+  virtual std::uint64_t   LayoutHash() const;
   /* A restart: before the checkpoint's state is read into the declarations (references the model
      takes lazily), and after (what the mode derives from its state), at the restored state U of
      time t; `own_layout`: this rank holds what the rank that wrote its rows held. */
@@ -223,7 +227,7 @@ private:
     PetscReal time = 0, dt = 0, t_final = 0, first_step = 0;            /* first_step: the run's first (or fixed) step, from its options */
     PetscInt  step = 0, sample = 0, snapshot = 0, samples = 0, snapshots = 0;
   } record_;
-  std::vector<PetscReal>                           solution_;     /* the "solution" declaration's view of U */
+  std::vector<PetscReal>                           solution_;     /* the declarations' view of U (while a checkpoint is written or read) */
   std::vector<std::pair<std::string, CsvWriter *>> series_;       /* every CSV time series (rank 0), in the order opened */
   std::vector<std::pair<std::string, std::string>> restart_text_; /* a restart: each series' text at the checkpoint */
 };

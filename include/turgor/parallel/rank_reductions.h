@@ -1,0 +1,52 @@
+#pragma once
+/* Sums and extremes over the ranks of a communicator, in place, for summaries and reports: one
+   collective call each (every rank must make it). */
+#include <turgor/core/petsc_compat.h>
+#include <petscsys.h>
+#include <string>
+#include <vector>
+
+namespace turgor {
+
+template <class T>
+MPI_Datatype RankDatatype();
+template <>
+inline MPI_Datatype RankDatatype<PetscReal>()
+{
+  return MPIU_REAL;
+}
+template <>
+inline MPI_Datatype RankDatatype<PetscInt>()
+{
+  return MPIU_INT;
+}
+
+template <class T>
+PetscErrorCode SumOverRanks(MPI_Comm comm, T *v, int n = 1)
+{
+  return MPI_Allreduce(MPI_IN_PLACE, v, n, RankDatatype<T>(), MPI_SUM, comm) == MPI_SUCCESS ? PETSC_SUCCESS : PETSC_ERR_MPI;
+}
+template <class T>
+PetscErrorCode MaxOverRanks(MPI_Comm comm, T *v, int n = 1)
+{
+  return MPI_Allreduce(MPI_IN_PLACE, v, n, RankDatatype<T>(), MPI_MAX, comm) == MPI_SUCCESS ? PETSC_SUCCESS : PETSC_ERR_MPI;
+}
+template <class T>
+PetscErrorCode MinOverRanks(MPI_Comm comm, T *v, int n = 1)
+{
+  return MPI_Allreduce(MPI_IN_PLACE, v, n, RankDatatype<T>(), MPI_MIN, comm) == MPI_SUCCESS ? PETSC_SUCCESS : PETSC_ERR_MPI;
+}
+
+/* This rank's number in comm, and (if asked) comm's size. */
+inline PetscErrorCode RankAndSize(MPI_Comm comm, PetscMPIInt *rank, PetscMPIInt *size = nullptr)
+{
+  if (MPI_Comm_rank(comm, rank) != MPI_SUCCESS) return PETSC_ERR_MPI;
+  return size && MPI_Comm_size(comm, size) != MPI_SUCCESS ? PETSC_ERR_MPI : PETSC_SUCCESS;
+}
+
+/* Rows of text cells gathered from every rank, in rank order: on the first rank only (to_all false;
+   the others get none) or on every rank. */
+using TextRows = std::vector<std::vector<std::string>>;
+PetscErrorCode GatherRows(MPI_Comm comm, bool to_all, const TextRows &mine, TextRows *all);
+
+} // namespace turgor

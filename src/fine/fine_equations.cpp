@@ -1,0 +1,269 @@
+#include <turgor/core/errors.h>
+#include <turgor/fine/fine_equations.h>
+#include <turgor/parallel/rank_reductions.h>
+#include <turgor/ts/velocity_verlet.h>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace turgor {
+
+void FineEquations::SetUp(ForceModel &model, Controls &controls, TissueDistribution *halo, const ParticleSet &P, ParticleFields &fields)
+{
+  model_    = &model;
+  controls_ = &controls;
+  halo_     = halo;
+  P_        = &P;
+  n_owned_  = P.NumOwned();
+  n_all_    = P.n;
+  /* the state's fields: the model reads them on the halo too (the halo's exchange pairs two
+     components per particle) */
+  fields.Declare("position", "µm", 2, kHalo | kSnapshot | kCheckpoint, [this] { return x_local_; });
+  fields.Declare("velocity", "µm/µs", 2, kHalo | kSnapshot | kCheckpoint, [this] { return v_local_; });
+  halo_fields_ = fields.With(kHalo);
+}
+
+PetscErrorCode FineEquations::SetTS(TS ts, IS is_x, IS is_v, std::function<PetscErrorCode(PetscReal, Vec, Vec, PetscBool *)> observe)
+{
+  PetscFunctionBeginUser;
+  ts_      = ts;
+  observe_ = std::move(observe);
+  PetscCall(TSSetRHSFunction(ts, NULL, RHSFunction, this));
+  PetscCall(TSRHSSplitSetIS(ts, "position", is_x));
+  PetscCall(TSRHSSplitSetIS(ts, "momentum", is_v));
+  PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, RHSPosition, this));
+  PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, RHSMomentum, this));
+  PetscCall(TSSetFunctionDomainError(ts, CheckDomain));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields)
+{
+  PetscBool symplectic, kdk;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSBASICSYMPLECTIC, &symplectic));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVERLET, &kdk));
+  if (!symplectic && !kdk) PetscFunctionReturn(PETSC_SUCCESS);
+  /* the split integrators' velocities of the last position update; a distributed run without
+     controls gathers the halo's into their tail (LocalState: no copy of the velocities) */
+  v_stale_.assign(2 * (halo_ && !controls_->Active() ? n_all_ : n_owned_), 0);
+  split_ = true;
+  fields.Declare("drift_velocity", "µm/µs", 2, kCheckpoint, [this] { return v_stale_.data(); });
+  if (kdk) {
+    drift_fraction_ = 1.0; /* one drift of h per step */
+    if (halo_) {           /* its accelerations carry room for the halo's forces (Accelerations) */
+      PetscCall(TSVerletSetAccelerationRoom(ts, 2 * (n_all_ - n_owned_)));
+      acceleration_room_ = true;
+      if (v_stale_.size() == (size_t)(2 * n_all_)) std::vector<PetscReal>().swap(vw_); /* the set-up's copy: the force evaluations gather into v_stale_ */
+    }
+  } else {
+    /* PETSc's basicsymplectic defaults to first-order symplectic Euler; velocity Verlet unless asked */
+    const char *prefix;
+    PetscBool   chosen;
+    PetscCall(TSGetOptionsPrefix(ts, &prefix));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_basicsymplectic_type", &chosen));
+    if (!chosen) PetscCall(TSBasicSymplecticSetType(ts, TSBASICSYMPLECTICVELVERLET));
+    /* PETSc 3.18's schemes: velocity Verlet drifts twice by h/2, symplectic Euler once by h; for the
+       others a controlled velocity is taken at the start of each drift (first order in time) */
+    TSBasicSymplecticType scheme;
+    PetscBool             verlet, euler;
+    PetscCall(TSBasicSymplecticGetType(ts, &scheme));
+    PetscCall(PetscStrcmp(scheme, TSBASICSYMPLECTICVELVERLET, &verlet));
+    PetscCall(PetscStrcmp(scheme, TSBASICSYMPLECTICSIEULER, &euler));
+    drift_fraction_ = verlet ? 0.5 : euler ? 1.0 : 0.0;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::LocalState(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc)
+{
+  PetscFunctionBeginUser;
+  if (!controls_->Active() && !halo_) { /* the state's own arrays (read only: the halo fields are not gathered here) */
+    x_local_ = const_cast<PetscReal *>(x), v_local_ = const_cast<PetscReal *>(v);
+    *xc = x, *vc = v;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  const PetscInt n2 = 2 * n_owned_;
+  xw_.resize(2 * n_all_);
+  std::copy(x, x + n2, xw_.begin());
+  x_local_ = xw_.data();
+  if (!controls_->Active() && v == v_stale_.data() && v_stale_.size() == (size_t)(2 * n_all_)) v_local_ = v_stale_.data(); /* room for the halo: in place */
+  else {
+    vw_.resize(2 * n_all_);
+    std::copy(v, v + n2, vw_.begin());
+    v_local_ = vw_.data();
+  }
+  if (halo_) {
+    halo_arrays_.clear();
+    for (const ParticleField *f : halo_fields_) halo_arrays_.push_back(f->values());
+    PetscCall(halo_->Gather(halo_arrays_));
+  }
+  controls_->Impose(t, x_local_, v_local_);
+  if (halo_) PetscCall(halo_->Check(x_local_));
+  *xc = x_local_, *vc = v_local_;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f)
+{
+  PetscFunctionBeginUser;
+  PetscCall(model_->ComputeForces(x, v, f, NULL));
+  if (halo_) PetscCall(halo_->Return(f));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a, bool a_has_halo_room)
+{
+  PetscFunctionBeginUser;
+  if (!halo_) { /* the state's array holds every particle: no copy */
+    PetscCall(model_->ComputeAcceleration(x, v, a));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (a_has_halo_room) { /* the halo's forces in a's spare tail, returned from there */
+    PetscCall(TotalForces(x, v, a));
+    model_->DivideByMass(a, a, n_owned_);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  fw_.resize(2 * n_all_);
+  PetscCall(TotalForces(x, v, fw_.data()));
+  model_->DivideByMass(fw_.data(), a, n_owned_);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A distributed run: every rank's limits, the smallest of each kind (the text before its ':', e.g.
+   "wall springs") kept, the same on every rank (each rank bounds only its own particles). */
+static PetscErrorCode SmallestLimits(MPI_Comm comm, std::vector<TimeStepLimit> &limits)
+{
+  TextRows mine, all;
+  char     num[64];
+  PetscFunctionBeginUser;
+  for (const TimeStepLimit &l : limits) {
+    PetscCall(PetscSNPrintf(num, sizeof num, "%.17g", (double)l.dt));
+    mine.push_back({num, l.why});
+  }
+  PetscCall(GatherRows(comm, true, mine, &all));
+  std::vector<TimeStepLimit> merged;
+  for (const auto &row : all) {
+    const TimeStepLimit l{(PetscReal)std::strtod(row[0].c_str(), nullptr), row[1]};
+    const std::string   kind = l.why.substr(0, l.why.find(':'));
+    auto                it   = std::find_if(merged.begin(), merged.end(), [&](const TimeStepLimit &m) { return m.why.substr(0, m.why.find(':')) == kind; });
+    if (it == merged.end()) merged.push_back(l);
+    else if (l.dt < it->dt) *it = l;
+  }
+  limits = merged;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::StabilityLimits(Vec U, std::vector<TimeStepLimit> &limits, PetscReal *dt)
+{
+  const PetscScalar *u;
+  const PetscReal   *x, *v;
+  MPI_Comm           comm;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)U, &comm));
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(LocalState(0, u, &x, &v));
+  PetscCall(model_->TimeStepLimits(x, v, limits));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  if (halo_) PetscCall(SmallestLimits(comm, limits));
+  std::sort(limits.begin(), limits.end(), [](const TimeStepLimit &a, const TimeStepLimit &b) { return a.dt < b.dt; });
+  *dt = limits.empty() ? PETSC_MAX_REAL : limits[0].dt;
+  PetscCall(MinOverRanks(comm, dt));
+  if (*dt == PETSC_MAX_REAL) *dt = 1e-3; /* no forces at all */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void *ctx)
+{
+  return TURGOR_GUARDED({
+    FineEquations     *eq = (FineEquations *)ctx;
+    const PetscInt     n2 = 2 * eq->n_owned_;
+    const PetscScalar *u;
+    PetscScalar       *f;
+    PetscBool          answered = PETSC_FALSE;
+    PetscFunctionBeginUser;
+    PetscCall(CheckStopNow());
+    if (eq->observe_) PetscCall(eq->observe_(t, U, F, &answered)); /* a restart's first derivative, the FSAL stage */
+    if (answered) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(VecGetArrayRead(U, &u));
+    PetscCall(VecGetArray(F, &f));
+    const std::vector<char> &fixed = eq->P_->fixed;
+    eq->model_->SetTime(t);
+    /* with controls, the controlled components: x and v imposed, dx/dt = v_c(t), v not integrated */
+    const PetscReal *x, *v;
+    PetscCall(eq->LocalState(t, u, u + n2, &x, &v));
+    for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : v[k];
+    PetscCall(eq->Accelerations(x, v, f + n2));
+    if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, f + n2);
+    PetscCall(VecRestoreArray(F, &f));
+    PetscCall(VecRestoreArrayRead(U, &u));
+    eq->rhs_evals_++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+PetscErrorCode FineEquations::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx)
+{
+  return TURGOR_GUARDED({
+    FineEquations     *eq = (FineEquations *)ctx;
+    const PetscScalar *v;
+    PetscScalar       *xd;
+    PetscFunctionBeginUser;
+    PetscCall(VecGetArrayRead(V, &v));
+    PetscCall(VecGetArray(Xdot, &xd));
+    const std::vector<char> &fixed = eq->P_->fixed;
+    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) {
+      xd[k]           = fixed[k / 2] ? 0 : v[k];
+      eq->v_stale_[k] = v[k];
+    }
+    if (eq->controls_->Active()) {
+      PetscReal h;
+      PetscCall(TSGetTimeStep(eq->ts_, &h));
+      eq->controls_->PositionRates(t, eq->drift_fraction_ * h, xd);
+    }
+    PetscCall(VecRestoreArray(Xdot, &xd));
+    PetscCall(VecRestoreArrayRead(V, &v));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+PetscErrorCode FineEquations::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx)
+{
+  return TURGOR_GUARDED({
+    FineEquations     *eq = (FineEquations *)ctx;
+    const PetscScalar *x;
+    PetscScalar       *a;
+    PetscFunctionBeginUser;
+    PetscCall(CheckStopNow());
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(VecGetArray(Vdot, &a));
+    eq->model_->SetTime(t);
+    const PetscReal *xc, *vc;
+    PetscCall(eq->LocalState(t, x, eq->v_stale_.data(), &xc, &vc));
+    PetscCall(eq->Accelerations(xc, vc, a, eq->acceleration_room_));
+    if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, a);
+    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++)
+      PetscCheck(std::isfinite(a[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
+                 "Non-finite acceleration of particle %" PetscInt_FMT
+                 " at t = %g µs: the fixed step is above the stability limit (lower -ts_dt or -fine_dt_safety)",
+                 k / 2, (double)t);
+    PetscCall(VecRestoreArray(Vdot, &a));
+    PetscCall(VecRestoreArrayRead(X, &x));
+    eq->rhs_evals_++;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+/* A stage with non-finite values is rejected, so an adaptive integrator retries with a smaller step. */
+PetscErrorCode FineEquations::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept)
+{
+  return TURGOR_GUARDED({
+    PetscReal nrm;
+    PetscFunctionBeginUser;
+    PetscCall(VecNorm(U, NORM_INFINITY, &nrm));
+    *accept = std::isfinite(nrm) ? PETSC_TRUE : PETSC_FALSE;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+} // namespace turgor

@@ -1,0 +1,110 @@
+#include <turgor/fine/fine_records.h>
+#include <turgor/parallel/rank_reductions.h>
+
+namespace turgor {
+
+PetscErrorCode FineRecords::SetUp(MPI_Comm comm, bool energy, bool distributed, ForceModel &model, const Controls &controls, const ParticleSet &P,
+                                  const PetscReal *x0, const PetscReal *v0)
+{
+  PetscFunctionBeginUser;
+  comm_        = comm;
+  energy_on_   = energy;
+  distributed_ = distributed;
+  model_       = &model;
+  if (energy_on_) {
+    PetscCall(energy_.SetUp(model, controls, P));
+    PetscCall(energy_.Start(comm_, 0, x0, v0));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRecords::EnergyRow(PetscReal t, const PetscReal *x, const PetscReal *v)
+{
+  std::vector<PetscReal> row;
+  PetscReal              rel;
+  PetscFunctionBeginUser;
+  PetscCall(energy_.Row(comm_, x, v, row, &rel));
+  row.insert(row.begin(), t);
+  if (energy_csv_.IsOpen()) PetscCall(energy_csv_.Row(row));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRecords::Open(const OpenSeries &open, PetscReal t_final, PetscInt samples, bool restarted, const PetscReal *x0, const PetscReal *v0)
+{
+  PetscFunctionBeginUser;
+  std::vector<std::pair<std::string, std::vector<std::string>>> files;
+  model_->RecordFiles(files);
+  record_names_.clear();
+  record_csv_.clear();
+  for (auto &f : files) {
+    record_names_.push_back(f.first);
+    record_csv_.push_back(std::make_unique<CsvWriter>());
+    PetscCall(open(*record_csv_.back(), f.first, f.second));
+  }
+  if (!energy_on_) PetscFunctionReturn(PETSC_SUCCESS);
+  std::vector<std::string> columns = {"time"};
+  for (const std::string &c : energy_.Columns()) columns.push_back(c);
+  energy_every_ = t_final / std::max<PetscInt>(samples, 1);
+  PetscCall(open(energy_csv_, "energy.csv", columns));
+  if (restarted) PetscFunctionReturn(PETSC_SUCCESS); /* continued: energy_next_ and the sums come from the checkpoint */
+  energy_next_ = energy_every_;
+  PetscCall(EnergyRow(0, x0, v0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A distributed run: every rank's log rows (file, cells) to rank 0, which writes the files. */
+static PetscErrorCode GatherRecords(MPI_Comm comm, std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
+{
+  TextRows mine, all;
+  PetscFunctionBeginUser;
+  for (auto &r : rows) {
+    mine.push_back({r.first});
+    mine.back().insert(mine.back().end(), r.second.begin(), r.second.end());
+  }
+  PetscCall(GatherRows(comm, false, mine, &all));
+  rows.clear();
+  for (auto &row : all) rows.push_back({row.front(), std::vector<std::string>(row.begin() + 1, row.end())});
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineRecords::AfterStep(PetscReal t, const PetscReal *x, const PetscReal *v, PetscReal t_final)
+{
+  PetscFunctionBeginUser;
+  if (!record_csv_.empty()) {
+    std::vector<std::pair<std::string, std::vector<std::string>>> rows;
+    model_->TakeRecords(rows);
+    if (distributed_) PetscCall(GatherRecords(comm_, rows));
+    for (auto &r : rows)
+      for (size_t k = 0; k < record_names_.size(); k++)
+        if (record_names_[k] == r.first && record_csv_[k]->IsOpen()) PetscCall(record_csv_[k]->RowText(r.second));
+  }
+  if (energy_on_) {
+    PetscCall(energy_.Step(t, x, v));
+    if (t >= energy_next_ * (1 - 1e-12) || t >= t_final * (1 - 1e-12)) {
+      PetscCall(EnergyRow(t, x, v));
+      while (energy_next_ <= t * (1 + 1e-12)) energy_next_ += energy_every_;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void FineRecords::DeclareState(std::deque<StateDeclaration> &decls)
+{
+  if (!energy_on_) return;
+  decls.emplace_back("energy");
+  decls.back().Scalar("next_row", &energy_next_, Combine::Owner);
+  energy_.DeclareState(decls.back());
+}
+
+PetscErrorCode FineRecords::AddSummary(JsonObject &js) const
+{
+  PetscFunctionBeginUser;
+  if (!energy_on_) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscReal wext = energy_.ExternalWork();
+  PetscCall(SumOverRanks(comm_, &wext));
+  js.Set("energy_residual_max", energy_.LargestRelativeResidual());
+  js.Set("energy_external_work", wext);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
