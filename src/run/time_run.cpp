@@ -374,16 +374,7 @@ PetscErrorCode TimeRun::Solve()
     PetscReal tn;
     PetscCall(TSGetStepNumber(ts_, &step));
     PetscCall(TSGetTime(ts_, &tn));
-    if (step != ckpt_last_step_ && interrupted_) {
-      /* a batch system's TERM is followed by KILL soon (mpiexec: 1 s later): the summary first,
-         naming the last complete checkpoint, then this one, then the summary again (WriteSummary) */
-      JsonObject js;
-      PetscCall(CheckOutputs(SeriesStep::Flush));
-      PetscCall(Summarize(js));
-      js.Set("checkpoint_pending", "the checkpoint of the interrupt's step was being written");
-      PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
-    }
-    if (step != ckpt_last_step_) PetscCall(WriteCheckpoint(tn, step));
+    if (step != ckpt_last_step_) PetscCall(WriteCheckpoint(tn, step)); /* an interrupt's: its summary first (InterruptWhileWriting) */
   }
   PetscCall(AfterSolve());
   PetscCall(PetscLogStagePop());
@@ -460,6 +451,37 @@ PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
     js.Set("restart_allowed", restart_allow_);
     js.Set("restart_changed", restart_changed_);
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A batch system's TERM is followed by KILL soon (mpiexec's: about a second later), maybe before a
+   checkpoint is written whole: once SIGINT/SIGTERM is seen while one is written (at its start and
+   between its declarations; collective), the run stops after this step and says so at once in
+   summary.json, "interrupted", naming the last complete checkpoint and the one being written
+   (`pending`). The final summary replaces it when the run ends. */
+PetscErrorCode TimeRun::InterruptWhileWriting(const std::string &pending)
+{
+  PetscBool stop = interrupted_ ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  if (interrupt_said_ || !out_.ready) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!stop) PetscCall(InterruptRequestedAll(comm_, &stop));
+  if (!stop) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!interrupted_) {
+    PetscReal t;
+    PetscInt  step;
+    PetscCall(TSGetTime(ts_, &t));
+    PetscCall(TSGetStepNumber(ts_, &step));
+    interrupted_ = true;
+    PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
+    PetscCall(
+      PetscPrintf(comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT ") while writing a checkpoint: stopping once it is written\n", (double)t, step));
+  }
+  JsonObject js;
+  PetscCall(CheckOutputs(SeriesStep::Flush));
+  PetscCall(Summarize(js));
+  js.Set("checkpoint_pending", pending);
+  PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
+  interrupt_said_ = true;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -182,6 +182,8 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
 
   CheckpointWriter w;
   writing_ = "the checkpoint " + tmp;
+  PetscCall(InterruptWhileWriting(tmp));
+  w.BetweenDeclarations([this, &tmp] { return InterruptWhileWriting(tmp); });
   PetscCall(w.Open(comm_, tmp));
   {
     std::string integrator;

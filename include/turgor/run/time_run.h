@@ -183,7 +183,8 @@ private:
   PetscErrorCode        Sample(PetscReal t, Vec U);
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
-  PetscErrorCode        Summarize(JsonObject &js); /* the summary of a run that ended (collective) */
+  PetscErrorCode        Summarize(JsonObject &js);                         /* the summary of a run that ended (collective) */
+  PetscErrorCode        InterruptWhileWriting(const std::string &pending); /* SIGINT/SIGTERM during a checkpoint: summary.json says so at once */
   enum class SeriesStep {
     Check,
     Flush,
@@ -213,8 +214,9 @@ private:
   PetscReal       ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
   PetscLogDouble  ckpt_wall_last_ = 0;
   PetscInt        ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
-  std::string     ckpt_last_file_; /* the last complete checkpoint (this run's, or the one it continues) */
-  std::string     writing_;        /* the snapshot or checkpoint being written: a failure's summary names it */
+  std::string     ckpt_last_file_;         /* the last complete checkpoint (this run's, or the one it continues) */
+  std::string     writing_;                /* the snapshot or checkpoint being written: a failure's summary names it */
+  bool            interrupt_said_ = false; /* summary.json says "interrupted" already (InterruptWhileWriting) */
   PetscReal       ckpt_bytes_ = 0, ckpt_seconds_ = 0;
   std::string     restart_file_;
   PetscLogEvent   ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
