@@ -211,6 +211,7 @@ static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], Vorono
   /* after a Lloyd step the old weights may empty a cell: pull them toward 0 (Voronoi, where no cell is empty) */
   PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
   for (int k = 0; any_empty(); k++) {
+    PetscCall(StopIfInterrupted(comm, "set-up: the Laguerre weights of the Voronoi tissue (-tissue_size_cv)"));
     for (PetscReal &w : D.weights) w = k < 60 ? 0.5 * w : 0;
     PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
   }
@@ -270,6 +271,7 @@ static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], Vorono
     PetscReal step = 1, err = PETSC_MAX_REAL;
     for (int halve = 0;; halve++) {
       for (size_t i = 0; i < N; i++) D.weights[i] = w0[i] + step * x[i];
+      PetscCall(StopIfInterrupted(comm, "set-up: the Laguerre weights of the Voronoi tissue (-tissue_size_cv)")); /* a diagram of many cells takes long */
       PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
       if (!any_empty()) {
         err = MaxAreaError(D.cells, D.targets);
