@@ -50,3 +50,9 @@ turgor_add_test(crushing_64_energy COMMAND ${FRACTURE} energy crushing64 1e-2 LA
 turgor_add_test(crushing_64_bonds COMMAND ${FRACTURE} bonds crushing64 LABELS fine hard REQUIRES crushing64)
 turgor_add_test(crushing_64_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py crushing64/particles.xmf LABELS fine REQUIRES crushing64)
 turgor_paraview_polygons(crushing_64 crushing64 5)
+
+# The closing report lists every file the run wrote: with the energy balance and glue, energy.csv and
+# breaks.csv too (and the end-of-run checkpoint).
+turgor_add_test(traction_16_outputs_listed COMMAND turgor_app ${TRACTION16} -fine_energy -ts_max_time 0.05 -checkpoint_interval 1e6
+  -output_dir traction16_outputs PASS_REGEX
+  "Outputs in traction16_outputs: summary.json, tip.csv, groups.csv, energy.csv, breaks.csv, checkpoint.h5, checkpoint_[0-9]+.h5\n" LABELS fine)
