@@ -93,3 +93,13 @@ turgor_restart_case(dist_bar_verlet 400 INTERVAL 0.25 LAUNCH ${MPIEXEC_ROOT} -n 
 # option (the lid comes down onto the cells with no margin), not with missed contacts.
 turgor_add_test(dist_halo_outgrown COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${DIST_POLY} -ts_max_time 16 -fine_halo_margin 0
   -output_overwrite -output_dir dist_halo_outgrown LABELS fine mpi hard PASS_REGEX "no longer covers this deformation; rerun with a larger -fine_halo_margin")
+
+# Empty ranks: fewer cells than ranks leaves a rank (or two) without a particle, which must still
+# reach every collective call (the halo check, the integrator's set-up, the stability report) and
+# give the one-rank answer. A square grid of 2 cells on 2 and 3 ranks (rk), and 2 glued Voronoi
+# cells on 2 and 3 ranks (verlet with a fixed -ts_dt: the glue's Gershgorin bound is taken over each
+# rank's bonds, so the step it suggests depends on the ranks; bonds are built on empty ranks too).
+turgor_ranks_agree(empty_grid TOL 1e-9 OPTIONS -mode fine -tissue_cells_x 2 -tissue_cells_y 1 -ts_max_time 0.2 -fine_snapshots 0
+  -fine_progress_interval 0)
+turgor_ranks_agree(empty_glue TOL 1e-9 OPTIONS -mode fine -tissue_type voronoi -tissue_voronoi_cells 2 -tissue_box 0,0,100,100
+  -physics bars,hinges,contact,pressure,glue -ts_type verlet -ts_dt 5e-4 -ts_max_time 0.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_clamp none)

@@ -232,6 +232,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   PetscCall(PetscSFSetGraph(sf_, 2 * n_owned_, 2 * n_halo_, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
   PetscCall(PetscSFSetUp(sf_));
   box_check_.clear();
+  checked_     = false;
   full_checks_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -274,10 +275,10 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
     const PetscReal e[4] = {b.lo[0], b.lo[1], b.hi[0], b.hi[1]};
     for (int q = 0; q < 4; q++) {
       now[4 * k + q] = e[q];
-      if (!box_check_.empty()) shift = std::max(shift, std::fabs(e[q] - box_check_[4 * k + q]));
+      if (checked_) shift = std::max(shift, std::fabs(e[q] - box_check_[4 * k + q]));
     }
   }
-  if (!box_check_.empty()) {
+  if (checked_) {
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &shift, 1, MPIU_REAL, MPIU_MAX, comm_));
     if (2 * std::sqrt(2.0) * shift < slack_) {
       PetscCall(PetscLogEventEnd(ev_check_, 0, 0, 0, 0));
@@ -314,6 +315,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
              "(reach + -fine_halo_margin %g µm) no longer covers this deformation; rerun with a larger -fine_halo_margin",
              (double)reach_, (double)margin_);
   box_check_.swap(box_now_);
+  checked_ = true;
   PetscCall(PetscLogEventEnd(ev_check_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -50,11 +50,11 @@ PetscErrorCode TissuePlacement::Distribute(MPI_Comm comm, Tissue *tissue, std::v
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCheck(ncells >= size, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "A distributed fine run needs at least one cell per rank: %d ranks for %" PetscInt_FMT " cells (use fewer ranks, or %s 0)", size, ncells, option);
   std::vector<PetscInt> cell_rank(ncells, 0);
   PetscErrorCode        failed = PETSC_SUCCESS;
-  if (rank == 0) {
+  if (rank == 0 && ncells < size) /* fewer cells than ranks: one cell a rank, the last ranks hold none (an empty rank is a valid rank) */
+    for (PetscInt c = 0; c < ncells; c++) cell_rank[c] = c;
+  else if (rank == 0) {
     CellGraph     graph;
     CellPartition part;
     failed = BuildCellGraph(PETSC_COMM_SELF, *tissue, &graph);

@@ -129,6 +129,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
   PetscReal       lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
   for (PetscInt i = 0; i < P.n; i++)
     for (int d = 0; d < 2; d++) lo[d] = std::min(lo[d], X[2 * i + d]), hi[d] = std::max(hi[d], X[2 * i + d]);
+  if (P.n == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0; /* a rank without particles: one empty bin */
   PetscReal h = std::max(R, 1e-12);
   while (((hi[0] - lo[0]) / h + 1) * ((hi[1] - lo[1]) / h + 1) > 4.0 * P.n + 64) h *= 2;
   const PetscInt        nbx = (PetscInt)((hi[0] - lo[0]) / h) + 1, nby = (PetscInt)((hi[1] - lo[1]) / h) + 1;

@@ -21,10 +21,12 @@ struct Verlet {
    here, freed by the caller after the Vec) */
 PetscErrorCode DuplicateWithRoom(Vec p, PetscInt room, Vec *A, PetscScalar **array)
 {
-  PetscInt n, N, bs;
+  PetscInt n, N, bs, any_room = room;
   PetscFunctionBeginUser;
   *array = NULL;
-  if (!room) {
+  /* the same kind of Vec on every rank (creating one is collective): a rank without a halo has no room */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any_room, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)p)));
+  if (!any_room) {
     PetscCall(VecDuplicate(p, A));
     PetscFunctionReturn(PETSC_SUCCESS);
   }

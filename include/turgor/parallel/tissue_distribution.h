@@ -67,8 +67,9 @@ private:
   std::vector<PetscInt>  ring_;        /* their particles: rings and fluid (local indices) */
   std::vector<char>      local_cell_;  /* [cells]: owned or halo here */
   PetscReal              reach_ = 0, margin_ = 0, slack_ = 0;
-  std::vector<PetscReal> box_check_; /* this rank's cells' boxes at the last full check */
-  std::vector<PetscReal> box_now_;   /* ... and now (Check's work array, kept: it runs every evaluation) */
+  std::vector<PetscReal> box_check_;       /* this rank's cells' boxes at the last full check */
+  bool                   checked_ = false; /* a full check was made (the same on every rank: a rank may own no cell) */
+  std::vector<PetscReal> box_now_;         /* ... and now (Check's work array, kept: it runs every evaluation) */
   mutable PetscReal      bytes_       = 0;
   PetscLogEvent          ev_exchange_ = 0, ev_check_ = 0; /* TgHaloExchange (Gather, Return), TgHaloCheck */
 };
