@@ -10,7 +10,9 @@ Starts TURGOR ARGS... -output_dir DIR and sends SIGTERM; it must end within 30 s
            "interrupted", or "failed" with the reason "Interrupted twice";
   setup:S[:TEXT]
            one signal S seconds after the start (or after the first line that starts with TEXT),
-           in the set-up: it ends within 8 s of it, exit
+           in the set-up, to TURGOR and its child processes (mpiexec's ranks, as a batch system
+           signals every task; mpiexec alone passes it on a second later and kills the ranks a
+           second after that): it ends within 8 s of it, exit
            status 130 (under mpiexec, which ends the job itself: non-zero), summary.json
            "interrupted" and no step taken;
   group:T  a batch system's TERM, then KILL: one SIGTERM to the whole process group after the first
@@ -20,6 +22,18 @@ Starts TURGOR ARGS... -output_dir DIR and sends SIGTERM; it must end within 30 s
            the checkpoint it names as the last complete one (checkpoint_last) is there.
 """
 import json, os, signal, subprocess, sys, time
+
+
+def children(pid):
+    """The processes whose parent is pid (Linux /proc)."""
+    out = []
+    for entry in os.listdir("/proc"):
+        try:
+            if entry.isdigit() and int(open(f"/proc/{entry}/stat").read().rsplit(")", 1)[1].split()[1]) == pid:
+                out.append(int(entry))
+        except (OSError, ValueError, IndexError):
+            pass
+    return out
 
 
 def wait_progress(p, t=None):
@@ -44,6 +58,8 @@ def main(argv):
                 break
         time.sleep(float(delay))
         p.send_signal(signal.SIGTERM)
+        for child in children(p.pid):  # under mpiexec, its ranks too, as a batch system signals every task
+            os.kill(child, signal.SIGTERM)
         limit = 8
     elif group:
         wait_progress(p, float(how.split(":")[1]))
