@@ -143,6 +143,14 @@ def check_agree(a):
         fail(f"eigenvalues differ by {worst:.2e} (> {a.rtol:.0e}): {s1['eigenvalues']} vs {s2['eigenvalues']}")
     if "omega_max" in s1 and "omega_max" in s2 and rel(s1["omega_max"], s2["omega_max"]) > a.rtol:
         fail(f"omega_max {s1['omega_max']} vs {s2['omega_max']}")
+    for key in ("damped_real", "damped_imag"):  # the damped modes, where both runs have them
+        if key in s1 or key in s2:
+            x, y = s1.get(key, []), s2.get(key, [])
+            # a real part is a small difference of large terms: compared to the eigenvalue's magnitude
+            scale = [max(abs(complex(r, i)), 1e-300) for r, i in zip(s1.get("damped_real", []), s1.get("damped_imag", []))]
+            off = max((abs(u - v) / m for u, v, m in zip(x, y, scale)), default=0.0)
+            if len(x) != len(y) or off > a.rtol:
+                fail(f"{key} differ by {off:.2e} of |s| (> {a.rtol:.0e}): {x} vs {y}")
     for s, d in ((s1, a.dirs[0]), (s2, a.dirs[1])):
         if max(s["residual_norms"]) >= 1e-8:
             fail(f"{d}: residual norms {s['residual_norms']}")

@@ -74,9 +74,9 @@ turgor_ranks_agree(glue TOL 1e-7 RANKS 2 OPTIONS -options_file_yaml ${PROJECT_SO
 turgor_add_test(dist_glue_breaks COMMAND ${CHECK} samerows dist_glue_np2 dist_glue_np1 breaks.csv cell_node cell_bar node bar LABELS fine mpi
   REQUIRES "dist_glue_np1;dist_glue_np2")
 
-# Snapshots of a distributed run: each rank writes its own particles, bars and cells into the one
-# file (connectivity in the state's numbering, halo ends included): the XDMF agrees with its HDF5
-# data, and ParaView shows the 64 cells with the gas-law pressure, as for one rank.
+# Snapshots of a distributed run: each rank's particles, bars and cells go to their rows in id order
+# in the one file (the connectivity by particle id, halo ends included): the XDMF agrees with its
+# HDF5 data, and ParaView shows the 64 cells with the gas-law pressure, as for one rank.
 turgor_add_test(dist_box_snapshots COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${BOX} -ts_max_time 1 -fine_snapshots 2
   -output_dir dist_box_snapshots LABELS fine mpi SETUP dist_box_snapshots)
 turgor_add_test(dist_box_xdmf COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py dist_box_snapshots/particles.xmf LABELS fine mpi

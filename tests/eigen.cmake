@@ -106,3 +106,19 @@ turgor_add_test(eigen_fe2_monitor_first_check COMMAND ${EIGCHECK} monitor eigen_
   REQUIRES "eigen_fe2_monitor;eigen_cantilever_40x2")
 turgor_add_test(eigen_fe2_monitor_changes_nothing COMMAND ${CHECK} identical eigen_fe2_monitor eigen_fe2_unmonitored steps rhs_evals jacobian_evals
   LABELS fe2 eigen REQUIRES "eigen_fe2_monitor;eigen_fe2_unmonitored")
+
+# Ranks without a free dof or without an element: a 1 x 1 and a 2 x 1 mesh on 2 and 3 ranks give the
+# one-rank spectrum, undamped and damped (the material points of an empty rank's group computed
+# with their tangents; the damped pencil solved in an even row layout where a rank holds no row).
+set(EIGEN_EMPTY ${EIGEN_NH} -nh_viscosity 0.01 -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_upper 400,400 -eigen_state reference -eigen_modes 2)
+foreach(faces 1,1 2,1)
+  string(REPLACE "," "x" f ${faces})
+  foreach(np 1 2 3)
+    turgor_add_test(eigen_empty_${f}_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} ${EIGEN} ${EIGEN_EMPTY} -coarse_dm_plex_box_faces ${faces}
+      -output_dir eigen_empty_${f}_np${np} LABELS fe2 eigen mpi TIMEOUT 60 SETUP eigen_empty_${f}_np${np})
+  endforeach()
+  foreach(np 2 3)
+    turgor_add_test(eigen_empty_${f}_np${np}_agree COMMAND ${EIGCHECK} agree eigen_empty_${f}_np1 eigen_empty_${f}_np${np} --rtol 1e-9 LABELS fe2 eigen mpi
+      REQUIRES "eigen_empty_${f}_np1;eigen_empty_${f}_np${np}")
+  endforeach()
+endforeach()

@@ -79,3 +79,18 @@ turgor_add_test(fe2_static_min_increment_reached COMMAND ${BAD} "reached load fa
   -output_dir static_min_increment LABELS fe2 static hard TIMEOUT 60)
 
 # Bad input of this mode: tests/bad_input.txt (section fe2_static).
+
+# A rank with no element (2 elements on 3 ranks; METIS refuses more ranks than elements, PETSc's
+# default partitioner leaves one empty) or whose material points another rank's group evaluates (2
+# ranks, METIS): the same load path as one rank (Newton converges with the same tangent).
+set(STATIC_EMPTY ${STATIC_NH} -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_upper 400,400 -coarse_dm_plex_box_faces 2,1)
+foreach(case "1;-coarse_partitioner;metis" "2;-coarse_partitioner;metis" "3")
+  list(POP_FRONT case np)
+  set(partitioner ${case})
+  turgor_add_test(fe2_static_empty_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} ${STATIC} ${STATIC_EMPTY} ${partitioner} -output_dir static_empty_np${np}
+    LABELS fe2 static mpi TIMEOUT 60 SETUP static_empty_np${np})
+endforeach()
+foreach(np 2 3)
+  turgor_add_test(fe2_static_empty_np${np}_agree COMMAND ${CHECK} tip static_empty_np${np} static_empty_np1 1e-9 LABELS fe2 static mpi
+    REQUIRES "static_empty_np1;static_empty_np${np}")
+endforeach()

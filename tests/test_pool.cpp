@@ -35,7 +35,7 @@ int main(int argc, char **argv)
         {{0.001 * g, 0.002}, {0.0, -0.001}}
       };
     }
-    PetscCall(pool.Evaluate(F.data(), Fd.data(), r.data(), D.data()));
+    PetscCall(pool.Evaluate(F.data(), Fd.data(), r.data(), true, D.data()));
     std::vector<PetscReal> mine, all(N * 23);
     for (PetscInt k = 0; k < n; k++) {
       TG_CHECK(r[k].ok, "point %" PetscInt_FMT ": %s", offset + k, r[k].reason.c_str());

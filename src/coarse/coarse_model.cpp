@@ -727,7 +727,7 @@ PetscErrorCode CoarseModel::EvaluateCellStress(Vec U, PetscBool *ok)
   } else if (!holds) {
     PetscCall(DeformationAt(Uloc_, out_F_, out_Fdot_));
     out_response_.resize(out_F_.size());
-    PetscCall(pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), NULL, EvaluationKind::Output));
+    PetscCall(pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), false, NULL, EvaluationKind::Output));
     r = &out_response_;
   }
   int local_ok = 1, global_ok;
@@ -790,7 +790,7 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
     PetscCall(VecRestoreArrayRead(Uloc_, &u));
   }
   PetscCall(DeformationAt(Uloc_, F_, Fdot_));
-  PetscCall(pool_.Evaluate(F_.data(), Fdot_.data(), response_.data(), tangents ? tangent_.data() : NULL));
+  PetscCall(pool_.Evaluate(F_.data(), Fdot_.data(), response_.data(), tangents, tangent_.data()));
   counters_.material_evals++;
   if (tangents) counters_.tangent_evals++;
   int         local_ok = 1, global_ok;
@@ -1180,7 +1180,7 @@ PetscErrorCode CoarseModel::EvaluateForOutput(Vec Uloc, bool viscous, PetscBool 
   out_response_.resize(out_F_.size());
   out_tangent_.resize(out_F_.size());
   opt.viscosity             = viscous; /* D^v only when asked: 3 material evaluations per point */
-  const PetscErrorCode ierr = pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), out_tangent_.data(), EvaluationKind::Output);
+  const PetscErrorCode ierr = pool_.Evaluate(out_F_.data(), out_Fdot_.data(), out_response_.data(), true, out_tangent_.data(), EvaluationKind::Output);
   opt.viscosity             = keep;
   PetscCall(ierr);
   int         local_ok = 1, global_ok;

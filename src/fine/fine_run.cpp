@@ -300,7 +300,7 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
     std::vector<TermSegments> segs;
     PetscCall(model_.OutputSegments(x, v, segs));
     for (TermSegments &g : segs) {
-      ParticleSnapshotWriter::Segments w{g.name, std::move(g.xy), {}};
+      ParticleSnapshotWriter::Segments w{g.name, std::move(g.xy), std::move(g.id), {}};
       for (TermField &f : g.fields) w.fields.push_back({f.name, f.unit, std::move(f.values), 1});
       fields.segments.push_back(std::move(w));
     }
@@ -315,7 +315,7 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   size_t             closed = 0;
   for (size_t c = 0; c < P.OwnedPolygons(); c++) closed += !P.polygons[c].open && P.polygons[c].nodes.size() >= 3;
   for (TermField &f : terms) {
-    if (f.where == TermField::CELL && P.polygons.empty()) continue; /* the square grid has no polygon grid */
+    if (f.where == TermField::CELL && snapshots_writer_.Cells() == 0) continue; /* no cells grid on any rank (the square grid) */
     f.values.resize(f.where == TermField::CELL ? closed : P.OwnedSprings());
     (f.where == TermField::CELL ? fields.cells : fields.bars).push_back({f.name, f.unit, std::move(f.values), 1});
   }

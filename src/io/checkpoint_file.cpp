@@ -1,4 +1,5 @@
 #include <turgor/io/checkpoint_file.h>
+#include <turgor/io/key_order.h>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -235,18 +236,16 @@ PetscErrorCode WriteDataset(MPI_Comm comm, const std::string &file, hid_t loc, c
 PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols, Rows &R)
 {
   PetscMPIInt size;
+  KeyRanges   ranges;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  std::uint64_t kmax = 0;
-  for (std::uint64_t k : R.key) kmax = std::max(kmax, k);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &kmax, 1, MPI_UINT64_T, MPI_MAX, comm));
+  PetscCall(ranges.SetUp(comm, R.key.data(), R.Count()));
   const size_t                   ncol = cols.size();
   std::vector<size_t>            first(ncol, 0); /* a ragged column's offset of the current row */
   std::vector<std::vector<char>> out((size_t)size);
   for (size_t r = 0; r < R.Count(); r++) {
-    const size_t       dest = (size_t)((unsigned __int128)R.key[r] * (unsigned)size / ((unsigned __int128)kmax + 1));
-    std::vector<char> &o    = out[dest];
-    auto               put  = [&o](const void *p, size_t n) { o.insert(o.end(), (const char *)p, (const char *)p + n); };
+    std::vector<char> &o   = out[ranges.Rank(R.key[r])];
+    auto               put = [&o](const void *p, size_t n) { o.insert(o.end(), (const char *)p, (const char *)p + n); };
     put(&R.key[r], 8);
     put(&R.holder[r], 8);
     put(&R.owned[r], 8);
@@ -260,27 +259,8 @@ PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols
       }
     }
   }
-  std::vector<int> scount((size_t)size), rcount((size_t)size), sdisp((size_t)size, 0), rdisp((size_t)size, 0);
-  for (int q = 0; q < size; q++) {
-    PetscCheck(out[q].size() < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "Checkpoint: more than 2 GB of one table for one rank");
-    scount[q] = (int)out[q].size();
-  }
-  PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm));
-  std::vector<char> send, recv;
-  for (int q = 0; q < size; q++) {
-    sdisp[q] = (int)send.size();
-    send.insert(send.end(), out[q].begin(), out[q].end());
-    std::vector<char>().swap(out[q]);
-  }
-  size_t total = 0;
-  for (int q = 0; q < size; q++) {
-    rdisp[q] = (int)total;
-    total += (size_t)rcount[q];
-  }
-  PetscCheck(total < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "Checkpoint: more than 2 GB of one table on one rank");
-  recv.resize(total);
-  PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdisp.data(), MPI_CHAR, recv.data(), rcount.data(), rdisp.data(), MPI_CHAR, comm));
-  std::vector<char>().swap(send);
+  std::vector<char> recv;
+  PetscCall(ExchangeBytes(comm, out, recv, NULL, "Checkpoint: one table"));
   /* parse, then order */
   Rows in;
   in.data.assign(ncol, {});

@@ -292,15 +292,15 @@ PetscErrorCode MaterialPointPool::Rebalance()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind)
+PetscErrorCode MaterialPointPool::Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, bool tangents, Tangents *D, EvaluationKind kind)
 {
   PetscFunctionBeginUser;
   if (rebalance_after_ > 0 && kind == EvaluationKind::Trial && evaluations_++ == rebalance_after_) PetscCall(Rebalance());
-  PetscCall(EvaluateBlock(F, Fdot, out, D, kind));
+  PetscCall(EvaluateBlock(F, Fdot, out, tangents, D, kind));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind)
+PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, bool tangents, Tangents *D, EvaluationKind kind)
 {
   const PetscInt           nblock = end_ - begin_;
   std::vector<PointInput>  in(n_local_), block(nblock);
@@ -332,7 +332,7 @@ PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 
     PetscCall(PetscTime(&t1));
     time_trial_ += t1 - t0;
     cost_[k] += t1 - t0;
-    if (r.ok && D) {
+    if (r.ok && tangents) { /* not `D`: a rank without points of its own evaluates the others' */
       PetscCall(PetscLogEventBegin(ev_tangents_, 0, 0, 0, 0));
       /* tangents for output leave the work counters as they are, like the output evaluation itself */
       PetscCall(ComputeTangents(mp, Fg, Fdg, r, tangent_, &T, &status, kind == EvaluationKind::Output ? EvaluationKind::Output : EvaluationKind::Perturbed));
@@ -388,7 +388,7 @@ PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 
     out[k].ksp_its    = (PetscInt)s.ksp_its;
     out[k].residual   = s.residual;
     if (!out[k].ok) out[k].reason = why[k].text;
-    if (D)
+    if (tangents)
       for (int i = 0; i < 9; i++) {
         D[k].De[i / 3][i % 3] = s.De[i];
         D[k].Dv[i / 3][i % 3] = s.Dv[i];

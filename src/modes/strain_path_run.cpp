@@ -96,7 +96,7 @@ PetscErrorCode StrainPathRun::Solve()
     Tangents         D;
     PetscInt         ok;
     Path(t, &F, &Fd);
-    PetscCall(pool_.Evaluate(&F, &Fd, &r, tangents_ ? &D : NULL));
+    PetscCall(pool_.Evaluate(&F, &Fd, &r, tangents_, &D));
     ok = rank == 0 ? (r.ok ? 1 : 0) : 0; /* rank 0 owns the point; every rank commits with it */
     PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, comm_));
     if (ok) PetscCall(pool_.Commit());

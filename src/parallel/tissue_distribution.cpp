@@ -141,13 +141,12 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   P.n            = n;
   P.n_owned      = n_owned_;
   P.bar_radius   = G.bar_radius;
-  P.mass.resize(n), P.kind.resize(n), P.cell.resize(n), P.gid.resize(n), P.fixed.resize(n), P.halo_index.resize(n - n_owned_);
+  P.mass.resize(n), P.kind.resize(n), P.cell.resize(n), P.gid.resize(n), P.fixed.resize(n);
   T.X.resize(2 * n);
   if (!global.V.empty()) T.V.resize(2 * n);
   for (PetscInt l = 0; l < n; l++) {
     const PetscInt g = order[l];
     P.mass[l] = G.mass[g], P.kind[l] = G.kind[g], P.cell[l] = G.cell[g], P.gid[l] = G.gid[g], P.fixed[l] = G.fixed[g];
-    if (l >= n_owned_) P.halo_index[l - n_owned_] = offset[owner_rank[g]] + pos[g]; /* an owned one's is start_ + l */
     for (int d = 0; d < 2; d++) {
       T.X[2 * l + d] = global.X[2 * g + d];
       if (!global.V.empty()) T.V[2 * l + d] = global.V[2 * g + d];

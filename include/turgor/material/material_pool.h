@@ -43,9 +43,12 @@ public:
   /* This rank owns n_local points. Creates the groups, the points of this rank's group and the
      communication pattern. */
   PetscErrorCode SetUp(PetscInt n_local);
-  /* Collective. F, Fdot, out: n_local each. With D != NULL also the tangents (eqs 46-53).
-     kind Perturbed: an evaluation that leaves the points' current states as they are (output). */
-  PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D = NULL, EvaluationKind kind = EvaluationKind::Trial);
+  /* Collective. F, Fdot, out: n_local each. With `tangents` (the same on every rank) also the
+     tangents into D (eqs 46-53; NULL on a rank without points: its group still computes the
+     tangents of the points it evaluates for the others). kind Perturbed: an evaluation that leaves
+     the points' current states as they are (output). */
+  PetscErrorCode Evaluate(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, bool tangents, Tangents *D,
+                          EvaluationKind kind = EvaluationKind::Trial);
   PetscErrorCode Commit();
   PetscErrorCode Revert();
   /* Declared state: this group's points as records keyed by their ids (ids[g]: a numbering of the
@@ -115,7 +118,7 @@ private:
   std::unique_ptr<MaterialPoint> prototype_; /* a point of this material, for the names of its state */
   PetscInt                       saved_begin_ = 0, saved_end_ = 0;
   PetscErrorCode                 Rebalance();
-  PetscErrorCode                 EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, Tangents *D, EvaluationKind kind);
+  PetscErrorCode                 EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, bool tangents, Tangents *D, EvaluationKind kind);
   std::vector<PetscInt>          offsets_; /* [ranks + 1] the owners' blocks of points */
 };
 

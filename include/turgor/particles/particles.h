@@ -73,12 +73,10 @@ struct PolygonCell {
    of its particle or node. The other springs and polygons are there as geometry (contact,
    repulsion, glue). A serial run owns everything (the counts stay -1: all). */
 struct ParticleSet {
-  PetscInt n                = 0;  /* local particles (owned + halo) */
-  PetscInt n_owned          = -1; /* -1: all n */
-  PetscInt n_springs_owned  = -1; /* -1: all springs */
-  PetscInt n_polygons_owned = -1; /* -1: all polygons */
-  std::vector<PetscInt>
-    halo_index; /* [n - n_owned] a halo copy's position in the distributed state (output connectivity); an owned particle's is this rank's offset + i */
+  PetscInt               n                = 0;    /* local particles (owned + halo) */
+  PetscInt               n_owned          = -1;   /* -1: all n */
+  PetscInt               n_springs_owned  = -1;   /* -1: all springs */
+  PetscInt               n_polygons_owned = -1;   /* -1: all polygons */
   std::vector<PetscInt>  spring_gid, polygon_gid; /* the tissue's numbers of the springs and polygons (records); empty: the same as here */
   std::vector<PetscReal> mass;                    /* [n] */
   std::vector<PetscInt>  kind;                    /* [n] ParticleKind */

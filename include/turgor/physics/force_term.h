@@ -12,6 +12,7 @@
 #include <petscviewer.h>
 #include <memory>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 namespace turgor {
@@ -67,12 +68,15 @@ struct TermField {
   std::vector<PetscReal> values;
 };
 
-/* Line segments a term draws in the snapshots (the glue bonds: node to bar point), with per-segment
-   fields (TermField::BAR, one value per segment). */
+/* Line segments a term draws in the snapshots (the glue bonds: node to bar point), with their ids
+   (unique over the ranks, the same whatever the ranks: a glue bond's PairKey(node, bar); the
+   snapshots write the segments in id order) and per-segment fields (TermField::BAR, one value per
+   segment). */
 struct TermSegments {
-  std::string            name; /* empty: none */
-  std::vector<PetscReal> xy;   /* x0 y0 x1 y1 per segment */
-  std::vector<TermField> fields;
+  std::string                name; /* empty: none */
+  std::vector<PetscReal>     xy;   /* x0 y0 x1 y1 per segment */
+  std::vector<std::uint64_t> id;   /* one per segment */
+  std::vector<TermField>     fields;
 };
 
 class ForceTerm {

@@ -44,10 +44,11 @@ public:
     STRENGTH  = 1,
     SOFTENING = 2
   };
-  /* One break, as breaks.csv writes it. */
+  /* One break, as breaks.csv writes it (the bond named by its node's id and its bar's id: the same
+     whatever the ranks). */
   struct Break {
     PetscReal   time, x, y, energy, length; /* energy released, the bond's length share */
-    PetscInt    bond, cell_node, cell_bar, node, bar;
+    PetscInt    cell_node, cell_bar, node, bar;
     const char *mode; /* tension, shear or mixed (by the normal and tangential shares of the stored energy) */
   };
 
