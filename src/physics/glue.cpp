@@ -129,7 +129,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
   PetscReal       lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
   for (PetscInt i = 0; i < P.n; i++)
     for (int d = 0; d < 2; d++) lo[d] = std::min(lo[d], X[2 * i + d]), hi[d] = std::max(hi[d], X[2 * i + d]);
-  if (P.n == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0; /* a rank without particles: one empty bin */
+  if (P.n == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0; /* a rank that holds no particles: one empty bin */
   PetscReal h = std::max(R, 1e-12);
   while (((hi[0] - lo[0]) / h + 1) * ((hi[1] - lo[1]) / h + 1) > 4.0 * P.n + 64) h *= 2;
   const PetscInt        nbx = (PetscInt)((hi[0] - lo[0]) / h) + 1, nby = (PetscInt)((hi[1] - lo[1]) / h) + 1;
@@ -357,7 +357,7 @@ void Glue::Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt)
   intact_--;
   const PetscReal c[2] = {(1 - B.lam) * x[2 * B.a] + B.lam * x[2 * B.b], (1 - B.lam) * x[2 * B.a + 1] + B.lam * x[2 * B.b + 1]};
   const BondInfo &I    = info_[k];
-  breaks_.push_back({in.t, 0.5 * (c[0] + x[2 * B.p]), 0.5 * (c[1] + x[2 * B.p + 1]), released, B.L, (PetscInt)k, I.cell_p, I.cell_s, in.P->gid[B.p], I.s,
+  breaks_.push_back({in.t, 0.5 * (c[0] + x[2 * B.p]), 0.5 * (c[1] + x[2 * B.p + 1]), released, B.L, I.cell_p, I.cell_s, in.P->gid[B.p], I.s,
                      en >= 9 * et   ? "tension"
                      : et >= 9 * en ? "shear"
                                     : "mixed"});
@@ -446,6 +446,7 @@ PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments
   if (!have_bonds_) PetscFunctionReturn(PETSC_SUCCESS); /* not yet made (-glue_start_time): no segments yet */
   segments->name = "bonds";
   segments->xy.resize(4 * bonds_.size());
+  segments->id.resize(bonds_.size());
   TermField intact{TermField::BAR, "intact", "1 intact, 0 broken", {}}, damage{TermField::BAR, "damage", "1", {}}, opening{TermField::BAR, "opening", "µm", {}},
     length{TermField::BAR, "length_share", "µm", {}};
   for (size_t k = 0; k < bonds_.size(); k++) {
@@ -453,6 +454,7 @@ PetscErrorCode Glue::OutputSegments(const ForceInput &in, TermSegments *segments
     PetscReal   dn, dt;
     Opening((PetscInt)k, in.x, &dn, &dt);
     const PetscReal dnp     = dn > 0 ? dn : 0;
+    segments->id[k]         = PairKey((std::uint64_t)in.P->gid[B.p], (std::uint64_t)in.P->SpringGid(info_[k].s)); /* as the checkpoint keys the bond */
     segments->xy[4 * k]     = in.x[2 * B.p];
     segments->xy[4 * k + 1] = in.x[2 * B.p + 1];
     segments->xy[4 * k + 2] = (1 - B.lam) * in.x[2 * B.a] + B.lam * in.x[2 * B.b];
