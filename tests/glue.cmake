@@ -69,3 +69,9 @@ foreach(scene GLUE BOX)
   turgor_add_test(observe_${s}_same COMMAND ${CHECK} identical observe_${s}_energy0 observe_${s}_energy1 final_state_hash LABELS fine hard
     REQUIRES "observe_${s}_energy0;observe_${s}_energy1")
 endforeach()
+
+# The closing report lists every file the run wrote: with the energy balance and glue, energy.csv and
+# breaks.csv too (and the end-of-run checkpoint).
+turgor_add_test(traction_16_outputs_listed COMMAND turgor_app ${TRACTION16} -fine_energy -ts_max_time 0.05 -checkpoint_interval 1e6
+  -output_dir traction16_outputs PASS_REGEX
+  "Outputs in traction16_outputs: summary.json, tip.csv, groups.csv, energy.csv, breaks.csv, checkpoint.h5, checkpoint_[0-9]+.h5\n" LABELS fine)

@@ -112,7 +112,17 @@ PetscErrorCode StabilityMonitor::Check(PetscInt count, PetscReal t, Vec U)
     lambda_prev_ = lambda;
   }
   lambda_last_ = lambda;
+  PetscCall(CheckOutputError(comm_, csv_.Error())); /* rank 0 writes the file */
   PetscCall(PetscLogEventEnd(ev_check_, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StabilityMonitor::CloseOutputs()
+{
+  PetscFunctionBeginUser;
+  if (!Active()) PetscFunctionReturn(PETSC_SUCCESS);
+  csv_.Finish();
+  PetscCall(CheckOutputError(comm_, csv_.Error()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -21,6 +21,7 @@ static const char help[] = "turgor: mechanics of plant tissue from single cells 
 #include <turgor/turgor.hpp>
 #include <turgor/core/errors.h>
 #include <turgor/modes/run_mode.h>
+#include <turgor/modes/simulation.h>
 #include <turgor/core/yaml_check.h>
 
 int main(int argc, char **argv)
@@ -34,8 +35,11 @@ int main(int argc, char **argv)
   PetscCall(turgor::PushErrorHandler(&errors));
   PetscCall(turgor::InstallInterruptHandler());
   PetscCall(TurgorRegisterAll()); /* TS types, physics terms, materials, tissues, modes */
-  if (turgor::RunMode(PETSC_COMM_WORLD, NULL, &status)) status = 1;
-  PetscCall(turgor::FinishRanks(PETSC_COMM_WORLD, status, errors, 20.0)); /* long enough for the first rank to write its failure report */
+  {
+    std::unique_ptr<turgor::Simulation> sim;                                           /* destroyed once every rank has ended: its files close collectively */
+    if (turgor::RunMode(PETSC_COMM_WORLD, NULL, &status, &sim) && !status) status = 1; /* 130: interrupted */
+    PetscCall(turgor::FinishRanks(PETSC_COMM_WORLD, status, errors, 20.0));            /* long enough for the first rank to write its failure report */
+  }
   PetscCall(PetscFinalize());
   return status;
 }

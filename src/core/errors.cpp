@@ -77,6 +77,18 @@ extern "C" void OnInterrupt(int)
   if (interrupted < 2) interrupted = interrupted + 1;
 }
 
+/* SIGINT and SIGTERM to OnInterrupt, restarting the system calls they interrupt or not */
+void SetInterruptHandler(bool restart)
+{
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_handler = OnInterrupt;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = restart ? SA_RESTART : 0;
+  (void)sigaction(SIGINT, &sa, nullptr);
+  (void)sigaction(SIGTERM, &sa, nullptr);
+}
+
 } // namespace
 
 PetscErrorCode FirstMessage(MPI_Comm comm, const std::string &mine, std::string *first)
@@ -136,8 +148,9 @@ PetscErrorCode FinishRanks(MPI_Comm comm, int status, const ErrorRecord &record,
 PetscErrorCode InstallInterruptHandler(void)
 {
   PetscFunctionBeginUser;
-  std::signal(SIGINT, OnInterrupt);
-  std::signal(SIGTERM, OnInterrupt);
+  SetInterruptHandler(true);
+  /* beyond a file size limit (ulimit -f) a write then fails with EFBIG, and the run reports it */
+  std::signal(SIGXFSZ, SIG_IGN);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -164,6 +177,30 @@ PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *all)
   else PetscCallMPI(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm));
   *all = any ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode StopIfInterrupted(MPI_Comm comm, const char during[])
+{
+  PetscBool stop;
+  PetscFunctionBeginUser;
+  PetscCall(InterruptRequestedAll(comm, &stop));
+  PetscCheck(!stop, comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during %s", during);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool IsInterruptError(PetscErrorCode ierr)
+{
+  return ierr == PETSC_ERR_SIG && interrupted != 0;
+}
+
+InterruptibleCalls::InterruptibleCalls()
+{
+  SetInterruptHandler(false);
+}
+
+InterruptibleCalls::~InterruptibleCalls()
+{
+  SetInterruptHandler(true);
 }
 
 } // namespace turgor

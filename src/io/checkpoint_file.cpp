@@ -428,6 +428,7 @@ PetscErrorCode CheckpointWriter::State(const std::vector<StateDeclaration *> &de
     PetscCall(WriteDataset(comm_, path_, file_, "layout", Kind::Key, &layout, 1, (std::uint64_t)rank, (std::uint64_t)size, 0));
   }
   for (const StateDeclaration *d : decls) {
+    if (between_) PetscCall(between_());
     const std::string group = "/state/" + d->Name();
     hid_t             g     = H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     TG_H5(g, comm_, "Checkpoint %s: cannot create group %s (two objects of one name?)", path_.c_str(), group.c_str());

@@ -81,6 +81,7 @@ PetscErrorCode EigenRun::SetFromOptions()
     /* the relaxed state is -mode fe2_static's answer: its run, options and outputs (tip.csv, the
        relaxed state in coarse.h5) */
     static_ = std::make_unique<FE2StaticRun>(comm_);
+    static_->ShareOutputDirectory(*this);
     PetscCall(static_->SetFromOptions());
     model_ = &static_->Model();
   } else {
@@ -380,17 +381,17 @@ PetscErrorCode EigenRun::WriteSummary()
                             (double)state_time_));
     js.Set("reason", reason);
     PetscCall(WriteSummaryFile(js));
-    PetscCall(PetscPrintf(comm_, "Interrupted during the relaxed state's static solve: no eigen analysis; outputs in %s: summary.json, tip.csv\n",
-                          OutputDir().c_str()));
+    PetscCall(PetscPrintf(comm_, "Interrupted during the relaxed state's static solve: no eigen analysis; outputs in %s: %s\n", OutputDir().c_str(),
+                          OutputFiles().c_str()));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(Summary(js, "completed"));
   PetscCall(model_->Pool().GlobalCounters(&rc));
   js.Set("rve_solves", rc.solves);
   js.Set("rve_output_solves", rc.output_solves);
-  PetscCall(WriteSummaryFile(js));
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   {
+    /* eigen.csv before summary.json: a summary that says completed has every output written */
     CsvWriter csv;
     if (rank == 0) {
       PetscCall(csv.Open(PETSC_COMM_SELF, OutputPath("eigen.csv"),
@@ -400,22 +401,22 @@ PetscErrorCode EigenRun::WriteSummary()
         const PetscReal  w = p.lambda >= 0 ? std::sqrt(p.lambda) : NAN;
         PetscCall(csv.Row({(PetscReal)(k + 1), p.lambda, w, w / (2 * PETSC_PI), 2 * PETSC_PI / w, p.residual, p.x_fraction, (PetscReal)lowest_.Iterations()}));
       }
-      PetscCall(csv.Close());
     }
+    PetscCall(CloseOutput(csv));
   }
-  PetscCall(PetscPrintf(comm_, "Done: %zu modes, lowest omega^2 = %.8g /µs^2 (%s), %.3f s wall\nOutputs in %s: eigen.csv, summary.json%s%s\n",
-                        lowest_.Pairs().size(), (double)lowest_.Pairs().front().lambda,
+  PetscCall(WriteSummaryFile(js));
+  PetscCall(PetscPrintf(comm_, "Done: %zu modes, lowest omega^2 = %.8g /µs^2 (%s), %.3f s wall\nOutputs in %s: %s\n", lowest_.Pairs().size(),
+                        (double)lowest_.Pairs().front().lambda,
                         lowest_.Pairs().front().lambda > 0 ? ("period " + std::to_string(2 * PETSC_PI / OmegaMin()) + " µs").c_str()
                                                            : "negative: K is not positive definite at this state",
-                        (double)wall_, OutputDir().c_str(), spec_.shapes ? ", modes.h5 + modes.xmf" : "",
-                        static_ ? ", tip.csv and coarse.h5 + coarse.xmf (the relaxed state)" : ""));
+                        (double)wall_, OutputDir().c_str(), OutputFiles().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode EigenRun::AddFailure(const std::string &reason, JsonObject &js)
 {
   PetscFunctionBeginUser;
-  if (static_) PetscCall(static_->WriteFailure(reason)); /* its partial outputs, then our summary over its */
+  if (static_) PetscCall(static_->WriteFailure(reason, "failed")); /* its partial outputs, then our summary over its */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

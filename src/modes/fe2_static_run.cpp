@@ -295,6 +295,7 @@ PetscErrorCode FE2StaticRun::Record(PetscReal lambda, PetscInt its)
   lambda_ = lambda;
   PetscCall(model_.TipDisplacement(U_, &tip_));
   if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its}));
+  PetscCall(CheckOutputError(comm_, tip_csv_.Error())); /* rank 0 writes it */
   PetscCall(PetscPrintf(comm_, "  load factor %-10.6g (increment %.4g): %2" PetscInt_FMT " Newton iterations, tip displacement %.8g µm\n", (double)lambda,
                         (double)increment_, its, (double)tip_));
   PetscCall(monitor_.Check(levels_++, lambda, U_)); /* level 0: the load factor 0 */
@@ -451,17 +452,16 @@ PetscErrorCode FE2StaticRun::WriteSummary()
   js.Set("rve_output_solves", rc.output_solves);
   js.Set("psi_tc_iterations", rc.iterations);
   js.Set("rve_failures", rc.failures);
+  PetscCall(CloseOutput(tip_csv_));
+  PetscCall(monitor_.CloseOutputs());
   PetscCall(WriteSummaryFile(js));
   PetscCall(PetscPrintf(comm_,
                         "%s: load factor %g in %" PetscInt_FMT " increments (%" PetscInt_FMT " cut back), %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT
                         " function and %" PetscInt_FMT " Jacobian evaluations, %" PetscInt_FMT " RVE solves, %.3f s wall; final tip displacement %.8g µm\n"
-                        "Outputs in %s: tip.csv, summary.json%s\n",
+                        "Outputs in %s: %s\n",
                         interrupted_ ? "Interrupted" : "Done", (double)lambda_, increments_, cutbacks_, snes_its_, model_.Counters().residuals,
-                        model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, OutputDir().c_str(),
-                        fields_.Count() ? ", coarse.h5 + coarse.xmf" : ""));
-  if (monitor_.Active())
-    PetscCall(
-      PetscPrintf(comm_, "Stability monitor: %s; stability.csv%s\n", monitor_.Report().c_str(), monitor_.Lost() ? ", stability.h5 + stability.xmf" : ""));
+                        model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, OutputDir().c_str(), OutputFiles().c_str()));
+  if (monitor_.Active()) PetscCall(PetscPrintf(comm_, "Stability monitor: %s\n", monitor_.Report().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -470,9 +470,9 @@ PetscErrorCode FE2StaticRun::AddFailure(const std::string &reason, JsonObject &j
   PetscFunctionBeginUser;
   if (solving_) {
     js.Set("last_failure", last_failure_);
-    js.Set("partial_outputs", std::vector<std::string>{"tip.csv", "coarse.h5 + coarse.xmf"});
+    js.Set("partial_outputs", OutputFilesIn(OutputDir(), false));
   }
-  PetscCall(tip_csv_.Close());
+  tip_csv_.Finish(); /* what it holds; its own failure is the reason already */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -95,20 +95,24 @@ PetscErrorCode Run(MPI_Comm comm, const char default_mode[], std::unique_ptr<Sim
 
 } // namespace
 
-PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status)
+PetscErrorCode RunMode(MPI_Comm comm, const char mode[], int *status, std::unique_ptr<Simulation> *keep)
 {
-  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<Simulation> local, &sim = keep ? *keep : local;
   PetscErrorCode              ierr;
   PetscFunctionBeginUser;
   *status = 0;
   ierr    = CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, [&] { return Run(comm, mode, sim); });
   if (ierr) {
-    /* the error and its trace are printed already: leave a summary.json that says so */
-    const char *text     = NULL;
-    char       *specific = NULL;
+    /* the error and its trace are printed already: leave a summary.json that says so; an error
+       raised for SIGINT/SIGTERM ends the run "interrupted" */
+    const char *text        = NULL;
+    char       *specific    = NULL;
+    const bool  interrupted = IsInterruptError(ierr);
+    if (interrupted) *status = 130;
     if (!PetscErrorMessage(ierr, &text, &specific) && sim) {
       const std::string reason = specific && specific[0] ? specific : (text ? text : "error");
-      (void)CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__, [&] { return sim->WriteFailure(reason); }); /* best effort, after the failure */
+      (void)CatchExceptions(PETSC_FUNCTION_NAME, __LINE__, __FILE__,
+                            [&] { return sim->WriteFailure(reason, interrupted ? "interrupted" : "failed"); }); /* best effort, after the failure */
     }
     return ierr; /* PETSc's error, reported already (not raised again) */
   }

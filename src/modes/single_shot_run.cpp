@@ -5,7 +5,9 @@ namespace turgor {
 PetscErrorCode SingleShotRun::PrepareOutputDirectory()
 {
   PetscFunctionBeginUser;
+  if (shared_dir_) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(OutputDirectory(comm_, &output_dir_, &overwrite_, &have_dir_));
+  if (have_dir_) PetscCall(ReserveSummary(comm_, OutputPath("summary.json"), mode_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -26,14 +28,24 @@ PetscErrorCode SingleShotRun::WriteSummaryFile(const JsonObject &js, bool report
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode SingleShotRun::WriteFailure(const std::string &reason)
+PetscErrorCode SingleShotRun::CloseOutput(CsvWriter &csv)
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (rank == 0) csv.Finish(); /* said below, on every rank */
+  PetscCall(CheckOutputError(comm_, rank == 0 ? csv.Error() : std::string()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SingleShotRun::WriteFailure(const std::string &reason, const char status[])
 {
   JsonObject  js;
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   if (rank != 0 || !have_dir_ || failure_reported_) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(Summary(js, "failed"));
+  PetscCall(Summary(js, status));
   js.Set("reason", reason);
   PetscCall(AddFailure(reason, js));
   PetscCall(js.Write(PETSC_COMM_SELF, OutputPath("summary.json")));

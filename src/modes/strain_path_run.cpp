@@ -124,7 +124,7 @@ PetscErrorCode StrainPathRun::Solve()
   }
   PetscCall(PetscTime(&t1));
   wall_ = t1 - t0;
-  if (rank == 0) PetscCall(csv_.Close());
+  PetscCall(CloseOutput(csv_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -172,8 +172,8 @@ PetscErrorCode StrainPathRun::WriteSummary()
   PetscCall(WriteSummaryFile(js, failed)); /* a failed one says why: WriteFailure leaves it */
   PetscCall(PetscPrintf(comm_,
                         "%s: %" PetscInt_FMT " evaluations (%" PetscInt_FMT " failed), %" PetscInt_FMT " RVE solves, %" PetscInt_FMT
-                        " Psi-tc iterations, %.3f s; outputs in %s: rve.csv, summary.json\n",
-                        failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, OutputDir().c_str()));
+                        " Psi-tc iterations, %.3f s; outputs in %s: %s\n",
+                        failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, OutputDir().c_str(), OutputFiles().c_str()));
   PetscCheck(!failed, comm_, PETSC_ERR_NOT_CONVERGED,
              "%" PetscInt_FMT " of %" PetscInt_FMT " material-point evaluations failed along the path (-path_allow_failures to accept that)", failures_,
              steps_ + 1);
@@ -183,7 +183,7 @@ PetscErrorCode StrainPathRun::WriteSummary()
 PetscErrorCode StrainPathRun::AddFailure(const std::string &reason, JsonObject &js)
 {
   PetscFunctionBeginUser;
-  if (csv_.IsOpen()) PetscCall(csv_.Close());
+  csv_.Finish(); /* what it holds; its own failure is the reason already */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -153,13 +153,19 @@ PetscErrorCode TimeRun::SetUp()
                "Option %s: %s, which a checkpoint does not hold; checkpoints support the one-step explicit integrators (-ts_type rk, euler, ssp%s)",
                option.c_str(), why, mode_ == "fine" ? ", basicsymplectic, verlet" : "");
   }
-  if (!restart_file_.empty()) PetscCall(ReadCheckpoint());
+  if (!restart_file_.empty()) {
+    PetscCall(ReadCheckpoint());
+    ckpt_last_file_ = restart_file_;
+  }
   {
     PetscReal t0;
     PetscCall(TSGetTime(ts_, &t0));
     ckpt_next_ = ckpt_interval_ > 0 ? ckpt_interval_ * (std::floor(t0 / ckpt_interval_ * (1 + 1e-12)) + 1) : 0;
   }
   PetscCall(Report());
+  /* the summary's place, kept while the run writes (a full disk later still takes it), and what a
+     killed run leaves: status "running" */
+  if (out_.ready) PetscCall(ReserveSummary(comm_, out_.dir + "/summary.json", mode_));
   series_.clear();
   {
     std::vector<std::string> columns = {"time"};
@@ -167,17 +173,17 @@ PetscErrorCode TimeRun::SetUp()
     PetscCall(OpenSeries(tip_csv_, "tip.csv", columns));
   }
   series_csv_.clear();
-  series_files_.clear();
   for (const Series &s : ObservedSeries()) {
     series_csv_.push_back(std::make_unique<CsvWriter>());
-    series_files_.push_back(s.file);
     std::vector<std::string> columns = {"time"};
     for (const std::string &c : s.columns) columns.push_back(c);
     PetscCall(OpenSeries(*series_csv_.back(), s.file, columns));
   }
   if (out_.snapshots > 0 && out_.ready) PetscCall(OpenSnapshots());
   if (out_.ready) PetscCall(OpenOutputs());
+  PetscCall(CheckOutputs(SeriesStep::Check));
   PetscCall(AfterSetUp());
+  PetscCall(StopIfInterrupted(comm_, ("the set-up of the " + mode_ + " run: no step was taken").c_str()));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -268,6 +274,20 @@ PetscErrorCode TimeRun::Sample(PetscReal t, Vec U)
       if (series_csv_[k]->IsOpen()) PetscCall(series_csv_[k]->Row(rows[k]));
     }
   }
+  PetscCall(CheckOutputs(SeriesStep::Check)); /* a failed write stops the run at the sample after it */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TimeRun::CheckOutputs(SeriesStep step)
+{
+  std::string error;
+  PetscFunctionBeginUser;
+  for (auto &fc : series_) { /* rank 0's */
+    if (step == SeriesStep::Flush) fc.second->Flush();
+    if (step == SeriesStep::Close) fc.second->Finish();
+    if (error.empty()) error = fc.second->Error();
+  }
+  PetscCall(CheckOutputError(comm_, error));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -314,12 +334,17 @@ PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *
     TimeRun *run = (TimeRun *)ctx;
     PetscFunctionBeginUser;
     PetscCall(PetscLogEventBegin(run->ev_output_, 0, 0, 0, 0));
+    const auto snapshot = [run](PetscReal tk, Vec X) {
+      run->writing_             = "the snapshot at t = " + std::to_string((double)tk) + " µs to " + run->SnapshotFiles();
+      const PetscErrorCode ierr = run->WriteSnapshot(tk, X);
+      if (!ierr) run->writing_.clear();
+      return ierr;
+    };
     PetscCall(run->sampler_.Monitor(
-      ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, [run](PetscReal tk, Vec X) { return run->WriteSnapshot(tk, X); },
-      run->FunctionEvaluations()));
+      ts, step, t, U, [run](PetscReal tk, Vec X) { return run->Sample(tk, X); }, snapshot, run->FunctionEvaluations()));
     PetscCall(PetscLogEventEnd(run->ev_output_, 0, 0, 0, 0));
     /* after the samples of this step: a restart continues with the next ones */
-    if (step > run->ckpt_last_step_ && step > 0 && (run->ckpt_interval_ > 0 || run->ckpt_wall_ > 0)) {
+    if (step > run->ckpt_last_step_ && step > 0 && (run->ckpt_interval_ > 0 || run->ckpt_wall_ > 0) && !run->interrupted_) { /* Solve() writes an interrupt's */
       PetscBool due;
       PetscCall(run->CheckpointDue(t, &due));
       if (due) PetscCall(run->WriteCheckpoint(t, step));
@@ -353,7 +378,7 @@ PetscErrorCode TimeRun::Solve()
     PetscReal tn;
     PetscCall(TSGetStepNumber(ts_, &step));
     PetscCall(TSGetTime(ts_, &tn));
-    if (step != ckpt_last_step_) PetscCall(WriteCheckpoint(tn, step));
+    if (step != ckpt_last_step_) PetscCall(WriteCheckpoint(tn, step)); /* an interrupt's: its summary first (InterruptWhileWriting) */
   }
   PetscCall(AfterSolve());
   PetscCall(PetscLogStagePop());
@@ -418,6 +443,7 @@ PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
   js.Set("rhs_evals", FunctionEvaluations());
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("mpi_ranks", (PetscInt)size);
+  if (ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty()) js.Set("checkpoint_last", ckpt_last_file_);
   if (ckpt_interval_ > 0 || ckpt_wall_ > 0) {
     js.Set("checkpoints_written", ckpt_count_);
     js.Set("checkpoint_bytes", ckpt_bytes_);
@@ -432,13 +458,44 @@ PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TimeRun::WriteSummary()
+/* A batch system's TERM is followed by KILL soon (mpiexec's: about a second later), maybe before a
+   checkpoint is written whole: once SIGINT/SIGTERM is seen while one is written (at its start and
+   between its declarations; collective), the run stops after this step and says so at once in
+   summary.json, "interrupted", naming the last complete checkpoint and the one being written
+   (`pending`). The final summary replaces it when the run ends. */
+PetscErrorCode TimeRun::InterruptWhileWriting(const std::string &pending)
 {
-  JsonObject js;
-  PetscInt   evals = FunctionEvaluations();
-  PetscReal  t;
-  PetscInt   steps, rej;
+  PetscBool stop = interrupted_ ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
+  if (interrupt_said_ || !out_.ready) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!stop) PetscCall(InterruptRequestedAll(comm_, &stop));
+  if (!stop) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!interrupted_) {
+    PetscReal t;
+    PetscInt  step;
+    PetscCall(TSGetTime(ts_, &t));
+    PetscCall(TSGetStepNumber(ts_, &step));
+    interrupted_ = true;
+    PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
+    PetscCall(
+      PetscPrintf(comm_, "Interrupted at t = %g µs (step %" PetscInt_FMT ") while writing a checkpoint: stopping once it is written\n", (double)t, step));
+  }
+  JsonObject js;
+  PetscCall(CheckOutputs(SeriesStep::Flush));
+  PetscCall(Summarize(js));
+  js.Set("checkpoint_pending", pending);
+  PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
+  interrupt_said_ = true;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The summary of a run that ended (completed, stopped or interrupted); collective. */
+PetscErrorCode TimeRun::Summarize(JsonObject &js)
+{
+  PetscInt    evals = FunctionEvaluations();
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCall(CommonSummary(js, interrupted_ ? "interrupted" : stopped_ ? "stopped" : "completed"));
   if (stopped_) {
     PetscInt max_steps;
@@ -447,9 +504,7 @@ PetscErrorCode TimeRun::WriteSummary()
   }
   if (interrupted_) {
     js.Set("reason", "interrupted (SIGINT/SIGTERM): the time series end at t_final, before t_requested");
-    std::vector<std::string> partial = {"tip.csv", std::string(SnapshotFiles())};
-    partial.insert(partial.end(), series_files_.begin(), series_files_.end());
-    js.Set("partial_outputs", partial);
+    if (rank == 0) js.Set("partial_outputs", OutputFilesIn(out_.dir, false));
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &evals, 1, MPIU_INT, MPI_MAX, comm_));
   js.Set("rhs_evals", evals);
@@ -479,14 +534,27 @@ PetscErrorCode TimeRun::WriteSummary()
     js.Set("final_state_hash", std::string(hex));
   }
   js.Set("snapshots", SnapshotCount());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Every output closed and checked first: a summary that says completed has them all written. */
+PetscErrorCode TimeRun::WriteSummary()
+{
+  JsonObject  js;
+  PetscReal   t;
+  PetscInt    steps, rej;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCall(CheckOutputs(SeriesStep::Close));
+  PetscCall(CloseOutputs());
+  PetscCall(Summarize(js));
   PetscCall(js.Write(comm_, out_.dir + "/summary.json"));
   PetscCall(TSGetSolveTime(ts_, &t));
   PetscCall(TSGetStepNumber(ts_, &steps));
   PetscCall(TSGetStepRejections(ts_, &rej));
-  std::string details, files = "tip.csv, summary.json";
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  std::string details, files = rank == 0 ? OutputFileList(out_.dir) : std::string(); /* rank 0 prints */
   PetscCall(DoneDetails(&details));
-  for (const Series &s : ObservedSeries()) files += ", " + s.file;
-  if (out_.snapshots > 0) files += std::string(", ") + SnapshotFiles();
   PetscCall(PetscPrintf(comm_,
                         "%s: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT
                         " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: %s\n",
@@ -497,7 +565,7 @@ PetscErrorCode TimeRun::WriteSummary()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
+PetscErrorCode TimeRun::WriteFailure(const std::string &reason, const char status[])
 {
   JsonObject  js;
   PetscMPIInt rank;
@@ -505,16 +573,13 @@ PetscErrorCode TimeRun::WriteFailure(const std::string &reason)
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   if (rank != 0 || !out_.ready) PetscFunctionReturn(PETSC_SUCCESS);
   if (solving_) wall_ = sampler_.Elapsed();
-  PetscCall(CommonSummary(js, "failed"));
-  js.Set("reason", reason);
+  PetscCall(CommonSummary(js, status));
+  js.Set("reason", writing_.empty() ? reason : "while writing " + writing_ + ": " + reason);
+  for (auto &fc : series_) fc.second->Finish(); /* what they hold; a failure to write one is the reason already */
   if (solving_) {
     js.Set("tip_displacement_last_sample", observed_);
-    std::vector<std::string> partial = {"tip.csv", std::string(SnapshotFiles())};
-    partial.insert(partial.end(), series_files_.begin(), series_files_.end());
-    js.Set("partial_outputs", partial);
+    js.Set("partial_outputs", OutputFilesIn(out_.dir, false));
   }
-  PetscCall(tip_csv_.Close());
-  for (auto &csv : series_csv_) PetscCall(csv->Close());
   PetscCall(js.Write(PETSC_COMM_SELF, out_.dir + "/summary.json"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

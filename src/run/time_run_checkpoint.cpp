@@ -181,6 +181,9 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   const Numbering numbering(*this, std::move(ids));
 
   CheckpointWriter w;
+  writing_ = "the checkpoint " + tmp;
+  PetscCall(InterruptWhileWriting(tmp));
+  w.BetweenDeclarations([this, &tmp] { return InterruptWhileWriting(tmp); });
   PetscCall(w.Open(comm_, tmp));
   {
     std::string integrator;
@@ -206,6 +209,7 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   {
     /* the time series so far (rank 0 writes them): a restart writes them again and goes on */
     std::string files;
+    PetscCall(CheckOutputs(SeriesStep::Flush)); /* written whole, or the run stops here */
     for (auto &fc : series_) files += fc.first + "\n";
     PetscCall(BroadcastString(comm_, &files));
     PetscCall(w.Text("series", files));
@@ -258,6 +262,8 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   ckpt_bytes_     = bytes;
   ckpt_wall_last_ = t1;
   ckpt_last_step_ = step;
+  ckpt_last_file_ = path;
+  writing_.clear();
   ckpt_count_++;
   if (ckpt_interval_ > 0) ckpt_next_ = ckpt_interval_ * (std::floor(t / ckpt_interval_ * (1 + 1e-12)) + 1); /* the next multiple after t */
   PetscCall(PetscInfo(ts_, "Checkpoint %s at t = %g (step %" PetscInt_FMT "): %.0f bytes in %.3f s\n", path.c_str(), (double)t, step, (double)bytes, t1 - t0));

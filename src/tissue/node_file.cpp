@@ -1,5 +1,6 @@
 /* -tissue_type node_file: cells of nodes and bars from the L-hyphen code's node file. */
 #include <turgor/tissue/node_file.h>
+#include <turgor/core/errors.h>
 #include <turgor/core/options.h>
 #include <algorithm>
 #include <cerrno>
@@ -101,9 +102,12 @@ PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params
     PetscCheck(std::find(open_cells.begin(), open_cells.begin() + k, open_cells[k]) == open_cells.begin() + k, comm, PETSC_ERR_ARG_WRONG,
                "Option -tissue_open_cells: cell %" PetscInt_FMT " is listed twice", open_cells[k]);
   }
-  /* the file must exist now, before any allocation; it is read in Generate */
+  /* the file must exist now, before any allocation; it is read in Generate. Opening a FIFO waits for
+     its writer: SIGINT/SIGTERM end that wait */
   PetscCall(CheckNodeFilePath(comm, path));
-  std::ifstream f(path);
+  InterruptibleCalls interruptible;
+  std::ifstream      f(path);
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: opening -tissue_node_file %s", path.c_str());
   PetscCheck(f.good(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", path.c_str(), std::strerror(errno));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -139,13 +143,17 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
   long long                           id0 = -1, lineno = 0;
   std::string                         line;
   PetscFunctionBeginUser;
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: before reading -tissue_node_file %s", fn);
   PetscCall(CheckNodeFilePath(comm, spec.path));
-  NodeFileLines f(spec.path);
+  InterruptibleCalls interruptible;
+  NodeFileLines      f(spec.path);
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: opening -tissue_node_file %s", fn);
   PetscCheck(f.Opened(), comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
   while (f.Next(&line)) {
     PetscReal x, y;
     long long id;
     lineno++;
+    PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s at line %lld", fn, lineno);
     const int kind = ParseNodeLine(line, &x, &y, &id);
     if (kind == 0) continue;
     PetscCheck(kind > 0, comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -164,6 +172,8 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
     rings.back().points.push_back({x * spec.length_scale, y * spec.length_scale});
     lines.back().push_back(lineno);
   }
+  PetscCheck(!InterruptRequested(), comm, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s at line %lld", fn,
+             lineno + 1);
   PetscCheck(!f.Failure(), comm, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: line %lld: %s", fn, lineno + 1, f.Failure());
   PetscCheck(!rings.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: no nodes in the file", fn);
   /* the forces multiply lengths (areas, moments): a tissue whose extent squared overflows (or whose
@@ -236,17 +246,22 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
    are skipped here; Generate reports them. */
 PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
 {
-  NodeFileLines f(spec.path); /* a line beyond the bounds ends the estimate; Generate reports it */
-  std::string   line;
-  PetscReal     nodes = 0, first[2] = {0, 0}, prev[2] = {0, 0};
-  long long     cur  = -1;
-  auto          bars = [&](const PetscReal a[2], const PetscReal b[2]) {
+  PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: before reading -tissue_node_file %s",
+             spec.path.c_str());
+  InterruptibleCalls interruptible;
+  NodeFileLines      f(spec.path); /* a line beyond the bounds ends the estimate; Generate reports it */
+  std::string        line;
+  PetscReal          nodes = 0, first[2] = {0, 0}, prev[2] = {0, 0};
+  long long          cur  = -1;
+  auto               bars = [&](const PetscReal a[2], const PetscReal b[2]) {
     return BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]) * spec.length_scale, poly.bar_length);
   };
   PetscFunctionBeginUser;
   while (f.Next(&line)) {
     PetscReal x, y;
     long long id;
+    PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s",
+               spec.path.c_str());
     if (ParseNodeLine(line, &x, &y, &id) <= 0) continue;
     const PetscReal p[2] = {x, y};
     if (id != cur) {
@@ -258,6 +273,8 @@ PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *spri
     prev[0] = x;
     prev[1] = y;
   }
+  PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: reading -tissue_node_file %s",
+             spec.path.c_str());
   if (cur >= 0) nodes += bars(prev, first) + 1;
   *particles = nodes;
   *springs   = nodes;

@@ -7,6 +7,7 @@
    the same tissue bit for bit wherever IEEE doubles are (std::mt19937_64 is fully specified; the
    uniform mapping is our own, std::uniform_real_distribution is not portable). */
 #include <turgor/tissue/voronoi.h>
+#include <turgor/core/errors.h>
 #include <turgor/core/options.h>
 #include <algorithm>
 #include <cmath>
@@ -210,11 +211,13 @@ static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], Vorono
   /* after a Lloyd step the old weights may empty a cell: pull them toward 0 (Voronoi, where no cell is empty) */
   PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
   for (int k = 0; any_empty(); k++) {
+    PetscCall(StopIfInterrupted(comm, "set-up: the Laguerre weights of the Voronoi tissue (-tissue_size_cv)"));
     for (PetscReal &w : D.weights) w = k < 60 ? 0.5 * w : 0;
     PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
   }
   D.max_area_error = MaxAreaError(D.cells, D.targets);
   for (PetscInt it = 0; it < max_its && D.max_area_error >= tol; it++) {
+    PetscCall(StopIfInterrupted(comm, "set-up: the Laguerre weights of the Voronoi tissue (-tissue_size_cv)")); /* every rank iterates alike */
     CellAreas(D.cells, &A);
     for (size_t i = 0; i < N; i++) {
       const PowerCell &c = D.cells[i];
@@ -268,6 +271,7 @@ static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], Vorono
     PetscReal step = 1, err = PETSC_MAX_REAL;
     for (int halve = 0;; halve++) {
       for (size_t i = 0; i < N; i++) D.weights[i] = w0[i] + step * x[i];
+      PetscCall(StopIfInterrupted(comm, "set-up: the Laguerre weights of the Voronoi tissue (-tissue_size_cv)")); /* a diagram of many cells takes long */
       PetscCall(ComputePowerDiagram(box, D.seeds, D.weights, &D.cells));
       if (!any_empty()) {
         err = MaxAreaError(D.cells, D.targets);
@@ -305,6 +309,7 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
     for (size_t k = N; k > 1; k--) std::swap(D.targets[k - 1], D.targets[(size_t)(u() * (PetscReal)k)]);
   }
   for (PetscInt step = 0;; step++) {
+    PetscCall(StopIfInterrupted(comm, "set-up: the Voronoi tissue (-tissue_voronoi_cells, -tissue_lloyd_steps)")); /* every rank builds it alike */
     if (spec.size_cv > 0) PetscCall(AdaptWeights(comm, spec.box, D));
     else PetscCall(ComputePowerDiagram(spec.box, D.seeds, D.weights, &D.cells));
     if (step == spec.lloyd_steps) break;

@@ -45,6 +45,8 @@ public:
   void AddSummary(JsonObject &js) const;
   /* For the run's final report: "" or the crossing. */
   std::string Report() const;
+  /* stability.csv closed (collective): a write that failed is an error naming it. */
+  PetscErrorCode CloseOutputs();
 
 private:
   PetscErrorCode WriteCrossing(Vec U, PetscReal t);

@@ -36,6 +36,7 @@ protected:
   const char              *SnapshotFiles() const override { return "coarse.h5 + coarse.xmf"; }
   PetscInt                 FunctionEvaluations() const override { return model_.Counters().residuals; }
   PetscErrorCode           OpenSnapshots() override;
+  PetscErrorCode           CloseOutputs() override { return monitor_.CloseOutputs(); } /* stability.csv */
   PetscErrorCode           AddSummary(JsonObject &js) override;
   PetscErrorCode           DoneDetails(std::string *details) override;
   const char              *FailureAdvice() const override

@@ -9,10 +9,13 @@
      than the first of a parallel communicator PETSc 3.18's own handler sleeps 10 s and exits
      (status 0, without MPI_Finalize) so that the first rank can print; this one lets the error
      return instead, keeping its message, and FinishRanks() ends the run on every rank at once.
-   - Interrupts: SIGINT/SIGTERM set a flag that a time-dependent run checks after every step, so it
-     stops after the step, writes summary.json with status "interrupted" and exits non-zero. A
-     second signal stops inside the step (CheckStopNow() in the right-hand sides): the run fails
-     with that reason, for a step that takes too long to finish. */
+   - Interrupts: SIGINT/SIGTERM set a flag. A time-dependent run checks it after every step, so it
+     stops after the step, writes summary.json with status "interrupted" and exits with 130. A
+     second signal stops inside the step (CheckStopNow() in the right-hand sides). Set-up checks it
+     in its long loops and readers (StopIfInterrupted): a run interrupted there stops before its
+     first step. An error raised for an interrupt (IsInterruptError) ends the run "interrupted",
+     never "failed". A file size limit (SIGXFSZ) makes the write fail, reported, instead of
+     killing the run. */
 #include <turgor/core/petsc_compat.h>
 #include <exception>
 #include <new>
@@ -71,7 +74,7 @@ PetscErrorCode PushErrorHandler(ErrorRecord *record);
    in a collective call, and then this rank prints its message and aborts the job (MPI_Abort)
    instead of hanging. */
 PetscErrorCode FinishRanks(MPI_Comm comm, int status, const ErrorRecord &record, double timeout);
-/* Install the SIGINT/SIGTERM handler (after PetscInitialize). */
+/* Install the SIGINT/SIGTERM handler (after PetscInitialize); SIGXFSZ is ignored. */
 PetscErrorCode InstallInterruptHandler(void);
 /* True once SIGINT or SIGTERM arrived on this rank. */
 bool InterruptRequested(void);
@@ -80,5 +83,22 @@ bool InterruptRequested(void);
 PetscErrorCode CheckStopNow(void);
 /* Collective: true on every rank if it is true on one. */
 PetscErrorCode InterruptRequestedAll(MPI_Comm comm, PetscBool *interrupted);
+/* Collective: an error (PETSC_ERR_SIG) on every rank if SIGINT/SIGTERM arrived on one, saying that
+   the run stopped `during` (e.g. "set-up: the Voronoi tissue's Lloyd step 3"). */
+PetscErrorCode StopIfInterrupted(MPI_Comm comm, const char during[]);
+/* The error ierr was raised because of SIGINT/SIGTERM (StopIfInterrupted, CheckStopNow, a reader
+   that stopped): the run ends "interrupted" (exit status 130). */
+bool IsInterruptError(PetscErrorCode ierr);
+
+/* While one exists, SIGINT/SIGTERM make a blocking open() or read() fail (EINTR) instead of
+   restarting it: a reader of a user's file (a FIFO without a writer) then sees the failure and
+   checks InterruptRequested(). Elsewhere system calls restart, as the libraries expect. */
+class InterruptibleCalls {
+public:
+  InterruptibleCalls();
+  ~InterruptibleCalls();
+  InterruptibleCalls(const InterruptibleCalls &)            = delete;
+  InterruptibleCalls &operator=(const InterruptibleCalls &) = delete;
+};
 
 } // namespace turgor

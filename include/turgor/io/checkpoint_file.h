@@ -22,6 +22,7 @@
    Fletcher32 is found by it). A damaged, edited or incomplete file is refused naming the dataset. */
 #include <turgor/io/declared_state.h>
 #include <hdf5.h>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,12 +46,16 @@ public:
   /* Every declaration's scalars and tables, and /layout. */
   PetscErrorCode State(const std::vector<StateDeclaration *> &decls, const StateNumbering &numbering);
   PetscErrorCode Close();
+  /* Called on every rank before each declaration's tables are written (collective): a long write
+     lets its caller act meanwhile (a run that is interrupted says so before the file is done). */
+  void BetweenDeclarations(std::function<PetscErrorCode()> f) { between_ = std::move(f); }
 
 private:
-  PetscErrorCode WriteTable(const std::string &group, const StateTable &table, const StateNumbering &numbering);
-  MPI_Comm       comm_ = MPI_COMM_NULL;
-  hid_t          file_ = -1;
-  std::string    path_;
+  PetscErrorCode                  WriteTable(const std::string &group, const StateTable &table, const StateNumbering &numbering);
+  MPI_Comm                        comm_ = MPI_COMM_NULL;
+  hid_t                           file_ = -1;
+  std::string                     path_;
+  std::function<PetscErrorCode()> between_;
 };
 
 class CheckpointReader {

@@ -6,8 +6,9 @@
    integer attribute says what its "values" mean instead). The first rank of the communicator
    writes; every rank calls. */
 #include <turgor/core/petsc_compat.h>
+#include <turgor/io/output.h>
 #include <cstddef>
-#include <cstdio>
+#include <memory>
 #include <string>
 
 namespace turgor {
@@ -41,16 +42,18 @@ public:
                            const XdmfData &data);
   PetscErrorCode EndGrid();
   PetscErrorCode EndCollection();
-  /* Close the Domain and the file. */
+  /* Close the Domain and the file; a write that failed is an error on every rank (collective). */
   PetscErrorCode Close();
+  XdmfWriter() = default;
   ~XdmfWriter();
 
 private:
   PetscErrorCode DataItem(const XdmfData &data);
+  PetscErrorCode Print(const char format[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
 
-  MPI_Comm    comm_ = MPI_COMM_NULL;
-  FILE       *fp_   = nullptr;
-  std::string h5_;
+  MPI_Comm                    comm_ = MPI_COMM_NULL;
+  std::unique_ptr<OutputFile> file_; /* rank 0's */
+  std::string                 h5_;
 };
 
 } // namespace turgor

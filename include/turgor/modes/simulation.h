@@ -18,10 +18,11 @@ public:
   /* summary.json (status "completed", or "interrupted" after SIGINT/SIGTERM) and the final
      report; call after Solve */
   virtual PetscErrorCode WriteSummary() = 0;
-  /* After an error in any phase (already reported by PETSc): summary.json with status "failed" and
-     the reason, if the run has an output directory by then. Not collective (the failure may be one
-     rank's): rank 0 writes what it knows. */
-  virtual PetscErrorCode WriteFailure(const std::string &reason) { return PETSC_SUCCESS; }
+  /* After an error in any phase (already reported by PETSc): summary.json with `status` "failed"
+     (or "interrupted": the error was SIGINT/SIGTERM's) and the reason, if the run has an output
+     directory by then. Not collective (the failure may be one rank's): rank 0 writes what it
+     knows. */
+  virtual PetscErrorCode WriteFailure(const std::string &reason, const char status[]) { return PETSC_SUCCESS; }
   /* The run stopped early on SIGINT/SIGTERM (its summary says "interrupted"). */
   virtual bool Interrupted() const { return false; }
   /* The mode continues from checkpoints (-restart) and writes them (-checkpoint_interval): a mode that

@@ -12,17 +12,26 @@ namespace turgor {
 
 class SingleShotRun : public Simulation {
 public:
-  /* On rank 0, once the output directory is prepared: summary.json with status "failed", the
-     reason and AddFailure's keys -- unless WriteSummary wrote one that reports the failure
-     itself. Not collective (the failure may be one rank's). */
-  PetscErrorCode WriteFailure(const std::string &reason) final;
+  /* On rank 0, once the output directory is prepared: summary.json with `status` ("failed", or
+     "interrupted"), the reason and AddFailure's keys -- unless WriteSummary wrote one that reports
+     the failure itself. Not collective (the failure may be one rank's). */
+  PetscErrorCode WriteFailure(const std::string &reason, const char status[]) final;
+  /* A run inside another (eigen's relaxed state is fe2_static's run): its outputs go to the
+     owner's directory, which the owner prepared (before this run's SetFromOptions). */
+  void ShareOutputDirectory(const SingleShotRun &owner)
+  {
+    output_dir_ = owner.output_dir_;
+    have_dir_   = owner.have_dir_;
+    shared_dir_ = true;
+  }
 
 protected:
   /* `mode`: the -mode name, summary.json's "mode" */
   SingleShotRun(MPI_Comm comm, const char mode[]) : comm_(comm), mode_(mode) { }
 
-  /* -output_dir and -output_overwrite (OutputDirectory): first in the mode's SetFromOptions.
-     Under -help nothing is prepared and HasOutputDirectory() stays false. */
+  /* -output_dir and -output_overwrite (OutputDirectory), and summary.json reserved ("running"):
+     first in the mode's SetFromOptions. Under -help nothing is prepared and HasOutputDirectory()
+     stays false. */
   PetscErrorCode     PrepareOutputDirectory();
   bool               HasOutputDirectory() const { return have_dir_; }
   const std::string &OutputDir() const { return output_dir_; }
@@ -32,6 +41,11 @@ protected:
   /* summary.json (collective). `reports_failure`: its status is "failed" (the mode found the
      failure itself and raises it next): WriteFailure then leaves it as it is. */
   PetscErrorCode WriteSummaryFile(const JsonObject &js, bool reports_failure = false);
+  /* A CSV file of the mode (rank 0's), closed: a write that failed is an error on every rank,
+     naming the file (collective; call it before the summary). */
+  PetscErrorCode CloseOutput(CsvWriter &csv);
+  /* The closing report's list of the files in the output directory. */
+  std::string OutputFiles() const { return OutputFileList(output_dir_); }
 
   /* The mode's keys, in a summary of any status (rank-local where it matters: not collective). */
   virtual PetscErrorCode AddSummary(JsonObject &js) = 0;
@@ -44,7 +58,7 @@ protected:
 private:
   const char *mode_;
   std::string output_dir_;
-  bool        overwrite_ = false, have_dir_ = false, failure_reported_ = false;
+  bool        overwrite_ = false, have_dir_ = false, failure_reported_ = false, shared_dir_ = false;
 };
 
 } // namespace turgor

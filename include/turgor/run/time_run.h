@@ -45,7 +45,7 @@ public:
   PetscErrorCode SetUp() final;
   PetscErrorCode Solve() final;
   PetscErrorCode WriteSummary() final;
-  PetscErrorCode WriteFailure(const std::string &reason) final;
+  PetscErrorCode WriteFailure(const std::string &reason, const char status[]) final;
   bool           Interrupted() const final { return interrupted_; }
   bool           Checkpoints() const final { return Checkpointable(); }
 
@@ -86,6 +86,9 @@ protected:
   virtual PetscErrorCode      OpenSnapshots() = 0;
   /* The mode's own further output files (after tip.csv; only when the directory is ready). */
   virtual PetscErrorCode OpenOutputs() { return PETSC_SUCCESS; }
+  /* Before the summary: the mode's own files that OpenSeries did not open, closed, a write that
+     failed an error naming the file (collective). */
+  virtual PetscErrorCode CloseOutputs() { return PETSC_SUCCESS; }
   virtual PetscErrorCode WriteSnapshot(PetscReal t, Vec U) = 0;
   virtual PetscInt       SnapshotCount() const             = 0;
   virtual const char    *SnapshotFiles() const             = 0; /* for the final report */
@@ -180,17 +183,24 @@ private:
   PetscErrorCode        Sample(PetscReal t, Vec U);
   PetscErrorCode        CheckTSOptions(); /* step, final time, tolerances: finite, positive, error control on */
   PetscErrorCode        CommonSummary(JsonObject &js, const char *status);
-  PetscErrorCode        WriteCheckpoint(PetscReal t, PetscInt step);
-  PetscErrorCode        ReadCheckpoint(); /* -restart: every check, then the state restored */
-  PetscErrorCode        ReadCheckpointFile(class CheckpointReader &file, std::string *problem);
-  PetscErrorCode        CheckpointDue(PetscReal t, PetscBool *due);
+  PetscErrorCode        Summarize(JsonObject &js);                         /* the summary of a run that ended (collective) */
+  PetscErrorCode        InterruptWhileWriting(const std::string &pending); /* SIGINT/SIGTERM during a checkpoint: summary.json says so at once */
+  enum class SeriesStep {
+    Check,
+    Flush,
+    Close
+  };
+  PetscErrorCode CheckOutputs(SeriesStep step); /* the time series (rank 0's) written so far, or flushed, or closed (collective) */
+  PetscErrorCode WriteCheckpoint(PetscReal t, PetscInt step);
+  PetscErrorCode ReadCheckpoint(); /* -restart: every check, then the state restored */
+  PetscErrorCode ReadCheckpointFile(class CheckpointReader &file, std::string *problem);
+  PetscErrorCode CheckpointDue(PetscReal t, PetscBool *due);
   class Numbering;
   PetscErrorCode DeclareAll(std::deque<StateDeclaration> &decls); /* TimeRun's and the mode's */
 
   std::string                             mode_;
   CsvWriter                               tip_csv_;
   std::vector<std::unique_ptr<CsvWriter>> series_csv_;
-  std::vector<std::string>                series_files_;
   TimeSampler                             sampler_;
   PetscLogDouble                          wall_        = 0;
   PetscReal                               observed_    = 0;
@@ -207,6 +217,9 @@ private:
   PetscInt                ckpt_keep_ = 2; /* -checkpoint_keep: the numbered checkpoints kept (0: all) */
   std::deque<std::string> ckpt_kept_;     /* this run's numbered checkpoints, oldest first (rank 0) */
   bool                    ckpt_every_step_warned_ = false;
+  std::string             ckpt_last_file_;         /* the last complete checkpoint (this run's, or the one it continues) */
+  std::string             writing_;                /* the snapshot or checkpoint being written: a failure's summary names it */
+  bool                    interrupt_said_ = false; /* summary.json says "interrupted" already (InterruptWhileWriting) */
   PetscReal               ckpt_bytes_ = 0, ckpt_seconds_ = 0;
   std::string             restart_file_;
   PetscLogEvent           ev_ckpt_write_ = 0, ev_ckpt_read_ = 0;
