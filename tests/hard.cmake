@@ -122,3 +122,11 @@ turgor_hard_fails(fe2_collapsed_element fe2_loose_tolerance "Coarse mesh: elemen
 # cells turned inside out by suction fail the run, named (1 and 2 ranks: the owner of the cell finds it)
 turgor_hard_fails(fine_suction_inverts fine_suction_inverts "Cell [0-9]+ turned inside out at t = [0-9.e-]+ µs: its area is -[0-9.e+]+ µm²")
 turgor_hard_fails_np2(fine_suction_inverts_np2 fine_suction_inverts "Cell [0-9]+ turned inside out at t = [0-9.e-]+ µs")
+# a velocity control faster than a quarter of the contact reach per fixed step is refused, named
+# (the lid at 1e6 µm/µs would move 640 µm a step straight through the tissue); 1 and 2 ranks
+set(CONTROL_TOO_FAST -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -ts_max_time 2 -fine_snapshots 0 -fine_progress_interval 0 -control_lid_velocity 0,-1e6 -control_lid_delay 0.5)
+turgor_add_test(hard_fine_control_too_fast COMMAND ${BAD} "Option -control_lid_velocity: 1e\\+06 µm/µs moves its nodes [0-9.]+ µm in a step of"
+  $<TARGET_FILE:turgor_app> ${CONTROL_TOO_FAST} -output_dir hard/fine_control_too_fast -output_overwrite LABELS hard badinput TIMEOUT 120)
+turgor_add_test(hard_fine_control_too_fast_np2 COMMAND ${BAD} "Option -control_lid_velocity: 1e\\+06 µm/µs moves its nodes" ${MPIEXEC_ROOT} -n 2
+  $<TARGET_FILE:turgor_app> ${CONTROL_TOO_FAST} -output_dir hard/fine_control_too_fast_np2 -output_overwrite LABELS hard badinput mpi TIMEOUT 120)

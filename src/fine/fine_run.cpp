@@ -246,6 +246,42 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
   PetscFunctionBeginUser;
   PetscCall(equations_.ConfigureIntegrator(ts_, fields_));
   if (equations_.Split()) PetscCall(FitFixedSteps(0, 0)); /* a fixed step is not clipped at the final time */
+  PetscCall(LimitControlSteps());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A velocity control moves its nodes |v| dt in a step whatever the forces: a move of more than a
+   quarter of the contact reach (2 r) between two evaluations lets a node pass through a wall unseen.
+   A fixed step that does is refused, naming the control; an adaptive one is capped there. */
+PetscErrorCode FineRun::LimitControlSteps()
+{
+  PetscReal   r = tissue_.particles.bar_radius, vmax = 0, dt;
+  std::string name;
+  PetscBool   fixed;
+  PetscFunctionBeginUser;
+  PetscCall(MaxOverRanks(comm_, &r)); /* a rank without particles has no bar radius */
+  for (const ControlGroup &g : controls_.Groups()) {
+    if (!g.velocity) continue;
+    const PetscReal s = std::hypot(g.free[0] ? 0 : g.value[0], g.free[1] ? 0 : g.value[1]);
+    if (s > vmax) vmax = s, name = g.name;
+  }
+  if (!(r > 0) || !(vmax > 0)) PetscFunctionReturn(PETSC_SUCCESS);
+  const PetscReal hmax = 0.5 * r / vmax;
+  PetscCall(TSGetTimeStep(ts_, &dt));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &fixed, TSBASICSYMPLECTIC, TSVERLET, ""));
+  if (fixed) {
+    PetscCheck(dt <= hmax, comm_, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -control_%s_velocity: %g µm/µs moves its nodes %g µm in a step of %g µs, more than a quarter of the contact reach 2 r = %g µm: "
+               "nodes would pass through walls between two evaluations; lower the velocity, or the step to %g µs (-fine_dt_safety)",
+               name.c_str(), (double)vmax, (double)(vmax * dt), (double)dt, (double)(2 * r), (double)hmax);
+  } else {
+    TSAdapt   adapt;
+    PetscReal hmin, hmax_now;
+    PetscCall(TSGetAdapt(ts_, &adapt));
+    PetscCall(TSAdaptGetStepLimits(adapt, &hmin, &hmax_now));
+    if (hmax_now > hmax) PetscCall(TSAdaptSetStepLimits(adapt, PetscMin(hmin, hmax), hmax));
+    if (dt > hmax) PetscCall(TSSetTimeStep(ts_, hmax));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -74,6 +74,7 @@ protected:
   PetscErrorCode           Observe(PetscReal t, Vec U, std::vector<PetscReal> &row) override;
   /* Collective: an error naming the first inverted cell (its signed area through zero) at time t. */
   PetscErrorCode      CheckCellsInverted(PetscReal t, const PetscReal *x, PetscInt inverted);
+  PetscErrorCode      LimitControlSteps();
   PetscInt            CountCellsInverted(const PetscReal *x) const;
   std::vector<Series> ObservedSeries() const override;
   PetscErrorCode      ObserveSeries(PetscReal t, Vec U, std::vector<std::vector<PetscReal>> &rows) override;
