@@ -130,3 +130,10 @@ turgor_add_test(hard_fine_control_too_fast COMMAND ${BAD} "Option -control_lid_v
   $<TARGET_FILE:turgor_app> ${CONTROL_TOO_FAST} -output_dir hard/fine_control_too_fast -output_overwrite LABELS hard badinput TIMEOUT 120)
 turgor_add_test(hard_fine_control_too_fast_np2 COMMAND ${BAD} "Option -control_lid_velocity: 1e\\+06 µm/µs moves its nodes" ${MPIEXEC_ROOT} -n 2
   $<TARGET_FILE:turgor_app> ${CONTROL_TOO_FAST} -output_dir hard/fine_control_too_fast_np2 -output_overwrite LABELS hard badinput mpi TIMEOUT 120)
+# a stiff elastic turgor (K = 1e7 N/m): the pressure term's own stability line sets the step (the
+# rank-one -dp/dA g g^T part exactly, the rest by Gershgorin), so the run stays stable
+turgor_add_test(hard_fine_stiff_turgor COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml
+  -tissue_voronoi_cells 16 -tissue_box 0,0,100,100 -ts_max_time 0.5 -contact_damping 0 -pressure_law elastic -pressure_bulk_modulus 1e7
+  -fine_snapshots 0 -fine_progress_interval 0 -output_dir hard/fine_stiff_turgor -output_overwrite LABELS hard SETUP hard_fine_stiff_turgor)
+turgor_hard_check(fine_stiff_turgor_limit hard_fine_stiff_turgor ${HCHECK} between hard/fine_stiff_turgor dt_stable 2.9e-4 3.1e-4)
+turgor_hard_check(fine_stiff_turgor_finite hard_fine_stiff_turgor ${HCHECK} keys hard/fine_stiff_turgor tip_displacement_final)

@@ -93,6 +93,40 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The turgor's stiffness on a cell's nodes, at the full pressure (a build-up ramp reaches it):
+   -dp/dA g g^T with g = grad A, a rank-one matrix whose largest eigenvalue against the masses is
+   exactly -dp/dA sum |g_i|^2 / m_i (the elastic law's K / A0, the gas law's p0 A0 / A^2), and
+   p d^2A/dx^2, whose rows hold two entries of 1/2 (Gershgorin: |p| / m). The largest over the cells
+   at the state given; a cell's nodes are all on the rank that has the cell. */
+PetscErrorCode CellPressure::AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits)
+{
+  PetscFunctionBeginUser;
+  if (!have_ref_) SetReference(in.x);
+  const PetscReal *x  = in.x;
+  PetscReal        w2 = 0;
+  for (PetscInt c : closed_) {
+    const PolygonCell &C = in.P->polygons[c];
+    const size_t       N = C.nodes.size();
+    const PetscReal    A = PolygonArea(C.nodes, x), A0 = A0_[c];
+    const PetscReal    dpdA = law == ELASTIC ? bulk_modulus / A0 : law == GAS && A > 0 ? p0 * A0 / (A * A) : 0; /* -dp/dA */
+    PetscReal          sum = 0, mmin = PETSC_MAX_REAL;
+    for (size_t k = 0; k < N; k++) {
+      const PetscInt  i = C.nodes[k], h = C.nodes[(k + N - 1) % N], j = C.nodes[(k + 1) % N];
+      const PetscReal gx = 0.5 * (x[2 * j + 1] - x[2 * h + 1]), gy = 0.5 * (x[2 * h] - x[2 * j]), m = in.P->mass[i];
+      sum += (gx * gx + gy * gy) / m;
+      mmin = std::min(mmin, m);
+    }
+    w2 = std::max(w2, std::fabs(dpdA) * sum + std::fabs(Pressure(A, A0)) / mmin);
+  }
+  if (w2 > 0) {
+    char why[160];
+    PetscCall(PetscSNPrintf(why, sizeof why, "pressure: omega_max <= %.4g /µs (law %s: -dp/dA |grad A|^2 / m + |p| / m, %zu cells)", (double)std::sqrt(w2),
+                            kLaws[law], closed_.size()));
+    limits.push_back({2.0 / std::sqrt(w2), why});
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* E = -int_{A0}^{A} p da: constant -p0 (A - A0); gas -p0 A0 ln(A/A0); elastic
    -p0 (A - A0) + K (A - A0)^2 / (2 A0). */
 PetscErrorCode CellPressure::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)

@@ -22,6 +22,7 @@ public:
   PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) override;
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
+  PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return p0 * length; }
   bool           TimeDependent() const override { return ramp_time > 0; }
   PetscReal      ExplicitTimePower(const ForceInput &in) override;
