@@ -675,7 +675,8 @@ PetscErrorCode CoarseModel::CacheHolds(Vec Uloc, bool tangents, bool *holds)
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(Uloc, &n));
   PetscCall(VecGetArrayRead(Uloc, &u));
-  int same = cached_valid_ && (PetscInt)cached_U_.size() == n && !std::memcmp(cached_U_.data(), u, n * sizeof(PetscScalar)) && (cached_tangents_ || !tangents),
+  int same = cached_valid_ && (PetscInt)cached_U_.size() == n &&
+             (n == 0 || !std::memcmp(cached_U_.data(), u, n * sizeof(PetscScalar))) /* an empty rank's arrays may be null */ && (cached_tangents_ || !tangents),
       all_same;
   PetscCall(VecRestoreArrayRead(Uloc, &u));
   PetscCallMPI(MPI_Allreduce(&same, &all_same, 1, MPI_INT, MPI_MIN, comm_));
