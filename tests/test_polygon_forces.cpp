@@ -308,6 +308,57 @@ static PetscErrorCode TestContactNormal()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* 4a'. A node slid past the inner side of a bent joint (a wall bent by 11 degrees towards it, where
+   it lies in front of both bars): it touches the wall through the nearer bar only, so the contact
+   energy is continuous (the seed counts it from both bars there, and the count jumps by a whole
+   contact's energy where the node leaves one bar's span) and the force is the energy's gradient on
+   either side of the bisector. */
+static PetscErrorCode TestContactJoint()
+{
+  const PetscReal kn = 1000, r = 0.5, y = 0.8, h = 1e-6;
+  PetscFunctionBeginUser;
+  PolygonBuilder B;
+  B.AddCell(
+    {
+      {0,  0},
+      {10, 0},
+      {20, 2}
+  },
+    true, 1.0);
+  B.AddCell(
+    {
+      {9, y}
+  },
+    true, 1.0);
+  ForceModel             M;
+  std::vector<PetscReal> x, f, E;
+  std::vector<bool>      has;
+  PetscCall(ContactAtRest(B, r, kn, M, x, f));
+  PetscReal worst = 0, fmax = 0, Eprev = -1, worst_grad = 0;
+  for (PetscInt k = 0; k <= 2000; k++) { /* x from 9 to 11 in steps of 1e-3, each with a step of h */
+    for (PetscReal dx : {0.0, h}) {
+      x[6] = 9 + 1e-3 * (PetscReal)k + dx;
+      PetscCall(M.TermEnergies(x.data(), E, has));
+      if (dx == 0) {
+        PetscCall(Forces(M, x, std::vector<PetscReal>(x.size(), 0.0), f));
+        fmax  = std::max(fmax, std::hypot(f[6], f[7]));
+        Eprev = E[0];
+      } else {
+        const PetscReal jump = std::fabs(E[0] - Eprev);
+        worst                = std::max(worst, jump);
+        worst_grad           = std::max(worst_grad, std::fabs((E[0] - Eprev) / h + f[6]));
+      }
+    }
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "contact across a bent joint: largest energy change over %g µm %.3g (force up to %.4g, so a jump shows as >> %.3g); "
+                        "|dE/dx + f_x| <= %.3g\n",
+                        (double)h, (double)worst, (double)fmax, (double)(fmax * h), (double)worst_grad));
+  TG_CHECK(worst < 2 * fmax * h, "the contact energy jumps by %g over %g µm at the joint", (double)worst, (double)h);
+  TG_CHECK(worst_grad < 1e-2 * fmax, "the contact force is not the energy's gradient at the joint: |dE/dx + f_x| = %g", (double)worst_grad);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* 4b. Coulomb friction: nodes on a fixed bar, normal load N each, tangential load F each:
    stick for F < mu N (spring oscillation bounded by 2 F / k_t), slide with (F - mu N)/m above;
    the history is the same after a forced neighbour rebuild. */
@@ -546,6 +597,7 @@ int main(int argc, char **argv)
   PetscCall(TestGradients());
   PetscCall(TestPressurisedNgon());
   PetscCall(TestContactNormal());
+  PetscCall(TestContactJoint());
   PetscCall(TestFriction());
   PetscCall(TestNoContactNoLists());
   PetscCall(TestNearList());

@@ -99,6 +99,38 @@ bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, 
   return true;
 }
 
+/* Node p projects inside bar s and lies within the slab of s2, the bar next to s at its end q, too
+   (the inner side of a joint): is it nearer to s2 (ties: the lower-numbered bar)? Then s2 alone
+   counts it. The seed counts such a node from both bars, and that count jumps by a whole contact's
+   energy when the node leaves one slab while touching (on a nearly straight wall pushed in, at every
+   joint a node slides past): with the nearer bar alone the touching energy is k_n/2 (2 r - dist)^2
+   with dist the distance to the wall, continuous everywhere (its gradient turns at the bisector). */
+bool Contact::NearerNeighbour(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q, PetscReal d2) const
+{
+  const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
+  if (s2 < 0 || s2 == s || !Eligible(P, p, s2)) return false;
+  const PetscInt  o  = P.springs[s2].i == q ? P.springs[s2].j : P.springs[s2].i; /* far end of s2 */
+  const PetscReal ex = x[2 * o] - x[2 * q], ey = x[2 * o + 1] - x[2 * q + 1], L2 = ex * ex + ey * ey;
+  const PetscReal wx = x[2 * p] - x[2 * q], wy = x[2 * p + 1] - x[2 * q + 1], proj = wx * ex + wy * ey;
+  if (proj <= 0 || proj >= L2) return false;
+  const PetscReal t = proj / L2, dx = wx - t * ex, dy = wy - t * ey, e2 = dx * dx + dy * dy;
+  return e2 < d2 || (e2 == d2 && s2 < s);
+}
+
+bool Contact::Counts(const ParticleSet &P, const PetscReal *x, const Candidate &C, Geometry &g) const
+{
+  const PetscInt  p = C.p, a = C.a, b = C.b;
+  const PetscReal R = 2 * r_;
+  g.ex = x[2 * b] - x[2 * a], g.ey = x[2 * b + 1] - x[2 * a + 1];
+  const PetscReal px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
+  const PetscReal L2 = g.ex * g.ex + g.ey * g.ey, proj = px * g.ex + py * g.ey;
+  g.iL2 = 1 / L2, g.lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * g.iL2;
+  g.dx = px - g.lam * g.ex, g.dy = py - g.lam * g.ey, g.d2 = g.dx * g.dx + g.dy * g.dy;
+  if (g.d2 == 0 || g.d2 >= R * R) return false;
+  if (g.lam == 0 || g.lam == 1) return CornerOwner(P, x, p, C.s, g.lam == 0 ? a : b);
+  return !NearerNeighbour(P, x, p, C.s, a, g.d2) && !NearerNeighbour(P, x, p, C.s, b, g.d2);
+}
+
 /* The neighbour search's node-spring candidates filtered to eligible pairs, each with its history
    entry found once per rebuild (the map is keyed by (node gid, bar), not by list position); then
    the near list. Between rebuilds the near list is rebuilt when some node has moved more than half
@@ -183,7 +215,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   const ParticleSet &P = *in.P;
   const PetscReal   *x = in.x, *v = in.v;
   const PetscReal    R = 2 * r_, R2 = R * R, kn = stiffness, cn = damping, mu = friction, kt = kt_;
-  const bool         tangential = mu > 0 && kt > 0;
+  const bool         tangential = Tangential();
   PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
   PetscInt           active = 0;
   /* pass 1, branch-free (most near pairs do not touch, and a branch per pair mispredicts): the
@@ -204,13 +236,10 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   for (size_t i = 0; i < nt; i++) {
     const PetscInt   k = touch_[i];
     const Candidate &C = cand_[k];
-    const PetscInt   p = C.p, s = C.s, a = C.a, b = C.b;
-    const PetscReal  ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
-    const PetscReal  px = x[2 * p] - x[2 * a], py = x[2 * p + 1] - x[2 * a + 1];
-    const PetscReal  L2 = ex * ex + ey * ey, proj = px * ex + py * ey;
-    const PetscReal  iL2 = 1 / L2, lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * iL2;
-    const PetscReal  dx = px - lam * ex, dy = py - lam * ey, d2 = dx * dx + dy * dy;
-    if (d2 == 0 || d2 >= R2 || ((lam == 0 || lam == 1) && !CornerOwner(P, x, p, s, lam == 0 ? a : b))) continue;
+    const PetscInt   p = C.p, a = C.a, b = C.b;
+    Geometry         g;
+    if (!Counts(P, x, C, g)) continue;
+    const PetscReal ex = g.ex, ey = g.ey, dx = g.dx, dy = g.dy, d2 = g.d2, lam = g.lam, iL2 = g.iL2, L2 = ex * ex + ey * ey;
     active++;
     const History  &h    = hist_[k];
     const PetscReal dist = std::sqrt(d2), id = 1 / dist, nx = dx * id, ny = dy * id, delta = R - dist;
@@ -218,6 +247,13 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal vx = v[2 * p] - l * v[2 * a] - lam * v[2 * b], vy = v[2 * p + 1] - l * v[2 * a + 1] - lam * v[2 * b + 1];
     PetscReal       fn = kn * delta - cn * (vx * nx + vy * ny);
     if (fn < 0) fn = 0;
+    if (MODE <= 1 && in.f_dashpot) { /* the dashpot's part, fn - k_n delta along n, for the energy balance */
+      const PetscReal fd = fn - kn * delta, Dx = fd * nx, Dy = fd * ny;
+      PetscReal      *g = in.f_dashpot;
+      g[2 * p] += Dx, g[2 * p + 1] += Dy;
+      g[2 * a] -= l * Dx, g[2 * a + 1] -= l * Dy;
+      g[2 * b] -= lam * Dx, g[2 * b + 1] -= lam * Dy;
+    }
     PetscReal ft = 0, tx = 0, ty = 0, xi = 0;
     if (tangential) {
       const PetscReal sg = (ny * ex - nx * ey) >= 0 ? 1 : -1; /* t = sg (n_y, -n_x), along e */
@@ -311,7 +347,7 @@ PetscErrorCode Contact::Energy(const ForceInput &in, PetscReal *E, PetscBool *ha
 PetscErrorCode Contact::AcceptStep(const ForceInput &in)
 {
   PetscFunctionBeginUser;
-  if (!(friction > 0 && kt_ > 0)) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
+  if (!Tangential()) PetscFunctionReturn(PETSC_SUCCESS); /* no history to keep */
   /* velocity Verlet and DOPRI accept the positions they last evaluated: commit that evaluation's
      trial values (what the step used) instead of recomputing the geometry. The velocities may differ
      (Verlet's last evaluation saw the half-step velocity, which enters the normal force through the

@@ -8,7 +8,11 @@
    history changes only in AcceptStep, is kept by key across neighbour-list rebuilds and is dropped
    when the pair separates. The bar's share goes to its end nodes by the lever rule, plus a couple
    that balances the torque of the tangential force: linear and angular momentum are conserved.
-   A node whose closest point is a bar end (a corner) is counted by one bar only (see contact.cpp).
+   Each node touches a cell's wall once where the wall is one surface: a node whose closest point
+   is a bar end (a corner) is counted by one bar only, and a node in front of two consecutive bars
+   (the inner side of a joint) by the nearer one; the stored energy is then continuous in the
+   positions (see contact.cpp). The normal dashpot's part of the force is reported apart (the energy
+   balance counts its work as dissipation).
 
    Two lists: the neighbour search's node-bar pairs within 2 r + skin (rebuilt when a node has moved
    skin/2), and from them the pairs within 2 r + skin/4, refreshed when a node has moved skin/8
@@ -30,7 +34,8 @@ public:
   PetscErrorCode AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial) override;
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
-  bool           HasInternalState() const override { return friction > 0 && tangential_stiffness > 0; }
+  bool           HasInternalState() const override { return Tangential(); }
+  bool           HasDashpotForce() const override { return damping > 0; }
   PetscErrorCode AcceptStep(const ForceInput &in) override;
   PetscReal      Dissipation() const override { return dissipated_; } /* by frictional slip: |f_t| x the slip at each accepted step */
   PetscErrorCode View(PetscViewer viewer) const override;
@@ -65,8 +70,20 @@ private:
     PetscInt  k;             /* index into cand_ */
     PetscReal xi, lam, slip; /* capped tangential displacement, contact point, the slip's dissipation */
   };
+  struct Candidate {
+    PetscInt p, a, b, s; /* node, bar ends, bar */
+  };
+  struct Geometry { /* of a pair: e = x_b - x_a, d = x_p - (x_a + lam e), d2 = |d|^2 */
+    PetscReal ex, ey, dx, dy, d2, lam, iL2;
+  };
+  bool Tangential() const { return friction > 0 && kt_ > 0; }
   template <int MODE>
-  PetscReal      Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  /* The pair's geometry at x, and whether it is a contact that counts (closer than 2 r, and the
+     bar the node touches the wall through). */
+  bool Counts(const ParticleSet &P, const PetscReal *x, const Candidate &C, Geometry &g) const;
+  bool NearerNeighbour(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q, PetscReal d2) const;
+
   PetscErrorCode Refresh(const ForceInput &in);
   void           ForgetLists(); /* no pairs, histories or trials: the next Refresh builds them */
   void           BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n);
@@ -77,11 +94,8 @@ private:
   bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
 
-  PetscReal             r_ = 0, kt_ = 0, near_skin_ = 0;
-  std::vector<PetscInt> bar_poly_, bar_pos_, node_pos_, node_bars_;
-  struct Candidate {
-    PetscInt p, a, b, s; /* node, bar ends, bar */
-  };
+  PetscReal              r_ = 0, kt_ = 0, near_skin_ = 0;
+  std::vector<PetscInt>  bar_poly_, bar_pos_, node_pos_, node_bars_;
   std::vector<Candidate> cand_;                         /* eligible pairs of the neighbour list */
   std::vector<History>   hist_;                         /* beside cand_ */
   std::vector<PetscInt>  near_;                         /* indices into cand_ of the near pairs */
