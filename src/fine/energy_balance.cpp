@@ -11,7 +11,7 @@ PetscErrorCode EnergyBalance::SetUp(ForceModel &model, const Controls &controls,
   controls_ = &controls;
   P_        = &P;
   model.KeepTermForces(true);
-  stored_.clear(), loads_.clear(), timed_.clear(), dissipative_.clear(), counting_.clear();
+  stored_.clear(), loads_.clear(), timed_.clear(), dissipative_.clear(), counting_.clear(), dashpots_.clear();
   /* roles: a load does work from outside (the body force); a dissipative term only removes energy
      (its work is its dissipation); the others store energy, and may count their own dissipation */
   for (size_t t = 0; t < model.NumTerms(); t++) {
@@ -22,9 +22,11 @@ PetscErrorCode EnergyBalance::SetUp(ForceModel &model, const Controls &controls,
       stored_.push_back(t);
       if (T.HasInternalState()) counting_.push_back(t); /* plasticity, friction, fracture */
       if (T.TimeDependent()) timed_.push_back(t);       /* a turgor ramp */
+      if (T.HasDashpotForce()) dashpots_.push_back(t);  /* contact's normal damping */
     }
   }
   W_.assign(model.NumTerms(), 0.0);
+  W_dashpot_.assign(dashpots_.size(), 0.0);
   W_time_.assign(model.NumTerms(), 0.0);
   W_controls_ = 0, worst_relative_ = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -39,6 +41,7 @@ std::vector<std::string> EnergyBalance::Columns() const
   for (size_t t : timed_) c.push_back(std::string("work_") + model_->TermAt(t).Name() + "_ramp");
   for (size_t t : dissipative_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name());
   for (size_t t : counting_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name());
+  for (size_t t : dashpots_) c.push_back(std::string("dissipated_") + model_->TermAt(t).Name() + "_dashpot");
   c.push_back("residual");
   c.push_back("residual_relative");
   return c;
@@ -53,7 +56,8 @@ PetscReal EnergyBalance::Kinetic(const PetscReal *v) const
 
 /* Every term's force at (x, v): the model's last evaluation where it was at these positions (the
    forces the integrator used), otherwise a new evaluation; and the controls' forces. */
-PetscErrorCode EnergyBalance::Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<PetscReal> &reaction)
+PetscErrorCode EnergyBalance::Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<std::vector<PetscReal>> &D,
+                                     std::vector<PetscReal> &reaction)
 {
   const PetscInt n2 = 2 * P_->n;
   PetscFunctionBeginUser;
@@ -67,6 +71,8 @@ PetscErrorCode EnergyBalance::Forces(const PetscReal *x, const PetscReal *v, std
     F[t] = model_->TermForce(t);
     for (PetscInt k = 0; k < n2; k++) total[k] += F[t][k];
   }
+  D.resize(dashpots_.size());
+  for (size_t q = 0; q < dashpots_.size(); q++) D[q] = model_->TermDashpotForce(dashpots_[q]);
   reaction.resize(n2);
   controls_->ControlForces(t_, total.data(), reaction.data(), P_->n);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -78,7 +84,7 @@ PetscErrorCode EnergyBalance::Start(MPI_Comm comm, PetscReal t, const PetscReal 
   std::vector<bool>      has;
   PetscFunctionBeginUser;
   t_ = t;
-  PetscCall(Forces(x, v, F_prev_, R_prev_));
+  PetscCall(Forces(x, v, F_prev_, D_prev_, R_prev_));
   v_prev_.assign(v, v + 2 * P_->n);
   PetscCall(model_->TermEnergies(x, E, has));
   PetscReal s[2] = {Kinetic(v), 0};
@@ -86,6 +92,7 @@ PetscErrorCode EnergyBalance::Start(MPI_Comm comm, PetscReal t, const PetscReal 
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPIU_REAL, MPIU_SUM, comm));
   K0_ = s[0], E0_ = s[1];
   std::fill(W_.begin(), W_.end(), 0.0);
+  std::fill(W_dashpot_.begin(), W_dashpot_.end(), 0.0);
   std::fill(W_time_.begin(), W_time_.end(), 0.0);
   W_controls_ = 0;
   model_->SetTime(t);
@@ -99,15 +106,15 @@ PetscErrorCode EnergyBalance::Step(PetscReal t, const PetscReal *x, const PetscR
   const PetscReal h  = t - t_;
   PetscFunctionBeginUser;
   t_ = t;
-  PetscCall(Forces(x, v, F_work_, R_work_));
-  for (size_t q = 0; q < F_work_.size(); q++) {
+  PetscCall(Forces(x, v, F_work_, D_work_, R_work_));
+  const auto work = [&](const std::vector<PetscReal> &F0, const std::vector<PetscReal> &F1) {
     PetscReal w = 0;
-    for (PetscInt k = 0; k < n2; k++) w += (F_prev_[q][k] + F_work_[q][k]) * (v_prev_[k] + v[k]);
-    W_[q] += 0.25 * h * w;
-  }
-  PetscReal w = 0;
-  for (PetscInt k = 0; k < n2; k++) w += (R_prev_[k] + R_work_[k]) * (v_prev_[k] + v[k]);
-  W_controls_ += 0.25 * h * w;
+    for (PetscInt k = 0; k < n2; k++) w += (F0[k] + F1[k]) * (v_prev_[k] + v[k]);
+    return 0.25 * h * w;
+  };
+  for (size_t q = 0; q < F_work_.size(); q++) W_[q] += work(F_prev_[q], F_work_[q]);
+  for (size_t q = 0; q < D_work_.size(); q++) W_dashpot_[q] += work(D_prev_[q], D_work_[q]);
+  W_controls_ += work(R_prev_, R_work_);
   if (!timed_.empty()) { /* the work of the explicit time dependence, trapezoidal */
     std::vector<PetscReal> P;
     model_->SetTime(t);
@@ -116,6 +123,7 @@ PetscErrorCode EnergyBalance::Step(PetscReal t, const PetscReal *x, const PetscR
     P_time_prev_ = P;
   }
   std::swap(F_prev_, F_work_);
+  std::swap(D_prev_, D_work_);
   std::swap(R_prev_, R_work_);
   v_prev_.assign(v, v + n2);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -144,17 +152,18 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   for (size_t q : timed_) s.push_back(W_time_[q]);
   for (size_t q : dissipative_) s.push_back(-W_[q]);
   for (size_t q : counting_) s.push_back(model_->TermAt(q).Dissipation());
+  for (PetscReal w : W_dashpot_) s.push_back(-w);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s.data(), (PetscMPIInt)s.size(), MPIU_REAL, MPIU_SUM, comm));
   size_t    k = 0;
   PetscReal K = s[k++], Es = 0, Wext = 0, Wabs = 0, D = 0, Etot_abs = std::fabs(s[0]);
   for (size_t q = 0; q < stored_.size(); q++) Es += s[k], Etot_abs += std::fabs(s[k]), k++;
   for (size_t q = 0; q < 1 + loads_.size() + timed_.size(); q++) Wext += s[k], Wabs += std::fabs(s[k]), k++;
-  for (size_t q = 0; q < dissipative_.size() + counting_.size(); q++) D += s[k++];
+  for (size_t q = 0; q < dissipative_.size() + counting_.size() + dashpots_.size(); q++) D += s[k++];
   const PetscReal residual = (K + Es) - (K0_ + E0_) - Wext + D;
   /* relative to the external works' magnitudes summed (the controls' and a turgor ramp's works may
-     have opposite signs: their sum could cancel and inflate the ratio), or (none done) to the
-     energies in play */
-  const PetscReal scale = Wabs > 0 ? Wabs : Etot_abs;
+     have opposite signs: their sum could cancel and inflate the ratio), or to the energies in play
+     where they are larger (a load that has just begun has done next to no work yet) */
+  const PetscReal scale = std::max(Wabs, Etot_abs);
   *relative             = scale > 0 ? residual / scale : 0;
   worst_relative_       = std::max(worst_relative_, std::fabs(*relative));
   row                   = s;
@@ -171,11 +180,14 @@ void EnergyBalance::DeclareState(StateDeclaration &d)
   d.Scalar("time", &t_, Combine::Owner);
   d.Scalar("largest_residual", &worst_relative_, Combine::Max);
   d.Vector("work", &W_, Combine::Sum);
+  d.Vector("work_dashpot", &W_dashpot_, Combine::Sum);
   d.Vector("work_ramp", &W_time_, Combine::Sum);
   d.Vector("ramp_power", &P_time_prev_, Combine::Sum);
   StateTable &t = d.Table("particles", StateEntity::Particle);
   t.Rows([this] { return (size_t)P_->n; }).Column("velocity", v_prev_, 2, Combine::Copy).Column("control_force", R_prev_, 2, Combine::Sum);
   for (size_t q = 0; q < F_prev_.size(); q++) t.Column(std::string("force_") + model_->TermAt(q).Name(), F_prev_[q], 2, Combine::Sum);
+  D_prev_.resize(dashpots_.size());
+  for (size_t q = 0; q < dashpots_.size(); q++) t.Column(std::string("dashpot_force_") + model_->TermAt(dashpots_[q]).Name(), D_prev_[q], 2, Combine::Sum);
 }
 
 } // namespace turgor

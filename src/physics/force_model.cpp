@@ -147,7 +147,7 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   }
   ForceInput in = {P_, x, v, &nb_, &images_};
   in.t          = t_;
-  if (keep_term_forces_) term_f_.resize(terms_.size());
+  if (keep_term_forces_) term_f_.resize(terms_.size()), term_fd_.resize(terms_.size());
   for (size_t t = 0; t < terms_.size(); t++) {
     PetscCall(PetscLogEventBegin(events_[t], 0, 0, 0, 0));
     if (keep_term_forces_) { /* the term's own force: what it added to the total. Observing must not
@@ -156,7 +156,9 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
                                 share is the difference, exact to the total's round-off */
       std::vector<PetscReal> &ft = term_f_[t];
       ft.assign(f, f + 2 * P_->n);
+      if (terms_[t]->HasDashpotForce()) term_fd_[t].assign(2 * P_->n, 0.0), in.f_dashpot = term_fd_[t].data();
       PetscCall(terms_[t]->AddForces(in, f, virial));
+      in.f_dashpot = nullptr;
       for (PetscInt k = 0; k < 2 * P_->n; k++) ft[k] = f[k] - ft[k];
     } else PetscCall(terms_[t]->AddForces(in, f, virial));
     PetscCall(PetscLogEventEnd(events_[t], 0, 0, 0, 0));

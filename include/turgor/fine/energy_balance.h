@@ -1,8 +1,9 @@
 #pragma once
 /* The energy balance of a fine run (-fine_energy, energy.csv): kinetic energy, each
    term's stored energy, the work of the controls and of the loads (the body force), and what is
-   dissipated -- by global viscosity (its work), plasticity, friction and fracture (each term's own
-   count, from its committed internal state) -- and the residual
+   dissipated -- by global viscosity and by the dashpots inside a stored term's force (contact's
+   normal damping) (their works), plasticity, friction and fracture (each term's own count, from its
+   committed internal state) -- and the residual
 
      residual = (K + sum E) - (K0 + sum E0) - W_controls - W_loads + D,
 
@@ -12,7 +13,7 @@
    the accepted positions (the last evaluation of velocity Verlet and of DOPRI), per step
    W = (F_n + F_n+1)/2 . (v_n + v_n+1)/2 h. With velocity Verlet the works of all forces then sum
    to the kinetic energy's change exactly, so the residual is the conservative terms' integration
-   error (O(h^2)) plus whatever dissipation no term counts (contact's normal damping is not counted). */
+   error (O(h^2)) plus whatever dissipation no term counts. */
 #include <turgor/fine/controls.h>
 #include <turgor/physics/force_model.h>
 #include <string>
@@ -42,19 +43,21 @@ public:
   void DeclareState(StateDeclaration &d);
 
 private:
-  PetscErrorCode Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<PetscReal> &reaction);
+  PetscErrorCode Forces(const PetscReal *x, const PetscReal *v, std::vector<std::vector<PetscReal>> &F, std::vector<std::vector<PetscReal>> &D,
+                        std::vector<PetscReal> &reaction);
   PetscReal      Kinetic(const PetscReal *v) const;
 
   ForceModel                         *model_    = nullptr;
   const Controls                     *controls_ = nullptr;
   const ParticleSet                  *P_        = nullptr;
-  std::vector<size_t>                 stored_, loads_, dissipative_, counting_, timed_; /* terms by role */
-  std::vector<PetscReal>              W_time_, P_time_prev_;                            /* per term: the work of dE/dt */
-  std::vector<PetscReal>              W_;                                               /* per term */
+  std::vector<size_t>                 stored_, loads_, dissipative_, counting_, timed_, dashpots_; /* terms by role */
+  std::vector<PetscReal>              W_time_, P_time_prev_;                                       /* per term: the work of dE/dt */
+  std::vector<PetscReal>              W_, W_dashpot_;                                              /* per term: the work of its force, of its dashpot part */
   PetscReal                           W_controls_ = 0, K0_ = 0, E0_ = 0, t_ = 0, worst_relative_ = 0;
   std::vector<std::vector<PetscReal>> F_prev_;
   std::vector<PetscReal>              v_prev_, R_prev_, F_work_total_, R_work_;
   std::vector<std::vector<PetscReal>> F_work_;
+  std::vector<std::vector<PetscReal>> D_prev_, D_work_; /* the dashpot parts, per term in dashpots_ */
 };
 
 } // namespace turgor

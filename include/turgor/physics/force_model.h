@@ -72,6 +72,8 @@ public:
      it costs a zeroing and a sum per term and evaluation. */
   void                          KeepTermForces(bool keep) { keep_term_forces_ = keep; }
   const std::vector<PetscReal> &TermForce(size_t t) const { return term_f_[t]; }
+  /* ... and the dashpot part of it, for a term with one (ForceTerm::HasDashpotForce) */
+  const std::vector<PetscReal> &TermDashpotForce(size_t t) const { return term_fd_[t]; }
   /* Was the last ComputeForces at these positions (bit for bit)? Known when a term has internal
      state or the term forces are kept; false otherwise. */
   bool             EvaluatedAt(const PetscReal *x) const { return !last_x_.empty() && std::equal(last_x_.begin(), last_x_.end(), x); }
@@ -112,7 +114,7 @@ private:
   std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
   PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
   bool                                    has_state_ = false, keep_term_forces_ = false;
-  std::vector<std::vector<PetscReal>>     term_f_; /* per term, with KeepTermForces */
+  std::vector<std::vector<PetscReal>>     term_f_, term_fd_; /* per term, with KeepTermForces: force, dashpot part */
   PetscInt                                evaluations_ = 0;
   PetscReal                               t_           = 0;
   PetscLogEvent                           ev_forces_ = 0, ev_neighbours_ = 0;

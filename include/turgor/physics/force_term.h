@@ -30,6 +30,9 @@ struct ForceInput {
   bool same_x = false;
   /* The time of the state (ForceModel::SetTime; break records, a turgor that builds up). */
   PetscReal t = 0;
+  /* AddForces, where not NULL (the energy balance observes): a term whose force has a dashpot part
+     (HasDashpotForce) adds that part here too, so that its work is counted as dissipation. */
+  PetscReal *f_dashpot = nullptr;
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */
@@ -128,6 +131,8 @@ public:
   virtual PetscReal ExplicitTimePower(const ForceInput &in) { return 0; }
   /* A purely dissipative force (global viscosity): its work is its dissipation. */
   virtual bool Dissipative() const { return false; }
+  /* A stored term with a dashpot inside its force (ForceInput::f_dashpot). */
+  virtual bool HasDashpotForce() const { return false; }
   /* Log files a term writes (e.g. glue's breaks.csv): their names and columns, known before the
      run; TakeRecords moves out the rows made since the last call, as (file, cells). */
   virtual void RecordFiles(std::vector<std::pair<std::string, std::vector<std::string>>> &files) const { }
