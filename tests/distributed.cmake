@@ -56,7 +56,9 @@ turgor_ranks_agree(bar_verlet RANKS 2 OPTIONS ${DIST_BAR_VERLET})
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s, and the
 # bar is compared on 3 ranks in the default tier).
-set(DIST_POLY -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+# (the default step of this contact-dominated scene keeps Verlet's energy residual at about 5 %: the
+# balance is compared between layouts here, not against -fine_energy_tolerance's 1 %)
+set(DIST_POLY -fine_energy_tolerance 0.1 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
   -ts_max_time 4 -control_lid_delay 1 -control_lid_velocity 0,-3 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_tip_samples 200)
 turgor_ranks_agree(polygon_short RANKS 3 LONG OPTIONS ${DIST_POLY} -ts_max_time 1.5 -control_lid_delay 0.5 COMPARE csvrel:groups.csv:1e-9
   csvrel:energy.csv:1e-9)

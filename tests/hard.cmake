@@ -137,3 +137,22 @@ turgor_add_test(hard_fine_stiff_turgor COMMAND turgor_app -options_file_yaml ${P
   -fine_snapshots 0 -fine_progress_interval 0 -output_dir hard/fine_stiff_turgor -output_overwrite LABELS hard SETUP hard_fine_stiff_turgor)
 turgor_hard_check(fine_stiff_turgor_limit hard_fine_stiff_turgor ${HCHECK} between hard/fine_stiff_turgor dt_stable 2.9e-4 3.1e-4)
 turgor_hard_check(fine_stiff_turgor_finite hard_fine_stiff_turgor ${HCHECK} keys hard/fine_stiff_turgor tip_displacement_final)
+# a stiff elastic turgor (K = 1e6 N/m) at the default step with the energy balance on: Verlet's
+# residual (11 % within 0.005 µs) is above -fine_energy_tolerance's 1 %, and the run fails naming it
+turgor_add_test(hard_fine_energy_exceeded COMMAND ${BAD} "Energy balance: residual -?[0-9.e+-]+ at t = [0-9.e-]+ µs, -?[0-9.e-]+ of the work .* above -fine_energy_tolerance 0.01"
+  $<TARGET_FILE:turgor_app> -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+  -ts_max_time 0.5 -contact_damping 0 -pressure_law elastic -pressure_bulk_modulus 1e6 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy
+  -output_dir hard/fine_energy_exceeded -output_overwrite LABELS hard badinput TIMEOUT 120)
+# frictionless, undamped contact of a tissue inflating into a box conserves energy to Verlet's
+# O(dt^2): halving the step cuts the largest residual at least 3x (measured 4.0x)
+foreach(s 0.25 0.125)
+  turgor_hard_run(fine_contact_conservative_${s} fine_contact_conservative -fine_dt_safety ${s})
+endforeach()
+turgor_hard_check(fine_contact_conservative_order "hard_fine_contact_conservative_0.25;hard_fine_contact_conservative_0.125" ${HCHECK} notmore
+  hard/fine_contact_conservative_0.125 hard/fine_contact_conservative_0.25 energy_residual_max -0.67)
+# the same tissue with friction, the contact dashpot and viscosity (the compression scene's physics):
+# the dashpot's work counted as dissipation, the balance closes to well within 1 % at a quarter of the limit
+turgor_add_test(hard_fine_box_dissipation COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16
+  -tissue_box 0,0,100,100 -ts_max_time 2 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_dt_safety 0.125 -output_dir hard/fine_box_dissipation
+  -output_overwrite LABELS hard SETUP hard_fine_box_dissipation)
+turgor_hard_check(fine_box_dissipation_balance hard_fine_box_dissipation ${HCHECK} between hard/fine_box_dissipation energy_residual_max 0 4e-3)

@@ -66,7 +66,9 @@ turgor_add_test(restart_bar_fresh_state COMMAND ${CHECK} between restart_bar_ful
 # A 16-cell polygonal tissue under the lid (config/polygon_compression.yaml shortened): contact
 # with friction (tangential histories), plastic hinges, cell pressure, velocity controls, the energy
 # balance, TS verlet (its last acceleration restored); stopped after 9000 of 25060 steps.
-set(RESTART_POLY -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
+# (-fine_energy_tolerance: the default step of this contact-dominated scene keeps Verlet's energy
+# residual at about 5 %; the balance is compared across the restart here)
+set(RESTART_POLY -fine_energy_tolerance 0.1 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
   -ts_max_time 16 -control_lid_delay 1 -control_lid_velocity 0,-3 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_tip_samples 200)
 turgor_restart_case(polygon 9000 INTERVAL 8 OPTIONS ${RESTART_POLY} FILES groups.csv energy.csv)
 

@@ -29,7 +29,7 @@ set_tests_properties(unwritable_dir_fine unwritable_dir_rve unwritable_dir_fe2 u
 set(NO_SHM --mca btl self,tcp)
 set(FILE_LIMIT sh -c [[ulimit -f 40 && exec "$0" "$@"]] $<TARGET_FILE:turgor_app>)
 set(FULL_BOX -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100 -ts_max_time 3
-  -fine_snapshots 0 -fine_progress_interval 0 -fine_energy)
+  -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_energy_tolerance 0.1)
 turgor_add_test(full_disk_fine COMMAND ${BAD} "cannot write .*full_disk_fine/[a-z]+.csv: File too large" ${MPIEXEC_ROOT} -n 1 ${FILE_LIMIT} ${FULL_BOX}
   -output_dir full_disk_fine LABELS badinput fine)
 turgor_add_test(full_disk_fine_np2 COMMAND ${BAD} "cannot write .*full_disk_fine_np2/[a-z]+.csv: File too large" ${MPIEXEC_ROOT} ${NO_SHM} -n 2 ${FILE_LIMIT}

@@ -1,13 +1,15 @@
 #include <turgor/fine/fine_records.h>
 #include <turgor/parallel/rank_reductions.h>
+#include <cmath>
 
 namespace turgor {
 
-PetscErrorCode FineRecords::SetUp(MPI_Comm comm, bool energy, bool distributed, ForceModel &model, const Controls &controls, const ParticleSet &P,
-                                  const PetscReal *x0, const PetscReal *v0)
+PetscErrorCode FineRecords::SetUp(MPI_Comm comm, bool energy, PetscReal tolerance, bool distributed, ForceModel &model, const Controls &controls,
+                                  const ParticleSet &P, const PetscReal *x0, const PetscReal *v0)
 {
   PetscFunctionBeginUser;
   comm_        = comm;
+  tolerance_   = tolerance;
   energy_on_   = energy;
   distributed_ = distributed;
   model_       = &model;
@@ -26,6 +28,12 @@ PetscErrorCode FineRecords::EnergyRow(PetscReal t, const PetscReal *x, const Pet
   PetscCall(energy_.Row(comm_, x, v, row, &rel));
   row.insert(row.begin(), t);
   if (energy_csv_.IsOpen()) PetscCall(energy_csv_.Row(row));
+  /* every rank has the row (a sum over ranks): all fail together */
+  PetscCheck(!(tolerance_ > 0) || std::fabs(rel) <= tolerance_, comm_, PETSC_ERR_NOT_CONVERGED,
+             "Energy balance: residual %g at t = %g µs, %.3g of the work done on the tissue (or of the energy in play), above -fine_energy_tolerance %g: "
+             "energy is created or lost that no term accounts for -- an integration error (halving -fine_dt_safety cuts Verlet's about 4x) or an "
+             "unstable step; energy.csv has the balance up to here (-fine_energy_tolerance 0: no check)",
+             (double)row[row.size() - 2], (double)t, (double)rel, (double)tolerance_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -25,6 +25,12 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                                "FineRunSpec", e, &e, NULL));
     energy = e;
   }
+  PetscCall(PetscOptionsReal("-energy_tolerance",
+                             "With -fine_energy: a relative energy residual above this fails the run (energy created or lost that no term accounts for); 0: "
+                             "no check",
+                             "FineRunSpec", energy_tolerance, &energy_tolerance, NULL));
+  PetscCheck(energy_tolerance >= 0 && std::isfinite(energy_tolerance), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -fine_energy_tolerance = %g: must be finite and >= 0 (0: no check)", (double)energy_tolerance);
   PetscCall(PetscOptionsInt("-partition_report",
                             "Partition the tissue's cells into N parts with METIS (cell graph weighted by particles per cell and shared wall length) and "
                             "report the edge cut and imbalance in summary.json and the particles' part in the snapshots (a report only: a run on several "
@@ -214,7 +220,7 @@ PetscErrorCode FineRun::SetUpModel()
     const PetscReal   *x0 = nullptr, *v0 = nullptr;
     PetscCall(VecGetArrayRead(U_, &u0));
     if (spec_.energy) PetscCall(equations_.LocalState(0, u0, &x0, &v0));
-    PetscCall(records_.SetUp(comm_, spec_.energy, placement_.Distributed(), model_, controls_, tissue_.particles, x0, v0));
+    PetscCall(records_.SetUp(comm_, spec_.energy, spec_.energy_tolerance, placement_.Distributed(), model_, controls_, tissue_.particles, x0, v0));
     PetscCall(VecRestoreArrayRead(U_, &u0));
   }
   PetscCall(equations_.SetTS(ts_, is_x_, is_v_, [this](PetscReal t, Vec U, Vec F, PetscBool *answered) { return ObserveRHS(t, U, F, answered); }));

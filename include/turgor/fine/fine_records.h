@@ -15,9 +15,10 @@ public:
      the checkpoint's rows again and goes on after them). */
   using OpenSeries = std::function<PetscErrorCode(CsvWriter &, const std::string &, const std::vector<std::string> &)>;
 
-  /* energy: -fine_energy; the balance starts at the local state (x0, v0) of t = 0. Collective. */
-  PetscErrorCode SetUp(MPI_Comm comm, bool energy, bool distributed, ForceModel &model, const Controls &controls, const ParticleSet &P, const PetscReal *x0,
-                       const PetscReal *v0);
+  /* energy: -fine_energy; the balance starts at the local state (x0, v0) of t = 0; a row whose
+     relative residual exceeds tolerance (> 0) fails the run. Collective. */
+  PetscErrorCode SetUp(MPI_Comm comm, bool energy, PetscReal tolerance, bool distributed, ForceModel &model, const Controls &controls, const ParticleSet &P,
+                       const PetscReal *x0, const PetscReal *v0);
   /* The files, and (a new run) energy.csv's first row at (x0, v0); a row every t_final / samples. */
   PetscErrorCode Open(const OpenSeries &open, PetscReal t_final, PetscInt samples, bool restarted, const PetscReal *x0, const PetscReal *v0);
   /* Anything to do after a step? */
@@ -37,7 +38,7 @@ private:
   ForceModel                             *model_ = nullptr;
   EnergyBalance                           energy_;
   CsvWriter                               energy_csv_;
-  PetscReal                               energy_next_ = 0, energy_every_ = 0;
+  PetscReal                               energy_next_ = 0, energy_every_ = 0, tolerance_ = 0;
   std::vector<std::string>                record_names_;
   std::vector<std::unique_ptr<CsvWriter>> record_csv_;
 };
