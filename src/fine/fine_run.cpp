@@ -562,9 +562,22 @@ PetscErrorCode FineRun::CheckpointFingerprint(std::vector<std::pair<std::string,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The integrator's history is a vector in the state's layout [x | v] (DOPRI's last derivative) or
+   in one half's (Verlet's dv/dt): two values per particle and half, kept as columns of the particle
+   table (a row per particle holds them under its one key, instead of a row per value). */
+bool FineRun::KeepStateVector(std::vector<PetscReal> &values, PetscInt global_size)
+{
+  PetscInt N4 = 0;
+  if (!U_ || VecGetSize(U_, &N4)) return false;
+  const int parts = global_size == N4 ? 2 : 2 * global_size == N4 ? 1 : 0; /* the same on every rank */
+  if (!parts) return false;
+  kept_vectors_.push_back({&values, parts});
+  return true;
+}
+
 /* Declared state: the particle fields declared for the checkpoints (the state U's position and
-   velocity, as SolutionView holds them, and the split integrators' drift velocity), the model's
-   (neighbour lists, terms) and the records'. */
+   velocity, as SolutionView holds them, and the split integrators' drift velocity), the
+   integrator's history (KeepStateVector), the model's (neighbour lists, terms) and the records'. */
 PetscErrorCode FineRun::DeclareState(std::deque<StateDeclaration> &decls)
 {
   PetscFunctionBeginUser;
@@ -582,6 +595,21 @@ PetscErrorCode FineRun::DeclareState(std::deque<StateDeclaration> &decls)
       f->name, c, [a, c](size_t r, PetscReal *out) { std::copy(a + c * r, a + c * (r + 1), out); },
       [a, c](size_t r, const PetscReal *in) { std::copy(in, in + c, a + c * r); });
   }
+  for (const auto &kept : kept_vectors_) {
+    std::vector<PetscReal> &h = *kept.first;
+    PetscCheck(h.size() == (size_t)(2 * kept.second * n_local_), PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "The integrator's history has %zu values for %" PetscInt_FMT " particles", h.size(), n_local_);
+    for (int part = 0; part < kept.second; part++) {
+      const size_t base = (size_t)(2 * part * n_local_);
+      t.Column(
+        kept.second == 1 ? "integrator_history"
+        : part == 0      ? "integrator_history_x"
+                         : "integrator_history_v",
+        2, [&h, base](size_t r, PetscReal *out) { std::copy(h.begin() + base + 2 * r, h.begin() + base + 2 * r + 2, out); },
+        [&h, base](size_t r, const PetscReal *in) { std::copy(in, in + 2, h.begin() + base + 2 * r); });
+    }
+  }
+  kept_vectors_.clear();
   model_.DeclareState(decls);
   records_.DeclareState(decls);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -9,9 +9,10 @@
 
 namespace turgor {
 
-/* Format 4: declared state (named datasets, rows in the order of their rank-free keys, checksums);
-   3 and older: positional blobs per rank, refused. */
-static const PetscInt kCheckpointVersion = 4;
+/* Format 5: declared state (named datasets, rows in the order of their rank-free keys, checksums),
+   a fine run's integrator history with its particles; 4: that history as a table of state entries;
+   3 and older: positional blobs per rank. Older formats are refused. */
+static const PetscInt kCheckpointVersion = 5;
 
 /* The run's numbering of its entities: the mode's (particles, bars, cells, material points), and the
    state's entries by StateOrder. */
@@ -78,7 +79,7 @@ PetscErrorCode TimeRun::DeclareAll(std::deque<StateDeclaration> &decls)
     decls.back().Table("entries", StateEntity::StateEntry).Rows([this] { return solution_.size(); }).Column("value", solution_);
   }
   decls.emplace_back("integrator");
-  PetscCall(integrator_.Declare(ts_, decls.back()));
+  PetscCall(integrator_.Declare(ts_, decls.back(), [this](std::vector<PetscReal> &v, PetscInt n) { return KeepStateVector(v, n); }));
   PetscCall(DeclareState(decls));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -72,7 +72,7 @@ PetscErrorCode IntegratorState::ObserveRHS(TS ts, PetscReal t, Vec U, Vec F, Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IntegratorState::Declare(TS ts, StateDeclaration &d)
+PetscErrorCode IntegratorState::Declare(TS ts, StateDeclaration &d, const KeepVector &keep)
 {
   Kind    kind;
   TSAdapt adapt;
@@ -104,12 +104,13 @@ PetscErrorCode IntegratorState::Declare(TS ts, StateDeclaration &d)
   history_.clear();
   if (H) {
     const PetscScalar *h;
-    PetscInt           n;
+    PetscInt           n, N;
     PetscCall(VecGetLocalSize(H, &n));
+    PetscCall(VecGetSize(H, &N));
     PetscCall(VecGetArrayRead(H, &h));
     history_.assign(h, h + n);
     PetscCall(VecRestoreArrayRead(H, &h));
-    d.Table("history", StateEntity::StateEntry).Rows([this] { return history_.size(); }).Column("value", history_);
+    if (!(keep && keep(history_, N))) d.Table("history", StateEntity::StateEntry).Rows([this] { return history_.size(); }).Column("value", history_);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -101,6 +101,7 @@ protected:
      (BeforeStateRead), where the uninterrupted run took them. */
   bool           Checkpointable() const override { return true; }
   bool           DeclaresSolution() const override { return true; }
+  bool           KeepStateVector(std::vector<PetscReal> &values, PetscInt global_size) override;
   PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) override;
   PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls) override;
   std::uint64_t  EntityId(StateEntity e, PetscInt local) const override;
@@ -134,24 +135,27 @@ private:
   PetscErrorCode CreateSwarm();
   PetscErrorCode PrimeReferences(); /* a restart: the terms' lazily taken references, from the initial state */
 
-  FineRunSpec                spec_;
-  LoadSpec                   load_;
-  PhysicsSpec                physics_;
-  TissueSpec                 tissues_;
-  Tissue                     tissue_; /* this rank's particles (owned, then the halo's) */
-  bool                       have_tissue_ = false;
-  ForceModel                 model_;
-  Controls                   controls_;
-  TissuePlacement            placement_;
-  ParticleFields             fields_;
-  FineEquations              equations_;
-  FineRecords                records_;
-  DM                         swarm_ = nullptr;
-  IS                         is_x_ = nullptr, is_v_ = nullptr;
-  PetscInt                   n_local_ = 0; /* this rank's particles (the state's) */
-  PetscInt                   n_all_   = 0; /* with the halo copies: the model's particles */
-  std::vector<TimeStepLimit> limits_;
-  PetscReal                  dt_stable_ = 0, dt_initial_ = 0;
+  FineRunSpec     spec_;
+  LoadSpec        load_;
+  PhysicsSpec     physics_;
+  TissueSpec      tissues_;
+  Tissue          tissue_; /* this rank's particles (owned, then the halo's) */
+  bool            have_tissue_ = false;
+  ForceModel      model_;
+  Controls        controls_;
+  TissuePlacement placement_;
+  ParticleFields  fields_;
+  FineEquations   equations_;
+  FineRecords     records_;
+  DM              swarm_ = nullptr;
+  IS              is_x_ = nullptr, is_v_ = nullptr;
+  PetscInt        n_local_ = 0; /* this rank's particles (the state's) */
+  /* vectors in the state's layout kept in the checkpoint's particle table (KeepStateVector): values,
+     and parts (2: [x | v] as the state, 1: one half, Verlet's dv/dt) */
+  std::vector<std::pair<std::vector<PetscReal> *, int>> kept_vectors_;
+  PetscInt                                              n_all_ = 0; /* with the halo copies: the model's particles */
+  std::vector<TimeStepLimit>                            limits_;
+  PetscReal                                             dt_stable_ = 0, dt_initial_ = 0;
 
   /* observation */
   PetscInt               tip_    = -1; /* local index of the tip particle on its owner, -1 elsewhere */

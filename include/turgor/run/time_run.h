@@ -117,7 +117,10 @@ protected:
   virtual bool Checkpointable() const { return false; }
   /* The mode declares the solution's values itself (through SolutionView: U's local values, filled
      before a checkpoint is written, copied into U after one is read), not as "solution" entries. */
-  virtual bool            DeclaresSolution() const { return false; }
+  virtual bool DeclaresSolution() const { return false; }
+  /* ... and may keep a vector in its state's layout (the integrator's history: `values`, of
+     `global_size` entries in all) with its own entities' state (true), declared in DeclareState. */
+  virtual bool            KeepStateVector(std::vector<PetscReal> &values, PetscInt global_size) { return false; }
   std::vector<PetscReal> &SolutionView() { return solution_; }
   virtual PetscErrorCode  CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
   virtual PetscErrorCode  DeclareState(std::deque<StateDeclaration> &decls) { return PETSC_SUCCESS; }

@@ -29,11 +29,14 @@ public:
   /* The run's RHS function calls this first, with its arguments; *answered: F holds the restored
      derivative and the evaluation must not be done (nor counted). */
   PetscErrorCode ObserveRHS(TS ts, PetscReal t, Vec U, Vec F, PetscBool *answered);
-  /* The integrator's declarations ("integrator"): its history vector as a table of state entries
-     (StateEntity::StateEntry: the run's numbering of its state, of which the history takes the first
-     entries when it is half the state: Verlet's dv/dt), the rejections, the controller's history.
-     On a set-up TS (a restart: before the file is read). */
-  PetscErrorCode Declare(TS ts, StateDeclaration &d);
+  /* The integrator's declarations ("integrator"): its history vector, the rejections, the
+     controller's history. The history is offered to `keep` first (its values and global size: a run
+     whose state's entries belong to its entities keeps it with them, a fine run as columns of its
+     particle table); if not kept, a table of state entries (StateEntity::StateEntry: the run's
+     numbering of its state, of which the history takes the first entries when it is half the state:
+     Verlet's dv/dt). On a set-up TS (a restart: before the file is read). */
+  using KeepVector = std::function<bool(std::vector<PetscReal> &values, PetscInt global_size)>;
+  PetscErrorCode Declare(TS ts, StateDeclaration &d, const KeepVector &keep = nullptr);
   /* After the file was read into Declare's declaration, at the restored solution and time. */
   PetscErrorCode Restore(TS ts);
 
