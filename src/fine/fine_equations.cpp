@@ -242,7 +242,9 @@ PetscErrorCode FineEquations::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, v
     PetscCall(eq->LocalState(t, x, eq->v_stale_.data(), &xc, &vc));
     PetscCall(eq->Accelerations(xc, vc, a, eq->acceleration_room_));
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, a);
-    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) {
+    PetscReal zero = 0; /* a branch-free scan first (0 x a value is NaN for an infinite or NaN one) */
+    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) zero += 0 * a[k];
+    for (PetscInt k = 0; k < 2 * eq->n_owned_ && !(zero == 0); k++) {
       /* before any step the step cannot be the cause: the scene itself leaves double precision */
       PetscCheck(std::isfinite(a[k]) || eq->rhs_evals_ > 0, PETSC_COMM_SELF, PETSC_ERR_FP,
                  "Non-finite acceleration of particle %" PetscInt_FMT " at (%g, %g) µm in the starting state (t = %g µs, before any step): the scene's "

@@ -2,6 +2,7 @@
 #include <turgor/ts/velocity_verlet.h>
 #include <petsc/private/tsimpl.h>
 #include "ts_types_internal.h"
+#include <utility>
 
 namespace {
 
@@ -197,8 +198,9 @@ PetscErrorCode TSStep_Verlet(TS ts)
   const bool reuse = vv->have_a1 && vv->t_a1 == t0 && vv->state_a1 == state;
   PetscCall(TSPreStage(ts, t0));
   PetscCall(GetParts(ts, vv, &q, &p));
-  if (reuse) {
-    PetscCall(VecSwap(vv->A0, vv->A1));
+  if (reuse) { /* the two Vecs trade places (they share a layout and a room): no values copied */
+    std::swap(vv->A0, vv->A1);
+    std::swap(vv->array[0], vv->array[1]);
     vv->reused++;
   } else PetscCall(Accelerate(ts, vv, t0, q, vv->A0));
   PetscCall(VecAXPY(p, 0.5 * h, vv->A0)); /* kick */
