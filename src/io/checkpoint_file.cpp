@@ -40,11 +40,16 @@ std::uint64_t Word(PetscReal v)
   return w;
 }
 
+/* Rank and Flag: a rank and a 0/1, written as 32-bit and 8-bit integers (the caller narrows them:
+   a collective write of a filtered dataset cannot convert types) and read as Int (HDF5 widens them);
+   the checksum is of the values either way. */
 enum class Kind {
   Real,
   Int,
   Key,
-  Byte
+  Byte,
+  Rank,
+  Flag
 };
 
 hid_t MemType(Kind k)
@@ -54,6 +59,10 @@ hid_t MemType(Kind k)
     return H5T_NATIVE_DOUBLE;
   case Kind::Int:
     return H5T_NATIVE_INT64;
+  case Kind::Rank:
+    return H5T_NATIVE_INT32;
+  case Kind::Flag:
+    return H5T_NATIVE_INT8;
   case Kind::Key:
     return H5T_NATIVE_UINT64;
   case Kind::Byte:
@@ -207,6 +216,12 @@ PetscErrorCode WriteDataset(MPI_Comm comm, const std::string &file, hid_t loc, c
       break;
     case Kind::Int:
       word = (std::uint64_t)((const std::int64_t *)data)[k];
+      break;
+    case Kind::Rank:
+      word = (std::uint64_t)(std::int64_t)((const std::int32_t *)data)[k];
+      break;
+    case Kind::Flag:
+      word = (std::uint64_t)(std::int64_t)((const std::int8_t *)data)[k];
       break;
     case Kind::Key:
       word = ((const std::uint64_t *)data)[k];
@@ -389,9 +404,11 @@ PetscErrorCode CheckpointWriter::WriteTable(const std::string &group, const Stat
   PetscCallMPI(MPI_Allreduce(&nl, &total, 1, MPI_UINT64_T, MPI_SUM, comm_));
   hid_t g = H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   TG_H5(g, comm_, "Checkpoint %s: cannot create group %s", path_.c_str(), group.c_str());
-  PetscErrorCode ierr = WriteDataset(comm_, path_, g, "key", Kind::Key, R.key.data(), nl, first, total, 0);
-  if (!ierr) ierr = WriteDataset(comm_, path_, g, "holder", Kind::Int, R.holder.data(), nl, first, total, 0);
-  if (!ierr) ierr = WriteDataset(comm_, path_, g, "owned", Kind::Int, R.owned.data(), nl, first, total, 0);
+  PetscErrorCode                  ierr = WriteDataset(comm_, path_, g, "key", Kind::Key, R.key.data(), nl, first, total, 0);
+  const std::vector<std::int32_t> holder(R.holder.begin(), R.holder.end());
+  const std::vector<std::int8_t>  owned(R.owned.begin(), R.owned.end());
+  if (!ierr) ierr = WriteDataset(comm_, path_, g, "holder", Kind::Rank, holder.data(), nl, first, total, 0);
+  if (!ierr) ierr = WriteDataset(comm_, path_, g, "owned", Kind::Flag, owned.data(), nl, first, total, 0);
   std::vector<std::int64_t> ints;
   for (size_t c = 0; c < ncol && !ierr; c++) {
     const StateColumn &col  = cols[c];
