@@ -15,7 +15,10 @@ void FineEquations::SetUp(ForceModel &model, Controls &controls, TissueDistribut
   halo_     = halo;
   P_        = &P;
   n_owned_  = P.NumOwned();
-  n_all_    = P.n;
+  fixed_.clear(); /* the clamps, set with the tissue */
+  for (PetscInt i = 0; i < n_owned_; i++)
+    if (P.fixed[i]) fixed_.push_back(i);
+  n_all_ = P.n;
   /* the state's fields: the model reads them on the halo too (the halo's exchange pairs two
      components per particle) */
   fields.Declare("position", "µm", 2, kHalo | kSnapshot | kCheckpoint, [this] { return x_local_; });
@@ -187,12 +190,12 @@ PetscErrorCode FineEquations::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void
     if (answered) PetscFunctionReturn(PETSC_SUCCESS);
     PetscCall(VecGetArrayRead(U, &u));
     PetscCall(VecGetArray(F, &f));
-    const std::vector<char> &fixed = eq->P_->fixed;
     eq->model_->SetTime(t);
     /* with controls, the controlled components: x and v imposed, dx/dt = v_c(t), v not integrated */
     const PetscReal *x, *v;
     PetscCall(eq->LocalState(t, u, u + n2, &x, &v));
-    for (PetscInt k = 0; k < n2; k++) f[k] = fixed[k / 2] ? 0 : v[k];
+    std::copy(v, v + n2, f);
+    for (PetscInt i : eq->fixed_) f[2 * i] = f[2 * i + 1] = 0;
     PetscCall(eq->Accelerations(x, v, f + n2));
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, f + n2);
     PetscCall(VecRestoreArray(F, &f));
@@ -211,11 +214,9 @@ PetscErrorCode FineEquations::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, v
     PetscFunctionBeginUser;
     PetscCall(VecGetArrayRead(V, &v));
     PetscCall(VecGetArray(Xdot, &xd));
-    const std::vector<char> &fixed = eq->P_->fixed;
-    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) {
-      xd[k]           = fixed[k / 2] ? 0 : v[k];
-      eq->v_stale_[k] = v[k];
-    }
+    std::copy(v, v + 2 * eq->n_owned_, xd);
+    std::copy(v, v + 2 * eq->n_owned_, eq->v_stale_.begin());
+    for (PetscInt i : eq->fixed_) xd[2 * i] = xd[2 * i + 1] = 0;
     if (eq->controls_->Active()) {
       PetscReal h;
       PetscCall(TSGetTimeStep(eq->ts_, &h));

@@ -75,6 +75,7 @@ private:
   TS                                                              ts_       = nullptr;
   std::function<PetscErrorCode(PetscReal, Vec, Vec, PetscBool *)> observe_;
   PetscInt                                                        n_owned_ = 0, n_all_ = 0;
+  std::vector<PetscInt>                                           fixed_;     /* the owned particles that are fixed (clamped) */
   std::vector<PetscReal>                                          xw_, vw_;   /* controls or a distributed run: the local state (halo, constraints imposed) */
   PetscReal                         *x_local_ = nullptr, *v_local_ = nullptr; /* the local state being made (the halo fields' values) */
   std::vector<const ParticleField *> halo_fields_;
