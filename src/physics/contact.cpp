@@ -72,7 +72,7 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 
 /* Bar k of a closed N-gon joins nodes k and k+1: node k's own bars are k-1 and k, their neighbours
    k-2 and k+1; those four never touch it (they meet it at a node or fold with it at a hinge). */
-bool Contact::Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const
+inline bool Contact::Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const
 {
   const PetscInt cb = bar_poly_[s], cp = P.node_polygon[p];
   if (cb < 0 || cp < 0) return false;
@@ -87,7 +87,7 @@ bool Contact::Eligible(const ParticleSet &P, PetscInt p, PetscInt s) const
    at q; here exactly one counts it: the other bar s2 at q if p projects inside s2 (s2 is closer or
    as close), the lower-numbered of the two if p is closest to q on both, otherwise s. A bar s2 that
    may not touch p (own or adjacent bars) leaves it to s. */
-bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const
+inline bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const
 {
   const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
   if (s2 < 0 || s2 == s || !Eligible(P, p, s2)) return true;
@@ -105,19 +105,20 @@ bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, 
    energy when the node leaves one slab while touching (on a nearly straight wall pushed in, at every
    joint a node slides past): with the nearer bar alone the touching energy is k_n/2 (2 r - dist)^2
    with dist the distance to the wall, continuous everywhere (its gradient turns at the bisector). */
-bool Contact::NearerNeighbour(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q, PetscReal d2) const
+inline bool Contact::NearerNeighbour(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q, PetscReal d2) const
 {
   const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
-  if (s2 < 0 || s2 == s || !Eligible(P, p, s2)) return false;
+  if (s2 < 0 || s2 == s) return false;
+  /* the geometry first: a node along a bar's middle is outside its neighbours' spans (one product) */
   const PetscInt  o  = P.springs[s2].i == q ? P.springs[s2].j : P.springs[s2].i; /* far end of s2 */
   const PetscReal ex = x[2 * o] - x[2 * q], ey = x[2 * o + 1] - x[2 * q + 1], L2 = ex * ex + ey * ey;
   const PetscReal wx = x[2 * p] - x[2 * q], wy = x[2 * p + 1] - x[2 * q + 1], proj = wx * ex + wy * ey;
   if (proj <= 0 || proj >= L2) return false;
   const PetscReal t = proj / L2, dx = wx - t * ex, dy = wy - t * ey, e2 = dx * dx + dy * dy;
-  return e2 < d2 || (e2 == d2 && s2 < s);
+  return (e2 < d2 || (e2 == d2 && s2 < s)) && Eligible(P, p, s2);
 }
 
-bool Contact::Counts(const ParticleSet &P, const PetscReal *x, const Candidate &C, Geometry &g) const
+inline bool Contact::Counts(const ParticleSet &P, const PetscReal *x, const Candidate &C, Geometry &g) const
 {
   const PetscInt  p = C.p, a = C.a, b = C.b;
   const PetscReal R = 2 * r_;
