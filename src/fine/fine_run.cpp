@@ -29,8 +29,6 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "With -fine_energy: a relative energy residual above this fails the run (energy created or lost that no term accounts for); 0: "
                              "no check",
                              "FineRunSpec", energy_tolerance, &energy_tolerance, NULL));
-  PetscCheck(energy_tolerance >= 0 && std::isfinite(energy_tolerance), comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "Option -fine_energy_tolerance = %g: must be finite and >= 0 (0: no check)", (double)energy_tolerance);
   PetscCall(PetscOptionsInt("-partition_report",
                             "Partition the tissue's cells into N parts with METIS (cell graph weighted by particles per cell and shared wall length) and "
                             "report the edge cut and imbalance in summary.json and the particles' part in the snapshots (a report only: a run on several "
@@ -65,6 +63,8 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
   if (set) clamp = listed;
   PetscCheck(dt_safety > 0 && dt_safety <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety);
+  PetscCheck(energy_tolerance >= 0 && std::isfinite(energy_tolerance), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -fine_energy_tolerance = %g: must be finite and >= 0 (0: no check)", (double)energy_tolerance);
   if (params) {
     std::string all;
     for (const std::string &c : clamp) all += (all.empty() ? "" : ",") + c;
