@@ -25,8 +25,6 @@ PetscErrorCode Bars::SetUp(const ParticleSet &P, NeighbourSearch &nb)
                "Bar %zu (%" PetscInt_FMT ", %" PetscInt_FMT ") has rest length %g: must be > 0", s, P.springs[s].i, P.springs[s].j,
                (double)P.springs[s].rest_length);
   gamma_.assign(P.springs.size(), damping);
-  dissipated_ = power_ = 0;
-  have_power_          = false;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -35,22 +33,6 @@ PetscErrorCode Bars::AddForces(const ForceInput &in, PetscReal *f, PetscReal *vi
   PetscFunctionBeginUser;
   SpringForces(in, stiffness, gamma_, damping > 0, f, virial);
   PetscCall(PetscLogFlops(30.0 * in.P->springs.size()));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode Bars::AcceptStep(const ForceInput &in)
-{
-  PetscFunctionBeginUser;
-  if (damping == 0) PetscFunctionReturn(PETSC_SUCCESS); /* nothing to count (the model calls every term) */
-  PetscReal P = 0;
-  for (size_t q = 0, ns = in.P->OwnedSprings(); q < ns; q++) {
-    const Spring   &s  = in.P->springs[q];
-    const PetscReal dx = in.x[2 * s.j] - in.x[2 * s.i], dy = in.x[2 * s.j + 1] - in.x[2 * s.i + 1];
-    const PetscReal vr = ((in.v[2 * s.j] - in.v[2 * s.i]) * dx + (in.v[2 * s.j + 1] - in.v[2 * s.i + 1]) * dy) / std::sqrt(dx * dx + dy * dy);
-    P += damping * vr * vr;
-  }
-  if (have_power_) dissipated_ += 0.5 * (P + power_) * (in.t - t_last_);
-  power_ = P, t_last_ = in.t, have_power_ = true;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -81,17 +63,6 @@ PetscErrorCode Bars::View(PetscViewer viewer) const
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "bars: k_b = %g µN/µm, dashpot %g ng/µs\n", (double)stiffness, (double)damping));
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* The dashpots' dissipation and the last accepted state's power are sums over the bars: on another
-   layout the first rank takes the totals (the trapezoidal rule is linear in them, so the sum over
-   the ranks goes on as it would have). */
-void Bars::DeclareState(const ParticleSet &P, StateDeclaration &d)
-{
-  d.Scalar("dashpot_dissipation", &dissipated_, Combine::Sum);
-  d.Scalar("dashpot_power", &power_, Combine::Sum);
-  d.Scalar("last_time", &t_last_, Combine::Owner);
-  d.Scalar("have_power", &have_power_, Combine::Max);
 }
 
 } // namespace turgor

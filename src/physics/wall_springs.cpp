@@ -60,7 +60,13 @@ void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscRea
         const PetscReal *sv = in.images->v[S[s].image];
         dvx += sv[0], dvy += sv[1];
       }
-      mag += gamma_[s] * (dvx * ex + dvy * ey);
+      const PetscReal md = gamma_[s] * (dvx * ex + dvy * ey);
+      mag += md;
+      if (in.f_dashpot) { /* the dashpot's part apart (the energy balance observes) */
+        PetscReal *g = in.f_dashpot;
+        g[2 * i] += md * ex, g[2 * i + 1] += md * ey;
+        g[2 * j] -= md * ex, g[2 * j + 1] -= md * ey;
+      }
     }
     const PetscReal fx = mag * ex, fy = mag * ey;
     f[2 * i] += fx;

@@ -17,22 +17,14 @@ public:
   PetscReal      CharacteristicForce(PetscReal length, PetscReal density) const override { return stiffness * length; }
   PetscErrorCode View(PetscViewer viewer) const override;
   PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
-  /* With a dashpot: its dissipation, the power sum gamma (e . v_ij)^2 at the accepted states summed
-     over the steps by the trapezoidal rule. */
-  bool           HasInternalState() const override { return damping > 0; }
-  PetscErrorCode AcceptStep(const ForceInput &in) override;
-  PetscReal      Dissipation() const override { return dissipated_; }
+  /* the dashpot's part of the force reported apart (the energy balance counts its work) */
+  bool HasDashpotForce() const override { return damping > 0; }
 
   PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
   PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */
 
-  /* Declared state: the dashpots' dissipation and their last power sample. */
-  void DeclareState(const ParticleSet &P, StateDeclaration &d) override;
-
 private:
   std::vector<PetscReal> gamma_; /* per bar (all `damping`) */
-  PetscReal              dissipated_ = 0, power_ = 0, t_last_ = 0;
-  bool                   have_power_ = false;
 };
 
 } // namespace turgor
