@@ -37,7 +37,14 @@ turgor_hard_run(fine_stiff_walls_verlet fine_stiff_walls ${VERLET})
 turgor_hard_run_np2(fine_stiff_walls_np2 fine_stiff_walls)
 turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 1e-5)
 turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tip hard/fine_stiff_walls_np2 hard/fine_stiff_walls 1e-10)
-turgor_long(hard_fine_stiff_walls hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks)
+# TS verlet with the dashpots and the SPH viscosity at the velocity predicted to the step's end
+# (-fine_predict_velocity, at its halved limit: the same step as Verlet at 0.5): 1.5e-8 from DOPRI
+# at 1e-6 (the drift's velocity at that step: 8.7e-6, first order)
+turgor_hard_run(fine_stiff_walls_predicted fine_stiff_walls -ts_type verlet -fine_predict_velocity -fine_dt_safety 1)
+turgor_hard_check(fine_stiff_walls_predicted_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_predicted" ${HCHECK} tiprel hard/fine_stiff_walls_predicted
+  hard/fine_stiff_walls 1e-7)
+turgor_long(hard_fine_stiff_walls hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks
+  hard_fine_stiff_walls_predicted hard_fine_stiff_walls_predicted_agree)
 # 500x load: DOPRI and Verlet agree
 turgor_hard_run(fine_large_load fine_large_load)
 turgor_hard_run(fine_large_load_verlet fine_large_load ${VERLET})

@@ -71,6 +71,8 @@ turgor_add_test(restart_bar_fresh_state COMMAND ${CHECK} between restart_bar_ful
 set(RESTART_POLY -fine_energy_tolerance 0.1 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_compression.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,100,100
   -ts_max_time 16 -control_lid_delay 1 -control_lid_velocity 0,-3 -fine_snapshots 0 -fine_progress_interval 0 -fine_energy -fine_tip_samples 200)
 turgor_restart_case(polygon 9000 INTERVAL 8 OPTIONS ${RESTART_POLY} FILES groups.csv energy.csv)
+# the same with the velocity predicted for the dashpots (the last acceleration is checkpointed)
+turgor_restart_case(polygon_predicted 6000 INTERVAL 4 OPTIONS ${RESTART_POLY} -ts_max_time 8 -fine_predict_velocity FILES groups.csv energy.csv)
 
 # The glued traction scene on 16 cells (tests/glue.cmake's TRACTION16, v1): stopped after 6000 steps
 # (t = 2.74 µs), after the first four bonds broke; breaks.csv continues without duplicates.

@@ -40,18 +40,25 @@ PetscErrorCode FineEquations::SetTS(TS ts, IS is_x, IS is_v, std::function<Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields)
+PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields, bool predict_velocity)
 {
   PetscBool symplectic, kdk;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSBASICSYMPLECTIC, &symplectic));
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVERLET, &kdk));
+  PetscCheck(!predict_velocity || kdk, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP,
+             "Option -fine_predict_velocity: only -ts_type verlet predicts the velocity its forces see (this run's integrator is another)");
+  predict_ = predict_velocity;
   if (!symplectic && !kdk) PetscFunctionReturn(PETSC_SUCCESS);
   /* the split integrators' velocities of the last position update; a distributed run without
      controls gathers the halo's into their tail (LocalState: no copy of the velocities) */
   v_stale_.assign(2 * (halo_ && !controls_->Active() ? n_all_ : n_owned_), 0);
   split_ = true;
   fields.Declare("drift_velocity", "µm/µs", 2, kCheckpoint, [this] { return v_stale_.data(); });
+  if (predict_) {
+    a_last_.assign(2 * n_owned_, 0);
+    fields.Declare("last_acceleration", "µm/µs²", 2, kCheckpoint, [this] { return a_last_.data(); });
+  }
   if (kdk) {
     drift_fraction_ = 1.0; /* one drift of h per step */
     if (halo_) {           /* its accelerations carry room for the halo's forces (Accelerations) */
@@ -215,7 +222,11 @@ PetscErrorCode FineEquations::RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, v
     PetscCall(VecGetArrayRead(V, &v));
     PetscCall(VecGetArray(Xdot, &xd));
     std::copy(v, v + 2 * eq->n_owned_, xd);
-    std::copy(v, v + 2 * eq->n_owned_, eq->v_stale_.begin());
+    if (eq->predict_) { /* v_{n+1/2} + h/2 a_n = v_n + h a_n: the step's end to O(h^2) */
+      PetscReal h;
+      PetscCall(TSGetTimeStep(eq->ts_, &h));
+      for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) eq->v_stale_[k] = v[k] + 0.5 * h * eq->a_last_[k];
+    } else std::copy(v, v + 2 * eq->n_owned_, eq->v_stale_.begin());
     for (PetscInt i : eq->fixed_) xd[2 * i] = xd[2 * i + 1] = 0;
     if (eq->controls_->Active()) {
       PetscReal h;
@@ -243,6 +254,7 @@ PetscErrorCode FineEquations::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, v
     PetscCall(eq->LocalState(t, x, eq->v_stale_.data(), &xc, &vc));
     PetscCall(eq->Accelerations(xc, vc, a, eq->acceleration_room_));
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, a);
+    if (eq->predict_) std::copy(a, a + 2 * eq->n_owned_, eq->a_last_.begin());
     PetscReal zero = 0; /* a branch-free scan first (0 x a value is NaN for an infinite or NaN one) */
     for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) zero += 0 * a[k];
     for (PetscInt k = 0; k < 2 * eq->n_owned_ && !(zero == 0); k++) {

@@ -25,6 +25,14 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                                "FineRunSpec", e, &e, NULL));
     energy = e;
   }
+  {
+    PetscBool p = predict_velocity ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(TurgorOptionsBool(params, "-predict_velocity",
+                                "TS verlet: the dashpots and the viscosity at the step's end see the velocity predicted there, v_n + h a_n (second order "
+                                "with velocity-dependent forces; the stability limits are halved) instead of the drift's v_n + h/2 a_n (first order)",
+                                "FineRunSpec", p, &p, NULL));
+    predict_velocity = p;
+  }
   PetscCall(PetscOptionsReal("-energy_tolerance",
                              "With -fine_energy: a relative energy residual above this fails the run (energy created or lost that no term accounts for); 0: "
                              "no check",
@@ -250,7 +258,21 @@ PetscErrorCode FineRun::CheckIntegrator()
 PetscErrorCode FineRun::AfterTSSetFromOptions()
 {
   PetscFunctionBeginUser;
-  PetscCall(equations_.ConfigureIntegrator(ts_, fields_));
+  PetscCall(equations_.ConfigureIntegrator(ts_, fields_, spec_.predict_velocity));
+  if (spec_.predict_velocity) {
+    /* a damping-dominated step's limit is half the drift's: 2/(c + sqrt(c^2 + w^2)) against
+       2/(c/2 + sqrt(c^2/4 + w^2)) (the same where nothing damps): every limit halved */
+    for (TimeStepLimit &l : limits_) l.dt *= 0.5, l.why += " (x 0.5: -fine_predict_velocity)";
+    dt_stable_ *= 0.5;
+    const char *prefix;
+    PetscBool   given;
+    PetscCall(TSGetOptionsPrefix(ts_, &prefix));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-ts_dt", &given));
+    if (!given && !(spec_.dt > 0)) {
+      dt_initial_ = spec_.dt_safety * dt_stable_;
+      PetscCall(TSSetTimeStep(ts_, dt_initial_));
+    }
+  }
   if (equations_.Split()) PetscCall(FitFixedSteps(0, 0)); /* a fixed step is not clipped at the final time */
   PetscCall(LimitControlSteps());
   PetscFunctionReturn(PETSC_SUCCESS);

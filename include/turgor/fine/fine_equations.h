@@ -27,8 +27,12 @@ public:
      check; `observe`: asked first by the whole right-hand side (a restart's first derivative). */
   PetscErrorCode SetTS(TS ts, IS is_x, IS is_v, std::function<PetscErrorCode(PetscReal, Vec, Vec, PetscBool *)> observe);
   /* After TSSetFromOptions: a split integrator's set-up (its velocity of the last drift, declared
-     for the checkpoints in `fields`; TSVERLET's room for the halo's forces). */
-  PetscErrorCode ConfigureIntegrator(TS ts, ParticleFields &fields);
+     for the checkpoints in `fields`; TSVERLET's room for the halo's forces). predict_velocity
+     (TSVERLET only): the velocity-dependent forces at x_{n+1} see the velocity predicted to the
+     step's end, v_n + h a_n, instead of the drift's v_n + h/2 a_n -- second order with dashpots
+     and viscosity instead of first, for half the stability limit of a damping-dominated step (the
+     limits are halved); a_n is kept (and checkpointed) for it. */
+  PetscErrorCode ConfigureIntegrator(TS ts, ParticleFields &fields, bool predict_velocity = false);
 
   /* The model's view of a state (x, v of the owned particles): every local particle's x and v, the
      halo's from their owners, with the controlled components imposed at t (work arrays); a serial
@@ -83,6 +87,8 @@ private:
   std::vector<PetscReal>             fw_;                        /* forces of the local particles */
   std::vector<PetscReal>             v_stale_;                   /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
   bool                               split_             = false; /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
+  bool                               predict_           = false; /* ConfigureIntegrator's predict_velocity */
+  std::vector<PetscReal>             a_last_;                    /* with predict_: the owned particles' last accelerations */
   bool                               acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
   PetscReal                          drift_fraction_    = 0;     /* splitting integrators: a position update's share of the step */
   PetscInt                           rhs_evals_         = 0;

@@ -32,6 +32,7 @@ struct FineRunSpec {
   PetscReal                dt_safety        = 0.5;      /* fixed steps: this fraction of the stability limit */
   PetscReal                dt               = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
   bool                     energy           = false;    /* energy.csv (-fine_energy) */
+  bool                     predict_velocity = false;    /* -fine_predict_velocity: TS verlet's forces see v_n + h a_n (FineEquations::ConfigureIntegrator) */
   PetscReal                energy_tolerance = 1e-2;     /* -fine_energy_tolerance: a larger relative residual fails the run; 0: no check */
   PetscInt                 partition        = 0;        /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
   bool                     distribute       = true;     /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
