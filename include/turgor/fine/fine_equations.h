@@ -86,8 +86,8 @@ private:
   std::vector<PetscReal *>           halo_arrays_;
   std::vector<PetscReal>             fw_;                        /* forces of the local particles */
   std::vector<PetscReal>             v_stale_;                   /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
-  bool                               split_             = false; /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
-  bool                               predict_           = false; /* ConfigureIntegrator's predict_velocity */
+  bool                               split_   = false;           /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
+  bool                               predict_ = false;           /* ConfigureIntegrator's predict_velocity */
   std::vector<PetscReal>             a_last_;                    /* with predict_: the owned particles' last accelerations */
   bool                               acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
   PetscReal                          drift_fraction_    = 0;     /* splitting integrators: a position update's share of the step */
