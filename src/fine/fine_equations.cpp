@@ -173,7 +173,8 @@ PetscErrorCode FineEquations::StabilityLimits(Vec U, std::vector<TimeStepLimit> 
   PetscCall(PetscObjectGetComm((PetscObject)U, &comm));
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(LocalState(0, u, &x, &v));
-  PetscCall(model_->TimeStepLimits(x, v, limits));
+  if (halo_) PetscCall(model_->TimeStepLimits(x, v, limits, [this](PetscReal *f) { return halo_->Return(f); }));
+  else PetscCall(model_->TimeStepLimits(x, v, limits));
   PetscCall(VecRestoreArrayRead(U, &u));
   if (halo_) PetscCall(SmallestLimits(comm, limits));
   std::sort(limits.begin(), limits.end(), [](const TimeStepLimit &a, const TimeStepLimit &b) { return a.dt < b.dt; });

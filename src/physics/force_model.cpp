@@ -230,7 +230,8 @@ PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits)
+PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits,
+                                          const std::function<PetscErrorCode(PetscReal *)> &sum_halo_shares)
 {
   std::vector<PetscReal> a;
   PetscFunctionBeginUser;
@@ -240,9 +241,10 @@ PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v
     evaluations_--; /* not an integrator evaluation */
   }
   PetscCall(nb_.Update(*P_, x, images_));
-  ForceInput in = {P_, x, v, &nb_, &images_};
-  in.t          = t_;
-  in.a          = a.empty() ? nullptr : a.data();
+  ForceInput in      = {P_, x, v, &nb_, &images_};
+  in.t               = t_;
+  in.a               = a.empty() ? nullptr : a.data();
+  in.sum_halo_shares = sum_halo_shares;
   limits.clear();
   for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));
   PetscFunctionReturn(PETSC_SUCCESS);

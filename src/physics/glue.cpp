@@ -435,16 +435,21 @@ PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
   PetscFunctionBeginUser;
   const bool provisional = !have_bonds_ && start_time > 0; /* the bonds this state would have bound the step; made for real later */
   if (!have_bonds_) PetscCall(CreateBonds(*in.P, in.x));
-  std::vector<PetscReal> row(in.P->n, 0.0);
+  /* a node's row sums its bonds and the bonds that hold its bars, which the owners of other nodes
+     may compute: the halo copies' shares go to the owners first, so that the bound (and the step)
+     does not depend on the ranks */
+  std::vector<PetscReal> row(2 * in.P->n, 0.0); /* [row, 0] per particle: the halo's exchange pairs two values */
   const PetscReal        k = std::max(normal_stiffness, kt_);
   for (const Bond &B : bonds_) {
     if (!B.intact) continue;
-    row[B.p] += 2 * k * B.L;
-    row[B.a] += 2 * k * B.L * (1 - B.lam);
-    row[B.b] += 2 * k * B.L * B.lam;
+    row[2 * B.p] += 2 * k * B.L;
+    row[2 * B.a] += 2 * k * B.L * (1 - B.lam);
+    row[2 * B.b] += 2 * k * B.L * B.lam;
   }
-  PetscReal w2 = 0;
-  for (PetscInt i = 0; i < in.P->n; i++) w2 = std::max(w2, row[i] / in.P->mass[i]);
+  if (in.sum_halo_shares) PetscCall(in.sum_halo_shares(row.data()));
+  const PetscInt n  = in.sum_halo_shares ? in.P->NumOwned() : in.P->n;
+  PetscReal      w2 = 0;
+  for (PetscInt i = 0; i < n; i++) w2 = std::max(w2, row[2 * i] / in.P->mass[i]);
   if (w2 > 0) {
     char why[160];
     PetscCall(PetscSNPrintf(why, sizeof why, "glue: omega_max <= %.4g /µs (%" PetscInt_FMT " bonds, Gershgorin)", (double)std::sqrt(w2), intact_));

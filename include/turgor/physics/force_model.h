@@ -59,7 +59,8 @@ public:
   PetscErrorCode AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t = 0);
   bool           HasInternalState() const; /* some term has: the integrator must call AcceptStep */
   /* Stability bounds of an explicit step at state (x, v), every term's. */
-  PetscErrorCode TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits);
+  PetscErrorCode TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits,
+                                const std::function<PetscErrorCode(PetscReal *)> &sum_halo_shares = nullptr);
 
   std::vector<std::string> ActiveTerms() const;
   ForceTerm               *Term(const std::string &name) const;

@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace turgor {
@@ -33,6 +34,10 @@ struct ForceInput {
   /* AddForces, where not NULL (the energy balance observes): a term whose force has a dashpot part
      (HasDashpotForce) adds that part here too, so that its work is counted as dissipation. */
   PetscReal *f_dashpot = nullptr;
+  /* AddTimeStepLimits in a distributed run (else empty): adds the halo copies' values of a
+     per-particle array [2 n] to their owners' (collective: every rank's term calls it), so that a
+     bound summed over interactions that another rank computes (a Gershgorin row) is complete. */
+  std::function<PetscErrorCode(PetscReal *)> sum_halo_shares;
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */
