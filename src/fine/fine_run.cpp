@@ -19,20 +19,12 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
   PetscCall(TurgorOptionsReal(params, "-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)",
                               "FineRunSpec", dt_safety, &dt_safety, NULL));
-  {
-    PetscBool e = energy ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(PetscOptionsBool("-energy", "Write the energy balance energy.csv (kinetic, stored, work of controls and loads, dissipated, residual)",
-                               "FineRunSpec", e, &e, NULL));
-    energy = e;
-  }
-  {
-    PetscBool p = predict_velocity ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(TurgorOptionsBool(params, "-predict_velocity",
-                                "TS verlet: the dashpots and the viscosity at the step's end see the velocity predicted there, v_n + h a_n (second order "
-                                "with velocity-dependent forces; the stability limits are halved) instead of the drift's v_n + h/2 a_n (first order)",
-                                "FineRunSpec", p, &p, NULL));
-    predict_velocity = p;
-  }
+  PetscCall(PetscOptionsBool("-energy", "Write the energy balance energy.csv (kinetic, stored, work of controls and loads, dissipated, residual)",
+                             "FineRunSpec", energy, &energy, NULL));
+  PetscCall(TurgorOptionsBool(params, "-predict_velocity",
+                              "TS verlet: the dashpots and the viscosity at the step's end see the velocity predicted there, v_n + h a_n (second order "
+                              "with velocity-dependent forces; the stability limits are halved) instead of the drift's v_n + h/2 a_n (first order)",
+                              "FineRunSpec", predict_velocity, &predict_velocity, NULL));
   PetscCall(PetscOptionsReal("-energy_tolerance",
                              "With -fine_energy: a relative energy residual above this fails the run (energy created or lost that no term accounts for); 0: "
                              "no check",
@@ -42,14 +34,10 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                             "report the edge cut and imbalance in summary.json and the particles' part in the snapshots (a report only: a run on several "
                             "ranks partitions its cells by itself, -fine_distribute; 0: no report)",
                             "FineRunSpec", partition, &partition, &pset));
-  {
-    PetscBool d = distribute ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(PetscOptionsBool("-distribute",
-                               "On several ranks, partition the cells with METIS and keep every particle on the rank of its cell, with a halo of the "
-                               "neighbouring ranks' particles (false: all particles on rank 0, the other ranks idle)",
-                               "FineRunSpec", d, &d, NULL));
-    distribute = d;
-  }
+  PetscCall(PetscOptionsBool("-distribute",
+                             "On several ranks, partition the cells with METIS and keep every particle on the rank of its cell, with a halo of the "
+                             "neighbouring ranks' particles (false: all particles on rank 0, the other ranks idle)",
+                             "FineRunSpec", distribute, &distribute, NULL));
   PetscCall(PetscOptionsReal("-halo_margin",
                              "Distributed runs: width [µm] of the halo beyond the interactions' reach (cutoffs + neighbour skin); cells may move this "
                              "far relative to each other before the run stops (default: the reach)",
@@ -180,7 +168,7 @@ PetscErrorCode FineRun::SetUpModel()
       reach += physics_.neighbour_skin;
     }
     std::vector<PetscInt> local_of;
-    PetscCall(placement_.Place(comm_, {spec_.distribute, spec_.partition, spec_.halo_margin}, reach, &tissue_, &local_of));
+    PetscCall(placement_.Place(comm_, {spec_.distribute == PETSC_TRUE, spec_.partition, spec_.halo_margin}, reach, &tissue_, &local_of));
     if (placement_.Distributed()) {
       controls_.Localize(local_of, tissue_.particles);
       tip_ = tip_ >= 0 ? local_of[tip_] : -1;
@@ -228,7 +216,8 @@ PetscErrorCode FineRun::SetUpModel()
     const PetscReal   *x0 = nullptr, *v0 = nullptr;
     PetscCall(VecGetArrayRead(U_, &u0));
     if (spec_.energy) PetscCall(equations_.LocalState(0, u0, &x0, &v0));
-    PetscCall(records_.SetUp(comm_, spec_.energy, spec_.energy_tolerance, placement_.Distributed(), model_, controls_, tissue_.particles, x0, v0));
+    PetscCall(
+      records_.SetUp(comm_, spec_.energy == PETSC_TRUE, spec_.energy_tolerance, placement_.Distributed(), model_, controls_, tissue_.particles, x0, v0));
     PetscCall(VecRestoreArrayRead(U_, &u0));
   }
   PetscCall(equations_.SetTS(ts_, is_x_, is_v_, [this](PetscReal t, Vec U, Vec F, PetscBool *answered) { return ObserveRHS(t, U, F, answered); }));
@@ -258,7 +247,7 @@ PetscErrorCode FineRun::CheckIntegrator()
 PetscErrorCode FineRun::AfterTSSetFromOptions()
 {
   PetscFunctionBeginUser;
-  PetscCall(equations_.ConfigureIntegrator(ts_, fields_, spec_.predict_velocity));
+  PetscCall(equations_.ConfigureIntegrator(ts_, fields_, spec_.predict_velocity == PETSC_TRUE));
   if (spec_.predict_velocity) {
     /* a damping-dominated step's limit is half the drift's: 2/(c + sqrt(c^2 + w^2)) against
        2/(c/2 + sqrt(c^2/4 + w^2)) (the same where nothing damps): every limit halved */

@@ -28,15 +28,15 @@ namespace turgor {
 
 /* -fine_ options besides the outputs. */
 struct FineRunSpec {
-  std::vector<std::string> clamp            = {"left"}; /* sides whose wall particles are fixed */
-  PetscReal                dt_safety        = 0.5;      /* fixed steps: this fraction of the stability limit */
-  PetscReal                dt               = 0;        /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
-  bool                     energy           = false;    /* energy.csv (-fine_energy) */
-  bool                     predict_velocity = false;    /* -fine_predict_velocity: TS verlet's forces see v_n + h a_n (FineEquations::ConfigureIntegrator) */
-  PetscReal                energy_tolerance = 1e-2;     /* -fine_energy_tolerance: a larger relative residual fails the run; 0: no check */
-  PetscInt                 partition        = 0;        /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
-  bool                     distribute       = true;     /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
-  PetscReal                halo_margin      = -1;       /* -fine_halo_margin [µm]: the halo's width beyond the interactions' reach; < 0: the reach */
+  std::vector<std::string> clamp            = {"left"};    /* sides whose wall particles are fixed */
+  PetscReal                dt_safety        = 0.5;         /* fixed steps: this fraction of the stability limit */
+  PetscReal                dt               = 0;           /* API only (the option is -ts_dt): the initial or fixed step [µs]; 0: dt_safety x the limit */
+  PetscBool                energy           = PETSC_FALSE; /* energy.csv (-fine_energy) */
+  PetscBool                predict_velocity = PETSC_FALSE; /* -fine_predict_velocity: TS verlet's forces see v_n + h a_n (FineEquations::ConfigureIntegrator) */
+  PetscReal                energy_tolerance = 1e-2;        /* -fine_energy_tolerance: a larger relative residual fails the run; 0: no check */
+  PetscInt                 partition        = 0;           /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
+  PetscBool                distribute  = PETSC_TRUE; /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
+  PetscReal                halo_margin = -1;         /* -fine_halo_margin [µm]: the halo's width beyond the interactions' reach; < 0: the reach */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
 };
