@@ -8,6 +8,7 @@
    writer, and the writer's own values exactly where the layout is its own. Also: the keys are written
    in ascending order whatever the ranks, and a changed value or a damaged byte is refused. */
 #include <turgor/io/checkpoint_file.h>
+#include "test_util.h"
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -215,13 +216,7 @@ PetscErrorCode ExpectRefused(const char *file, const char *what)
   PetscInt         writers;
   bool             same;
   std::string      msg;
-  PetscCall(PetscPushErrorHandler(
-    [](MPI_Comm, int, const char *, const char *, PetscErrorCode n, PetscErrorType, const char *mess, void *ctx) -> PetscErrorCode {
-      std::string *m = (std::string *)ctx;
-      if (m->empty() && mess) *m = mess;
-      return n;
-    },
-    &msg));
+  PetscCall(turgor_test::PushMessageCatcher(&msg));
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   PetscErrorCode ierr = R.Open(PETSC_COMM_SELF, file);
   if (!ierr) ierr = R.Layouts(L, &writers, &same);

@@ -139,13 +139,7 @@ PetscErrorCode ExpectTwiceRefused(MPI_Comm comm, PetscMPIInt p)
   if (rank == 0) mine = {5, 77, 9};
   if (rank == p - 1) mine.push_back(77);
   if (p > 1 && rank != 0 && rank != p - 1) mine = {1000};
-  PetscCall(PetscPushErrorHandler(
-    [](MPI_Comm, int, const char *, const char *, PetscErrorCode n, PetscErrorType, const char *mess, void *ctx) -> PetscErrorCode {
-      std::string *m = (std::string *)ctx;
-      if (m->empty() && mess) *m = mess;
-      return n;
-    },
-    &msg));
+  PetscCall(turgor_test::PushMessageCatcher(&msg));
   PetscErrorCode ierr = order.SetUp(comm, mine, "test items");
   PetscCall(PetscPopErrorHandler());
   const bool ok = ierr && msg.find("test items: the key 77 is held more than once") != std::string::npos;

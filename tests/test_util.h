@@ -3,6 +3,7 @@
    measured and returns non-zero (through PETSc's error handling) when a check fails. */
 #include <turgor/turgor.hpp>
 #include <cmath>
+#include <string>
 
 #define TG_CHECK(cond, ...) \
   do { \
@@ -30,5 +31,18 @@ struct Random {
     return ((s >> 11) * (1.0 / 9007199254740992.0)) * 2.0 - 1.0;
   }
 };
+
+/* Push an error handler that keeps the first error's message in *msg and returns the error (no
+   printout): a test that expects a refusal checks what it said. Pop it with PetscPopErrorHandler. */
+inline PetscErrorCode PushMessageCatcher(std::string *msg)
+{
+  return PetscPushErrorHandler(
+    [](MPI_Comm, int, const char *, const char *, PetscErrorCode n, PetscErrorType, const char *mess, void *ctx) -> PetscErrorCode {
+      std::string *m = (std::string *)ctx;
+      if (m->empty() && mess) *m = mess;
+      return n;
+    },
+    msg);
+}
 
 } // namespace turgor_test
