@@ -9,6 +9,7 @@
 #include <turgor/tissue/voronoi.h>
 #include <turgor/core/errors.h>
 #include <turgor/core/options.h>
+#include <turgor/core/uniform_random.h>
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -39,13 +40,6 @@ PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 }
 
 namespace {
-
-/* uniform in [0, 1) from the top 53 bits */
-struct Uniform {
-  std::mt19937_64 g;
-  explicit Uniform(PetscInt seed) : g((std::uint64_t)(long long)seed) { }
-  PetscReal operator()() { return (PetscReal)(g() >> 11) * (1.0 / 9007199254740992.0); }
-};
 
 /* Clip the convex ring (counter-clockwise, labelled edges) by {y : a . y <= b}; new edges along the
    line get `label`. A vertex on the line counts as inside and is not doubled. */
@@ -291,7 +285,7 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
   VoronoiDiagram &D = *diagram;
   const size_t    N = (size_t)spec.cells;
   const PetscReal W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
-  Uniform         u(spec.seed);
+  UniformRandom   u(spec.seed);
   PetscFunctionBeginUser;
   D = VoronoiDiagram();
   D.seeds.resize(N);
