@@ -19,6 +19,7 @@
 #include <turgor/physics/viscosity.h>
 #include <turgor/physics/wall_springs.h>
 #include <turgor/rve/rve.h>
+#include <turgor/rve/polygon_rve_material.h>
 #include <turgor/tissue/node_file.h>
 #include <turgor/tissue/polyline.h>
 #include <turgor/tissue/square_grid.h>
@@ -59,6 +60,7 @@ PetscErrorCode RegisterAll(void)
   /* materials (-material) */
   PetscCall(MaterialModelRegister("rve", CreateInstance<MaterialModel, RVEMaterial>));
   PetscCall(MaterialModelRegister("neo_hookean", CreateInstance<MaterialModel, NeoHookeanMaterial>));
+  PetscCall(MaterialModelRegister("polygon_rve", CreateInstance<MaterialModel, PolygonRVEMaterial>));
   /* tissue generators (-tissue_type) */
   PetscCall(TissueGeneratorRegister("square_grid", CreateInstance<TissueGenerator, SquareGridGenerator>));
   PetscCall(TissueGeneratorRegister("node_file", CreateInstance<TissueGenerator, NodeFileGenerator>));

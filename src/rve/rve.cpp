@@ -48,6 +48,11 @@ PetscErrorCode RVE::SetUp(const PeriodicCell &cell, const PhysicsSpec &physics, 
   PetscCall(relax_.SetUp(comm_, eq_, spec_));
   current_.assign(NumUnknowns(), 0);
   committed_ = current_;
+  if (eq_.HasHistory()) { /* the terms' history starts at the reference (the glue bonds are made there) */
+    PetscCall(VecZeroEntries(W_));
+    PetscCall(eq_.Residual(W_, NULL));
+    PetscCall(KeepCommittedHistory());
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -83,20 +88,21 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
     for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = warm ? start[k] : 0.0;
   PetscCall(VecRestoreArray(W_, &w));
   if (relax) {
-    bool converged = false, inside = false;
+    bool        converged = false, inside = false;
+    std::string why;
     if (warm) {
       PetscCall(relax_.Warm(W_, out, &converged));
-      if (converged) PetscCall(FluidInside(&inside));
+      if (converged) PetscCall(Admissible(&inside, &why));
     }
     if (!converged || !inside) { /* cold: u1 = 0 and the seed's schedule (also when a warm start failed) */
       PetscCall(VecZeroEntries(W_));
       out->ok = true;
       PetscCall(relax_.Cold(W_, out));
       if (out->ok) {
-        PetscCall(FluidInside(&inside));
+        PetscCall(Admissible(&inside, &why));
         if (!inside) {
           out->ok     = false;
-          out->reason = "the relaxed RVE has fluid particles outside their cell (a wall was crossed)";
+          out->reason = why;
         }
       }
     }
@@ -111,6 +117,8 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
     current_.assign(wr, wr + (rank_ == 0 ? NumUnknowns() : 0));
     PetscCall(VecRestoreArrayRead(W_, &wr));
     have_current_ = true;
+    trial_F_      = F;
+    trial_Fdot_   = Fdot;
   }
   const PetscReal area = J * cell_.ReferenceArea();
   for (int c = 0; c < 4; c++) buf[c] = virial[c] / area;
@@ -140,14 +148,30 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
 }
 
 /* The relaxed positions are those of the last evaluation, at W_; only rank 0 holds particles. */
-PetscErrorCode RVE::FluidInside(bool *inside)
+PetscErrorCode RVE::Admissible(bool *inside, std::string *why)
 {
-  PetscInt ok = 1;
+  PetscInt ok        = 1;
+  char     text[256] = "";
   PetscFunctionBeginUser;
   PetscCall(eq_.Residual(W_, NULL)); /* the positions of W_ (kept: no new evaluation) */
-  if (rank_ == 0) ok = eq_.FluidInsideCells() ? 1 : 0;
+  if (rank_ == 0 && !eq_.Admissible(why)) {
+    ok = 0;
+    PetscCall(PetscStrncpy(text, why->c_str(), sizeof text));
+  }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, comm_));
+  PetscCallMPI(MPI_Bcast(text, (PetscMPIInt)sizeof text, MPI_CHAR, 0, comm_));
   *inside = ok != 0;
+  *why    = text;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVE::KeepCommittedHistory()
+{
+  StateDeclaration d("history");
+  PetscFunctionBeginUser;
+  eq_.DeclareTermState(d);
+  committed_history_.clear();
+  PetscCall(PackState(d, committed_history_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -243,6 +267,16 @@ PetscErrorCode RVE::Commit()
   if (have_current_) {
     committed_      = current_;
     have_committed_ = true;
+    if (eq_.HasHistory()) { /* the terms' history moves on at the accepted state (plastic hinges, slip, breaks) */
+      PetscScalar *w;
+      eq_.SetDeformation(trial_F_, trial_Fdot_);
+      PetscCall(VecGetArray(W_, &w));
+      for (size_t k = 0; k < current_.size(); k++) w[k] = current_[k];
+      PetscCall(VecRestoreArray(W_, &w));
+      PetscCall(eq_.AcceptStep(W_));
+      PetscCall(KeepCommittedHistory());
+      last_ok_ = false; /* W_ and the deformation are the trial's, not the last evaluation's */
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -252,6 +286,13 @@ PetscErrorCode RVE::Revert()
   PetscFunctionBeginUser;
   current_      = committed_;
   have_current_ = have_committed_;
+  if (eq_.HasHistory() && !committed_history_.empty()) {
+    StateDeclaration d("history");
+    eq_.DeclareTermState(d);
+    PetscCall(UnpackState(d, committed_history_.data(), committed_history_.size()));
+    PetscCall(eq_.AfterTermStateRead());
+    last_ok_ = false;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -270,6 +311,10 @@ void RVE::DeclareState(StateDeclaration &d)
   d.Scalar("have_committed", &have_committed_, Combine::Owner);
   d.Sequence("current", &current_);
   d.Sequence("committed", &committed_);
+  if (eq_.HasHistory()) {
+    d.Array("trial_F", &trial_F_.a[0][0], 4, Combine::Owner);
+    d.Array("trial_Fdot", &trial_Fdot_.a[0][0], 4, Combine::Owner);
+  }
   StateDeclaration eq("equations"), relax("relaxation");
   eq_.DeclareState(eq);
   relax_.DeclareState(relax);
@@ -286,6 +331,7 @@ PetscErrorCode RVE::AfterStateRead()
   last_ok_ = false;
   PetscCall(eq_.AfterStateRead());
   PetscCall(relax_.AfterStateRead());
+  if (eq_.HasHistory()) PetscCall(KeepCommittedHistory()); /* a point is saved or moved at a committed state */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

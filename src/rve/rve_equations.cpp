@@ -1,4 +1,6 @@
 #include <turgor/rve/rve_equations.h>
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <set>
 
@@ -29,7 +31,7 @@ void RVEEquations::SetDeformation(const Tensor2 &F, const Tensor2 &Fdot)
   F_    = F;
   Fdot_ = Fdot;
   cell_->Deform(F, Fdot, x_.data(), v_.data());
-  model_.SetPeriodicImages(cell_->Lattice(F, Fdot));
+  model_.SetPeriodicImages(cell_->ModelImages(F, Fdot));
   version_++;
 }
 
@@ -49,6 +51,7 @@ PetscErrorCode RVEEquations::Compute(Vec W)
     PetscCall(VecRestoreArrayRead(W, &w));
     const PetscInt rebuilds = model_.Neighbours().Rebuilds();
     PetscCall(model_.ComputeForces(x_.data(), v_.data(), f_.data(), virial_));
+    cell_->ReturnHaloForces(f_.data());
     force_evals_++;
     if (model_.Neighbours().Rebuilds() != rebuilds) { /* the lists were built at this lattice */
       build_F_    = F_;
@@ -102,9 +105,7 @@ void RVEEquations::DeclareState(StateDeclaration &d)
   d.Scalar("force_evals", &force_evals_, Combine::Owner);
   d.Array("build_F", &build_F_.a[0][0], 4, Combine::Owner);
   d.Array("build_Fdot", &build_Fdot_.a[0][0], 4, Combine::Owner);
-  std::deque<StateDeclaration> model;
-  model_.DeclareState(model);
-  for (StateDeclaration &m : model) d.Include(std::move(m));
+  DeclareTermState(d);
 }
 
 /* The lists restored where and on the lattice they were built last; the deformation back at the
@@ -112,11 +113,73 @@ void RVEEquations::DeclareState(StateDeclaration &d)
 PetscErrorCode RVEEquations::AfterStateRead()
 {
   PetscFunctionBeginUser;
-  model_.SetPeriodicImages(cell_->Lattice(build_F_, build_Fdot_));
+  model_.SetPeriodicImages(cell_->ModelImages(build_F_, build_Fdot_));
   PetscCall(model_.AfterStateRead(x_.data(), v_.data(), 0, true));
   SetDeformation(Tensor2::Identity(), Tensor2::Zero());
   kept_version_ = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool RVEEquations::Admissible(std::string *why) const
+{
+  return cell_->Admissible(x_.data(), F_, model_.Images(), why);
+}
+
+PetscErrorCode RVEEquations::AcceptStep(Vec W)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Compute(W));
+  if (rank_ == 0) PetscCall(model_.AcceptStep(x_.data(), v_.data(), 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void RVEEquations::DeclareTermState(StateDeclaration &d)
+{
+  std::deque<StateDeclaration> model;
+  model_.DeclareState(model);
+  for (StateDeclaration &m : model) d.Include(std::move(m));
+}
+
+PetscErrorCode RVEEquations::AfterTermStateRead()
+{
+  PetscFunctionBeginUser;
+  PetscCall(model_.AfterStateRead(x_.data(), v_.data(), 0, true));
+  kept_version_ = -1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Polygonal cells: every node of a cell with every node of each cell within reach (a cell's
+   pressure couples all its nodes; contact and glue a node with a neighbouring cell's bars). */
+static void PolygonPatternColumns(const PeriodicCell &cell, const PetscReal *x, std::vector<std::vector<PetscInt>> &cols)
+{
+  const ParticleSet           &P     = cell.GetTissue().particles;
+  const std::vector<PetscInt> &owner = cell.PolygonOwner();
+  const std::vector<PetscInt> &free  = cell.Free();
+  const size_t                 C = P.OwnedPolygons(), L = P.polygons.size();
+  std::vector<PetscInt>        dof(P.NumOwned(), -1);
+  for (size_t k = 0; k < free.size(); k++) dof[free[k]] = (PetscInt)k;
+  std::vector<std::array<PetscReal, 4>> box(L);
+  for (size_t c = 0; c < L; c++) {
+    box[c] = {PETSC_MAX_REAL, PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
+    for (PetscInt i : P.polygons[c].nodes)
+      for (int d = 0; d < 2; d++) box[c][d] = std::min(box[c][d], x[2 * i + d]), box[c][2 + d] = std::max(box[c][2 + d], x[2 * i + d]);
+  }
+  const PetscReal                 reach = cell.Reach();
+  std::vector<std::set<PetscInt>> near(C); /* owned cells within reach of each owned cell */
+  for (size_t c = 0; c < C; c++)
+    for (size_t e = 0; e < L; e++) {
+      const PetscReal gx = std::max((PetscReal)0, std::max(box[c][0] - box[e][2], box[e][0] - box[c][2]));
+      const PetscReal gy = std::max((PetscReal)0, std::max(box[c][1] - box[e][3], box[e][1] - box[c][3]));
+      if (gx * gx + gy * gy <= reach * reach) near[c].insert(owner[e]), near[owner[e]].insert((PetscInt)c);
+    }
+  cols.assign(free.size(), {});
+  for (size_t k = 0; k < free.size(); k++) {
+    std::set<PetscInt> c;
+    for (PetscInt e : near[P.node_polygon[free[k]]])
+      for (PetscInt i : P.polygons[e].nodes)
+        if (dof[i] >= 0) c.insert(dof[i]);
+    cols[k].assign(c.begin(), c.end());
+  }
 }
 
 PetscErrorCode RVEEquations::PatternColumns(std::vector<std::vector<PetscInt>> &cols) const
@@ -126,6 +189,10 @@ PetscErrorCode RVEEquations::PatternColumns(std::vector<std::vector<PetscInt>> &
   const std::vector<PetscInt>    &free = cell_->Free();
   std::vector<std::set<PetscInt>> adj(P.n);
   PetscFunctionBeginUser;
+  if (cell_->HasHalo()) {
+    PolygonPatternColumns(*cell_, x_.data(), cols);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   auto link = [&](PetscInt i, PetscInt j) {
     adj[i].insert(j);
     adj[j].insert(i);

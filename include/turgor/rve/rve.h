@@ -47,7 +47,12 @@ public:
   const std::vector<PetscReal> &Positions() const { return eq_.Positions(); }
 
 private:
-  PetscErrorCode FluidInside(bool *inside); /* collective */
+  /* Is the state of the last evaluation admissible (PeriodicCell::Admissible)? collective; *why on
+     every rank. */
+  PetscErrorCode Admissible(bool *ok, std::string *why);
+  /* The force terms' history (eq_.HasHistory()): made at the reference (glue bonds) in SetUp, kept
+     as committed at every Commit, restored by Revert. */
+  PetscErrorCode KeepCommittedHistory();
   /* The virial stress [4] at (F, Fdot, W) and, when R, G there (rank 0 of the group; zero elsewhere) */
   PetscErrorCode StressAt(const Tensor2 &F, const Tensor2 &Fdot, Vec W, Vec R, PetscReal sigma[4]);
 
@@ -61,7 +66,9 @@ private:
   Vec                      Wd_ = nullptr, Rp_ = nullptr, Rm_ = nullptr, B_ = nullptr, Z_ = nullptr; /* StressDerivatives' work */
   Tensor2                  last_F_, last_Fdot_;                                                     /* the last evaluation, at W_ */
   bool                     last_ok_ = false;
-  std::vector<PetscScalar> current_, committed_; /* u1 / L of the current and last accepted state */
+  Tensor2                  trial_F_, trial_Fdot_; /* the last trial evaluation's, whose state Commit accepts */
+  std::vector<PetscReal>   committed_history_;    /* the terms' state at the last Commit, packed */
+  std::vector<PetscScalar> current_, committed_;  /* u1 / L of the current and last accepted state */
   bool                     have_current_ = false, have_committed_ = false;
   MaterialCounters         counters_;
   PetscLogEvent            ev_solve_ = 0;

@@ -1,0 +1,38 @@
+#pragma once
+/* The material "polygon_rve": a periodic RVE of K polygonal cells (the L-hyphen cell model: bars,
+   hinges with plasticity, contact with friction, turgor laws, glue that breaks, dashpots), relaxed
+   for the coarse (F, Fdot) like the square-grid RVE (rve.h: the same equations, relaxation, virial
+   stress and exact tangents), its geometry from periodic_polygons.h. The physics are the fine
+   polygon terms themselves (-physics, the same options), acting on x = F X + w with w periodic; the
+   cells' neighbours across the box's faces are explicit periodic images (periodic_cell.h). The
+   terms' history (plastic angles, contact springs, glue bonds and damage) moves on at every accepted
+   coarse step and goes back on a rejected one. */
+#include <turgor/rve/rve.h>
+#include <turgor/tissue/periodic_polygons.h>
+
+namespace turgor {
+
+class PolygonRVEMaterial : public MaterialModel {
+public:
+  const char              *Name() const override { return "polygon_rve"; }
+  void                     SetDefaultTolerance(PetscReal tol) override { spec.psi_atol = spec.psi_steptol = tol; }
+  PetscErrorCode           SetFromOptions(MPI_Comm comm, ParameterList *params) override;
+  PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
+  std::vector<std::string> Physics() const override { return physics.ActiveTerms(); }
+  bool                     HasStressDerivatives() const override { return true; }
+  void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const override;
+  /* the square-grid RVE's measured model, by its particles (the halo's included: they are solved over) */
+  PetscReal           BytesPerPoint() const override { return RVEMaterial::BytesPerRVE((PetscReal)prototype_.GetTissue().particles.n); }
+  PetscErrorCode      View(PetscViewer viewer) const override;
+  const PeriodicCell &Cell() const { return prototype_; }
+
+  RVESpec             spec; /* the relaxation (-rve_*; -rve_cells is the square grid's) */
+  PeriodicPolygonSpec geometry;
+  PolygonTissueSpec   poly;
+  PhysicsSpec         physics;
+
+private:
+  PeriodicCell prototype_;
+};
+
+} // namespace turgor

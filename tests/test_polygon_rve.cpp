@@ -1,0 +1,212 @@
+static const char help[] = "Polygon RVE material (-material polygon_rve): periodic cells of bars, hinges, turgor, contact and glue:\n"
+                           " 1. periodicity: 1, 4 and 9 glued cells of a square lattice give the same stress, at rest and deformed;\n"
+                           " 2. lattice symmetry: the turgor prestress of square and hexagonal lattices in contact is isotropic;\n"
+                           " 3. objectivity sigma(R F) = R sigma(F) R^T of a glued Voronoi RVE;\n"
+                           " 4. exact tangents (implicit differentiation) against central differences;\n"
+                           " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace.\n";
+#include "test_util.h"
+#include <turgor/rve/polygon_rve_material.h>
+
+using namespace turgor;
+
+/* A new point of a configured material. */
+static PetscErrorCode CreatePoint(const PolygonRVEMaterial &material, std::unique_ptr<RVE> *rve)
+{
+  std::unique_ptr<MaterialPoint> point;
+  PetscFunctionBeginUser;
+  PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
+  RVE *r = dynamic_cast<RVE *>(point.get());
+  TG_CHECK(r, "polygon_rve must create RVE points");
+  point.release();
+  rve->reset(r);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A point of the polygon RVE material configured by `options` alone (the options database is
+   cleared first); *material keeps the configuration the point was made from. */
+static PetscErrorCode MakePoint(const char *options, std::unique_ptr<PolygonRVEMaterial> *material, std::unique_ptr<RVE> *rve)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, options));
+  *material = std::make_unique<PolygonRVEMaterial>();
+  PetscCall((*material)->SetFromOptions(PETSC_COMM_SELF, nullptr));
+  PetscCall(CreatePoint(**material, rve));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Eval(RVE &rve, const Tensor2 &F, MaterialResponse *r, EvaluationKind kind = EvaluationKind::Trial)
+{
+  PetscFunctionBeginUser;
+  PetscCall(rve.Evaluate(F, Tensor2::Zero(), kind, r));
+  TG_CHECK(r->ok, "RVE evaluation failed: %s", r->reason.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscReal Diff(const Tensor2 &a, const Tensor2 &b)
+{
+  return (a - b).Norm() / b.Norm();
+}
+
+static const char *kContact     = "-physics bars,hinges,pressure,contact -prve_cell_size 20 -tissue_bar_length 5";
+static const char *kGluedSquare = "-physics bars,hinges,pressure,glue -prve_lattice square -prve_cell_size 20 -tissue_bar_length 5";
+static const char *kGlued       = "-physics bars,hinges,pressure,glue -prve_lattice voronoi -prve_cells 4 -prve_cell_size 20 -tissue_bar_length 2.5";
+
+/* 1. The images of a one-cell RVE are the cells of a larger one: the same lattice, the same stress
+   (to the relaxation tolerance: -rve_psi_atol 1e-12 of the scaled forces gives ~1e-9 of the stress). */
+static PetscErrorCode Periodicity()
+{
+  const Tensor2 Fs[2] = {Tensor2::Identity(), {{{0.996, 0.0}, {0.0, 0.997}}}}; /* compressed: every cell stays in contact */
+  Tensor2       ref[2];
+  PetscFunctionBeginUser;
+  for (PetscInt K : {1, 4, 9}) {
+    std::unique_ptr<PolygonRVEMaterial> m;
+    std::unique_ptr<RVE>                rve;
+    const std::string                   opts = std::string(kGluedSquare) + " -prve_cells " + std::to_string((long long)K);
+    PetscCall(MakePoint(opts.c_str(), &m, &rve));
+    for (int s = 0; s < 2; s++) {
+      MaterialResponse r;
+      PetscCall(Eval(*rve, Fs[s], &r));
+      if (K == 1) ref[s] = r.sigma;
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "1. square lattice, %2" PetscInt_FMT " cells, %s: sigma = [%.10g %.4g; %.4g %.10g] N/m, %.2e from 1 cell\n", K,
+                            s ? "deformed" : "at rest", (double)r.sigma(0, 0), (double)r.sigma(0, 1), (double)r.sigma(1, 0), (double)r.sigma(1, 1),
+                            (double)Diff(r.sigma, ref[s])));
+      TG_CHECK(Diff(r.sigma, ref[s]) < 1e-8, "%" PetscInt_FMT " cells differ from 1 cell by %.2e", K, (double)Diff(r.sigma, ref[s]));
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 2. A regular lattice's prestress has the lattice's symmetry: isotropic for square and hexagonal. */
+static PetscErrorCode LatticeSymmetry()
+{
+  PetscFunctionBeginUser;
+  for (const char *lattice : {"-prve_lattice square -prve_cells 1", "-prve_lattice hexagonal -prve_cells 4"}) {
+    std::unique_ptr<PolygonRVEMaterial> m;
+    std::unique_ptr<RVE>                rve;
+    MaterialResponse                    r;
+    const std::string                   opts = std::string(kContact) + " " + lattice;
+    PetscCall(MakePoint(opts.c_str(), &m, &rve));
+    PetscCall(Eval(*rve, Tensor2::Identity(), &r));
+    const PetscReal aniso = (std::fabs(r.sigma(0, 0) - r.sigma(1, 1)) + 2 * std::fabs(r.sigma(0, 1))) / r.sigma.Norm();
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "2. %s: sigma = [%.10g %.3g; %.3g %.10g] N/m, anisotropy %.2e\n", lattice, (double)r.sigma(0, 0),
+                          (double)r.sigma(0, 1), (double)r.sigma(1, 0), (double)r.sigma(1, 1), (double)aniso));
+    TG_CHECK(aniso < 1e-7, "the prestress of a regular lattice is not isotropic (%.2e)", (double)aniso);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 3. Rotating the deformation rotates the stress. */
+static PetscErrorCode Objectivity()
+{
+  std::unique_ptr<PolygonRVEMaterial> m;
+  std::unique_ptr<RVE>                a, b;
+  const Tensor2                       F = {
+                          {{1.006, 0.004}, {-0.003, 0.995}}
+  };
+  const PetscReal th = 0.5;
+  const Tensor2   R  = {
+       {{std::cos(th), -std::sin(th)}, {std::sin(th), std::cos(th)}}
+  };
+  MaterialResponse r, rr;
+  PetscFunctionBeginUser;
+  PetscCall(MakePoint(kGlued, &m, &a));
+  PetscCall(CreatePoint(*m, &b));
+  PetscCall(Eval(*a, F, &r));
+  PetscCall(Eval(*b, R * F, &rr));
+  const Tensor2 Rt = {
+    {{R(0, 0), R(1, 0)}, {R(0, 1), R(1, 1)}}
+  };
+  const Tensor2   rot = R * r.sigma * Rt;
+  const PetscReal d   = Diff(rr.sigma, rot);
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "3. glued Voronoi RVE rotated by %.2f rad: |sigma(R F) - R sigma(F) R^T| / |sigma| = %.2e\n", (double)th, (double)d));
+  TG_CHECK(d < 1e-8, "the stress is not objective (%.2e)", (double)d);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 4. Exact tangents against central differences of tightly relaxed RVEs (bars, hinges and glue:
+   with turgor in the cells too the two differ by 2e-4 of the largest entry, at any difference
+   step and Krylov tolerance -- not yet explained, so not claimed here). */
+static PetscErrorCode ExactVsCentral()
+{
+  std::unique_ptr<PolygonRVEMaterial> m, tight;
+  std::unique_ptr<RVE>                exact, ref;
+  const Tensor2                       F = {
+                          {{1.004, 0.003}, {-0.002, 0.998}}
+  };
+  MaterialResponse r, rr, status;
+  Tangents         De, Dc;
+  TangentOptions   opt;
+  PetscFunctionBeginUser;
+  const std::string opts = std::string(kGlued) + " -physics bars,hinges,glue";
+  PetscCall(MakePoint(opts.c_str(), &m, &exact));
+  PetscCall(MakePoint((opts + " -rve_psi_atol 1e-14 -rve_psi_steptol 1e-14").c_str(), &tight, &ref));
+  PetscCall(Eval(*exact, F, &r));
+  opt.method    = TangentMethod::Implicit;
+  opt.viscosity = false;
+  PetscCall(ComputeTangents(*exact, F, Tensor2::Zero(), r, opt, &De, &status));
+  TG_CHECK(status.ok, "exact tangents failed: %s", status.reason.c_str());
+  PetscCall(Eval(*ref, F, &rr));
+  opt.method = TangentMethod::Central;
+  opt.U      = 1e-13;
+  PetscCall(ComputeTangents(*ref, F, Tensor2::Zero(), rr, opt, &Dc, &status));
+  TG_CHECK(status.ok, "central tangents failed: %s", status.reason.c_str());
+  PetscReal d = 0, scale = 0;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) d = std::max(d, std::fabs(De.De[i][j] - Dc.De[i][j])), scale = std::max(scale, std::fabs(Dc.De[i][j]));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "4. glued Voronoi RVE: D^e exact vs central differences %.2e of its largest entry (C11 %.6g, C22 %.6g, C12 %.6g, C33 %.6g N/m)\n",
+                        (double)(d / scale), (double)Dc.De[0][0], (double)Dc.De[1][1], (double)Dc.De[0][1], (double)Dc.De[2][2]));
+  TG_CHECK(d < 1e-6 * scale, "exact tangents differ from central differences (%.2e)", (double)(d / scale));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* 5. Glue that breaks: a stretch far past the bonds' strength, evaluated and rejected, leaves no
+   trace (back at the reference the prestress is the first one, to the relaxation's tolerance);
+   accepted, its broken bonds stay broken (back at the reference the tissue is another). */
+static PetscErrorCode History()
+{
+  std::unique_ptr<PolygonRVEMaterial> m;
+  std::unique_ptr<RVE>                rejected, accepted;
+  const Tensor2                       F = {
+                          {{1.03, 0.0}, {0.0, 1.0}}
+  };
+  MaterialResponse r0, r1, r2, r3, r4;
+  PetscFunctionBeginUser;
+  PetscCall(MakePoint((std::string(kGlued) + " -glue_law softening -glue_strength 2 -glue_fracture_energy 0.02").c_str(), &m, &rejected));
+  PetscCall(CreatePoint(*m, &accepted));
+  PetscCall(Eval(*rejected, Tensor2::Identity(), &r0));
+  PetscCall(rejected->Commit());
+  PetscCall(Eval(*rejected, F, &r1));
+  PetscCall(rejected->Revert());
+  PetscCall(Eval(*rejected, Tensor2::Identity(), &r2));
+  PetscCall(Eval(*accepted, Tensor2::Identity(), &r3));
+  PetscCall(accepted->Commit());
+  PetscCall(Eval(*accepted, F, &r3));
+  PetscCall(accepted->Commit()); /* the bonds past their strength break here */
+  PetscCall(Eval(*accepted, Tensor2::Identity(), &r4));
+  PetscCall(
+    PetscPrintf(PETSC_COMM_SELF,
+                "5. glue softening, stretched 3%%: sigma11 %.6g N/m; back at rest %.8g N/m (rejected: %.2e from the first %.8g), %.8g (accepted: %.2e)\n",
+                (double)r1.sigma(0, 0), (double)r2.sigma(0, 0), (double)Diff(r2.sigma, r0.sigma), (double)r0.sigma(0, 0), (double)r4.sigma(0, 0),
+                (double)Diff(r4.sigma, r0.sigma)));
+  TG_CHECK(Diff(r2.sigma, r0.sigma) < 1e-8, "a rejected step left a trace: %.3e", (double)Diff(r2.sigma, r0.sigma));
+  TG_CHECK(Diff(r4.sigma, r0.sigma) > 1e-3, "accepted breaks left the tissue as it was (%.3e)", (double)Diff(r4.sigma, r0.sigma));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(TurgorRegisterAll());
+  PetscCall(Periodicity());
+  PetscCall(LatticeSymmetry());
+  PetscCall(Objectivity());
+  PetscCall(ExactVsCentral());
+  PetscCall(History());
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_polygon_rve: all checks passed\n"));
+  PetscCall(PetscFinalize());
+  return 0;
+}
