@@ -1,4 +1,6 @@
 #include <turgor/modes/strain_path_run.h>
+#include <turgor/material/acoustic_tensor.h>
+#include <limits>
 #include <cmath>
 
 namespace turgor {
@@ -86,7 +88,7 @@ PetscErrorCode StrainPathRun::Solve()
   std::vector<std::string> cols = {"time", "F11", "F12", "F21", "F22", "Fdot11", "Fdot12", "Fdot21", "Fdot22", "s11", "s12", "s21", "s22", "rho"};
   for (const char *m : {"De", "Dv"})
     for (const char *ij : {"11_11", "11_22", "11_12", "22_11", "22_22", "22_12", "12_11", "12_22", "12_12"}) cols.push_back(std::string(m) + ij);
-  for (const char *c : {"iterations", "residual", "ok"}) cols.push_back(c);
+  for (const char *c : {"acoustic_min_det", "acoustic_angle", "iterations", "residual", "ok"}) cols.push_back(c);
   if (rank == 0) PetscCall(csv_.Open(PETSC_COMM_SELF, OutputPath("rve.csv"), cols));
   PetscCall(PetscTime(&t0));
   for (PetscInt k = 0; k <= steps_; k++) {
@@ -116,7 +118,17 @@ PetscErrorCode StrainPathRun::Solve()
     std::vector<PetscReal> row = {t, F(0, 0), F(0, 1), F(1, 0), F(1, 1), Fd(0, 0), Fd(0, 1), Fd(1, 0), Fd(1, 1), s(0, 0), s(0, 1), s(1, 0), s(1, 1), r.rho};
     for (int i = 0; i < 9; i++) row.push_back(D.De[i / 3][i % 3]);
     for (int i = 0; i < 9; i++) row.push_back(D.Dv[i / 3][i % 3]);
-    row.insert(row.end(), {(PetscReal)r.iterations, r.residual, r.ok ? 1.0 : 0.0});
+    /* material stability along the path: min over directions of det Q(n) (loss of ellipticity at <= 0) */
+    AcousticMinimum am = {std::numeric_limits<PetscReal>::quiet_NaN(), std::numeric_limits<PetscReal>::quiet_NaN()};
+    if (r.ok && tangents_) {
+      am = MinAcousticDeterminant(D.De, r.sigma);
+      if (!(am.det > 0) && ellipticity_lost_ < 0) {
+        ellipticity_lost_ = t;
+        PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %g µs: loss of ellipticity: min det Q(n) = %g (N/m)^2 at n = %.1f degrees\n", (double)t, (double)am.det,
+                              (double)(am.angle * 180 / PETSC_PI)));
+      }
+    }
+    row.insert(row.end(), {am.det, am.angle, (PetscReal)r.iterations, r.residual, r.ok ? 1.0 : 0.0});
     PetscCall(csv_.Row(row));
     if (r.ok)
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n",
@@ -140,6 +152,7 @@ PetscErrorCode StrainPathRun::AddSummary(JsonObject &js)
   js.Set("failures", failures_);
   js.Set("wall_time_s", wall_);
   js.Set("max_stress_asymmetry", max_asymmetry_);
+  if (tangents_) js.Set("ellipticity_lost_at", ellipticity_lost_); /* the first t with min det Q <= 0; -1: never */
   /* the last evaluation that succeeded: a failed one has no stress */
   js.Set("sigma_final", std::vector<PetscReal>{last_.sigma(0, 0), last_.sigma(0, 1), last_.sigma(1, 0), last_.sigma(1, 1)});
   js.Set("rho_final", last_.rho);

@@ -14,7 +14,7 @@ static const char *const kLaws[] = {"energy", "strength", "softening"};
 PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscInt  e  = (PetscInt)law;
-  PetscBool oc = open_cells ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool oc = open_cells ? PETSC_TRUE : PETSC_FALSE, cp = compression ? PETSC_TRUE : PETSC_FALSE;
   BoxOption unbonded(unbonded_box);
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "glue_", "Glue bonds between polygonal cells, and their fracture", "turgor");
@@ -33,6 +33,9 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscCall(TurgorOptionsReal(ctx.params, "-shear_strength", "tau_c, shear strength [N/m] (law strength); negative: sigma_c sqrt(k_t/k_n)", "Glue",
                               shear_strength, &shear_strength, NULL));
   PetscCall(TurgorOptionsBool(ctx.params, "-open_cells", "Glue open cells (plates, walls) too", "Glue", oc, &oc, NULL));
+  PetscCall(TurgorOptionsBool(ctx.params, "-compression",
+                              "An intact bond also resists closing, with k_n (the lamella carries compression; damage still grows in opening only)", "Glue", cp,
+                              &cp, NULL));
   PetscCall(TurgorOptionsReal(ctx.params, "-start_time",
                               "The bonds are made at the first accepted state at or after this time [µs] (0: the first evaluation, the reference geometry)",
                               "Glue", start_time, &start_time, NULL));
@@ -40,8 +43,9 @@ PetscErrorCode Glue::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
                                    unbonded.value, &unbonded.n, &unbonded.set));
   PetscOptionsEnd();
   PetscCall(unbonded.Take(comm, "-glue_unbonded_box", BoxShape::MayBeFlat, unbonded_box, &has_unbonded_box));
-  law        = (Law)e;
-  open_cells = oc;
+  law         = (Law)e;
+  open_cells  = oc;
+  compression = cp;
   PetscCheck(std::isfinite(start_time) && start_time >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_start_time = %g: must be finite and >= 0",
              (double)start_time);
   PetscCheck(std::isfinite(distance) && distance >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -glue_distance = %g: must be finite and >= 0", (double)distance);
@@ -319,11 +323,12 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
       Commit(in, k, dnp, dt);
       continue;
     }
+    const PetscReal dnf = compression ? dn : dnp; /* the normal force's opening: closing too with -glue_compression */
     if (MODE == 3) {
-      E += (1 - D) * B.L * 0.5 * (kn * dnp * dnp + kt * dt * dt);
+      E += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
       continue;
     }
-    const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnp, Ft = s * kt * dt;
+    const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnf, Ft = s * kt * dt;
     const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
     push_[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
   }

@@ -111,6 +111,15 @@ PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<Poly
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscInt PeriodicCell::InvertedCell(const PetscReal *x) const
+{
+  const ParticleSet &P = tissue_.particles;
+  if (!HasHalo()) return -1;
+  for (size_t c = 0; c < P.OwnedPolygons(); c++)
+    if (!P.polygons[c].open && !(PolygonArea(P.polygons[c].nodes, x) > 0)) return (PetscInt)c;
+  return -1;
+}
+
 void PeriodicCell::ReturnHaloForces(PetscReal *f) const
 {
   const PetscInt N = tissue_.particles.NumOwned();
@@ -124,12 +133,13 @@ bool PeriodicCell::Admissible(const PetscReal *x, const Tensor2 &F, const Period
     *why = "the relaxed RVE has fluid particles outside their cell (a wall was crossed)";
     return FluidInsideCells(x, images);
   }
-  const ParticleSet &P = tissue_.particles;
-  for (size_t c = 0; c < P.OwnedPolygons(); c++)
-    if (!P.polygons[c].open && !(PolygonArea(P.polygons[c].nodes, x) > 0)) {
-      *why = "cell " + std::to_string(c) + " of the RVE is inverted (area " + std::to_string(PolygonArea(P.polygons[c].nodes, x)) + " µm^2)";
-      return false;
-    }
+  const ParticleSet &P        = tissue_.particles;
+  const PetscInt     inverted = InvertedCell(x);
+  if (inverted >= 0) {
+    *why = "cell " + std::to_string((long long)inverted) + " of the RVE is inverted (area " + std::to_string(PolygonArea(P.polygons[inverted].nodes, x)) +
+           " µm^2)";
+    return false;
+  }
   /* an image left out of the halo was farther than reach + margin from every cell: now it is at
      least s_min(F) (reach + margin) - 2 max |x - F X| away (s_min the smaller singular value of F) */
   const PetscReal tr = F(0, 0) * F(0, 0) + F(0, 1) * F(0, 1) + F(1, 0) * F(1, 0) + F(1, 1) * F(1, 1), det = F.Det();

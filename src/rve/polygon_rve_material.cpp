@@ -11,6 +11,7 @@ PetscErrorCode PolygonRVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *
   PetscCall(poly.SetFromOptions(comm, true, params));
   PetscCheck(!poly.has_cut_box, comm, PETSC_ERR_ARG_INCOMP, "Option -tissue_cut_box: a periodic RVE (-material polygon_rve) has no notch to cut");
   PetscCheck(!poly.plates.Any(), comm, PETSC_ERR_ARG_INCOMP, "Option -tissue_plates: a periodic RVE (-material polygon_rve) has no sides for plates");
+  spec.psi_rule = PseudoStepRule::SER; /* contact and glue are piecewise: the seed's schedule overshoots their kinks */
   PetscCall(spec.SetFromOptions(comm, params));
   physics.names      = {"bars", "hinges", "pressure", "contact", "glue"};
   physics.with_loads = false; /* the body force is a load on the coarse model, not part of the material */

@@ -58,9 +58,45 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
     /* the pseudo steps and the warm Newton iterations share one LU factor of J, kept here */
     PetscCall(FactorAsPC(pc));
   }
+  if (spec.psi_rule == PseudoStepRule::SER) { /* a pseudo step that leaves the forces' domain (an inverted cell) is taken again at a quarter of it */
+    SNES snes;
+    PetscCall(TSGetSNES(ts_, &snes));
+    PetscCall(TSSetMaxSNESFailures(ts_, -1));
+    PetscCall(TSPseudoSetVerifyTimeStep(ts_, VerifyStep, this));
+    PetscCall(SNESSetComputeInitialGuess(snes, StartFromAccepted, this));
+  }
   PetscCall(BuildJacobianPattern());
   PetscCall(TSSetFromOptions(ts_));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A pseudo step is taken again (TSPSEUDO retries at the dt set here) if its state is outside the
+   forces' domain: the residual there is not finite. */
+PetscErrorCode RVERelaxation::VerifyStep(TS ts, Vec W, void *ctx, PetscReal *dt, PetscBool *ok)
+{
+  return TURGOR_GUARDED({
+    RVERelaxation *rx = (RVERelaxation *)ctx;
+    PetscReal      res, step;
+    PetscFunctionBeginUser;
+    PetscCall(rx->eq_->ResidualNorm(W, rx->R_, &res));
+    PetscCall(TSGetTimeStep(ts, &step));
+    *ok = std::isfinite(res) ? PETSC_TRUE : PETSC_FALSE;
+    if (!*ok) *dt = 0.25 * step;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
+}
+
+/* Every pseudo step's Newton start is the last accepted state (a retried step's too: PETSc 3.18's
+   TSPSEUDO would start it from the rejected one). */
+PetscErrorCode RVERelaxation::StartFromAccepted(SNES snes, Vec W, void *ctx)
+{
+  return TURGOR_GUARDED({
+    Vec accepted;
+    PetscFunctionBeginUser;
+    PetscCall(TSGetSolution(((RVERelaxation *)ctx)->ts_, &accepted));
+    PetscCall(VecCopy(accepted, W));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  });
 }
 
 /* TSPSEUDO's F(W, Wdot) = Wdot + G(W); a non-finite force (a crossed wall) is outside the domain. */
@@ -283,7 +319,8 @@ PetscErrorCode RVERelaxation::PatternStale(PetscBool *stale)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The seed's schedule: delta_0, then delta <- increment x delta (capped). */
+/* The seed's schedule: delta_0, then delta <- increment x delta (capped); or switched evolution
+   relaxation (RVESpec::psi_rule), the growth limited by the residual's last reduction. */
 PetscErrorCode RVERelaxation::PseudoStep(TS ts, PetscReal *dt, void *ctx)
 {
   return TURGOR_GUARDED({
@@ -292,7 +329,9 @@ PetscErrorCode RVERelaxation::PseudoStep(TS ts, PetscReal *dt, void *ctx)
     PetscFunctionBeginUser;
     PetscCall(TSGetStepNumber(ts, &step));
     PetscCall(TSGetTimeStep(ts, dt));
-    if (step > 0) *dt = PetscMin(rx->spec_->psi_increment * *dt, rx->spec_->psi_dt_max);
+    PetscReal growth = rx->spec_->psi_increment;
+    if (rx->spec_->psi_rule == PseudoStepRule::SER && rx->res_now_ > rx->res_before_) growth = rx->res_before_ / rx->res_now_;
+    if (step > 0) *dt = PetscMin(growth * *dt, rx->spec_->psi_dt_max);
     PetscFunctionReturn(PETSC_SUCCESS);
   });
 }
@@ -330,6 +369,8 @@ PetscErrorCode RVERelaxation::PostStep(TS ts)
     PetscCall(TSGetApplicationContext(ts, &rx));
     PetscCall(TSGetSolution(ts, &W));
     PetscCall(rx->eq_->ResidualNorm(W, rx->R_, &res));
+    rx->res_before_ = rx->res_now_;
+    rx->res_now_    = res;
     PetscCall(VecAXPY(rx->Wprev_, -1.0, W));
     PetscCall(VecNorm(rx->Wprev_, NORM_2, &step));
     PetscCall(TSGetConvergedReason(ts, &reason));
@@ -358,6 +399,7 @@ PetscErrorCode RVERelaxation::Cold(Vec W, MaterialResponse *out)
   }
   PetscCall(PatternStale(&stale));
   if (stale) PetscCall(BuildJacobianPattern());
+  res_before_ = res_now_ = res;
   PetscCall(TSSetTime(ts_, 0));
   PetscCall(TSSetStepNumber(ts_, 0));
   PetscCall(TSSetTimeStep(ts_, spec_->psi_dt0));

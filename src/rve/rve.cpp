@@ -6,8 +6,8 @@ namespace turgor {
 
 PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
-  const char *const modes[] = {"relaxed", "cauchy_born", "frozen"};
-  PetscInt          m       = (PetscInt)relax;
+  const char *const modes[] = {"relaxed", "cauchy_born", "frozen"}, *const rules[] = {"seed", "ser"};
+  PetscInt m = (PetscInt)relax, r = (PetscInt)psi_rule;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "rve_", "RVE material point (TW 562 §3.2)", "turgor");
   PetscCall(TurgorOptionsInt(params, "-cells", "Cells per side of the periodic RVE", "RVESpec", cells, &cells, NULL));
@@ -20,8 +20,13 @@ PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscCall(TurgorOptionsReal(params, "-psi_atol", "Stop when ||G|| < atol (scaled forces)", "RVESpec", psi_atol, &psi_atol, NULL));
   PetscCall(TurgorOptionsReal(params, "-psi_steptol", "Stop when ||step|| < steptol (scaled displacements)", "RVESpec", psi_steptol, &psi_steptol, NULL));
   PetscCall(TurgorOptionsReal(params, "-warm_dt0", "Pseudo time step of warm solves (from a previous solution)", "RVESpec", warm_dt0, &warm_dt0, NULL));
+  PetscCall(TurgorOptionsEList(params, "-psi_rule",
+                               "Pseudo step growth: seed (delta <- increment x delta) or ser (delta x min(increment, ||G_prev|| / ||G||): shrinks when the "
+                               "residual grows)",
+                               "RVESpec", rules, 2, rules[r], &r, NULL));
   PetscOptionsEnd();
-  relax = (RelaxationMode)m;
+  relax    = (RelaxationMode)m;
+  psi_rule = (PseudoStepRule)r;
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_cells = %" PetscInt_FMT ": must be >= 1", cells);
   PetscCheck(max_it >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -rve_max_it = %" PetscInt_FMT ": must be >= 1", max_it);
   PetscCheck(psi_dt0 > 0 && warm_dt0 > 0 && psi_increment >= 1 && psi_dt_max > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,

@@ -28,8 +28,11 @@ PetscErrorCode PeriodicPolygonSpec::SetFromOptions(MPI_Comm comm, ParameterList 
   PetscCall(PetscOptionsReal("-halo_margin",
                              "Distance [µm] beyond the interactions' reach within which periodic images of cells are kept (0: half the cell size)",
                              "PeriodicPolygonSpec", halo_margin, &halo_margin, NULL));
+  PetscCall(TurgorOptionsReal(params, "-gap", "Gap [µm] between neighbouring cells' bar surfaces (a middle lamella; 0: touching at 2 r)", "PeriodicPolygonSpec",
+                              gap, &gap, NULL));
   PetscOptionsEnd();
   lattice = (PeriodicLattice)l;
+  PetscCheck(std::isfinite(gap) && gap >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -prve_gap = %g: must be finite and >= 0", (double)gap);
   PetscCheck(std::isfinite(halo_margin) && halo_margin >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -prve_halo_margin = %g: must be finite and >= 0",
              (double)halo_margin);
   if (halo_margin == 0) halo_margin = 0.5 * cell_size;
@@ -105,7 +108,7 @@ PetscErrorCode PeriodicPolygonRings(MPI_Comm comm, const PeriodicPolygonSpec &sp
   rings->assign(K, PolygonRing());
   const PetscReal min_edge = std::max(bar_radius, 1e-9 * a);
   for (size_t k = 0; k < K; k++) {
-    ShrinkPowerCell(cells[k], bar_radius, min_edge, &(*rings)[k].points);
+    ShrinkPowerCell(cells[k], bar_radius + 0.5 * spec.gap, min_edge, &(*rings)[k].points);
     PetscCheck((*rings)[k].points.size() >= 3, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "Option -tissue_bar_radius = %g: periodic cell %zu vanishes when shrunk by the bar radius (-prve_cell_size %g); use a smaller radius or larger "
                "cells",

@@ -30,6 +30,7 @@ private:
   PetscInt         failures_ = 0;
   MaterialResponse last_; /* the last evaluation that succeeded */
   PetscReal        t_last_ = 0, max_asymmetry_ = 0, wall_ = 0;
+  PetscReal        ellipticity_lost_ = -1; /* the first t whose tangent lost ellipticity; -1: none */
   std::string      first_failure_;
 
   PetscErrorCode AddSummary(JsonObject &js) override;

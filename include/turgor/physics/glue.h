@@ -27,6 +27,9 @@
                dissipated once the largest opening is l is G_c (l - l_0) / (l_f - l_0) per length (the integral of
                (1/2) k_n l^2 dD, whose integrand is constant), counted exactly whatever the time step: G_c per unit
                length at the break, whatever the node spacing.
+   With -glue_compression an intact bond also resists closing, F_n = (1 - D) L k_n delta_n for delta_n < 0
+   (the lamella carries compression; damage grows with opening only): the law is then smooth through
+   zero opening, where a turgid tissue at rest sits, which an implicit solve (a polygon RVE) needs.
    Internal state (damage, the intact flag) changes only in AcceptStep, at the accepted state; an
    evaluation uses the damage its own opening would give (the trial value), never commits it. A
    broken bond stays in the list, flagged: nothing but a break removes a bond, so created = intact +
@@ -92,6 +95,7 @@ public:
   PetscReal strength             = -1;    /* sigma_c [N/m]; < 0: sqrt(2 G_c k_n), where the energy law breaks in opening */
   PetscReal shear_strength       = -1;    /* tau_c [N/m]; < 0: sigma_c sqrt(k_t / k_n) */
   bool      open_cells           = false; /* glue open cells (plates, walls) too */
+  bool      compression          = false; /* -glue_compression: an intact bond resists closing too (k_n; no damage from it) */
   PetscReal start_time           = 0;     /* bonds made at the first evaluation (0), or at the first accepted state at or after this time [µs] */
   bool      has_unbonded_box     = false; /* -glue_unbonded_box: no bond whose bond point is inside (a pre-crack, a notch) */
   PetscReal unbonded_box[4]      = {0, 0, 0, 0};

@@ -44,6 +44,9 @@ public:
   void Deform(const Tensor2 &F, const Tensor2 &Fdot, PetscReal *x, PetscReal *v) const;
   /* x = F X + L w for the free particles (the others keep their x; the halo follows its owners). */
   void Place(const Tensor2 &F, const PetscScalar *w, PetscReal *x) const;
+  /* Polygons: the first owned closed cell whose area at x is not positive, or -1 (always -1 for the
+     square grid, whose fluid keeps its cells open). */
+  PetscInt InvertedCell(const PetscReal *x) const;
   /* f[owner] += f[image] for the halo (its forces are its owners'); nothing without a halo. */
   void ReturnHaloForces(PetscReal *f) const;
   /* Can the relaxed state at F be the tissue's? Square grid: every fluid particle inside its own
@@ -55,6 +58,7 @@ public:
      every local polygon (owned: itself; an image: its owner's). */
   bool                         HasHalo() const { return !halo_owner_.empty(); }
   const std::vector<PetscInt> &PolygonOwner() const { return polygon_owner_; }
+  PetscInt                     ParticleOwner(PetscInt i) const { return i < tissue_.particles.NumOwned() ? i : halo_owner_[i - tissue_.particles.NumOwned()]; }
   PetscReal                    Reach() const { return reach_; }
 
 private:

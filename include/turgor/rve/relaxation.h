@@ -51,6 +51,8 @@ private:
   static PetscErrorCode PseudoStep(TS ts, PetscReal *dt, void *ctx);
   static PetscErrorCode PreStep(TS ts);
   static PetscErrorCode PostStep(TS ts);
+  static PetscErrorCode VerifyStep(TS ts, Vec W, void *ctx, PetscReal *dt, PetscBool *ok);
+  static PetscErrorCode StartFromAccepted(SNES snes, Vec W, void *ctx);
 
   PetscErrorCode        BuildJacobianPattern(const std::vector<std::vector<PetscInt>> *given = nullptr); /* given: these columns, not the lists' */
   PetscErrorCode        PatternStale(PetscBool *stale);
@@ -72,8 +74,9 @@ private:
   Mat                                factor_           = nullptr; /* LU of J, for the pseudo steps and the warm solves */
   PetscObjectState                   factor_state_     = -1;      /* J's state when factor_ was computed */
   PetscInt                           pattern_rebuilds_ = -1;
-  std::vector<std::vector<PetscInt>> pattern_cols_;      /* columns of each unknown pair in J_ */
-  bool                               have_K_    = false; /* K_ holds G' of a recent state */
+  std::vector<std::vector<PetscInt>> pattern_cols_;                 /* columns of each unknown pair in J_ */
+  bool                               have_K_     = false;           /* K_ holds G' of a recent state */
+  PetscReal                          res_before_ = 0, res_now_ = 0; /* ||G|| of the cold solve's last two states (PseudoStepRule::SER) */
   PetscInt                           jacobians_ = 0;
   /* DeclareState's view of the pattern and of G' and J's values (this rank's rows, in row order) */
   std::vector<std::vector<PetscInt>> saved_pattern_;

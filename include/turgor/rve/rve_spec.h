@@ -15,6 +15,15 @@ enum class RelaxationMode {
   Frozen
 };
 
+/* How the pseudo time step grows (eq 28): the seed's geometric schedule delta <- increment x delta, or
+   switched evolution relaxation, delta <- delta x min(increment, ||G_prev|| / ||G||), which shrinks
+   the step when the residual grows (the polygon cells' contact and glue are piecewise: a Newton
+   step across their kinks can overshoot). */
+enum class PseudoStepRule {
+  Seed,
+  SER
+};
+
 struct RVESpec {
   PetscInt       cells   = 1; /* cells per side of the periodic RVE */
   RelaxationMode relax   = RelaxationMode::Relaxed;
@@ -22,6 +31,7 @@ struct RVESpec {
   PetscReal      psi_dt0 = 1e-2, psi_increment = 10, psi_dt_max = 1e12;
   PetscReal      psi_atol = 1e-12, psi_steptol = 1e-12; /* stop at ||G|| < atol or ||step|| < steptol */
   PetscReal      warm_dt0 = 1e4;                        /* pseudo step of warm (modified Newton) solves */
+  PseudoStepRule psi_rule = PseudoStepRule::Seed;
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
