@@ -141,7 +141,9 @@ static PetscErrorCode TestShares()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode TestGradient()
+/* Forces are -dE/dx (central differences) with no net force or torque: the right cell opened, slid
+   and bent; with -glue_compression closed instead (the bonds then push). */
+static PetscErrorCode TestGradient(bool compression)
 {
   PetscFunctionBeginUser;
   const PetscReal W = 10, r = 0.25;
@@ -153,13 +155,14 @@ static PetscErrorCode TestGradient()
   std::vector<std::unique_ptr<ForceTerm>> terms;
   auto                                    g = MakeGlue(Glue::ENERGY, 1e3, 400, 1e6); /* never breaks here */
   PetscCall(Configure(*g));
+  g->compression = compression;
   terms.push_back(std::move(g));
   PetscCall(MakeModel(T.particles, std::move(terms), M, 0.2));
   std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f(x.size());
   PetscCall(M.ComputeForces(x.data(), v.data(), f.data(), NULL)); /* the bonds, at the reference */
   turgor_test::Random rnd(5);
   for (PetscInt i = 0; i < T.particles.n; i++) { /* open, slide and bend the right cell */
-    if (x[2 * i] > W) x[2 * i] += 0.02 + 0.01 * x[2 * i + 1] / W, x[2 * i + 1] += 0.015;
+    if (x[2 * i] > W) x[2 * i] += (compression ? -1 : 1) * (0.02 + 0.01 * x[2 * i + 1] / W), x[2 * i + 1] += 0.015;
     x[2 * i] += 0.003 * rnd(), x[2 * i + 1] += 0.003 * rnd();
   }
   PetscCall(M.ComputeForces(x.data(), v.data(), f.data(), NULL));
@@ -176,8 +179,8 @@ static PetscErrorCode TestGradient()
     fmax = std::max(fmax, std::fabs(f[q]));
   }
   for (PetscInt i = 0; i < T.particles.n; i++) sx += f[2 * i], sy += f[2 * i + 1], tq += x[2 * i] * f[2 * i + 1] - x[2 * i + 1] * f[2 * i];
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "gradient: max |f + dE/dx| = %.3e (max |f| %.4g), sum f = (%.2e, %.2e), torque %.2e\n", (double)err, (double)fmax,
-                        (double)sx, (double)sy, (double)tq));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "gradient (%s): max |f + dE/dx| = %.3e (max |f| %.4g), sum f = (%.2e, %.2e), torque %.2e\n",
+                        compression ? "closed, -glue_compression" : "opened", (double)err, (double)fmax, (double)sx, (double)sy, (double)tq));
   TG_CHECK(fmax > 1 && err < 1e-6 * fmax, "glue forces differ from -dE/dx");
   TG_CHECK(std::fabs(sx) < 1e-12 * fmax && std::fabs(sy) < 1e-12 * fmax && std::fabs(tq) < 1e-10 * fmax * W, "glue forces carry a net force or torque");
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -304,7 +307,8 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(TurgorRegisterAll());
   PetscCall(TestShares());
-  PetscCall(TestGradient());
+  PetscCall(TestGradient(false));
+  PetscCall(TestGradient(true));
   PetscCall(TestBreaks());
   PetscCall(TestWorkOfSeparation());
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "all glue checks passed\n"));
