@@ -3,7 +3,8 @@ static const char help[] = "Polygon RVE material (-material polygon_rve): period
                            " 2. lattice symmetry: the turgor prestress of square and hexagonal lattices in contact is isotropic;\n"
                            " 3. objectivity sigma(R F) = R sigma(F) R^T of a glued Voronoi RVE;\n"
                            " 4. exact tangents (implicit differentiation) against central differences;\n"
-                           " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace.\n";
+                           " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace;\n"
+                           " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0.\n";
 #include "test_util.h"
 #include <turgor/rve/polygon_rve_material.h>
 
@@ -195,6 +196,39 @@ static PetscErrorCode History()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* 6. The closed form of the square lattice (docs/model.md): square cells of side s (one bar per wall,
+   corner nodes only) a period a apart, glued across a gap with a law linear through zero opening.
+   Stretched along x, the horizontal walls (two per period, bars of stiffness k_b) and the vertical
+   interface (glue k_n over its length s) are in series: C11 = 1 / (1/(2 k_b) + 1/(k_n s)); the
+   angles do not change (no hinge moment) and nothing acts along y, C12 = 0; by symmetry C22 = C11. */
+static PetscErrorCode SquareLatticeClosedForm()
+{
+  const PetscReal a = 20, r = 0.5, g = 0.05, kb = 2e4, kn = 1e4, s = a - 2 * r - g, C = 1 / (1 / (2 * kb) + 1 / (kn * s));
+  PetscFunctionBeginUser;
+  for (PetscInt K : {1, 4}) {
+    std::unique_ptr<PolygonRVEMaterial> m;
+    std::unique_ptr<RVE>                rve;
+    MaterialResponse                    r0, status;
+    Tangents                            D;
+    TangentOptions                      opt;
+    const std::string opts = "-physics bars,hinges,glue -prve_lattice square -prve_cell_size 20 -prve_gap 0.05 -tissue_bar_radius 0.5 -bar_stiffness 2e4 "
+                             "-glue_normal_stiffness 1e4 -glue_compression -glue_law energy -glue_fracture_energy 1e6 -prve_cells " +
+                             std::to_string((long long)K);
+    PetscCall(MakePoint(opts.c_str(), &m, &rve));
+    PetscCall(Eval(*rve, Tensor2::Identity(), &r0));
+    opt.method    = TangentMethod::Implicit;
+    opt.viscosity = false;
+    PetscCall(ComputeTangents(*rve, Tensor2::Identity(), Tensor2::Zero(), r0, opt, &D, &status));
+    TG_CHECK(status.ok, "tangents failed: %s", status.reason.c_str());
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "6. square lattice, %" PetscInt_FMT " cells: C11 %.10g, C22 %.10g (closed form %.10g), C12 %.2e, C21 %.2e N/m\n", K,
+                          (double)D.De[0][0], (double)D.De[1][1], (double)C, (double)D.De[0][1], (double)D.De[1][0]));
+    TG_CHECK_CLOSE(D.De[0][0], C, 1e-8, 0, "C11 against the closed form");
+    TG_CHECK_CLOSE(D.De[1][1], C, 1e-8, 0, "C22 against the closed form");
+    TG_CHECK(std::fabs(D.De[0][1]) < 1e-8 * C && std::fabs(D.De[1][0]) < 1e-8 * C, "C12 = %g, C21 = %g: must vanish", (double)D.De[0][1], (double)D.De[1][0]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
@@ -205,6 +239,7 @@ int main(int argc, char **argv)
   PetscCall(Objectivity());
   PetscCall(ExactVsCentral());
   PetscCall(History());
+  PetscCall(SquareLatticeClosedForm());
   PetscCall(PetscOptionsClear(NULL));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_polygon_rve: all checks passed\n"));
   PetscCall(PetscFinalize());
