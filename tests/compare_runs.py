@@ -27,6 +27,9 @@
   compare_runs.py contains DIR KEY TEXT...   every TEXT is one of the entries of the list summary.json[KEY]
   compare_runs.py notmore A_DIR B_DIR KEY RELTOL  summary.json[KEY] of A is at most (1 + RELTOL) x B's (strictly
                                              less when RELTOL < 0)
+  compare_runs.py pathtangent DIR RELTOL      rve.csv: the stress change from row 0 to row 1 is the row-0
+                                             tangent's prediction, D^e [d11, d22, 2 d12] + l s + s l^T - tr(l) s
+                                             (its Truesdell rate; l = dF F^-1), within RELTOL of |change|
   compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
                                              CSV[ROW][NAME] (minus CSV[BASE_ROW][NAME]) is EXPECTED
                                              within RELTOL (relative); ROW -1 is the last row
@@ -209,6 +212,28 @@ def main(argv):
         print(f"{argv[2]}: {name}[{row}]{' - ' + name + '[' + argv[7] + ']' if len(argv) > 7 else ''} = {value:.8g}, expected {expected:.8g} (relative error {err:.2e})")
         if not err <= tol:
             sys.exit(f"FAIL: above {tol}")
+    elif mode == "pathtangent":
+        r0, r1 = list(csv.DictReader(open(f"{argv[2]}/rve.csv")))[:2]
+        g = lambda r, k: float(r[k])
+        F0 = [[g(r0, "F11"), g(r0, "F12")], [g(r0, "F21"), g(r0, "F22")]]
+        det = F0[0][0] * F0[1][1] - F0[0][1] * F0[1][0]
+        Fi = [[F0[1][1] / det, -F0[0][1] / det], [-F0[1][0] / det, F0[0][0] / det]]
+        dF = [[g(r1, f"F{i}{j}") - g(r0, f"F{i}{j}") for j in (1, 2)] for i in (1, 2)]
+        l = [[sum(dF[i][k] * Fi[k][j] for k in range(2)) for j in range(2)] for i in range(2)]
+        s = [[g(r0, "s11"), g(r0, "s12")], [g(r0, "s21"), g(r0, "s22")]]
+        d = [l[0][0], l[1][1], l[0][1] + l[1][0]]  # d11, d22, 2 d12
+        tr = l[0][0] + l[1][1]
+        pred, meas = [], []
+        for row, (i, j) in zip(("11", "22", "12"), ((0, 0), (1, 1), (0, 1))):
+            De = sum(g(r0, f"De{row}_{c}") * d[k] for k, c in enumerate(("11", "22", "12")))
+            rot = sum(l[i][k] * s[k][j] + s[i][k] * l[j][k] for k in range(2)) - tr * s[i][j]
+            pred.append(De + rot)
+            meas.append(g(r1, f"s{i + 1}{j + 1}") - g(r0, f"s{i + 1}{j + 1}"))
+        scale = max(abs(m) for m in meas)
+        err = max(abs(p - m) for p, m in zip(pred, meas)) / scale
+        print(f"stress change (11, 22, 12) {[f'{m:.6g}' for m in meas]}, tangent's prediction {[f'{p:.6g}' for p in pred]}: {err:.2e} of the largest")
+        if not err <= float(argv[3]):
+            sys.exit(f"FAIL: above {argv[3]}")
     else:
         sys.exit(__doc__)
 

@@ -392,6 +392,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("rve_wall_particles", per[0]);
   js.Set("rve_fluid_particles", per[1]);
   js.Set("physics", model_.Pool().Model().Physics());
+  PetscCall(model_.Pool().DescribePoints(js, npts));
   js.Set("rve_solves", rc.solves);
   js.Set("rve_tangent_solves", rc.tangent_solves);
   js.Set("material_tangent", TangentMethodName(model_.Pool().Tangent().method));

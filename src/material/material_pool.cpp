@@ -1,4 +1,6 @@
 #include <turgor/material/material_pool.h>
+#include <turgor/io/output.h>
+#include <algorithm>
 #include <unordered_map>
 #include <cmath>
 #include <cstring>
@@ -517,10 +519,39 @@ PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
   PetscFunctionBeginUser;
   if (group_rank_ == 0)
     for (const auto &p : points_) p->AddCounters(k);
-  PetscInt v[12] = {k.solves,        k.failures,       k.iterations,         k.snes_its,           k.ksp_its, k.jacobians, k.force_evals, k.tangent_solves,
-                    k.output_solves, k.exact_tangents, k.tangent_linear_its, k.tangent_force_evals};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 12, MPIU_INT, MPI_SUM, comm_));
-  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]};
+  PetscInt v[15] = {k.solves,
+                    k.failures,
+                    k.iterations,
+                    k.snes_its,
+                    k.ksp_its,
+                    k.jacobians,
+                    k.force_evals,
+                    k.tangent_solves,
+                    k.output_solves,
+                    k.exact_tangents,
+                    k.tangent_linear_its,
+                    k.tangent_force_evals,
+                    k.bonds_intact,
+                    k.bonds_broken,
+                    k.contacts};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 15, MPIU_INT, MPI_SUM, comm_));
+  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12], v[13], v[14]};
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::DescribePoints(JsonObject &js, PetscInt points) const
+{
+  MaterialCounters c;
+  PetscFunctionBeginUser;
+  PetscCall(GlobalCounters(&c));
+  if (model_) model_->Describe(js);
+  const std::vector<std::string> terms = model_ ? model_->Physics() : std::vector<std::string>();
+  const PetscReal                n     = (PetscReal)PetscMax(points, 1);
+  if (std::find(terms.begin(), terms.end(), "glue") != terms.end()) {
+    js.Set("rve_bonds_intact_per_point", c.bonds_intact / n);
+    js.Set("rve_bonds_broken_per_point", c.bonds_broken / n);
+  }
+  if (std::find(terms.begin(), terms.end(), "contact") != terms.end()) js.Set("rve_contacts_per_point", c.contacts / n);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -387,6 +387,7 @@ PetscErrorCode EigenRun::WriteSummary()
   }
   PetscCall(Summary(js, "completed"));
   PetscCall(model_->Pool().GlobalCounters(&rc));
+  PetscCall(model_->Pool().DescribePoints(js, model_->NumMaterialPoints()));
   js.Set("rve_solves", rc.solves);
   js.Set("rve_output_solves", rc.output_solves);
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));

@@ -447,6 +447,7 @@ PetscErrorCode FE2StaticRun::WriteSummary()
   PetscCall(Summary(js, interrupted_ ? "interrupted" : "completed"));
   if (interrupted_) js.Set("reason", "interrupted (SIGINT/SIGTERM): load_factor_final is below 1");
   PetscCall(model_.Pool().GlobalCounters(&rc));
+  PetscCall(model_.Pool().DescribePoints(js, model_.NumMaterialPoints()));
   js.Set("rve_solves", rc.solves);
   js.Set("rve_tangent_solves", rc.tangent_solves);
   js.Set("rve_output_solves", rc.output_solves);

@@ -168,6 +168,7 @@ PetscErrorCode StrainPathRun::WriteSummary()
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   PetscCall(pool_.GlobalCounters(&c));
+  PetscCall(pool_.DescribePoints(js, 1));
   const bool failed = failures_ > 0 && !allow_failures_;
   PetscCall(Summary(js, failed ? "failed" : "completed"));
   if (failures_ > 0) {

@@ -1,5 +1,6 @@
 #include <turgor/rve/polygon_rve_material.h>
 #include <turgor/core/memory.h>
+#include <turgor/io/output.h>
 #include <algorithm>
 
 namespace turgor {
@@ -56,6 +57,16 @@ void PolygonRVEMaterial::ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) cons
 {
   *wall  = prototype_.GetTissue().particles.NumOwned();
   *fluid = 0;
+}
+
+void PolygonRVEMaterial::Describe(JsonObject &js) const
+{
+  const ParticleSet &P = prototype_.GetTissue().particles;
+  js.Set("rve_lattice", std::string(geometry.LatticeName()));
+  js.Set("rve_cells", geometry.cells);
+  js.Set("rve_nodes", P.NumOwned());
+  js.Set("rve_bars", (PetscInt)P.OwnedSprings());
+  js.Set("rve_image_nodes", P.n - P.NumOwned());
 }
 
 PetscErrorCode PolygonRVEMaterial::View(PetscViewer viewer) const

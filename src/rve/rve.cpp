@@ -259,6 +259,11 @@ void RVE::AddCounters(MaterialCounters &c) const
   c.ksp_its += counters_.ksp_its;
   c.jacobians += relax_.Jacobians();
   c.force_evals += eq_.ForceEvaluations();
+  for (const TermStatistic &t : eq_.TermStatistics()) { /* a polygon RVE's glue and contact */
+    if (t.name == "bonds_intact") c.bonds_intact += (PetscInt)t.value;
+    if (t.name == "bonds_broken") c.bonds_broken += (PetscInt)t.value;
+    if (t.name == "contact_mean_contacts") c.contacts += (PetscInt)std::lround(t.value); /* over its evaluations */
+  }
   c.tangent_solves += counters_.tangent_solves;
   c.output_solves += counters_.output_solves;
   c.exact_tangents += counters_.exact_tangents;

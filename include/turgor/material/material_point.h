@@ -24,6 +24,8 @@
 
 namespace turgor {
 
+class JsonObject;
+
 struct MaterialResponse {
   Tensor2     sigma;   /* Cauchy stress, 2D [N/m] */
   PetscReal   rho = 0; /* current 2D density [ng/µm^2] */
@@ -41,6 +43,8 @@ struct MaterialCounters {
   PetscInt output_solves      = 0;                          /* for snapshots, in no other counter */
   PetscInt exact_tangents     = 0;                          /* tangents by StressDerivatives (no perturbed solves) */
   PetscInt tangent_linear_its = 0, tangent_force_evals = 0; /* their Krylov iterations and force evaluations */
+  /* Polygon RVEs: glue bonds intact and broken, contacts per evaluation (the points' sum) */
+  PetscInt bonds_intact = 0, bonds_broken = 0, contacts = 0;
 };
 
 /* Trial: the evaluation becomes the material point's current state (later evaluations start from
@@ -100,6 +104,8 @@ public:
   /* Its points implement MaterialPoint::StressDerivatives (-material_tangent implicit). */
   virtual bool           HasStressDerivatives() const { return false; }
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  /* A material point's make-up for summary.json (a polygon RVE: its cells, nodes, bars, images). */
+  virtual void Describe(JsonObject &js) const { }
 };
 
 using MaterialModelCreator = Registry<MaterialModel>::Creator;

@@ -63,6 +63,10 @@ public:
 
   /* Totals over all points and ranks (collective). */
   PetscErrorCode GlobalCounters(MaterialCounters *c) const;
+  /* summary.json: the material's make-up (MaterialModel::Describe) and, where its points have glue or
+     contact, the bonds intact and broken and the contacts per point, averaged over the `points`
+     points (collective). */
+  PetscErrorCode DescribePoints(JsonObject &js, PetscInt points) const;
   /* Seconds spent in trial evaluations and in tangents, the largest over ranks (collective):
      always measured (two clock reads per point), unlike -log_view's events, whose per-call
      overhead on millions of small RVE solves would distort the timings being broken down. */

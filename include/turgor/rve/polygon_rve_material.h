@@ -24,6 +24,7 @@ public:
   /* the square-grid RVE's measured model, by its particles (the halo's included: they are solved over) */
   PetscReal           BytesPerPoint() const override { return RVEMaterial::BytesPerRVE((PetscReal)prototype_.GetTissue().particles.n); }
   PetscErrorCode      View(PetscViewer viewer) const override;
+  void                Describe(JsonObject &js) const override;
   const PeriodicCell &Cell() const { return prototype_; }
 
   RVESpec             spec; /* the relaxation (-rve_*; -rve_cells is the square grid's) */

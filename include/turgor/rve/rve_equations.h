@@ -36,13 +36,14 @@ public:
   /* History: the terms' internal state (plastic hinges, contact springs, glue bonds) updated at the
      relaxed state W of the current deformation (an accepted coarse step: rank 0 of the group), and
      that state declared apart, so that an RVE can keep its committed copy and go back to it. */
-  bool                HasHistory() const { return model_.HasInternalState(); }
-  PetscErrorCode      AcceptStep(Vec W);
-  void                DeclareTermState(StateDeclaration &d);
-  PetscErrorCode      AfterTermStateRead();
-  const PeriodicCell &Cell() const { return *cell_; }
-  PetscInt            ForceEvaluations() const { return force_evals_; }
-  PetscMPIInt         Rank() const { return rank_; }
+  bool                       HasHistory() const { return model_.HasInternalState(); }
+  PetscErrorCode             AcceptStep(Vec W);
+  void                       DeclareTermState(StateDeclaration &d);
+  PetscErrorCode             AfterTermStateRead();
+  const PeriodicCell        &Cell() const { return *cell_; }
+  PetscInt                   ForceEvaluations() const { return force_evals_; }
+  std::vector<TermStatistic> TermStatistics() const { return model_.Statistics(); }
+  PetscMPIInt                Rank() const { return rank_; }
   /* Declared state: the neighbour lists (the positions and the lattice they were last built at, so
      that a restored RVE rebuilds them when the uninterrupted one does and visits its pairs in the
      same order) and the force count. AfterStateRead leaves the deformation at the identity. */
