@@ -5,23 +5,11 @@ static const char help[] = "Polygon RVE material (-material polygon_rve): period
                            " 4. exact tangents (implicit differentiation) against central differences, with turgor and plastic hinges;\n"
                            " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace;\n"
                            " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0.\n";
-#include "test_util.h"
+#include "rve_test_util.h"
 #include <turgor/rve/polygon_rve_material.h>
 
 using namespace turgor;
-
-/* A new point of a configured material. */
-static PetscErrorCode CreatePoint(const PolygonRVEMaterial &material, std::unique_ptr<RVE> *rve)
-{
-  std::unique_ptr<MaterialPoint> point;
-  PetscFunctionBeginUser;
-  PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
-  RVE *r = dynamic_cast<RVE *>(point.get());
-  TG_CHECK(r, "polygon_rve must create RVE points");
-  point.release();
-  rve->reset(r);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+using turgor_test::CreateRVE;
 
 /* A point of the polygon RVE material configured by `options` alone (the options database is
    cleared first); *material keeps the configuration the point was made from. */
@@ -32,7 +20,7 @@ static PetscErrorCode MakePoint(const char *options, std::unique_ptr<PolygonRVEM
   PetscCall(PetscOptionsInsertString(NULL, options));
   *material = std::make_unique<PolygonRVEMaterial>();
   PetscCall((*material)->SetFromOptions(PETSC_COMM_SELF, nullptr));
-  PetscCall(CreatePoint(**material, rve));
+  PetscCall(CreateRVE(**material, rve));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -112,7 +100,7 @@ static PetscErrorCode Objectivity()
   MaterialResponse r, rr;
   PetscFunctionBeginUser;
   PetscCall(MakePoint(kGlued, &m, &a));
-  PetscCall(CreatePoint(*m, &b));
+  PetscCall(CreateRVE(*m, &b));
   PetscCall(Eval(*a, F, &r));
   PetscCall(Eval(*b, R * F, &rr));
   const Tensor2 Rt = {
@@ -200,7 +188,7 @@ static PetscErrorCode History()
   MaterialResponse r0, r1, r2, r3, r4;
   PetscFunctionBeginUser;
   PetscCall(MakePoint((std::string(kGlued) + " -glue_law softening -glue_strength 2 -glue_fracture_energy 0.02").c_str(), &m, &rejected));
-  PetscCall(CreatePoint(*m, &accepted));
+  PetscCall(CreateRVE(*m, &accepted));
   PetscCall(Eval(*rejected, Tensor2::Identity(), &r0));
   PetscCall(rejected->Commit());
   PetscCall(Eval(*rejected, F, &r1));

@@ -9,26 +9,13 @@ static const char help[] = "RVE material point (TW 562 §3.2, eq 30, eqs 46-53):
                            " 8. a large shear path with a rate (a corner element of the 8 x 8 FE^2 bar) converges at every point;\n"
                            " 9. exact tangents (implicit differentiation of the relaxed state, -material_tangent implicit) against\n"
                            "    central differences of tightly relaxed RVEs, on a sheared and a stretched RVE with rates: 1e-6.\n";
-#include "test_util.h"
-#include <turgor/rve/rve.h>
+#include "rve_test_util.h"
 #include <turgor/physics/repulsion.h>
 #include <turgor/physics/sph_fluid.h>
 #include <turgor/physics/wall_springs.h>
 
 using namespace turgor;
-
-/* A point of a configured RVE material (an RVE: the tests use its RVE-only accessors). */
-static PetscErrorCode CreateRVE(const RVEMaterial &material, std::unique_ptr<RVE> *rve)
-{
-  std::unique_ptr<MaterialPoint> point;
-  PetscFunctionBeginUser;
-  PetscCall(material.CreatePoint(PETSC_COMM_SELF, &point));
-  RVE *r = dynamic_cast<RVE *>(point.get());
-  TG_CHECK(r, "the rve material must create RVE points");
-  point.release();
-  rve->reset(r);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+using turgor_test::CreateRVE;
 
 /* A point of `material` after its options (the members set by the caller are the defaults). */
 static PetscErrorCode MakeRVE(RVEMaterial &material, std::unique_ptr<RVE> *rve)

@@ -44,15 +44,6 @@ PetscErrorCode PolygonRVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode PolygonRVEMaterial::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
-{
-  auto rve = std::make_unique<RVE>(group, spec);
-  PetscFunctionBeginUser;
-  PetscCall(rve->SetUp(prototype_, physics, 0));
-  *point = std::move(rve);
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 void PolygonRVEMaterial::ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const
 {
   *wall  = prototype_.GetTissue().particles.NumOwned();

@@ -364,11 +364,11 @@ PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RVEMaterial::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
+PetscErrorCode RVEMaterialBase::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
 {
   auto rve = std::make_unique<RVE>(group, spec);
   PetscFunctionBeginUser;
-  PetscCall(rve->SetUp(prototype_, physics, cell.fluid_density));
+  PetscCall(rve->SetUp(prototype_, physics, FluidDensity()));
   *point = std::move(rve);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

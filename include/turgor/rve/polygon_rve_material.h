@@ -12,28 +12,16 @@
 
 namespace turgor {
 
-class PolygonRVEMaterial : public MaterialModel {
+class PolygonRVEMaterial : public RVEMaterialBase {
 public:
-  const char              *Name() const override { return "polygon_rve"; }
-  void                     SetDefaultTolerance(PetscReal tol) override { spec.psi_atol = spec.psi_steptol = tol; }
-  PetscErrorCode           SetFromOptions(MPI_Comm comm, ParameterList *params) override;
-  PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
-  std::vector<std::string> Physics() const override { return physics.ActiveTerms(); }
-  bool                     HasStressDerivatives() const override { return true; }
-  void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const override;
-  /* the square-grid RVE's measured model, by its particles (the halo's included: they are solved over) */
-  PetscReal           BytesPerPoint() const override { return RVEMaterial::BytesPerRVE((PetscReal)prototype_.GetTissue().particles.n); }
-  PetscErrorCode      View(PetscViewer viewer) const override;
-  void                Describe(JsonObject &js) const override;
-  const PeriodicCell &Cell() const { return prototype_; }
+  const char    *Name() const override { return "polygon_rve"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
+  void           ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const override;
+  PetscErrorCode View(PetscViewer viewer) const override;
+  void           Describe(JsonObject &js) const override;
 
-  RVESpec             spec; /* the relaxation (-rve_*; -rve_cells is the square grid's) */
-  PeriodicPolygonSpec geometry;
+  PeriodicPolygonSpec geometry; /* (spec: the relaxation, -rve_*; -rve_cells is the square grid's) */
   PolygonTissueSpec   poly;
-  PhysicsSpec         physics;
-
-private:
-  PeriodicCell prototype_;
 };
 
 } // namespace turgor

@@ -74,28 +74,42 @@ private:
   PetscLogEvent            ev_solve_ = 0;
 };
 
-class RVEMaterial : public MaterialModel {
+/* What every periodic-RVE material shares: the relaxation settings and the physics read once, the
+   prototype cell every point copies, points made from them. A material derives and builds the cell
+   (prototype_) in its SetFromOptions. */
+class RVEMaterialBase : public MaterialModel {
 public:
-  const char              *Name() const override { return "rve"; }
   void                     SetDefaultTolerance(PetscReal tol) override { spec.psi_atol = spec.psi_steptol = tol; }
-  PetscErrorCode           SetFromOptions(MPI_Comm comm, ParameterList *params) override;
   PetscErrorCode           CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const override;
   std::vector<std::string> Physics() const override { return physics.ActiveTerms(); }
   bool                     HasStressDerivatives() const override { return true; }
-  void                     ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const override;
   PetscReal                BytesPerPoint() const override { return BytesPerRVE((PetscReal)prototype_.GetTissue().particles.n); }
   /* Measured max RSS per RVE of 1, 2^2 and 4^2 cells (19, 76, 304 particles): its TSPSEUDO, the
-     Jacobian pattern, colouring and LU factors grow with the particles. */
+     Jacobian pattern, colouring and LU factors grow with the particles (a polygon RVE's images
+     included: the equations hold them). */
   static PetscReal    BytesPerRVE(PetscReal particles) { return 250e3 + 19.5e3 * PetscMax(particles - 19, 0); }
-  PetscErrorCode      View(PetscViewer viewer) const override;
   const PeriodicCell &Cell() const { return prototype_; }
 
-  RVESpec        spec;
-  SquareGridSpec cell;
-  PhysicsSpec    physics;
+  RVESpec     spec;
+  PhysicsSpec physics;
 
-private:
-  PeriodicCell prototype_; /* the cell every point copies */
+protected:
+  /* the fluid's density (the force scale of an SPH cell); 0: none */
+  virtual PetscReal FluidDensity() const { return 0; }
+  PeriodicCell      prototype_; /* the cell every point copies */
+};
+
+class RVEMaterial : public RVEMaterialBase {
+public:
+  const char    *Name() const override { return "rve"; }
+  PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params) override;
+  void           ParticlesPerPoint(PetscInt *wall, PetscInt *fluid) const override;
+  PetscErrorCode View(PetscViewer viewer) const override;
+
+  SquareGridSpec cell;
+
+protected:
+  PetscReal FluidDensity() const override { return cell.fluid_density; }
 };
 
 } // namespace turgor
