@@ -1,6 +1,7 @@
 #include <turgor/rve/polygon_rve_material.h>
 #include <turgor/core/memory.h>
 #include <turgor/io/output.h>
+#include <turgor/physics/glue.h>
 #include <algorithm>
 
 namespace turgor {
@@ -24,6 +25,12 @@ PetscErrorCode PolygonRVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *
                "Option -physics: term '%s' belongs to the square-grid cells (-material rve), not to polygonal cells (-material polygon_rve)", n.c_str());
     joined = joined || n == "glue" || n == "contact";
   }
+  for (const auto &t : physics.Terms())
+    if (const Glue *g = dynamic_cast<const Glue *>(t.get()))
+      PetscCheck(geometry.gap < g->distance, comm, PETSC_ERR_ARG_INCOMP,
+                 "Options -prve_gap = %g, -glue_distance = %g: the glue bonds cells closer than 2 r + its distance, and these are 2 r + gap apart: no "
+                 "bond would be made (a gap below the gluing distance)",
+                 (double)geometry.gap, (double)g->distance);
   PetscCheck(joined, comm, PETSC_ERR_ARG_INCOMP,
              "Option -physics: -material polygon_rve needs glue or contact between its cells (without, each cell floats free and the RVE has no stiffness)");
   {
