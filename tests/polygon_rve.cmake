@@ -28,8 +28,8 @@ turgor_add_test(polygon_eigen COMMAND turgor_app ${PRVE_BLOCK} -mode eigen -outp
 turgor_add_test(polygon_eigen_positive COMMAND ${CHECK} equals polygon_eigen positive_definite True LABELS fe2 eigen REQUIRES polygon_eigen)
 
 # -mode fe2 on 2 ranks against the one-rank run of the restart case (restart_fe2_polygon_full): the
-# same tip history to 1e-11 µm (measured 2e-13)
+# same tip history to 1e-11 µm (measured 2e-13). Long, with the restart case.
 turgor_add_test(polygon_fe2_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${PRVE_BLOCK} -mode fe2 -ts_type rk -ts_rk_type 5dp -ts_max_time 0.4
-  -fe2_snapshots 0 -fe2_progress_interval 0 -output_dir polygon_fe2_np2 LABELS fe2 mpi SETUP polygon_fe2_np2)
-turgor_add_test(polygon_fe2_np2_agree COMMAND ${CHECK} tip restart_fe2_polygon_full polygon_fe2_np2 1e-11 LABELS fe2 mpi
+  -fe2_snapshots 0 -fe2_progress_interval 0 -output_dir polygon_fe2_np2 LABELS fe2 mpi long SETUP polygon_fe2_np2)
+turgor_add_test(polygon_fe2_np2_agree COMMAND ${CHECK} tip restart_fe2_polygon_full polygon_fe2_np2 1e-11 LABELS fe2 mpi long
   REQUIRES "restart_fe2_polygon_full;polygon_fe2_np2")

@@ -109,12 +109,12 @@ turgor_restart_fresh(fe2 fe2 ${RESTART_FE2})
 
 # FE² of irregular tissue: a 2 x 2 block of polygon RVEs (4 glued, turgid Voronoi cells each) released
 # from its turgor prestress under gravity: the RVEs' state, the terms' history (glue damage) included,
-# is declared, and the run continues bit for bit.
+# is declared, and the run continues bit for bit. Long (15 s; .ci/run's sanitizer part runs it too).
 set(RESTART_FE2_POLYGON -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -mode fe2 -prve_cells 4 -tissue_bar_length 5
   -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 2,2 -coarse_dm_plex_box_upper 100,100
   -coarse_dirichlet_label "Face Sets" -coarse_dirichlet_values 4 -body_force 0,-0.2 -ts_type rk -ts_rk_type 5dp -ts_max_time 0.4 -fe2_snapshots 0
   -fe2_progress_interval 0)
-turgor_restart_case(fe2_polygon 10 MODE fe2 INTERVAL 0.2 OPTIONS ${RESTART_FE2_POLYGON})
+turgor_restart_case(fe2_polygon 10 MODE fe2 INTERVAL 0.2 LONG OPTIONS ${RESTART_FE2_POLYGON})
 
 # -checkpoint_keep: a checkpoint at every step (warned) of which only the last 3 stay.
 turgor_add_test(restart_keep COMMAND turgor_app ${BAD_PRESET_fine} -ts_type rk -output_dir restart_keep -output_overwrite -checkpoint_interval 1e-9
