@@ -1197,6 +1197,22 @@ PetscErrorCode CoarseModel::EvaluateForOutput(Vec Uloc, bool viscous, PetscBool 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CoarseModel::LowestAcoustic(PetscReal *det, PetscInt *element) const
+{
+  struct {
+    double v;
+    int    gid;
+  } mine = {PETSC_MAX_REAL, -1}, all;
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < cell_acoustic_.size(); k++)
+    if (std::isfinite(cell_acoustic_[k]) && (cell_acoustic_[k] < mine.v || (cell_acoustic_[k] == mine.v && (int)cell_gid_[k] < mine.gid)))
+      mine = {(double)cell_acoustic_[k], (int)cell_gid_[k]};
+  PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm_));
+  *det     = all.v;
+  *element = all.gid;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 void CoarseModel::AcousticFromOutput()
 {
   for (PetscInt k = 0; k < c_end_ - c_start_; k++) {

@@ -61,8 +61,14 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
                              "Reuse the material tangents (K, C) for this many accepted steps; 0: fresh at every Jacobian request; -1: 0 for radauiia (which "
                              "decides itself), 10 otherwise",
                              "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
+  PetscCall(PetscOptionsBool("-stop_at_localisation",
+                             "End the run (status localised) after the step whose snapshot first shows an element that lost ellipticity "
+                             "(min det of the acoustic tensor <= 0; needs -coarse_acoustic_field and snapshots)",
+                             "FE2Run", stop_at_localisation_, &stop_at_localisation_, NULL));
   PetscOptionsEnd();
   PetscCheck(jacobian_max_age_ >= -1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_jacobian_max_age = %" PetscInt_FMT ": must be >= -1", jacobian_max_age_);
+  PetscCheck(!stop_at_localisation_ || model_.Spec().acoustic_field, comm_, PETSC_ERR_ARG_INCOMP,
+             "Option -fe2_stop_at_localisation: localisation is found in the snapshots' acoustic field, which -coarse_acoustic_field 0 leaves out");
   PetscCall(monitor_.SetFromOptions("fe2_", "steps", "time"));
   PetscCheck(!monitor_.Active() || !CheckpointsRequested(), comm_, PETSC_ERR_SUP,
              "Option -fe2_eigen_monitor: the stability monitor's history (its last eigenvalues, the first crossing) is not checkpointed; give it without "
@@ -216,6 +222,12 @@ PetscErrorCode FE2Run::AfterStep(PetscReal t, Vec U)
   PetscFunctionBeginUser;
   PetscCall(model_.CommitMaterials());
   steps_since_refresh_++;
+  if (stop_at_localisation_ && localisation_time_ >= 0) { /* found by the last snapshot (the monitor runs after this hook) */
+    char why[256];
+    PetscCall(PetscSNPrintf(why, sizeof why, "localisation: element %" PetscInt_FMT " lost ellipticity (min det Q = %g (N/m)^2) at the snapshot at t = %g µs",
+                            localisation_element_, (double)localisation_det_, (double)localisation_time_));
+    PetscCall(StopAfterThisStep("localised", why));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -246,6 +258,18 @@ PetscErrorCode FE2Run::WriteSnapshot(PetscReal t, Vec U)
   PetscBool ok;
   PetscFunctionBeginUser;
   PetscCall(model_.EvaluateCellStress(U, &ok)); /* the stresses at U, without changing the run */
+  if (model_.Spec().acoustic_field && localisation_time_ < 0) {
+    PetscReal det;
+    PetscInt  element;
+    PetscCall(model_.LowestAcoustic(&det, &element));
+    if (element >= 0 && !(det > 0)) {
+      localisation_time_    = t;
+      localisation_det_     = det;
+      localisation_element_ = element;
+      PetscCall(PetscPrintf(comm_, "  t = %g µs: localisation: element %" PetscInt_FMT " lost ellipticity (min det of the acoustic tensor %g (N/m)^2)%s\n",
+                            (double)t, element, (double)det, stop_at_localisation_ ? "; stopping after the next step (-fe2_stop_at_localisation)" : ""));
+    }
+  }
   PetscCall(fields_.Write(model_, U, t));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -312,6 +336,9 @@ PetscErrorCode FE2Run::DeclareState(std::deque<StateDeclaration> &decls)
   decls.emplace_back("fe2");
   decls.back().Scalar("steps_since_jacobian", &steps_since_refresh_, Combine::Owner);
   decls.back().Scalar("rejections_at_jacobian", &rejections_at_refresh_, Combine::Owner);
+  decls.back().Scalar("localisation_time", &localisation_time_, Combine::Owner);
+  decls.back().Scalar("localisation_det", &localisation_det_, Combine::Owner);
+  decls.back().Scalar("localisation_element", &localisation_element_, Combine::Owner);
   PetscCall(model_.DeclareState(decls, U_));
   PetscCall(model_.RankFreePointIds(point_ids_));
   point_of_id_.clear();
@@ -424,6 +451,10 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("material_cost_imbalance_before", model_.Pool().CostImbalanceBefore());
   js.Set("material_cost_imbalance_after", model_.Pool().CostImbalanceAfter());
   js.Set("material_points_moved", model_.Pool().PointsMoved());
+  if (model_.Spec().acoustic_field) { /* -1: no snapshot showed an element that lost ellipticity */
+    js.Set("localisation_time", localisation_time_);
+    js.Set("localisation_element", localisation_element_);
+  }
   if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

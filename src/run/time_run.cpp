@@ -328,6 +328,16 @@ PetscErrorCode TimeRun::PostStep(TS ts)
   });
 }
 
+PetscErrorCode TimeRun::StopAfterThisStep(const std::string &status, const std::string &reason)
+{
+  PetscFunctionBeginUser;
+  if (!stop_status_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  stop_status_ = status;
+  stop_reason_ = reason;
+  PetscCall(TSSetConvergedReason(ts_, TS_CONVERGED_USER));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TimeRun::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx)
 {
   return TURGOR_GUARDED({
@@ -372,7 +382,7 @@ PetscErrorCode TimeRun::Solve()
   PetscCheck(reason >= 0, comm_, PETSC_ERR_NOT_CONVERGED, "The %s run failed at t = %g µs (%s): %s", mode_.c_str(), (double)t, TSConvergedReasons[reason],
              FailureAdvice());
   /* a run that ends before its end time without an interrupt stopped at -ts_max_steps: not completed */
-  stopped_ = !interrupted_ && t < t_final_ * (1 - 1e-12);
+  stopped_ = !interrupted_ && stop_status_.empty() && t < t_final_ * (1 - 1e-12);
   if ((ckpt_interval_ > 0 || ckpt_wall_ > 0) && out_.ready) { /* the end of the run (or its interrupt) */
     PetscInt  step;
     PetscReal tn;
@@ -496,7 +506,8 @@ PetscErrorCode TimeRun::Summarize(JsonObject &js)
   PetscMPIInt rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  PetscCall(CommonSummary(js, interrupted_ ? "interrupted" : stopped_ ? "stopped" : "completed"));
+  PetscCall(CommonSummary(js, interrupted_ ? "interrupted" : !stop_status_.empty() ? stop_status_.c_str() : stopped_ ? "stopped" : "completed"));
+  if (!stop_status_.empty() && !interrupted_) js.Set("reason", stop_reason_);
   if (stopped_) {
     PetscInt max_steps;
     PetscCall(TSGetMaxSteps(ts_, &max_steps));
@@ -558,9 +569,10 @@ PetscErrorCode TimeRun::WriteSummary()
   PetscCall(PetscPrintf(comm_,
                         "%s: t = %g µs, %" PetscInt_FMT " steps (%" PetscInt_FMT
                         " rejected), %s, %.3f s wall; final tip displacement %.6g µm\nOutputs in %s: %s\n",
-                        interrupted_ ? "Interrupted"
-                        : stopped_   ? "Stopped (-ts_max_steps)"
-                                     : "Done",
+                        interrupted_            ? "Interrupted"
+                        : !stop_status_.empty() ? ("Stopped (" + stop_status_ + ")").c_str()
+                        : stopped_              ? "Stopped (-ts_max_steps)"
+                                                : "Done",
                         (double)t, steps, rej, details.c_str(), (double)wall_, (double)observed_, out_.dir.c_str(), files.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -174,7 +174,10 @@ public:
      Spec().acoustic_field (tangents at output: 3 more material evaluations per point), and by
      AssembleTangentAt; NaN for a cell whose points failed. */
   const std::vector<PetscReal> &CellAcoustic() const { return cell_acoustic_; }
-  PetscErrorCode                CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
+  /* The smallest CellAcoustic() over all elements and its element's global number (collective;
+     PETSC_MAX_REAL and -1 where no element has one). */
+  PetscErrorCode LowestAcoustic(PetscReal *det, PetscInt *element) const;
+  PetscErrorCode CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
   /* U (global) from a function of the reference position: f(X, state) gives [ux, uy, vx, vy] of the
      node at X, or false when it has none; the clamped nodes are left out. The nodes are the
      vertices (Q1), and also the edge midpoints and cell centres (Q2). Collective: *missing is the

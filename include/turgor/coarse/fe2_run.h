@@ -75,8 +75,13 @@ private:
   Mat         J_ = nullptr;
   /* material tangents are recomputed when the Jacobian is older than this many accepted steps, or
      after a step rejection; 0: at every Jacobian request (each Newton iteration) */
-  PetscInt           jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
-  bool               explicit_ = false;
+  PetscInt jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
+  /* localisation: the first snapshot whose acoustic field (-coarse_acoustic_field) has an element with
+     min det Q <= 0, that element, and whether the run stops there (-fe2_stop_at_localisation) */
+  PetscReal          localisation_time_ = -1, localisation_det_ = 0;
+  PetscInt           localisation_element_ = -1;
+  PetscBool          stop_at_localisation_ = PETSC_FALSE;
+  bool               explicit_             = false;
   CoarseFieldsWriter fields_;
   StabilityMonitor   monitor_;   /* -fe2_eigen_monitor */
   std::string        mesh_hash_; /* the fingerprint's, computed once */

@@ -96,6 +96,9 @@ protected:
   virtual PetscInt FunctionEvaluations() const = 0;
   /* After every accepted step, at the accepted state (internal state committed, RVE states kept). */
   virtual PetscErrorCode AfterStep(PetscReal t, Vec U) { return PETSC_SUCCESS; }
+  /* From AfterStep: the run ends after this step, before its end time, for a reason of its own (FE²
+     at localisation): summary.json's status is `status` and its reason `reason`; collective. */
+  PetscErrorCode StopAfterThisStep(const std::string &status, const std::string &reason);
   /* After a successful TSSolve (e.g. the particle record brought up to date). */
   virtual PetscErrorCode AfterSolve() { return PETSC_SUCCESS; }
   /* The mode's summary keys (collective), and the details of the final report line. */
@@ -210,6 +213,7 @@ private:
   PetscLogStage                           stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent                           ev_output_   = 0;
   bool                                    interrupted_ = false, solving_ = false, stopped_ = false; /* stopped_: at -ts_max_steps, before the end */
+  std::string                             stop_status_, stop_reason_;                               /* StopAfterThisStep's */
   PetscReal                               t_last_ = 0, stalled_ = -1, dt_min_ = 0;                  /* stalled_: the accepted step below dt_min_ (>= 0) */
   static constexpr PetscReal              kMinStepFraction = 1e-10;                                 /* default -ts_adapt_dt_min / -ts_max_time */
 
