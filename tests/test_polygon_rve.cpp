@@ -4,7 +4,8 @@ static const char help[] = "Polygon RVE material (-material polygon_rve): period
                            " 3. objectivity sigma(R F) = R sigma(F) R^T of a glued Voronoi RVE;\n"
                            " 4. exact tangents (implicit differentiation) against central differences, with turgor and plastic hinges;\n"
                            " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace;\n"
-                           " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0.\n";
+                           " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0;\n"
+                           " 7. the hexagonal lattice likewise: C11 + C12 = sqrt(3) / (1/(k_n s) + 3/(2 k_b)), C11 = C22.\n";
 #include "rve_test_util.h"
 #include <turgor/rve/polygon_rve_material.h>
 
@@ -242,6 +243,41 @@ static PetscErrorCode SquareLatticeClosedForm()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* 7. The hexagonal lattice's closed form (docs/model.md): regular hexagons of side s (one bar per
+   wall), centres d = sqrt(3) s + 2 r + g apart, glued across the gap. An equibiaxial stretch keeps
+   every angle (no hinge moment) and opens every interface alike: the six walls (hoop tension
+   T = k_b ds) and the three interfaces per cell (k_n s) give C11 + C12 = sqrt(3) / (1/(k_n s) + 3/(2 k_b));
+   C11 = C22 by the lattice's symmetry. */
+static PetscErrorCode HexagonalLatticeClosedForm()
+{
+  const PetscReal a = 20, d = a * std::sqrt(2 / std::sqrt(3.0)), r = 0.5, g = 0.05, kb = 2e4, kn = 1e4, s = (d - 2 * r - g) / std::sqrt(3.0);
+  const PetscReal bulk = std::sqrt(3.0) / (1 / (kn * s) + 1.5 / kb);
+  PetscFunctionBeginUser;
+  for (PetscInt K : {4, 16}) {
+    std::unique_ptr<PolygonRVEMaterial> m;
+    std::unique_ptr<RVE>                rve;
+    MaterialResponse                    r0, status;
+    Tangents                            D;
+    TangentOptions                      opt;
+    const std::string opts = "-physics bars,hinges,glue -prve_lattice hexagonal -prve_cell_size 20 -prve_gap 0.05 -tissue_bar_radius 0.5 -bar_stiffness 2e4 "
+                             "-glue_normal_stiffness 1e4 -glue_compression -glue_law energy -glue_fracture_energy 1e6 -prve_cells " +
+                             std::to_string((long long)K);
+    PetscCall(MakePoint(opts.c_str(), &m, &rve));
+    PetscCall(Eval(*rve, Tensor2::Identity(), &r0));
+    opt.method    = TangentMethod::Implicit;
+    opt.viscosity = false;
+    PetscCall(ComputeTangents(*rve, Tensor2::Identity(), Tensor2::Zero(), r0, opt, &D, &status));
+    TG_CHECK(status.ok, "tangents failed: %s", status.reason.c_str());
+    PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                          "7. hexagonal lattice, %2" PetscInt_FMT " cells: C11 + C12 %.10g (closed form %.10g), C22 + C21 %.10g, C11 - C22 %.2e N/m\n", K,
+                          (double)(D.De[0][0] + D.De[0][1]), (double)bulk, (double)(D.De[1][1] + D.De[1][0]), (double)(D.De[0][0] - D.De[1][1])));
+    TG_CHECK_CLOSE(D.De[0][0] + D.De[0][1], bulk, 1e-8, 0, "C11 + C12 against the closed form");
+    TG_CHECK_CLOSE(D.De[1][1] + D.De[1][0], bulk, 1e-8, 0, "C22 + C21 against the closed form");
+    TG_CHECK(std::fabs(D.De[0][0] - D.De[1][1]) < 1e-8 * bulk, "C11 - C22 = %g: must vanish", (double)(D.De[0][0] - D.De[1][1]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
@@ -253,6 +289,7 @@ int main(int argc, char **argv)
   PetscCall(ExactVsCentral());
   PetscCall(History());
   PetscCall(SquareLatticeClosedForm());
+  PetscCall(HexagonalLatticeClosedForm());
   PetscCall(PetscOptionsClear(NULL));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_polygon_rve: all checks passed\n"));
   PetscCall(PetscFinalize());
