@@ -37,6 +37,10 @@ PetscErrorCode PeriodicPolygonSpec::SetFromOptions(MPI_Comm comm, ParameterList 
              (double)halo_margin);
   if (halo_margin == 0) halo_margin = 0.5 * cell_size;
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -prve_cells = %" PetscInt_FMT ": must be >= 1", cells);
+  PetscCheck(lattice != PeriodicLattice::Voronoi || cells >= 2, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -prve_cells = %" PetscInt_FMT ": a Voronoi RVE needs at least 2 cells (one seed tiles the box with a single square cell glued to "
+             "its own images: -prve_lattice square -prve_cells 1 is that lattice)",
+             cells);
   const PetscInt m = (PetscInt)std::llround(std::sqrt((double)cells));
   PetscCheck(lattice != PeriodicLattice::Square || m * m == cells, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -prve_cells = %" PetscInt_FMT ": a square lattice needs a square number of cells (1, 4, 9, 16, ...)", cells);
