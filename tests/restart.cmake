@@ -259,8 +259,9 @@ turgor_restart_other_ranks(glue 6000 TOL 1e-7 RANKS 1 LONG OPTIONS ${RESTART_GLU
 # written in the order of their nodes' positions and every RVE's state by its element's position,
 # so the continued runs repeat the RVE work exactly (rve_solves, psi_tc_iterations) and end 1.8e-11
 # and 5.9e-12 from it. (Uninterrupted runs on 1 and 2 ranks differ by 4.6e-4: round-off flips one
-# step-size decision of the controller, 4 rejections against 5.)
-turgor_restart_other_ranks(fe2 80 MODE fe2 FULL_RANKS 2 TOL 1e-10 OPTIONS ${RESTART_FE2} COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0)
+# step-size decision of the controller, 4 rejections against 5.) Long: the default tier restarts the
+# FE² bar on 2 ranks bit for bit (fe2_rebalance) and a fine tissue on another rank count (xr_polygon).
+turgor_restart_other_ranks(fe2 80 MODE fe2 FULL_RANKS 2 TOL 1e-10 LONG OPTIONS ${RESTART_FE2} COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0)
 
 # A rebalanced FE² run (-material_rebalance 5: the points dealt again by cost before the checkpoint)
 # continues from its checkpoint with the checkpoint's blocks, bit for bit.

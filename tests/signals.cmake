@@ -28,11 +28,15 @@ set(SIGNAL_GLUE64 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_tracti
   -control_top_box -1,180,201,201 -control_bottom_box -1,-1,201,20 -control_top_velocity 0,0.2 -control_bottom_velocity 0,-0.2
   -control_top_ramp_time 2.5 -control_bottom_ramp_time 2.5 -fine_snapshots 0 -checkpoint_interval 0.05)
 foreach(np 2 3)
+  set(tier "")
+  if(np GREATER 2) # three ranks on two cores: the long tier (the two-rank case is the default tier's)
+    set(tier long)
+  endif()
   turgor_add_test(interrupt_kill_checkpoint_np${np} COMMAND ${INTERRUPT} group:0.12 interrupt_kill_np${np} ${MPIEXEC_ROOT} --mca btl self,tcp -n ${np}
-    $<TARGET_FILE:turgor_app> ${SIGNAL_GLUE64} -ts_max_time 60 -fine_progress_interval 0.2 LABELS fine mpi restart SETUP interrupt_kill_np${np})
+    $<TARGET_FILE:turgor_app> ${SIGNAL_GLUE64} -ts_max_time 60 -fine_progress_interval 0.2 LABELS fine mpi restart ${tier} SETUP interrupt_kill_np${np})
   # The restart reads the checkpoint the summary names as the last complete one and runs 0.1 µs past
   # the interrupted run's end (how far that run got depends on the machine's load).
   turgor_add_test(interrupt_kill_restart_np${np} COMMAND sh -c [[exec "$@" $(python3 -c "print(*(lambda s: ['-restart', s['checkpoint_last'], '-ts_max_time', s['t_final'] + 0.1])(__import__('json').load(open('interrupt_kill_np$0/summary.json'))))")]]
     ${np} ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${SIGNAL_GLUE64} -fine_progress_interval 0
-    -output_dir interrupt_kill_np${np}_restart -output_overwrite LABELS fine mpi restart REQUIRES interrupt_kill_np${np})
+    -output_dir interrupt_kill_np${np}_restart -output_overwrite LABELS fine mpi restart ${tier} REQUIRES interrupt_kill_np${np})
 endforeach()
