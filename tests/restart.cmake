@@ -262,6 +262,10 @@ turgor_restart_other_ranks(glue 6000 TOL 1e-7 RANKS 1 LONG OPTIONS ${RESTART_GLU
 # step-size decision of the controller, 4 rejections against 5.) Long: the default tier restarts the
 # FE² bar on 2 ranks bit for bit (fe2_rebalance) and a fine tissue on another rank count (xr_polygon).
 turgor_restart_other_ranks(fe2 80 MODE fe2 FULL_RANKS 2 TOL 1e-10 LONG OPTIONS ${RESTART_FE2} COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0)
+# The polygon-RVE block (RESTART_FE2_POLYGON above) stopped on 2 ranks after 10 steps, continued on 1, against the uninterrupted 1-rank run: every
+# RVE's state (warm start, kept Jacobian, the terms' history) found by its element's position; the
+# same RVE work and the tip to 1e-10 of its largest value (1 and 2 ranks agree to 2e-13 µm).
+turgor_restart_other_ranks(fe2_polygon 10 MODE fe2 TOL 1e-10 RANKS 1 LONG OPTIONS ${RESTART_FE2_POLYGON} COMPARE samekey:rve_solves:0)
 
 # A rebalanced FE² run (-material_rebalance 5: the points dealt again by cost before the checkpoint)
 # continues from its checkpoint with the checkpoint's blocks, bit for bit.
