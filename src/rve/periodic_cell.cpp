@@ -1,6 +1,7 @@
 #include <turgor/rve/periodic_cell.h>
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace turgor {
 
@@ -49,14 +50,14 @@ PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<Poly
   P.spring_gid.resize(S);
   P.polygon_gid.resize(C);
   for (PetscInt s = 0; s < S; s++) P.spring_gid[s] = s;
-  polygon_owner_.resize(C);
-  for (PetscInt c = 0; c < C; c++) P.polygon_gid[c] = c, polygon_owner_[c] = c;
+  for (PetscInt c = 0; c < C; c++) P.polygon_gid[c] = c;
   halo_owner_.clear();
   halo_image_.clear();
 
   /* the images of the cells within reach + margin of a cell of the box; an image's particle, bar and
      cell ids are its owner's plus (image index + 1) x the counts (unique, and the same on any rank) */
-  std::vector<CellBox> box(C);
+  std::vector<CellBox>  box(C);
+  std::vector<PetscInt> node_of(N, -1); /* an image's node of each owned node (its cell's, while it is made) */
   for (PetscInt c = 0; c < C; c++) box[c] = BoxOf(B.polygons[c].nodes, base.X.data());
   for (int n1 = -1; n1 <= 1; n1++)
     for (int n2 = -1; n2 <= 1; n2++) {
@@ -67,14 +68,13 @@ PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<Poly
         PetscReal gap = PETSC_MAX_REAL;
         for (PetscInt d = 0; d < C; d++) gap = std::min(gap, BoxGap(box[d], box[c], shift));
         if (gap > reach + margin) continue;
-        const PolygonCell    &src = B.polygons[c];
-        PolygonCell           img;
-        std::vector<PetscInt> node_of(N, -1);
+        const PolygonCell &src = B.polygons[c];
+        PolygonCell        img;
         for (PetscInt i : src.nodes) {
           const PetscInt h = P.n++;
           node_of[i]       = h;
           img.nodes.push_back(h);
-          P.mass.push_back(B.mass[i]), P.kind.push_back(B.kind[i]), P.cell.push_back(B.cell[i]), P.fixed.push_back(0);
+          P.mass.push_back(B.mass[i]), P.kind.push_back(B.kind[i]), P.cell.push_back(B.cell[i]);
           P.gid.push_back(B.gid[i] + (PetscInt)(k + 1) * N);
           P.node_polygon.push_back((PetscInt)P.polygons.size());
           for (int d = 0; d < 2; d++) tissue_.X.push_back(base.X[2 * i + d] + shift[d]);
@@ -92,14 +92,9 @@ PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<Poly
         img.open = src.open;
         P.polygons.push_back(img);
         P.polygon_gid.push_back(c + (PetscInt)(k + 1) * C);
-        polygon_owner_.push_back(c);
       }
     }
-  for (int d = 0; d < 2; d++) {
-    tissue_.lo[d] = PETSC_MAX_REAL, tissue_.hi[d] = -PETSC_MAX_REAL;
-    for (PetscInt i = 0; i < P.n; i++)
-      tissue_.lo[d] = std::min(tissue_.lo[d], tissue_.X[2 * i + d]), tissue_.hi[d] = std::max(tissue_.hi[d], tissue_.X[2 * i + d]);
-  }
+  tissue_.UpdateBounds();
   /* one node held at F X (the fluctuation is periodic: that fixes its translation) */
   P.fixed.assign(P.n, 0);
   P.fixed[0] = 1;
@@ -109,6 +104,40 @@ PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<Poly
   mass_   = 0;
   for (PetscInt i = 0; i < N; i++) mass_ += B.mass[i];
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void PeriodicCell::PolygonCouplings(const PetscReal *x, std::vector<std::vector<PetscInt>> &cols) const
+{
+  const ParticleSet              &P = tissue_.particles;
+  const size_t                    C = P.OwnedPolygons(), L = P.polygons.size();
+  const PetscReal                 zero[2] = {0, 0};
+  const PetscInt                  N       = P.NumOwned();
+  auto                            owner   = [&](PetscInt i) { return i < N ? i : halo_owner_[i - N]; };
+  std::vector<PetscInt>           dof(N, -1);
+  std::vector<CellBox>            box(L);
+  std::vector<std::set<PetscInt>> adj(N); /* owned particles coupled to each */
+  for (size_t k = 0; k < free_.size(); k++) dof[free_[k]] = (PetscInt)k;
+  for (size_t c = 0; c < L; c++) box[c] = BoxOf(P.polygons[c].nodes, x);
+  for (size_t c = 0; c < C; c++) {
+    const std::vector<PetscInt> &nodes = P.polygons[c].nodes;
+    for (PetscInt i : nodes) adj[i].insert(nodes.begin(), nodes.end());
+    for (size_t e = 0; e < L; e++) {
+      if (e == c || BoxGap(box[c], box[e], zero) > reach_) continue;
+      for (PetscInt s : P.polygons[e].bars) {
+        const Spring &b = P.springs[s];
+        for (PetscInt p : nodes)
+          if (PointSegmentDistance2(&x[2 * p], &x[2 * b.i], &x[2 * b.j]) <= reach_ * reach_)
+            for (PetscInt q : {owner(b.i), owner(b.j)}) adj[p].insert(q), adj[q].insert(p);
+      }
+    }
+  }
+  cols.assign(free_.size(), {});
+  for (size_t k = 0; k < free_.size(); k++) {
+    std::set<PetscInt> c;
+    for (PetscInt i : adj[free_[k]])
+      if (dof[i] >= 0) c.insert(dof[i]);
+    cols[k].assign(c.begin(), c.end());
+  }
 }
 
 PetscInt PeriodicCell::InvertedCell(const PetscReal *x) const

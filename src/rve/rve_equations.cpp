@@ -1,7 +1,5 @@
 #include <turgor/rve/rve_equations.h>
-#include <turgor/core/geometry.h>
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <limits>
 #include <set>
@@ -155,53 +153,6 @@ PetscErrorCode RVEEquations::AfterTermStateRead()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Polygonal cells: every node of a cell with every other (a cell's pressure couples all its nodes
-   through its area; bars and hinges are within the cell), and every node with the two ends of each
-   bar of another cell within reach (contact, glue), images standing for their owners. The candidate
-   bars are those of the cells whose boxes lie within reach of the node's cell's. */
-static void PolygonPatternColumns(const PeriodicCell &cell, const PetscReal *x, std::vector<std::vector<PetscInt>> &cols)
-{
-  const ParticleSet           &P    = cell.GetTissue().particles;
-  const std::vector<PetscInt> &free = cell.Free();
-  const size_t                 C = P.OwnedPolygons(), L = P.polygons.size();
-  const PetscReal              reach = cell.Reach();
-  std::vector<PetscInt>        dof(P.NumOwned(), -1);
-  for (size_t k = 0; k < free.size(); k++) dof[free[k]] = (PetscInt)k;
-  std::vector<std::array<PetscReal, 4>> box(L);
-  for (size_t c = 0; c < L; c++) {
-    box[c] = {PETSC_MAX_REAL, PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
-    for (PetscInt i : P.polygons[c].nodes)
-      for (int d = 0; d < 2; d++) box[c][d] = std::min(box[c][d], x[2 * i + d]), box[c][2 + d] = std::max(box[c][2 + d], x[2 * i + d]);
-  }
-  std::vector<std::set<PetscInt>> adj(P.NumOwned()); /* owned particles coupled to each */
-  auto                            link = [&](PetscInt i, PetscInt j) {
-    adj[i].insert(j);
-    adj[j].insert(i);
-  };
-  for (size_t c = 0; c < C; c++) {
-    const std::vector<PetscInt> &nodes = P.polygons[c].nodes;
-    for (PetscInt i : nodes)
-      for (PetscInt j : nodes) adj[i].insert(j);
-    for (size_t e = 0; e < L; e++) {
-      const PetscReal gx = std::max((PetscReal)0, std::max(box[c][0] - box[e][2], box[e][0] - box[c][2]));
-      const PetscReal gy = std::max((PetscReal)0, std::max(box[c][1] - box[e][3], box[e][1] - box[c][3]));
-      if (e == c || gx * gx + gy * gy > reach * reach) continue;
-      for (PetscInt s : P.polygons[e].bars) {
-        const Spring &b = P.springs[s];
-        for (PetscInt p : nodes)
-          if (PointSegmentDistance2(&x[2 * p], &x[2 * b.i], &x[2 * b.j]) <= reach * reach) link(p, cell.ParticleOwner(b.i)), link(p, cell.ParticleOwner(b.j));
-      }
-    }
-  }
-  cols.assign(free.size(), {});
-  for (size_t k = 0; k < free.size(); k++) {
-    std::set<PetscInt> c;
-    for (PetscInt i : adj[free[k]])
-      if (dof[i] >= 0) c.insert(dof[i]);
-    cols[k].assign(c.begin(), c.end());
-  }
-}
-
 PetscErrorCode RVEEquations::PatternColumns(std::vector<std::vector<PetscInt>> &cols) const
 {
   const ParticleSet              &P    = cell_->GetTissue().particles;
@@ -210,7 +161,7 @@ PetscErrorCode RVEEquations::PatternColumns(std::vector<std::vector<PetscInt>> &
   std::vector<std::set<PetscInt>> adj(P.n);
   PetscFunctionBeginUser;
   if (cell_->HasHalo()) {
-    PolygonPatternColumns(*cell_, x_.data(), cols);
+    cell_->PolygonCouplings(x_.data(), cols);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   auto link = [&](PetscInt i, PetscInt j) {

@@ -81,10 +81,16 @@ void Tissue::Finalize()
   P.gid.resize(P.n);
   for (PetscInt i = 0; i < P.n; i++) P.gid[i] = i;
   P.fixed.assign(P.n, 0);
+  UpdateBounds();
+}
+
+void Tissue::UpdateBounds()
+{
+  const PetscInt n = particles.n;
   for (int d = 0; d < 2; d++) {
-    lo[d] = P.n ? X[d] : 0;
-    hi[d] = P.n ? X[d] : 0;
-    for (PetscInt i = 1; i < P.n; i++) {
+    lo[d] = n ? X[d] : 0;
+    hi[d] = n ? X[d] : 0;
+    for (PetscInt i = 1; i < n; i++) {
       lo[d] = std::min(lo[d], X[2 * i + d]);
       hi[d] = std::max(hi[d], X[2 * i + d]);
     }

@@ -54,12 +54,14 @@ public:
      deformation). Polygons: no cell inverted, and the halo still holds every image within reach
      (the deformation and fluctuation have not used up the margin). Else *why says what. */
   bool Admissible(const PetscReal *x, const Tensor2 &F, const PeriodicImages &images, std::string *why) const;
-  /* Polygons: the halo (particles after NumOwned(), their owner and image index) and the cell of
-     every local polygon (owned: itself; an image: its owner's). */
-  bool                         HasHalo() const { return !halo_owner_.empty(); }
-  const std::vector<PetscInt> &PolygonOwner() const { return polygon_owner_; }
-  PetscInt                     ParticleOwner(PetscInt i) const { return i < tissue_.particles.NumOwned() ? i : halo_owner_[i - tissue_.particles.NumOwned()]; }
-  PetscReal                    Reach() const { return reach_; }
+  /* Polygons: the halo (particles after NumOwned(), each an image of an owned one). */
+  bool      HasHalo() const { return !halo_owner_.empty(); }
+  PetscReal Reach() const { return reach_; }
+  /* Polygons: the Jacobian pattern of the relaxation at positions x: columns (unknown pairs) of each
+     unknown pair. Every node of a cell with every other (a cell's turgor couples all its nodes
+     through its area; bars and hinges are the cell's own), and every node with the two ends of each
+     bar of another cell within reach (contact, glue), an image standing for its owner. */
+  void PolygonCouplings(const PetscReal *x, std::vector<std::vector<PetscInt>> &cols) const;
 
 private:
   bool FluidInsideCells(const PetscReal *x, const PeriodicImages &images) const;
@@ -67,9 +69,8 @@ private:
   Tissue                tissue_;
   std::vector<PetscInt> free_;
   PetscReal             length_ = 25, mass_ = 0;
-  std::vector<PetscInt> halo_owner_;    /* [halo particles] the owned particle each copies */
-  std::vector<int>      halo_image_;    /* [halo particles] its image, PeriodicImages::Index */
-  std::vector<PetscInt> polygon_owner_; /* [local polygons] */
+  std::vector<PetscInt> halo_owner_; /* [halo particles] the owned particle each copies */
+  std::vector<int>      halo_image_; /* [halo particles] its image, PeriodicImages::Index */
   PetscReal             reach_ = 0, margin_ = 0;
 };
 

@@ -28,6 +28,8 @@ struct Tissue {
      each doubling, and up to twice the memory kept). */
   void Reserve(PetscInt n_particles, size_t n_springs);
   void Finalize();
+  /* lo, hi: the bounding box of X (Finalize's; a tissue assembled otherwise calls it itself). */
+  void UpdateBounds();
   /* Wall particle closest to the point (px, py). */
   PetscInt ClosestWallParticle(PetscReal px, PetscReal py) const;
   /* Clamp (fix) the wall particles on the named sides: any of left, right, bottom, top; "none"
