@@ -38,7 +38,7 @@ endif()
 
 # -help lists the control options (with a placeholder group name when no -controls is given)
 turgor_add_test(help_fine_controls COMMAND ${HELP} fine -controls -control_<name>_nodes -control_<name>_plates -control_<name>_box -control_<name>_velocity
-  -control_<name>_force -control_<name>_profile -control_<name>_ramp_time -control_<name>_half_period -control_<name>_delay LABELS unit)
+  -control_<name>_force -control_<name>_profile -control_<name>_ramp_time -control_<name>_half_period -control_<name>_delay -control_<name>_duration LABELS unit)
 
 # The tensile scene (config/tensile_pull_fine.yaml), 2 µs into its 20 µs ramp: the pulled side has
 # moved v t^2 / (2 T) = 0.05 x 4 / 40 = 0.005 µm

@@ -2,7 +2,7 @@ static const char help[] = "Load controls of the fine run against closed forms, 
                            "1. free particles under a constant imposed velocity move as x0 + v t (to round-off), a free component falls\n"
                            "   freely under the body force (-g t^2 / 2);\n"
                            "2. a ramp reaches v T / 2 + v (t - T); a cyclic profile is back at the start after a full period;\n"
-                           "   a delayed group starts at its delay;\n"
+                           "   a delayed group starts at its delay; a group with a duration stops after it and holds;\n"
                            "3. a force-controlled node with no other force moves as F t^2 / (2 m), and groups.csv reports F;\n"
                            "4. the reaction of a node pulling a spring chain equals the last spring's tension k (l - l0);\n"
                            "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy, _mz and one row per sample.\n";
@@ -144,9 +144,13 @@ int main(int argc, char **argv)
     }
     { /* 2b. delayed: a velocity group holds still until its delay, then moves; a delayed force
          group pushes from its delay on: x = F (t - d)^2 / 2m */
-      ControlGroup a = Group("late", {0}, true, 0.5, 0), f = Group("push", {1}, false, 0.02, 0);
+      ControlGroup a = Group("late", {0}, true, 0.5, 0), f = Group("push", {1}, false, 0.02, 0), b = Group("brief", {2}, true, 0, 0.3, CONTROL_RAMP);
       a.delay = 2.0, f.delay = 3.0;
-      PetscCall(Run(free3, {}, {a, f}, type, T, dt, 7, {"none"}, &r));
+      b.delay = 0.5, b.ramp_time = 1.0, b.duration = 1.5; /* ramp to 0.3 over 1 µs, then 0.5 µs at 0.3, then still */
+      PetscCall(Run(free3, {}, {a, f, b}, type, T, dt, 7, {"none"}, &r));
+      const PetscReal brief = 0.3 * 1.0 / 2 + 0.3 * 0.5;
+      TG_CHECK_CLOSE(r.rows.back()[12], brief, 1e-13, 1, "a control with a duration: v T / 2 + v (D - T), then still (groups.csv)");
+      TG_CHECK_CLOSE(r.x[5] - free3.X[5], brief, std::string(type) == TSRK ? 1e-7 : 1e-12, 1, "a control with a duration (state)");
       TG_CHECK(r.rows[2][1] == 0, "a delayed velocity control moved before its delay: %g", (double)r.rows[2][1]);
       TG_CHECK_CLOSE(r.x[0] - free3.X[0], 0.5 * (T - 2.0), std::string(type) == TSRK ? 1e-7 : 1e-12, 1, "delayed velocity control: v (t - delay)");
       TG_CHECK_CLOSE(r.x[2] - free3.X[2], 0.02 * (T - 3.0) * (T - 3.0) / (2 * m), std::string(type) == TSRK ? 1e-6 : 1e-3, 1,

@@ -10,7 +10,7 @@ namespace turgor {
 PetscReal ControlGroup::Scale(PetscReal t) const
 {
   t -= delay;
-  if (t < 0) return 0;
+  if (t < 0 || (duration > 0 && t >= duration)) return 0;
   switch (profile) {
   case CONTROL_RAMP:
     return t < ramp_time ? t / ramp_time : 1;
@@ -25,6 +25,7 @@ PetscReal ControlGroup::Integral(PetscReal t) const
 {
   t -= delay;
   if (t <= 0) return 0;
+  if (duration > 0) t = std::min(t, duration);
   switch (profile) {
   case CONTROL_RAMP:
     return t < ramp_time ? 0.5 * t * t / ramp_time : 0.5 * ramp_time + (t - ramp_time);
@@ -40,7 +41,7 @@ PetscReal ControlGroup::Integral(PetscReal t) const
 PetscReal ControlGroup::Rate(PetscReal t) const
 {
   t -= delay;
-  return profile == CONTROL_RAMP && t >= 0 && t < ramp_time ? 1 / ramp_time : 0;
+  return profile == CONTROL_RAMP && t >= 0 && t < ramp_time && (duration <= 0 || t < duration) ? 1 / ramp_time : 0;
 }
 
 /* The number of comma-separated values of option `name` (0 if not given), so that the list is read
@@ -90,6 +91,10 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   PetscCall(TurgorOptionsReal(params, "-half_period", "Half period [µs] (profile cyclic)", "Controls", g->half_period, &g->half_period, &set_half));
   PetscCall(TurgorOptionsReal(params, "-delay", "The profile starts at this time [µs]; before it a velocity group holds still and a force group pushes nothing",
                               "Controls", g->delay, &g->delay, NULL));
+  PetscCall(TurgorOptionsReal(params, "-duration",
+                              "The profile stops this long after its delay [µs]: a velocity group then holds still where it got to, a force group lets go "
+                              "(0: never)",
+                              "Controls", g->duration, &g->duration, NULL));
   PetscOptionsEnd();
   if (help_only) PetscFunctionReturn(PETSC_SUCCESS);
   g->name    = name;
@@ -144,6 +149,8 @@ static PetscErrorCode ReadGroup(MPI_Comm comm, const std::string &name, bool hel
   }
   PetscCheck(std::isfinite(g->delay) && g->delay >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %sdelay = %g: must be finite and >= 0", pre.c_str(),
              (double)g->delay);
+  PetscCheck(std::isfinite(g->duration) && g->duration >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option %sduration = %g: must be finite and >= 0 (0: never stops)",
+             pre.c_str(), (double)g->duration);
   if (g->profile == CONTROL_RAMP)
     PetscCheck(std::isfinite(g->ramp_time) && g->ramp_time > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "Option %sramp_time = %g: profile ramp needs a finite ramp time > 0", pre.c_str(), (double)g->ramp_time);
@@ -426,6 +433,7 @@ PetscErrorCode Controls::View(MPI_Comm comm) const
     if (G.profile == CONTROL_RAMP) PetscCall(PetscPrintf(comm, " over %g µs", (double)G.ramp_time));
     if (G.profile == CONTROL_CYCLIC) PetscCall(PetscPrintf(comm, ", half period %g µs", (double)G.half_period));
     if (G.delay > 0) PetscCall(PetscPrintf(comm, ", from t = %g µs", (double)G.delay));
+    if (G.duration > 0) PetscCall(PetscPrintf(comm, ", until t = %g µs", (double)(G.delay + G.duration)));
     PetscCall(PetscPrintf(comm, "\n"));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -28,6 +28,8 @@ PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
     TurgorOptionsInt(params, "-lloyd_steps", "Lloyd relaxations: each seed moved to its cell's centroid", "VoronoiSpec", lloyd_steps, &lloyd_steps, NULL));
   PetscCall(TurgorOptionsReal(params, "-size_cv", "Coefficient of variation of the cell areas, 0 <= c <= 0.5 (Laguerre weights; 0: Voronoi)", "VoronoiSpec",
                               size_cv, &size_cv, NULL));
+  PetscCall(TurgorOptionsReal(params, "-gap", "Gap [µm] between neighbouring cells' bar surfaces (a middle lamella; 0: touching at 2 r)", "VoronoiSpec", gap,
+                              &gap, NULL));
   PetscOptionsEnd();
   PetscCall(b.Take(comm, "-tissue_box", BoxShape::HasArea, box, NULL));
   PetscCheck(cells >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_voronoi_cells = %" PetscInt_FMT ": must be >= 1", cells);
@@ -36,6 +38,7 @@ PetscErrorCode VoronoiSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
      c <= 0.5 keeps the smallest cell at 13% of the mean */
   PetscCheck(std::isfinite(size_cv) && size_cv >= 0 && size_cv <= 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_size_cv = %g: must be in [0, 0.5]",
              (double)size_cv);
+  PetscCheck(std::isfinite(gap) && gap >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_gap = %g: must be finite and >= 0", (double)gap);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -366,12 +369,12 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
   const PetscReal          min_edge = std::max(poly.bar_radius, 1e-9 * std::sqrt(W * H / (PetscReal)spec.cells));
   std::vector<PolygonRing> rings(D.cells.size());
   for (size_t i = 0; i < D.cells.size(); i++) {
-    ShrinkPowerCell(D.cells[i], poly.bar_radius, min_edge, &rings[i].points);
+    ShrinkPowerCell(D.cells[i], poly.bar_radius + 0.5 * spec.gap, min_edge, &rings[i].points);
     PetscCheck(rings[i].points.size() >= 3, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "Option -tissue_bar_radius = %g: Voronoi cell %zu (area %g µm^2) vanishes when shrunk by the bar radius (-tissue_voronoi_cells %" PetscInt_FMT
-               " in a %g x %g box: cells of about %g µm); use a smaller radius or fewer cells",
-               (double)poly.bar_radius, i, D.cells[i].v.empty() ? 0.0 : (double)RingSignedArea(D.cells[i].v), spec.cells, (double)W, (double)H,
-               (double)std::sqrt(W * H / (PetscReal)spec.cells));
+               "Options -tissue_bar_radius = %g, -tissue_gap = %g: Voronoi cell %zu (area %g µm^2) vanishes when shrunk by the bar radius and half the gap "
+               "(-tissue_voronoi_cells %" PetscInt_FMT " in a %g x %g box: cells of about %g µm); use a smaller radius or gap, or fewer cells",
+               (double)poly.bar_radius, (double)spec.gap, i, D.cells[i].v.empty() ? 0.0 : (double)RingSignedArea(D.cells[i].v), spec.cells, (double)W,
+               (double)H, (double)std::sqrt(W * H / (PetscReal)spec.cells));
   }
   PetscCall(BuildPolygonTissue(comm, rings, poly, true, tissue));
   PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
@@ -399,9 +402,9 @@ PetscErrorCode VoronoiGenerator::View(PetscViewer viewer) const
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "tissue voronoi: %" PetscInt_FMT " cells in [%g, %g] x [%g, %g], seed %" PetscInt_FMT ", %" PetscInt_FMT
-                                   " Lloyd steps, size cv %g, %s\n",
+                                   " Lloyd steps, size cv %g, gap %g µm, %s\n",
                                    spec.cells, (double)spec.box[0], (double)spec.box[2], (double)spec.box[1], (double)spec.box[3], spec.seed, spec.lloyd_steps,
-                                   (double)spec.size_cv, PolygonDescription().c_str()));
+                                   (double)spec.size_cv, (double)spec.gap, PolygonDescription().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -5,7 +5,8 @@
    A velocity-controlled component is an exact constraint: x(t) = X + v S(t), v(t) = v s(t), where
    s is the profile (step: 1; ramp: min(t / T, 1); cyclic: +1, -1 alternating every half period),
    started at the group's delay (s = 0 before it: a velocity group holds still, a force group
-   pushes nothing), and S its integral. The driver overwrites those components wherever the state is read (forces,
+   pushes nothing) and, with a duration, stopped after it (s = 0 again: a velocity group holds still
+   where it got to, a force group lets go), and S its integral. The driver overwrites those components wherever the state is read (forces,
    outputs), integrates dx/dt = v s(t) and leaves their velocity un-integrated (dv/dt = 0). A force
    control applies the total force F s(t) to the group, shared by mass (every node gets the same
    acceleration F s(t) / M). Nodes are wall particles (box and cells select wall particles only;
@@ -38,6 +39,7 @@ struct ControlGroup {
   PetscReal      ramp_time   = 0; /* [µs] */
   PetscReal      half_period = 0; /* [µs] */
   PetscReal      delay       = 0; /* [µs]: the profile starts at t = delay */
+  PetscReal      duration    = 0; /* [µs]: the profile stops at t = delay + duration; 0: never */
 
   /* set up from the tissue: the nodes (local indices), their reference positions, total mass */
   std::vector<PetscInt>  nodes;

@@ -7,13 +7,14 @@
 namespace turgor {
 
 /* Options -tissue_voronoi_cells N, -tissue_box xmin,ymin,xmax,ymax, -tissue_seed S,
-   -tissue_lloyd_steps K, -tissue_size_cv c (prefix tissue_). */
+   -tissue_lloyd_steps K, -tissue_size_cv c, -tissue_gap g (prefix tissue_). */
 struct VoronoiSpec {
   PetscInt  cells       = 256;              /* 16 x 16 cells of 25 µm on average, like the square grid */
   PetscReal box[4]      = {0, 0, 400, 400}; /* µm */
   PetscInt  seed        = 1;
   PetscInt  lloyd_steps = 0;
   PetscReal size_cv     = 0; /* target coefficient of variation of the cell areas; 0: plain Voronoi */
+  PetscReal gap         = 0; /* µm between neighbouring cells' bar surfaces (each cell shrunk by r + g/2) */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
@@ -45,7 +46,7 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
 /* The cell shrunk by r (every edge moved inward by r), with edges shorter than min_edge merged;
    empty if nothing is left. */
 void ShrinkPowerCell(const PowerCell &cell, PetscReal r, PetscReal min_edge, std::vector<Point2> *out);
-/* The tissue: the diagram, its cells shrunk by poly.bar_radius, edges cut into bars. `diagram`
+/* The tissue: the diagram, its cells shrunk by poly.bar_radius + spec.gap / 2, edges cut into bars. `diagram`
    (optional) receives the diagram before shrinking. */
 PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue, VoronoiDiagram *diagram = nullptr);
 
