@@ -27,6 +27,9 @@
   compare_runs.py contains DIR KEY TEXT...   every TEXT is one of the entries of the list summary.json[KEY]
   compare_runs.py notmore A_DIR B_DIR KEY RELTOL  summary.json[KEY] of A is at most (1 + RELTOL) x B's (strictly
                                              less when RELTOL < 0)
+  compare_runs.py csvrow A_CSV ROW_A B_CSV ROW_B RELTOL  row ROW_A of A_CSV and row ROW_B of B_CSV agree in every
+                                             column but the first (time), each within RELTOL of the row's
+                                             largest |value| (a static equilibrium against a settled dynamic run)
   compare_runs.py pathtangent DIR RELTOL      rve.csv: the stress change from row 0 to row 1 is the row-0
                                              tangent's prediction, D^e [d11, d22, 2 d12] + l s + s l^T - tr(l) s
                                              (its Truesdell rate; l = dF F^-1), within RELTOL of |change|
@@ -211,6 +214,17 @@ def main(argv):
         err = abs(value - expected) / abs(expected)
         print(f"{argv[2]}: {name}[{row}]{' - ' + name + '[' + argv[7] + ']' if len(argv) > 7 else ''} = {value:.8g}, expected {expected:.8g} (relative error {err:.2e})")
         if not err <= tol:
+            sys.exit(f"FAIL: above {tol}")
+    elif mode == "csvrow":
+        ra, rb = list(csv.reader(open(argv[2]))), list(csv.reader(open(argv[4])))
+        if ra[0] != rb[0]:
+            sys.exit(f"FAIL: the columns differ: {ra[0]} vs {rb[0]}")
+        a, b, tol = ra[1:][int(argv[3])], rb[1:][int(argv[5])], float(argv[6])
+        scale = max(abs(float(v)) for v in b[1:]) or 1.0
+        worst, where = max((abs(float(x) - float(y)), name) for x, y, name in zip(a[1:], b[1:], ra[0][1:]))
+        print(f"{argv[2]} row {argv[3]} (t = {a[0]}) against {argv[4]} row {argv[5]} (t = {b[0]}): largest difference {worst:.3e} "
+              f"({where}), {worst / scale:.3e} of the row's largest value {scale:.6g}")
+        if not worst <= tol * scale:
             sys.exit(f"FAIL: above {tol}")
     elif mode == "pathtangent":
         r0, r1 = list(csv.DictReader(open(f"{argv[2]}/rve.csv")))[:2]

@@ -4,6 +4,7 @@
 #include <turgor/modes/eigen_run.h>
 #include <turgor/coarse/fe2_run.h>
 #include <turgor/modes/fe2_static_run.h>
+#include <turgor/fine/fine_static_run.h>
 #include <turgor/fine/fine_run.h>
 #include <turgor/material/neo_hookean.h>
 #include <turgor/modes/strain_path_run.h>
@@ -71,6 +72,7 @@ PetscErrorCode RegisterAll(void)
   PetscCall(SimulationRegister("rve", CreateInstance<Simulation, StrainPathRun>));
   PetscCall(SimulationRegister("fe2", CreateInstance<Simulation, FE2Run>));
   PetscCall(SimulationRegister("fe2_static", CreateInstance<Simulation, FE2StaticRun>));
+  PetscCall(SimulationRegister("fine_static", CreateInstance<Simulation, FineStaticRun>));
   PetscCall(SimulationRegister("eigen", CreateInstance<Simulation, EigenRun>));
   PetscCall(PetscRegisterFinalize(Unregister));
   registered = PETSC_TRUE;

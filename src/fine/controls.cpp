@@ -354,7 +354,7 @@ void Controls::ControlForces(PetscReal t, const PetscReal *f, PetscReal *r, Pets
       }
 }
 
-PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const
+PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row, bool inertia) const
 {
   const size_t ng = groups_.size();
   const int    K  = 8; /* per group: sum ux, uy, fx, fy, count, m x, m y, and (second pass) mz */
@@ -396,7 +396,7 @@ PetscErrorCode Controls::Observe(MPI_Comm comm, PetscReal t, const PetscReal *x,
     for (int d = 0; d < 2; d++) {
       row[5 * g + d] = sums[K * g + d] / n;
       if (!G.velocity) row[5 * g + 2 + d] = G.value[d] * G.Scale(t);
-      else if (!G.free[d]) row[5 * g + 2 + d] = G.mass * G.value[d] * G.Rate(t) - sums[K * g + 2 + d];
+      else if (!G.free[d]) row[5 * g + 2 + d] = (inertia ? G.mass * G.value[d] * G.Rate(t) : 0) - sums[K * g + 2 + d];
     }
     row[5 * g + 4] = mz[g];
   }
@@ -435,6 +435,32 @@ PetscErrorCode Controls::View(MPI_Comm comm) const
     if (G.delay > 0) PetscCall(PetscPrintf(comm, ", from t = %g µs", (double)G.delay));
     if (G.duration > 0) PetscCall(PetscPrintf(comm, ", until t = %g µs", (double)(G.delay + G.duration)));
     PetscCall(PetscPrintf(comm, "\n"));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ClampFromOptions(MPI_Comm comm, std::vector<std::string> *clamp, ParameterList *params)
+{
+  char     *sides[8];
+  PetscInt  nsides = 8;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "fine_", "Boundary conditions of the fine modes (-mode fine, fine_static)", "turgor");
+  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "Controls", sides,
+                                    &nsides, &set));
+  PetscOptionsEnd();
+  std::vector<std::string> listed;
+  for (PetscInt k = 0; set && k < nsides; k++) { /* taken at once: an error below must not leave them allocated */
+    listed.push_back(sides[k]);
+    PetscCall(PetscFree(sides[k]));
+  }
+  PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
+  PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
+  if (set) *clamp = listed;
+  if (params) {
+    std::string all;
+    for (const std::string &c : *clamp) all += (all.empty() ? "" : ",") + c;
+    params->Set("-fine_clamp", all.empty() ? "none" : all);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

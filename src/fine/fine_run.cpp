@@ -3,6 +3,7 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
+#include <turgor/fine/particle_output.h>
 #include <turgor/parallel/rank_reductions.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
@@ -12,9 +13,7 @@ namespace turgor {
 
 PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
-  char     *sides[8];
-  PetscInt  nsides = 8;
-  PetscBool set, pset, hset;
+  PetscBool pset, hset;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
   PetscCall(TurgorOptionsReal(params, "-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)",
@@ -42,30 +41,15 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "Distributed runs: width [µm] of the halo beyond the interactions' reach (cutoffs + neighbour skin); cells may move this "
                              "far relative to each other before the run stops (default: the reach)",
                              "FineRunSpec", halo_margin, &halo_margin, &hset));
-  /* last, and its strings taken at once: an error in another option must not leave them allocated */
-  PetscCall(PetscOptionsStringArray("-clamp", "Tissue sides whose wall particles are fixed: left,right,bottom,top or none (default: left)", "FineRunSpec",
-                                    sides, &nsides, &set));
   PetscOptionsEnd();
-  std::vector<std::string> listed;
-  for (PetscInt k = 0; set && k < nsides; k++) {
-    listed.push_back(sides[k]);
-    PetscCall(PetscFree(sides[k]));
-  }
+  PetscCall(ClampFromOptions(comm, &clamp, params));
   PetscCheck(!hset || (halo_margin >= 0 && std::isfinite(halo_margin)), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_halo_margin = %g: must be >= 0",
              (double)halo_margin);
   PetscCheck(!pset || partition >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_partition_report = %" PetscInt_FMT ": the number of parts must be >= 1",
              partition);
-  PetscCheck(!set || nsides < 8, comm, PETSC_ERR_ARG_SIZ, "Option -fine_clamp: more than 7 sides listed");
-  PetscCall(CheckNotEmpty(comm, "-fine_clamp", "sides: left, right, bottom, top, or none"));
-  if (set) clamp = listed;
   PetscCheck(dt_safety > 0 && dt_safety <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_dt_safety = %g: must be in (0, 1]", (double)dt_safety);
   PetscCheck(energy_tolerance >= 0 && std::isfinite(energy_tolerance), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -fine_energy_tolerance = %g: must be finite and >= 0 (0: no check)", (double)energy_tolerance);
-  if (params) {
-    std::string all;
-    for (const std::string &c : clamp) all += (all.empty() ? "" : ",") + c;
-    params->Set("-fine_clamp", all.empty() ? "none" : all);
-  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -103,32 +87,7 @@ PetscErrorCode FineRun::ModeSetFromOptions()
 
 PetscErrorCode FineRun::CreateSwarm()
 {
-  const ParticleSet &P = tissue_.particles;
-  PetscInt          *kind, *cell;
-  PetscInt64        *pid;
-
-  PetscFunctionBeginUser;
-  PetscCall(DMCreate(comm_, &swarm_));
-  PetscCall(PetscObjectSetName((PetscObject)swarm_, "tissue"));
-  PetscCall(DMSetType(swarm_, DMSWARM));
-  PetscCall(DMSetDimension(swarm_, 2));
-  PetscCall(DMSwarmSetType(swarm_, DMSWARM_BASIC));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "kind", 1, PETSC_INT));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm_, "cell", 1, PETSC_INT));
-  PetscCall(DMSwarmFinalizeFieldRegister(swarm_));
-  PetscCall(DMSwarmSetLocalSizes(swarm_, n_local_, 0));
-  PetscCall(DMSwarmGetField(swarm_, "kind", NULL, NULL, (void **)&kind));
-  PetscCall(DMSwarmGetField(swarm_, "cell", NULL, NULL, (void **)&cell));
-  PetscCall(DMSwarmGetField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
-  for (PetscInt i = 0; i < n_local_; i++) { /* the owned particles come first */
-    kind[i] = P.kind[i];
-    cell[i] = P.cell[i];
-    pid[i]  = P.gid[i];
-  }
-  PetscCall(DMSwarmRestoreField(swarm_, DMSwarmField_pid, NULL, NULL, (void **)&pid));
-  PetscCall(DMSwarmRestoreField(swarm_, "cell", NULL, NULL, (void **)&cell));
-  PetscCall(DMSwarmRestoreField(swarm_, "kind", NULL, NULL, (void **)&kind));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  return CreateParticleSwarm(comm_, tissue_.particles, n_local_, &swarm_);
 }
 
 PetscErrorCode FineRun::SetUpModel()
@@ -362,37 +321,18 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   const PetscScalar             *u;
   const PetscReal               *x, *v;
   ParticleSnapshotWriter::Fields fields;
-  std::vector<TermField>         terms;
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(equations_.LocalState(t, u, &x, &v));
   model_.SetTime(t);
   force_.resize(2 * n_all_);
   PetscCall(equations_.TotalForces(x, v, force_.data()));
-  PetscCall(model_.OutputFields(x, v, terms));
-  {
-    std::vector<TermSegments> segs;
-    PetscCall(model_.OutputSegments(x, v, segs));
-    for (TermSegments &g : segs) {
-      ParticleSnapshotWriter::Segments w{g.name, std::move(g.xy), std::move(g.id), {}};
-      for (TermField &f : g.fields) w.fields.push_back({f.name, f.unit, std::move(f.values), 1});
-      fields.segments.push_back(std::move(w));
-    }
-  }
   for (const ParticleField *f : fields_.With(kSnapshot)) { /* the owned particles' values (position and velocity: the geometry and its motion) */
     if (f->name == "position" || f->name == "velocity") continue;
     const PetscReal *a = f->values();
     fields.nodes.push_back({f->name, f->unit, std::vector<PetscReal>(a, a + f->components * n_local_), f->components});
   }
-  /* this rank's bars and closed cells (they come first: particles.h) */
-  const ParticleSet &P      = tissue_.particles;
-  size_t             closed = 0;
-  for (size_t c = 0; c < P.OwnedPolygons(); c++) closed += !P.polygons[c].open && P.polygons[c].nodes.size() >= 3;
-  for (TermField &f : terms) {
-    if (f.where == TermField::CELL && snapshots_writer_.Cells() == 0) continue; /* no cells grid on any rank (the square grid) */
-    f.values.resize(f.where == TermField::CELL ? closed : P.OwnedSprings());
-    (f.where == TermField::CELL ? fields.cells : fields.bars).push_back({f.name, f.unit, std::move(f.values), 1});
-  }
+  PetscCall(AddTermSnapshotFields(model_, tissue_.particles, snapshots_writer_, x, v, &fields));
   PetscCall(snapshots_writer_.Write(swarm_, t, x, v, fields));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);

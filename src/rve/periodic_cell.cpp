@@ -1,34 +1,10 @@
+#include <turgor/particles/polygon_couplings.h>
 #include <turgor/rve/periodic_cell.h>
 #include <algorithm>
 #include <cmath>
 #include <set>
 
 namespace turgor {
-
-namespace {
-struct CellBox {
-  PetscReal lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
-};
-
-CellBox BoxOf(const std::vector<PetscInt> &nodes, const PetscReal *x)
-{
-  CellBox b;
-  for (PetscInt i : nodes)
-    for (int d = 0; d < 2; d++) b.lo[d] = std::min(b.lo[d], x[2 * i + d]), b.hi[d] = std::max(b.hi[d], x[2 * i + d]);
-  return b;
-}
-
-/* distance between the boxes a and b + shift */
-PetscReal BoxGap(const CellBox &a, const CellBox &b, const PetscReal shift[2])
-{
-  PetscReal g2 = 0;
-  for (int d = 0; d < 2; d++) {
-    const PetscReal g = std::max((PetscReal)0, std::max(a.lo[d] - (b.hi[d] + shift[d]), (b.lo[d] + shift[d]) - a.hi[d]));
-    g2 += g * g;
-  }
-  return std::sqrt(g2);
-}
-} // namespace
 
 PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<PolygonRing> &rings, const PolygonTissueSpec &poly, const PetscReal period[2],
                                            PetscReal reach, PetscReal margin)
@@ -108,29 +84,12 @@ PetscErrorCode PeriodicCell::SetUpPolygons(MPI_Comm comm, const std::vector<Poly
 
 void PeriodicCell::PolygonCouplings(const PetscReal *x, std::vector<std::vector<PetscInt>> &cols) const
 {
-  const ParticleSet              &P = tissue_.particles;
-  const size_t                    C = P.OwnedPolygons(), L = P.polygons.size();
-  const PetscReal                 zero[2] = {0, 0};
-  const PetscInt                  N       = P.NumOwned();
-  auto                            owner   = [&](PetscInt i) { return i < N ? i : halo_owner_[i - N]; };
+  const PetscInt                  N = tissue_.particles.NumOwned();
   std::vector<PetscInt>           dof(N, -1);
-  std::vector<CellBox>            box(L);
-  std::vector<std::set<PetscInt>> adj(N); /* owned particles coupled to each */
+  std::vector<std::set<PetscInt>> adj;
   for (size_t k = 0; k < free_.size(); k++) dof[free_[k]] = (PetscInt)k;
-  for (size_t c = 0; c < L; c++) box[c] = BoxOf(P.polygons[c].nodes, x);
-  for (size_t c = 0; c < C; c++) {
-    const std::vector<PetscInt> &nodes = P.polygons[c].nodes;
-    for (PetscInt i : nodes) adj[i].insert(nodes.begin(), nodes.end());
-    for (size_t e = 0; e < L; e++) {
-      if (e == c || BoxGap(box[c], box[e], zero) > reach_) continue;
-      for (PetscInt s : P.polygons[e].bars) {
-        const Spring &b = P.springs[s];
-        for (PetscInt p : nodes)
-          if (PointSegmentDistance2(&x[2 * p], &x[2 * b.i], &x[2 * b.j]) <= reach_ * reach_)
-            for (PetscInt q : {owner(b.i), owner(b.j)}) adj[p].insert(q), adj[q].insert(p);
-      }
-    }
-  }
+  turgor::PolygonCouplings(
+    tissue_.particles, x, reach_, [&](PetscInt i) { return i < N ? i : halo_owner_[i - N]; }, adj);
   cols.assign(free_.size(), {});
   for (size_t k = 0; k < free_.size(); k++) {
     std::set<PetscInt> c;

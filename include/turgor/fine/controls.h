@@ -82,9 +82,10 @@ public:
      of a force group; 0 elsewhere. */
   void ControlForces(PetscReal t, const PetscReal *f, PetscReal *r, PetscInt n) const;
   /* Per group (ux, uy, fx, fy, mz): the mean displacement, the reaction (velocity components:
-     M a_c - sum of the other forces f on the group) or the applied force, and the moment of those
-     forces about the group's centre of mass. Collective. */
-  PetscErrorCode           Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row) const;
+     M a_c - sum of the other forces f on the group; `inertia` false, a static equilibrium: the
+     minus sum alone) or the applied force, and the moment of those forces about the group's centre
+     of mass. Collective. */
+  PetscErrorCode           Observe(MPI_Comm comm, PetscReal t, const PetscReal *x, const PetscReal *f, std::vector<PetscReal> &row, bool inertia = true) const;
   std::vector<std::string> Columns() const;
   std::vector<std::string> Names() const;
   PetscErrorCode           View(MPI_Comm comm) const;
@@ -96,5 +97,9 @@ private:
   std::vector<PetscReal> node_mass_;               /* of every local particle (the centre of mass of a group); empty without groups */
   PetscInt               n_owned_ = PETSC_MAX_INT; /* nodes from here on are halo copies (Localize) */
 };
+
+/* -fine_clamp: the tissue sides whose wall particles are fixed (left, right, bottom, top; none),
+   the fine modes' other boundary condition; *clamp keeps its value when the option is not given. */
+PetscErrorCode ClampFromOptions(MPI_Comm comm, std::vector<std::string> *clamp, ParameterList *params = nullptr);
 
 } // namespace turgor
