@@ -40,4 +40,4 @@ turgor_add_test(fine_static_chain_newton_tip COMMAND ${CHECK} column static_chai
 
 # -help lists the mode's options
 turgor_add_test(help_fine_static COMMAND ${HELP} fine_static -fine_static_times -fine_static_substeps -fine_static_max_cutbacks -fine_static_snapshots
-  -fine_static_max_step -fine_static_solver -fine_static_psi_max_steps -fine_clamp -controls LABELS unit)
+  -fine_static_max_step -fine_static_solver -fine_static_psi_max_steps -fine_static_monitor -fine_clamp -controls LABELS unit)

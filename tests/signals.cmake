@@ -40,3 +40,11 @@ foreach(np 2 3)
     ${np} ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${SIGNAL_GLUE64} -fine_progress_interval 0
     -output_dir interrupt_kill_np${np}_restart -output_overwrite LABELS fine mpi restart ${tier} REQUIRES interrupt_kill_np${np})
 endforeach()
+
+# SIGTERM after the first equilibrium (t = 25 µs) of a 64-cell gripped tissue: the solve on the way to
+# the next load time stops within a pseudo step, exit 130, summary.json "interrupted" with the last
+# equilibrium's time.
+turgor_add_test(interrupt_fine_static COMMAND ${INTERRUPT} 1 interrupt_fine_static $<TARGET_FILE:turgor_app>
+  -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_tangent_fine.yaml -mode fine_static -tissue_voronoi_cells 64 -tissue_box 0,0,200,200
+  -control_left_box -1,-1,12.5,201 -control_right_box 187.5,-1,201,201 -control_bottom_box 12.5,-1,187.5,12.5 -control_top_box 12.5,187.5,187.5,201
+  -fine_static_times 25,26,27,28,29,30 LABELS hard fine)

@@ -35,6 +35,8 @@ PetscErrorCode FineStaticSpec::SetFromOptions(MPI_Comm comm)
                                 "FineStaticSpec", solvers, 2, solvers[which], &which, NULL));
     solver = (FineStaticSolver)which;
   }
+  PetscCall(PetscOptionsBool("-monitor", "Print every pseudo step's residual (-fine_static_solver psitc; -fine_static_snes_monitor for newton)",
+                             "FineStaticSpec", monitor, &monitor, NULL));
   PetscCall(PetscOptionsInt("-psi_max_steps", "Pseudo-transient continuation: the most pseudo steps per increment", "FineStaticSpec", psi_max_steps,
                             &psi_max_steps, NULL));
   PetscCall(PetscOptionsReal("-max_step",
@@ -387,6 +389,12 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
   PetscCall(VecNorm(R, NORM_INFINITY, &rinf));
   dt = rinf > 0 ? spec_.max_step / rinf : 1; /* max_step: a tenth of a bar by default */
   for (PetscInt k = 0; k < spec_.psi_max_steps && std::isfinite(rn) && rn > tol; k++) {
+    PetscBool stop;
+    PetscCall(InterruptRequestedAll(comm_, &stop)); /* SIGINT/SIGTERM: stop within a step, not at the next load time */
+    if (stop) {
+      interrupted_ = true;
+      break;
+    }
     if (k > 0) dt = std::min(dt * rprev / rn, (PetscReal)1e300);
     PetscCall(MatFDColoringApply(J_, coloring_, W_, NULL)); /* R'(u), with R(u) evaluated afresh */
     jacobians_++;
@@ -411,6 +419,9 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
       } else dt *= 0.25; /* a cell inverted: the same state, a shorter pseudo step */
     }
     (*steps)++;
+    if (spec_.monitor)
+      PetscCall(
+        PetscPrintf(comm_, "    pseudo step %" PetscInt_FMT ": |R| %.3e, pseudo step %.3g%s\n", *steps, (double)rn, (double)dt, taken ? "" : " (failed)"));
     if (!taken) break;
   }
   residual_  = rn;
@@ -533,6 +544,7 @@ PetscErrorCode FineStaticRun::Solve()
       bool            ok;
       std::string     why;
       PetscCall(SolveAt(t, &ok, &why));
+      if (interrupted_) break;
       if (ok) {
         increments_++;
         halvings = 0;
@@ -548,6 +560,11 @@ PetscErrorCode FineStaticRun::Solve()
       halvings++;
       cutbacks_++;
       PetscCall(PetscPrintf(comm_, "  cut back at t = %g µs (%s): increment %g µs\n", (double)t, why.c_str(), (double)dt));
+    }
+    if (interrupted_) {
+      PetscCall(PetscPrintf(comm_, "Interrupted (SIGINT/SIGTERM) on the way to t = %g µs: stopping; the last equilibrium is t = %g µs\n", (double)target,
+                            (double)t_conv_));
+      break;
     }
     PetscCall(Record(target, increments_ - inc0, cutbacks_ - cut0, iterations_ - its0));
     PetscBool stop;
@@ -621,7 +638,8 @@ PetscErrorCode FineStaticRun::AddSummary(JsonObject &js)
   js.Set("physics", model_.ActiveTerms());
   js.Set("times", spec_.times);
   js.Set("load_times_done", load_times_done_);
-  js.Set("time_final", t_conv_);
+  js.Set("t_final", t_conv_); /* the last equilibrium's time */
+  js.Set("t_requested", spec_.times.back());
   js.Set("increments", increments_);
   js.Set("cutbacks", cutbacks_);
   js.Set("solver", spec_.solver == FineStaticSolver::PSITC ? "psitc" : "newton");

@@ -34,7 +34,7 @@ enum class FineStaticSolver {
 };
 
 /* Options -fine_static_times, -fine_static_substeps, -fine_static_max_cutbacks,
-   -fine_static_snapshots, -fine_static_max_step, -fine_static_solver, -fine_static_psi_max_steps, and the scene's -fine_clamp (as -mode fine reads it). */
+   -fine_static_snapshots, -fine_static_max_step, -fine_static_solver, -fine_static_psi_max_steps, -fine_static_monitor, and the scene's -fine_clamp (as -mode fine reads it). */
 struct FineStaticSpec {
   std::vector<PetscReal>   times         = {0};      /* [µs], increasing: the scene's times whose equilibria are found */
   PetscInt                 substeps      = 1;        /* increments from one load time to the next */
@@ -44,6 +44,7 @@ struct FineStaticSpec {
   PetscReal                max_step      = 0; /* [µm]: the largest node move of a Newton step; 0: a tenth of the mean bar */
   FineStaticSolver         solver        = FineStaticSolver::PSITC;
   PetscInt                 psi_max_steps = 200;
+  PetscBool                monitor       = PETSC_FALSE;
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
