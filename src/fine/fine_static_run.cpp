@@ -113,6 +113,7 @@ PetscErrorCode FineStaticRun::SetUp()
              "equilibrium to solve for");
   PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
   PetscCall(controls_.SetUp(comm_, tissue_, rank_ == 0));
+  tip_ = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1])); /* as -mode fine's tip.csv */
   if (rank_ != 0) { /* checked on every rank above; held, computed and written by rank 0 alone */
     Tissue none;
     for (int d = 0; d < 2; d++) none.lo[d] = tissue_.lo[d], none.hi[d] = tissue_.hi[d];
@@ -205,7 +206,7 @@ PetscErrorCode FineStaticRun::SetUp()
     for (const std::string &c : controls_.Columns()) cols.push_back(c);
     if (rank_ == 0) {
       PetscCall(groups_csv_.Open(PETSC_COMM_SELF, OutputPath("groups.csv"), cols));
-      PetscCall(static_csv_.Open(PETSC_COMM_SELF, OutputPath("static.csv"), {"time", "increments", "cutbacks", "iterations", "residual"}));
+      PetscCall(static_csv_.Open(PETSC_COMM_SELF, OutputPath("static.csv"), {"time", "tip_displacement_y", "increments", "cutbacks", "iterations", "residual"}));
     }
     if (spec_.snapshots) {
       PetscCall(CreateParticleSwarm(comm_, P, rank_ == 0 ? P.n : 0, &swarm_));
@@ -365,9 +366,11 @@ PetscErrorCode FineStaticRun::BuildJacobian()
 
 /* Pseudo-transient continuation from W_ to |R| <= tol: (I / dt + R'(u)) du = -R(u), u += du, the
    pseudo step growing as the residual falls (switched evolution relaxation, dt_n+1 = dt_n |R_n-1| /
-   |R_n|) into Newton's. The first step moves no node more than a tenth of a bar (dt_0 = 0.1 h /
-   |R|_inf: du ~ dt R where R' is small against 1/dt); a step that inverts a cell is taken again at a
-   quarter of dt from the same state. By hand rather than TSPSEUDO, which in PETSc 3.18 retries a
+   |R_n|, and at least doubled after a step that lowered it: a soft mode -- a cantilever's bending --
+   otherwise holds the residual and the step where they are, 0.2 % a step) into Newton's. The first step moves no node more than a tenth of a bar (dt_0 = 0.1 h /
+   |R|_inf: du ~ dt R where R' is small against 1/dt); a step that inverts a cell or makes the
+   residual four times larger is taken again at a quarter of dt from the same state (a turgid
+   cantilever under its weight: accepted, such steps threw the residual up 500x, again and again). By hand rather than TSPSEUDO, which in PETSc 3.18 retries a
    rejected step from the rejected state and leaves the step rule without the last residual (the
    RVE's relaxation works around both); here the loop is ten lines. R' comes from the colouring at
    every step and is factored with the pseudo shift by the SNES's KSP (a direct solve). */
@@ -395,7 +398,7 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
       interrupted_ = true;
       break;
     }
-    if (k > 0) dt = std::min(dt * rprev / rn, (PetscReal)1e300);
+    if (k > 0) dt = std::min(dt * (rn < rprev ? std::max((PetscReal)2, rprev / rn) : rprev / rn), (PetscReal)1e300);
     PetscCall(MatFDColoringApply(J_, coloring_, W_, NULL)); /* R'(u), with R(u) evaluated afresh */
     jacobians_++;
     bool taken = false;
@@ -410,13 +413,13 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
       PetscCall(Residual(NULL, Wtry, Rtry, this));
       PetscReal rt;
       PetscCall(VecNorm(Rtry, NORM_2, &rt));
-      if (std::isfinite(rt)) {
+      if (std::isfinite(rt) && rt <= 4 * rn) {
         taken = true;
         rprev = rn;
         rn    = rt;
         PetscCall(VecCopy(Wtry, W_));
         PetscCall(VecCopy(Rtry, R));
-      } else dt *= 0.25; /* a cell inverted: the same state, a shorter pseudo step */
+      } else dt *= 0.25; /* a cell inverted, or the residual grew fourfold: the same state, a shorter pseudo step */
     }
     (*steps)++;
     if (spec_.monitor)
@@ -603,6 +606,8 @@ PetscErrorCode FineStaticRun::Record(PetscReal t, PetscInt increments, PetscInt 
   PetscCheck(inverted < 0, comm_, PETSC_ERR_NOT_CONVERGED, "-mode fine_static: cell %" PetscInt_FMT " is inverted at the equilibrium of t = %g µs", inverted,
              (double)t);
   PetscCheck(!bad, comm_, PETSC_ERR_FP, "-mode fine_static: non-finite forces at the equilibrium of t = %g µs", (double)t);
+  tip_uy_ = rank_ == 0 && tip_ >= 0 ? x_[2 * tip_ + 1] - X_[2 * tip_ + 1] : 0;
+  PetscCallMPI(MPI_Bcast(&tip_uy_, 1, MPIU_REAL, 0, comm_));
   /* the groups' reactions: minus the forces on their held components (no inertia at rest) */
   PetscCall(controls_.Observe(comm_, t, x_.data(), f_.data(), last_groups_, false));
   load_times_done_++;
@@ -610,7 +615,7 @@ PetscErrorCode FineStaticRun::Record(PetscReal t, PetscInt increments, PetscInt 
     std::vector<PetscReal> row = {t};
     row.insert(row.end(), last_groups_.begin(), last_groups_.end());
     PetscCall(groups_csv_.Row(row));
-    PetscCall(static_csv_.Row({t, (PetscReal)increments, (PetscReal)cutbacks, (PetscReal)iterations, residual_}));
+    PetscCall(static_csv_.Row({t, tip_uy_, (PetscReal)increments, (PetscReal)cutbacks, (PetscReal)iterations, residual_}));
   }
   if (spec_.snapshots && HasOutputDirectory()) {
     /* the force of every term on each node: zero where it is free (the equilibrium), minus the
@@ -639,6 +644,7 @@ PetscErrorCode FineStaticRun::AddSummary(JsonObject &js)
   js.Set("times", spec_.times);
   js.Set("load_times_done", load_times_done_);
   js.Set("t_final", t_conv_); /* the last equilibrium's time */
+  js.Set("tip_displacement_y", tip_uy_);
   js.Set("t_requested", spec_.times.back());
   js.Set("increments", increments_);
   js.Set("cutbacks", cutbacks_);

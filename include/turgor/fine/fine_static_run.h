@@ -15,7 +15,8 @@
    axial vibration against the organ's bending), Newton needs a few factorisations per increment.
    All particles are on rank 0 (an empty rank is a valid rank: the others join the collective
    solves with no rows). Outputs: groups.csv (the controls' displacements and reactions at every
-   load time), static.csv (per load time: increments, Newton iterations, residual), particles.h5/xmf
+   load time), static.csv (per load time: the tip's vertical displacement -- the node in the middle
+   of the right side, as -mode fine's tip.csv --, increments, iterations, residual), particles.h5/xmf
    (every load time: the equilibrium, the force on every node -- the reactions where it is
    constrained), summary.json. */
 #include <turgor/fine/controls.h>
@@ -87,6 +88,8 @@ private:
   Controls       controls_;
   ForceModel     model_;
   PetscMPIInt    rank_ = 0;
+  PetscInt       tip_   = -1; /* rank 0: the wall particle in the middle of the right side */
+  PetscReal      tip_uy_ = 0; /* its vertical displacement at the last equilibrium */
 
   std::vector<PetscInt>  dof_;            /* rank 0: the state index 2 i + d of each unknown */
   std::vector<PetscReal> X_, x_, v0_, f_; /* reference, current positions, zero velocities, forces */
