@@ -206,7 +206,8 @@ PetscErrorCode FineStaticRun::SetUp()
     for (const std::string &c : controls_.Columns()) cols.push_back(c);
     if (rank_ == 0) {
       PetscCall(groups_csv_.Open(PETSC_COMM_SELF, OutputPath("groups.csv"), cols));
-      PetscCall(static_csv_.Open(PETSC_COMM_SELF, OutputPath("static.csv"), {"time", "tip_displacement_y", "increments", "cutbacks", "iterations", "residual"}));
+      PetscCall(
+        static_csv_.Open(PETSC_COMM_SELF, OutputPath("static.csv"), {"time", "tip_displacement_y", "increments", "cutbacks", "iterations", "residual"}));
     }
     if (spec_.snapshots) {
       PetscCall(CreateParticleSwarm(comm_, P, rank_ == 0 ? P.n : 0, &swarm_));
