@@ -87,9 +87,9 @@ private:
   Tissue         tissue_;
   Controls       controls_;
   ForceModel     model_;
-  PetscMPIInt    rank_ = 0;
-  PetscInt       tip_   = -1; /* rank 0: the wall particle in the middle of the right side */
-  PetscReal      tip_uy_ = 0; /* its vertical displacement at the last equilibrium */
+  PetscMPIInt    rank_   = 0;
+  PetscInt       tip_    = -1; /* rank 0: the wall particle in the middle of the right side */
+  PetscReal      tip_uy_ = 0;  /* its vertical displacement at the last equilibrium */
 
   std::vector<PetscInt>  dof_;            /* rank 0: the state index 2 i + d of each unknown */
   std::vector<PetscReal> X_, x_, v0_, f_; /* reference, current positions, zero velocities, forces */
