@@ -160,6 +160,7 @@ PetscErrorCode FineStaticRun::SetUp()
   {
     const PetscReal W = tissue_.hi[0] - tissue_.lo[0], H = tissue_.hi[1] - tissue_.lo[1];
     const PetscReal cell = W * H > 0 ? std::sqrt(W * H / (PetscReal)std::max((size_t)1, P.polygons.size())) : std::max(W, H);
+    cell_size_           = cell;
     force_scale_         = physics_.CharacteristicForce(cell, 0);
     if (!(force_scale_ > 0)) force_scale_ = 1;
     /* the finite differences perturb positions x = X + u, so their step is relative to |x| (sqrt(eps)
@@ -169,7 +170,13 @@ PetscErrorCode FineStaticRun::SetUp()
     for (PetscReal c : X_) coordinate_scale_ = std::max(coordinate_scale_, std::fabs(c));
     if (!(coordinate_scale_ > 0)) coordinate_scale_ = 1;
   }
-  PetscCall(SNESSetTolerances(snes_, 1e-12, 1e-10, PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  /* the absolute tolerance 1e-12, or the round-off floor of |R| where that is higher: each force
+     carries about eps x the coordinates' size x k_b of error, so |R| cannot fall below
+     sqrt(N) eps |x| / L (1 600 cells, 128 000 unknowns: 3e-12; the residual stalled at 1.4e-12) */
+  PetscReal floor = 0;
+  if (rank_ == 0) floor = std::sqrt((PetscReal)N) * PETSC_MACHINE_EPSILON * coordinate_scale_ / cell_size_;
+  PetscCallMPI(MPI_Bcast(&floor, 1, MPIU_REAL, 0, comm_));
+  PetscCall(SNESSetTolerances(snes_, std::max((PetscReal)1e-12, floor), 1e-10, PETSC_DEFAULT, 50, PETSC_DEFAULT));
   {
     SNESLineSearch ls;
     PetscCall(SNESGetLineSearch(snes_, &ls));

@@ -95,7 +95,7 @@ private:
   std::vector<PetscReal> X_, x_, v0_, f_; /* reference, current positions, zero velocities, forces */
   std::vector<PetscReal> w_conv_;         /* rank 0: the unknowns (displacements of the free components) of the last converged increment */
   PetscReal              held_blend_ = 1; /* Place: the held components this fraction of the way from t_conv_'s positions to t_'s */
-  PetscReal              t_ = 0, t_conv_ = 0, force_scale_ = 1, coordinate_scale_ = 1;
+  PetscReal              t_ = 0, t_conv_ = 0, force_scale_ = 1, coordinate_scale_ = 1, cell_size_ = 1; /* rank 0's */
   SNES                   snes_     = nullptr;
   Mat                    J_        = nullptr;
   MatFDColoring          coloring_ = nullptr;
