@@ -1,13 +1,11 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/options.h>
 #include <turgor/core/geometry.h>
-#include <turgor/core/log.h>
 #include <turgor/fine/fine_static_run.h>
 #include <turgor/fine/particle_output.h>
 #include <turgor/particles/polygon_couplings.h>
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace turgor {
 
@@ -232,11 +230,8 @@ PetscErrorCode FineStaticRun::Place(Vec W)
   PetscCall(VecGetArrayRead(W, &w));
   x_ = X_; /* clamped nodes stay there */
   controls_.Impose(t_, x_.data(), nullptr);
-  if (held_blend_ < 1) { /* the predictor: the held components part of the way from where they were at the last equilibrium */
-    std::vector<PetscReal> before = X_;
-    controls_.Impose(t_conv_, before.data(), nullptr);
-    for (size_t k = 0; k < x_.size(); k++) x_[k] = before[k] + held_blend_ * (x_[k] - before[k]);
-  }
+  if (held_blend_ < 1) /* the predictor: the held components part of the way from where they were at the last equilibrium */
+    for (size_t k = 0; k < x_.size(); k++) x_[k] = held_before_[k] + held_blend_ * (x_[k] - held_before_[k]);
   for (size_t k = 0; k < dof_.size(); k++) x_[dof_[k]] = X_[dof_[k]] + w[k];
   PetscCall(VecRestoreArrayRead(W, &w));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -248,19 +243,26 @@ PetscErrorCode FineStaticRun::Forces(bool *ok)
   PetscFunctionBeginUser;
   *ok = true;
   if (rank_ != 0) PetscFunctionReturn(PETSC_SUCCESS);
-  for (size_t c = 0; c < P.polygons.size(); c++) /* outside the forces' domain (a gas law's p0 A0 / A) */
-    if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3 && !(PolygonArea(P.polygons[c].nodes, x_.data()) > 0)) *ok = false;
+  *ok = FirstInvertedCell() < 0; /* outside the forces' domain (a gas law's p0 A0 / A) */
   if (!*ok) PetscFunctionReturn(PETSC_SUCCESS);
   model_.SetTime(t_);
   PetscCall(model_.ComputeForces(x_.data(), v0_.data(), f_.data(), nullptr));
   evaluations_++;
-  std::vector<PetscReal> r(f_.size());
-  controls_.ControlForces(t_, f_.data(), r.data(), P.n);
+  push_.resize(f_.size());
+  controls_.ControlForces(t_, f_.data(), push_.data(), P.n);
   for (const ControlGroup &G : controls_.Groups()) /* the force groups' pushes (a velocity group's reaction is not a force on the unknowns) */
     if (!G.velocity)
       for (PetscInt i : G.nodes)
-        for (int d = 0; d < 2; d++) f_[2 * i + d] += r[2 * i + d];
+        for (int d = 0; d < 2; d++) f_[2 * i + d] += push_[2 * i + d];
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt FineStaticRun::FirstInvertedCell() const
+{
+  const ParticleSet &P = tissue_.particles;
+  for (size_t c = 0; c < P.polygons.size(); c++)
+    if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3 && !(PolygonArea(P.polygons[c].nodes, x_.data()) > 0)) return (PetscInt)c;
+  return -1;
 }
 
 /* R = -f / force scale on the unknowns; NaN and a domain error where a cell is inverted (the line
@@ -375,13 +377,14 @@ PetscErrorCode FineStaticRun::BuildJacobian()
 /* Pseudo-transient continuation from W_ to |R| <= tol: (I / dt + R'(u)) du = -R(u), u += du, the
    pseudo step growing as the residual falls (switched evolution relaxation, dt_n+1 = dt_n |R_n-1| /
    |R_n|, and at least doubled after a step that lowered it: a soft mode -- a cantilever's bending --
-   otherwise holds the residual and the step where they are, 0.2 % a step) into Newton's. The first step moves no node more than a tenth of a bar (dt_0 = 0.1 h /
-   |R|_inf: du ~ dt R where R' is small against 1/dt); a step that inverts a cell or makes the
+   otherwise holds the residual and the step where they are, 0.2 % a step) into Newton's. The
+   first step moves no node more than -fine_static_max_step (dt_0 = max_step / |R|_inf: du ~ dt R
+   where R' is small against 1/dt); a step that inverts a cell, fails to factor or makes the
    residual 100 times larger is taken again at a quarter of dt from the same state (a turgid
    cantilever under its weight: accepted, such steps threw the residual up 500x, again and again;
-   a stricter 4x costs a confined tissue three times the steps). By hand rather than TSPSEUDO, which in PETSc 3.18 retries a
-   rejected step from the rejected state and leaves the step rule without the last residual (the
-   RVE's relaxation works around both); here the loop is ten lines. R' comes from the colouring at
+   a stricter 4x costs a confined tissue three times the steps). By hand rather than TSPSEUDO,
+   which in PETSc 3.18 retries a rejected step from the rejected state and leaves the step rule
+   without the last residual (the RVE's relaxation works around both); here the loop is short. R' comes from the colouring at
    every step and is factored with the pseudo shift by the SNES's KSP (a direct solve). */
 PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, PetscInt *steps)
 {
@@ -418,10 +421,14 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
       PetscCall(KSPSetOperators(ksp, A, A));
       PetscCall(KSPSolve(ksp, R, dW));
       PetscCall(MatDestroy(&A));
-      PetscCall(VecWAXPY(Wtry, -1.0, dW, W_));
-      PetscCall(Residual(NULL, Wtry, Rtry, this));
-      PetscReal rt;
-      PetscCall(VecNorm(Rtry, NORM_2, &rt));
+      KSPConvergedReason solved;
+      PetscCall(KSPGetConvergedReason(ksp, &solved));
+      PetscReal rt = NAN;
+      if (solved >= 0) { /* a failed factorisation leaves dW undefined: retried at a shorter step, whose shift helps the factor */
+        PetscCall(VecWAXPY(Wtry, -1.0, dW, W_));
+        PetscCall(Residual(NULL, Wtry, Rtry, this));
+        PetscCall(VecNorm(Rtry, NORM_2, &rt));
+      }
       if (std::isfinite(rt) && rt <= 100 * rn) {
         taken = true;
         rprev = rn;
@@ -445,9 +452,10 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The linear response of the free nodes to the held ones' move from the last equilibrium: R' du =
-   -dR/dheld . move, the derivative along the move by a difference of 1e-3 of it. Without it the first residual sees only the held nodes moved: the bonds beside a grip open
-   by the grip's whole step, past the glue's peak, and the solve starts from a broken state. */
+/* The linear response of the free nodes to the held ones' move from the last equilibrium:
+   R' du = -dR/dheld . move, the derivative along the move by a difference of 1e-3 of it. Without it
+   the first residual sees only the held nodes moved: the bonds beside a grip open by the grip's
+   whole step, past the glue's peak, and the solve starts from a broken state. */
 PetscErrorCode FineStaticRun::Predict()
 {
   const PetscReal eps = 1e-3;
@@ -458,6 +466,8 @@ PetscErrorCode FineStaticRun::Predict()
   PetscCall(VecDuplicate(W_, &R0));
   PetscCall(VecDuplicate(W_, &Re));
   PetscCall(VecDuplicate(W_, &dW));
+  held_before_ = X_;
+  controls_.Impose(t_conv_, held_before_.data(), nullptr);
   held_blend_ = eps;
   PetscCall(Residual(NULL, W_, Re, this));
   held_blend_ = 0;
@@ -468,9 +478,11 @@ PetscErrorCode FineStaticRun::Predict()
   PetscCall(KSPSetOperators(ksp, J_, J_));
   PetscCall(KSPSolve(ksp, Re, dW));
   held_blend_ = 1;
-  PetscReal move;
+  KSPConvergedReason solved;
+  PetscReal          move;
+  PetscCall(KSPGetConvergedReason(ksp, &solved));
   PetscCall(VecNorm(dW, NORM_INFINITY, &move));
-  if (std::isfinite(move)) PetscCall(VecAXPY(W_, -1.0, dW));
+  if (solved >= 0 && std::isfinite(move)) PetscCall(VecAXPY(W_, -1.0, dW)); /* else no prediction: the solve starts where the last equilibrium was */
   PetscCall(VecDestroy(&R0));
   PetscCall(VecDestroy(&Re));
   PetscCall(VecDestroy(&dW));
@@ -606,8 +618,7 @@ PetscErrorCode FineStaticRun::Record(PetscReal t, PetscInt increments, PetscInt 
   PetscMPIInt bad      = 0;
   PetscInt    inverted = -1;
   if (rank_ == 0) {
-    for (size_t c = 0; c < P.polygons.size() && inverted < 0; c++)
-      if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3 && !(PolygonArea(P.polygons[c].nodes, x_.data()) > 0)) inverted = (PetscInt)c;
+    inverted = FirstInvertedCell();
     for (PetscReal v : f_) bad |= !std::isfinite(v);
   }
   PetscCallMPI(MPI_Bcast(&inverted, 1, MPIU_INT, 0, comm_));

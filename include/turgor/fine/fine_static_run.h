@@ -3,16 +3,17 @@
    at the scene's load times (-fine_static_times): the quasi-static limit of the same scene under
    -mode fine. At time t the velocity controls hold their components at X + v S(t), the force controls
    push F s(t), the clamped sides stay at X, the body force and the turgor (its ramp at t) act, and
-   the velocities are zero (dashpots and viscosity exert nothing). Newton (PETSc SNES, prefix
-   fine_static_) on the scaled forces, its Jacobian by finite differences coloured on the
-   interaction graph (particles/polygon_couplings.h: a cell's nodes, and each node with the bars within
-   reach), and a direct solve (MUMPS where PETSc has it: the graph is planar and its LU stays sparse).
+   the velocities are zero (dashpots and viscosity exert nothing). Pseudo-transient continuation
+   growing into Newton (or PETSc SNES, prefix fine_static_) on the scaled forces, the Jacobian by
+   finite differences coloured on the interaction graph (particles/polygon_couplings.h: a cell's
+   nodes, and each node with the bars within reach), and a direct solve (MUMPS where PETSc has it).
    Between two load times the controls move in -fine_static_substeps increments, each halved on a
-   failed solve (-fine_static_max_cutbacks); a converged increment commits the terms' history
-   (plastic hinges, friction springs, glue damage and breaks), so a path is followed, not jumped.
+   failed solve (-fine_static_max_cutbacks), the free nodes first moved by their linear response to
+   the held ones' move; a converged increment commits the terms' history (plastic hinges, friction
+   springs, glue damage and breaks), so a path is followed, not jumped.
 
    Where dynamic relaxation needs ω_max / ω_1 steps (10^5 to 10^6 for a bending tissue: the walls'
-   axial vibration against the organ's bending), Newton needs a few factorisations per increment.
+   axial vibration against the organ's bending), this needs tens of factorisations per increment.
    All particles are on rank 0 (an empty rank is a valid rank: the others join the collective
    solves with no rows). Outputs: groups.csv (the controls' displacements and reactions at every
    load time), static.csv (per load time: the tip's vertical displacement -- the node in the middle
@@ -73,8 +74,9 @@ private:
   PetscErrorCode Place(Vec W);
   /* f_ = the forces of the terms and the force controls at x_ (rank 0); false: a cell is inverted */
   PetscErrorCode Forces(bool *ok);
-  PetscErrorCode BuildJacobian(); /* the pattern at x_, the colouring, the matrix (collective) */
-  PetscErrorCode Predict();       /* W_ moved by the linear response to the held nodes' move since the last equilibrium */
+  PetscInt       FirstInvertedCell() const; /* rank 0: the first closed cell of x_ with no positive area, -1 if none */
+  PetscErrorCode BuildJacobian();           /* the pattern at x_, the colouring, the matrix (collective) */
+  PetscErrorCode Predict();                 /* W_ moved by the linear response to the held nodes' move since the last equilibrium */
   PetscErrorCode PseudoTransient(PetscReal tol, bool *converged, PetscInt *steps); /* from W_ to |R| <= tol */
   /* the nonlinear solve at time t from the last converged state; *converged, *why */
   PetscErrorCode SolveAt(PetscReal t, bool *converged, std::string *why);
@@ -93,6 +95,8 @@ private:
 
   std::vector<PetscInt>  dof_;            /* rank 0: the state index 2 i + d of each unknown */
   std::vector<PetscReal> X_, x_, v0_, f_; /* reference, current positions, zero velocities, forces */
+  std::vector<PetscReal> push_;           /* Forces' work: the control forces (only the force groups' are used) */
+  std::vector<PetscReal> held_before_;    /* Predict: every position with the held components where the last equilibrium had them */
   std::vector<PetscReal> w_conv_;         /* rank 0: the unknowns (displacements of the free components) of the last converged increment */
   PetscReal              held_blend_ = 1; /* Place: the held components this fraction of the way from t_conv_'s positions to t_'s */
   PetscReal              t_ = 0, t_conv_ = 0, force_scale_ = 1, coordinate_scale_ = 1, cell_size_ = 1; /* rank 0's */
