@@ -24,6 +24,12 @@ turgor_add_test(polygon_fe2_static COMMAND turgor_app ${PRVE_BLOCK} -mode fe2_st
   SETUP polygon_fe2_static)
 turgor_add_test(polygon_fe2_static_sags COMMAND ${CHECK} between polygon_fe2_static tip_displacement_final -1 -1e-3 LABELS fe2 static
   REQUIRES polygon_fe2_static)
+# ... and without a load: the increment starts at the RVEs' accuracy floor (the residual the released
+# block reached), where Newton cannot gain 1e-4; the block stays where its prestress put it
+turgor_add_test(polygon_fe2_static_unloaded COMMAND turgor_app ${PRVE_BLOCK} -mode fe2_static -body_force 0,0 -output_dir polygon_fe2_static_unloaded
+  LABELS fe2 static hard SETUP polygon_fe2_static_unloaded)
+turgor_add_test(polygon_fe2_static_unloaded_released COMMAND ${CHECK} between polygon_fe2_static_unloaded tip_displacement_final 5.3332e-3 5.3334e-3
+  LABELS fe2 static hard REQUIRES polygon_fe2_static_unloaded)
 turgor_add_test(polygon_eigen COMMAND turgor_app ${PRVE_BLOCK} -mode eigen -output_dir polygon_eigen LABELS fe2 eigen SETUP polygon_eigen)
 turgor_add_test(polygon_eigen_positive COMMAND ${CHECK} equals polygon_eigen positive_definite True LABELS fe2 eigen REQUIRES polygon_eigen)
 

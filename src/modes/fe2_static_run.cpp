@@ -257,7 +257,11 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
     PetscCall(SNESGetFunction(snes_, &F, NULL, NULL));
     PetscCall(VecNorm(F, NORM_2, &fnorm)); /* at the final iterate (the history stops one short) */
     PetscCall(SNESGetTolerances(snes_, &atol, NULL, NULL, NULL, NULL));
-    if (nhist > 0 && !(fnorm <= PetscMax(atol, 1e-4 * hist[0]))) {
+    /* the floor: 1e-4 of where the increment started, or the residual the last converged state
+       reached (the RVEs' relaxation accuracy, which no Newton step lowers: an increment that
+       starts there, as a zero load's does, cannot fall by 1e-4) */
+    const PetscReal floor = PetscMax(PetscMax(atol, 1e-4 * (nhist > 0 ? hist[0] : 0)), 2 * residual_conv_);
+    if (nhist > 0 && !(fnorm <= floor)) {
       *converged = false;
       char buf[256];
       PetscCall(PetscSNPrintf(buf, sizeof buf, "the Newton steps stalled (SNES CONVERGED_SNORM_RELATIVE) at residual %.3g, %.2g of the initial %.3g",
@@ -277,7 +281,12 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
   } else if (reason <= 0)
     *why = std::string(model_.Counters().failures > failures ? "material points failed, " : "") + "SNES " + SNESConvergedReasons[reason] + " after " +
            std::to_string(its) + " iterations";
-  if (*converged) PetscCall(model_.CommitMaterials());
+  if (*converged) {
+    Vec F;
+    PetscCall(SNESGetFunction(snes_, &F, NULL, NULL));
+    PetscCall(VecNorm(F, NORM_2, &residual_conv_));
+    PetscCall(model_.CommitMaterials());
+  }
   else {
     failed_solves_++;
     PetscCall(model_.RevertMaterials());
