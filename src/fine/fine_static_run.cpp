@@ -440,7 +440,7 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
     (*steps)++;
     if (spec_.monitor)
       PetscCall(
-        PetscPrintf(comm_, "    pseudo step %" PetscInt_FMT ": |R| %.3e, pseudo step %.3g%s\n", *steps, (double)rn, (double)dt, taken ? "" : " (failed)"));
+        PetscPrintf(comm_, "    pseudo step %" PetscInt_FMT ": |R| %.3e (|f| %.3g µN), pseudo step %.3g%s\n", *steps, (double)rn, (double)(rn * force_scale_), (double)dt, taken ? "" : " (failed)"));
     if (!taken) break;
   }
   residual_  = rn;
@@ -530,7 +530,7 @@ PetscErrorCode FineStaticRun::SolveAt(PetscReal t, bool *converged, std::string 
   if (!*converged) {
     failed_solves_++;
     char norms[96];
-    PetscCall(PetscSNPrintf(norms, sizeof norms, ", |R| = %.3e (tolerance %.3e)", (double)residual_, (double)tol));
+    PetscCall(PetscSNPrintf(norms, sizeof norms, ", |R| = %.3e (tolerance %.3e; |f| = %.3g µN)", (double)residual_, (double)tol, (double)(residual_ * force_scale_)));
     *why = std::string(spec_.solver == FineStaticSolver::PSITC ? "pseudo-transient continuation " : "Newton ") + (reason > 0 ? "stalled (" : "") +
            SNESConvergedReasons[reason] + (reason > 0 ? ")" : "") + " after " + std::to_string((long long)its) + " iterations" + norms;
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -645,8 +645,8 @@ PetscErrorCode FineStaticRun::Record(PetscReal t, PetscInt increments, PetscInt 
     PetscCall(AddTermSnapshotFields(model_, P, snapshots_, x_.data(), v0_.data(), &fields));
     PetscCall(snapshots_.Write(swarm_, t, x_.data(), v0_.data(), fields));
   }
-  PetscCall(PetscPrintf(comm_, "  t = %g µs: equilibrium after %" PetscInt_FMT " increment(s), %" PetscInt_FMT " cut-back(s), |R| = %.3g\n", (double)t,
-                        increments, cutbacks, (double)residual_));
+  PetscCall(PetscPrintf(comm_, "  t = %g µs: equilibrium after %" PetscInt_FMT " increment(s), %" PetscInt_FMT " cut-back(s), |R| = %.3g (|f| = %.3g µN on the free nodes)\n",
+                        (double)t, increments, cutbacks, (double)residual_, (double)(residual_ * force_scale_)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
