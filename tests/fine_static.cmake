@@ -38,6 +38,23 @@ turgor_add_test(fine_static_chain_newton COMMAND turgor_app -options_file_yaml $
 turgor_add_test(fine_static_chain_newton_tip COMMAND ${CHECK} column static_chain_newton/groups.csv tip_uy -1 -1.64175e-6 1e-6 LABELS fine
   REQUIRES static_chain_newton)
 
+# The same chain under its weight, scheduled (-body_force_delay 1, -body_force_ramp_time 2): nothing at
+# t = 0.5, half at t = 2, all at t = 3. The hinge at x_j carries M_j = m g sum_{i>j} (x_i - x_j), so the
+# tip deflects by sum_j M_j (L - x_j) / k_r = 6.2077125e-7 µm (m = 0.5 ng, g = 2e-4 µm/µs^2); without
+# the delay the ramp would be complete at t = 2.
+turgor_add_test(fine_static_chain_weight COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_cantilever.yaml -mode fine_static
+  -physics bars,hinges,body_force -control_tip_force 0,0 -body_force 0,-2e-4 -body_force_delay 1 -body_force_ramp_time 2 -fine_static_times 0.5,2,3
+  -fine_static_snes_atol 1e-15 -output_dir static_chain_weight -output_overwrite LABELS fine SETUP static_chain_weight)
+turgor_add_test(fine_static_chain_weight_tip COMMAND ${CHECK} column static_chain_weight/groups.csv tip_uy -1 -6.2077125e-7 1e-6 LABELS fine
+  REQUIRES static_chain_weight)
+turgor_add_test(fine_static_chain_weight_half COMMAND ${CHECK} column static_chain_weight/groups.csv tip_uy 1 -3.10385625e-7 1e-6 LABELS fine
+  REQUIRES static_chain_weight)
+# ... and dynamically: the ramped weight's work (the integral of f . v) balances the chain's energy
+# to 1e-6 of it, the run failing otherwise
+turgor_add_test(fine_chain_weight_energy COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_cantilever.yaml
+  -physics bars,hinges,body_force -control_tip_force 0,0 -body_force 0,-2 -body_force_ramp_time 0.3 -fine_energy 1
+  -fine_energy_tolerance 1e-6 -fine_snapshots 0 -fine_progress_interval 0 -output_dir chain_weight_energy -output_overwrite LABELS fine)
+
 # -help lists the mode's options
 turgor_add_test(help_fine_static COMMAND ${HELP} fine_static -fine_static_times -fine_static_substeps -fine_static_max_cutbacks -fine_static_snapshots
   -fine_static_max_step -fine_static_solver -fine_static_psi_max_steps -fine_static_monitor -fine_clamp -controls LABELS unit)

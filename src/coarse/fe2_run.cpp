@@ -54,6 +54,7 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
   model_.Pool().SetDefaultTolerance(1e-9);
   ParameterList &params = PhysicsParameters();
   PetscCall(load_.SetFromOptions(comm_, &params));
+  PetscCall(load_.RequireUnscheduled(comm_, "fe2"));
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions(&params));
   PetscOptionsBegin(comm_, "fe2_", "Coarse FE^2 run (-mode fe2)", "turgor");

@@ -89,6 +89,7 @@ PetscErrorCode EigenRun::SetFromOptions()
     model_ = own_.get();
     model_->Pool().SetDefaultTolerance(1e-9); /* as the FE^2 modes */
     PetscCall(load_.SetFromOptions(comm_));
+    PetscCall(load_.RequireUnscheduled(comm_, "eigen"));
     model_->SetLoad(load_);
     PetscCall(model_->SetFromOptions());
   }

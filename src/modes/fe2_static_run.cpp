@@ -50,6 +50,7 @@ PetscErrorCode FE2StaticRun::SetFromOptions()
      material evaluations per point are not made */
   model_.Pool().Tangent().viscosity = false;
   PetscCall(load_.SetFromOptions(comm_));
+  PetscCall(load_.RequireUnscheduled(comm_, "fe2_static"));
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions());
   PetscCall(spec_.SetFromOptions(comm_));

@@ -7,16 +7,18 @@ PetscErrorCode BodyForce::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
   PetscFunctionBeginUser;
   PetscCheck(ctx.load, comm, PETSC_ERR_ARG_WRONGSTATE, "Physics term body_force: this scene has no loads (-body_force)");
   for (int d = 0; d < 2; d++) g[d] = ctx.load->body_acceleration[d];
+  load_ = *ctx.load;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode BodyForce::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const ParticleSet &P = *in.P;
+  const PetscReal    s = load_.BodyScale(in.t), gx = s * g[0], gy = s * g[1];
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < P.NumOwned(); i++) {
-    f[2 * i] += P.mass[i] * g[0];
-    f[2 * i + 1] += P.mass[i] * g[1];
+    f[2 * i] += P.mass[i] * gx;
+    f[2 * i + 1] += P.mass[i] * gy;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -27,6 +29,7 @@ PetscErrorCode BodyForce::Energy(const ForceInput &in, PetscReal *E, PetscBool *
   PetscFunctionBeginUser;
   *E = 0;
   for (PetscInt i = 0; i < P.NumOwned(); i++) *E -= P.mass[i] * (g[0] * in.x[2 * i] + g[1] * in.x[2 * i + 1]);
+  *E *= load_.BodyScale(in.t);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -34,7 +37,9 @@ PetscErrorCode BodyForce::Energy(const ForceInput &in, PetscReal *E, PetscBool *
 PetscErrorCode BodyForce::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "body_force: g = (%g, %g) µm/µs^2\n", (double)g[0], (double)g[1]));
+  char when[96] = "";
+  if (load_.Scheduled()) PetscCall(PetscSNPrintf(when, sizeof when, ", from t = %g µs, built up over %g µs", (double)load_.body_delay, (double)load_.body_ramp_time));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "body_force: g = (%g, %g) µm/µs^2%s\n", (double)g[0], (double)g[1], when));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -28,7 +28,14 @@ PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "body_", "External loads", "turgor");
   PetscCall(PetscOptionsRealArray("-force", "Body force: acceleration gx,gy of the tissue [µm/µs^2] (default 0,-0.2)", "LoadSpec", g, &n, &set));
+  PetscCall(TurgorOptionsReal(params, "-force_delay", "Fine runs: the body force acts from this time on [µs]", "LoadSpec", body_delay, &body_delay, NULL));
+  PetscCall(TurgorOptionsReal(params, "-force_ramp_time", "Fine runs: the body force builds up linearly over this time after its delay [µs]; 0: at once",
+                              "LoadSpec", body_ramp_time, &body_ramp_time, NULL));
   PetscOptionsEnd();
+  PetscCheck(body_delay >= 0 && std::isfinite(body_delay), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -body_force_delay = %g: must be finite and >= 0",
+             (double)body_delay);
+  PetscCheck(body_ramp_time >= 0 && std::isfinite(body_ramp_time), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -body_force_ramp_time = %g: must be finite and >= 0", (double)body_ramp_time);
   PetscCall(CheckNotEmpty(comm, "-body_force", "two components gx,gy [µm/µs^2]"));
   PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %s%" PetscInt_FMT ")", n > 2 ? "more than " : "",
              n > 2 ? (PetscInt)2 : n);
@@ -37,6 +44,15 @@ PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscCheck(std::isfinite(body_acceleration[0]) && std::isfinite(body_acceleration[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "Option -body_force = %g,%g: must be finite", (double)body_acceleration[0], (double)body_acceleration[1]);
   if (params) params->Set("-body_force", ParameterValue(body_acceleration, 2)); /* the value in effect, given or not */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode LoadSpec::RequireUnscheduled(MPI_Comm comm, const char *mode) const
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!Scheduled(), comm, PETSC_ERR_SUP,
+             "Options -body_force_delay = %g, -body_force_ramp_time = %g: -mode %s applies the body force at once (a schedule is for the fine modes)",
+             (double)body_delay, (double)body_ramp_time, mode);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

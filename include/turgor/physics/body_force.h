@@ -1,6 +1,7 @@
 #pragma once
 /* Uniform body force (acceleration g on every particle), e.g. the seed's 0.2 µm/µs^2 downward.
-   g is the scene's load (-body_force, LoadSpec), not an option of this term. */
+   g and its schedule (-body_force_delay, -body_force_ramp_time) are the scene's load (LoadSpec),
+   not options of this term. */
 #include <turgor/physics/force_term.h>
 
 namespace turgor {
@@ -17,6 +18,10 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override;
 
   PetscReal g[2] = {0.0, -0.2}; /* [µm/µs^2] */
+
+private:
+  LoadSpec load_; /* the schedule (the energy balance counts a load's work as the integral of f . v:
+                     a schedule needs no explicit-time term there) */
 };
 
 } // namespace turgor
