@@ -68,3 +68,18 @@ turgor_paraview_polygons(polygon_compression box_snapshots 50)
 turgor_add_test(skin_scene_scale COMMAND turgor_app -mode fine -tissue_type polyline -tissue_bar_radius 0.005 -physics bars,hinges -ts_type verlet
   -ts_max_time 0.01 -fine_snapshots 0 -fine_progress_interval 0 -output_dir skin_scene_scale -output_overwrite LABELS fine
   PASS_REGEX "WARNING: -neighbour_skin 1\\.? µm is more than a quarter of the tissue's size \\(1\\.? µm\\).*about 0\\.005 µm \\(the bar radius\\)")
+
+# The Voronoi bar (config/voronoi_bar_fine.yaml) on 16 cells, 25 µs: the turgor built up over 20 µs
+# breaks no bond; at once, its first swing breaks the top surface's (19 bonds)
+set(VBAR -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_voronoi_cells 16 -tissue_box 0,0,200,50 -ts_max_time 25
+  -fine_snapshots 0 -fine_progress_interval 0 -output_overwrite)
+turgor_add_test(voronoi_bar_ramped COMMAND turgor_app ${VBAR} -output_dir vbar_ramped LABELS fine SETUP vbar_ramped)
+turgor_add_test(voronoi_bar_ramped_intact COMMAND ${CHECK} between vbar_ramped bonds_broken 0 0 LABELS fine REQUIRES vbar_ramped)
+turgor_add_test(voronoi_bar_sudden COMMAND turgor_app ${VBAR} -pressure_ramp_time 0 -output_dir vbar_sudden LABELS fine hard SETUP vbar_sudden)
+turgor_add_test(voronoi_bar_sudden_breaks COMMAND ${CHECK} between vbar_sudden bonds_broken 1 1e9 LABELS fine hard REQUIRES vbar_sudden)
+# ... and by FE² (config/voronoi_bar_fe2.yaml) with 4-cell RVEs: the released prestress lifts the tip,
+# the weight bends it down
+turgor_add_test(voronoi_bar_fe2 COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fe2.yaml -prve_cells 4 -output_dir vbar_fe2
+  -output_overwrite LABELS fe2 static SETUP vbar_fe2)
+turgor_add_test(voronoi_bar_fe2_release COMMAND ${CHECK} column vbar_fe2/tip.csv tip_displacement_y 0 0.063877989 1e-6 LABELS fe2 static REQUIRES vbar_fe2)
+turgor_add_test(voronoi_bar_fe2_bends COMMAND ${CHECK} between vbar_fe2 tip_displacement_final -40 -5 LABELS fe2 static REQUIRES vbar_fe2)
