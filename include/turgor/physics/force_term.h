@@ -37,7 +37,7 @@ struct ForceInput {
   /* AddTimeStepLimits in a distributed run (else empty): adds the halo copies' values of a
      per-particle array [2 n] to their owners' (collective: every rank's term calls it), so that a
      bound summed over interactions that another rank computes (a Gershgorin row) is complete. */
-  std::function<PetscErrorCode(PetscReal *)> sum_halo_shares;
+  std::function<PetscErrorCode(PetscReal *)> sum_halo_shares = nullptr;
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */
