@@ -102,7 +102,9 @@ public:
     col.integer = true;
     return Add(col);
   }
-  /* A member made of reals only (a Tensor2, a pair of 3 x 3 tangents), as that many values. */
+  /* A member made of reals only (a Tensor2, a pair of 3 x 3 tangents), as that many values (trivially
+     copyable: memcpy through void *, which such types with default member initialisers need to build
+     without -Wclass-memaccess). */
   template <class T, class M>
   StateTable &Field(const std::string &name, std::vector<T> &rows, M T::*m, Combine c = Combine::Owner)
   {
@@ -110,7 +112,7 @@ public:
     const int w = (int)(sizeof(M) / sizeof(PetscReal));
     return Column(
       name, w, [&rows, m](size_t r, PetscReal *v) { std::memcpy(v, &(rows[r].*m), sizeof(M)); },
-      [&rows, m](size_t r, const PetscReal *v) { std::memcpy(&(rows[r].*m), v, sizeof(M)); }, c);
+      [&rows, m](size_t r, const PetscReal *v) { std::memcpy(static_cast<void *>(&(rows[r].*m)), v, sizeof(M)); }, c);
   }
   /* Rows that are made of reals only (Tensor2), each as that many values. */
   template <class T>
@@ -120,7 +122,7 @@ public:
     const int w = (int)(sizeof(T) / sizeof(PetscReal));
     return Column(
       name, w, [&rows](size_t r, PetscReal *v) { std::memcpy(v, &rows[r], sizeof(T)); },
-      [&rows](size_t r, const PetscReal *v) { std::memcpy(&rows[r], v, sizeof(T)); }, c);
+      [&rows](size_t r, const PetscReal *v) { std::memcpy(static_cast<void *>(&rows[r]), v, sizeof(T)); }, c);
   }
   /* An integer member that is this rank's number of an entity of kind `e` (written as its id). */
   template <class T>
