@@ -439,8 +439,8 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
     }
     (*steps)++;
     if (spec_.monitor)
-      PetscCall(
-        PetscPrintf(comm_, "    pseudo step %" PetscInt_FMT ": |R| %.3e (|f| %.3g µN), pseudo step %.3g%s\n", *steps, (double)rn, (double)(rn * force_scale_), (double)dt, taken ? "" : " (failed)"));
+      PetscCall(PetscPrintf(comm_, "    pseudo step %" PetscInt_FMT ": |R| %.3e (|f| %.3g µN), pseudo step %.3g%s\n", *steps, (double)rn,
+                            (double)(rn * force_scale_), (double)dt, taken ? "" : " (failed)"));
     if (!taken) break;
   }
   residual_  = rn;
@@ -530,7 +530,8 @@ PetscErrorCode FineStaticRun::SolveAt(PetscReal t, bool *converged, std::string 
   if (!*converged) {
     failed_solves_++;
     char norms[96];
-    PetscCall(PetscSNPrintf(norms, sizeof norms, ", |R| = %.3e (tolerance %.3e; |f| = %.3g µN)", (double)residual_, (double)tol, (double)(residual_ * force_scale_)));
+    PetscCall(
+      PetscSNPrintf(norms, sizeof norms, ", |R| = %.3e (tolerance %.3e; |f| = %.3g µN)", (double)residual_, (double)tol, (double)(residual_ * force_scale_)));
     *why = std::string(spec_.solver == FineStaticSolver::PSITC ? "pseudo-transient continuation " : "Newton ") + (reason > 0 ? "stalled (" : "") +
            SNESConvergedReasons[reason] + (reason > 0 ? ")" : "") + " after " + std::to_string((long long)its) + " iterations" + norms;
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -580,9 +581,9 @@ PetscErrorCode FineStaticRun::Solve()
          increment: measured on a free turgid bar of 400 cells, the iteration crawls along the
          bar's softest mode, whose step the finite-difference Jacobian sizes wrongly */
       const char *creeping = why.find("DIVERGED_MAX_IT") != std::string::npos
-                               ? "; a residual that falls slowly but never converges is a soft mode the finite-difference Jacobian cannot resolve "
-                                 "(a long free bar): -mode fine relaxes it dynamically (-pressure_ramp_time, -body_force_ramp_time, -viscosity_coefficient)"
-                               : "";
+                             ? "; a residual that falls slowly but never converges is a soft mode the finite-difference Jacobian cannot resolve "
+                               "(a long free bar): -mode fine relaxes it dynamically (-pressure_ramp_time, -body_force_ramp_time, -viscosity_coefficient)"
+                             : "";
       PetscCheck(halvings < spec_.max_cutbacks && dt > 0, comm_, PETSC_ERR_NOT_CONVERGED,
                  "-mode fine_static: no equilibrium %s (increment %g µs after %" PetscInt_FMT " cut-backs; -fine_static_max_cutbacks = %" PetscInt_FMT
                  ", or more -fine_static_substeps)%s",
@@ -652,7 +653,9 @@ PetscErrorCode FineStaticRun::Record(PetscReal t, PetscInt increments, PetscInt 
     PetscCall(AddTermSnapshotFields(model_, P, snapshots_, x_.data(), v0_.data(), &fields));
     PetscCall(snapshots_.Write(swarm_, t, x_.data(), v0_.data(), fields));
   }
-  PetscCall(PetscPrintf(comm_, "  t = %g µs: equilibrium after %" PetscInt_FMT " increment(s), %" PetscInt_FMT " cut-back(s), |R| = %.3g (|f| = %.3g µN on the free nodes)\n",
+  PetscCall(PetscPrintf(comm_,
+                        "  t = %g µs: equilibrium after %" PetscInt_FMT " increment(s), %" PetscInt_FMT
+                        " cut-back(s), |R| = %.3g (|f| = %.3g µN on the free nodes)\n",
                         (double)t, increments, cutbacks, (double)residual_, (double)(residual_ * force_scale_)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -287,8 +287,7 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
     PetscCall(SNESGetFunction(snes_, &F, NULL, NULL));
     PetscCall(VecNorm(F, NORM_2, &residual_conv_));
     PetscCall(model_.CommitMaterials());
-  }
-  else {
+  } else {
     failed_solves_++;
     PetscCall(model_.RevertMaterials());
   }

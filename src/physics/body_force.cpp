@@ -38,7 +38,8 @@ PetscErrorCode BodyForce::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
   char when[96] = "";
-  if (load_.Scheduled()) PetscCall(PetscSNPrintf(when, sizeof when, ", from t = %g µs, built up over %g µs", (double)load_.body_delay, (double)load_.body_ramp_time));
+  if (load_.Scheduled())
+    PetscCall(PetscSNPrintf(when, sizeof when, ", from t = %g µs, built up over %g µs", (double)load_.body_delay, (double)load_.body_ramp_time));
   PetscCall(PetscViewerASCIIPrintf(viewer, "body_force: g = (%g, %g) µm/µs^2%s\n", (double)g[0], (double)g[1], when));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -34,8 +34,8 @@ PetscErrorCode LoadSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscOptionsEnd();
   PetscCheck(body_delay >= 0 && std::isfinite(body_delay), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -body_force_delay = %g: must be finite and >= 0",
              (double)body_delay);
-  PetscCheck(body_ramp_time >= 0 && std::isfinite(body_ramp_time), comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "Option -body_force_ramp_time = %g: must be finite and >= 0", (double)body_ramp_time);
+  PetscCheck(body_ramp_time >= 0 && std::isfinite(body_ramp_time), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -body_force_ramp_time = %g: must be finite and >= 0",
+             (double)body_ramp_time);
   PetscCall(CheckNotEmpty(comm, "-body_force", "two components gx,gy [µm/µs^2]"));
   PetscCheck(!set || n == 2, comm, PETSC_ERR_ARG_SIZ, "Option -body_force needs two components gx,gy (got %s%" PetscInt_FMT ")", n > 2 ? "more than " : "",
              n > 2 ? (PetscInt)2 : n);
