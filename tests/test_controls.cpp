@@ -103,7 +103,7 @@ int main(int argc, char **argv)
       const PetscReal                         g  = 0.3;
       auto                                    bf = std::make_unique<BodyForce>();
       std::vector<std::unique_ptr<ForceTerm>> terms;
-      bf->g[0] = 0, bf->g[1] = -g;
+      bf->load.body_acceleration[0] = 0, bf->load.body_acceleration[1] = -g;
       terms.push_back(std::move(bf));
       ControlGroup a = Group("a", {0, 2}, true, 0.25, -0.125), b = Group("b", {1}, true, 0.5, 0);
       b.free[1] = true;

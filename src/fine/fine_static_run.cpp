@@ -390,6 +390,7 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
 {
   KSP       ksp;
   Vec       R, dW, Wtry, Rtry;
+  Mat       A = NULL; /* R' + I / dt, refilled from R' at each try (one matrix, not one per try) */
   PetscReal rn, rprev = 0, dt = 0, rinf;
   PetscFunctionBeginUser;
   *converged = false;
@@ -415,12 +416,11 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
     jacobians_++;
     bool taken = false;
     for (int retry = 0; retry < 8 && !taken; retry++) {
-      Mat A;
-      PetscCall(MatDuplicate(J_, MAT_COPY_VALUES, &A));
+      if (!A) PetscCall(MatDuplicate(J_, MAT_COPY_VALUES, &A));
+      else PetscCall(MatCopy(J_, A, SAME_NONZERO_PATTERN));
       PetscCall(MatShift(A, 1 / dt));
       PetscCall(KSPSetOperators(ksp, A, A));
       PetscCall(KSPSolve(ksp, R, dW));
-      PetscCall(MatDestroy(&A));
       KSPConvergedReason solved;
       PetscCall(KSPGetConvergedReason(ksp, &solved));
       PetscReal rt = NAN;
@@ -445,6 +445,7 @@ PetscErrorCode FineStaticRun::PseudoTransient(PetscReal tol, bool *converged, Pe
   }
   residual_  = rn;
   *converged = std::isfinite(rn) && rn <= tol;
+  PetscCall(MatDestroy(&A));
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&dW));
   PetscCall(VecDestroy(&Wtry));

@@ -6,15 +6,14 @@ PetscErrorCode BodyForce::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
   PetscFunctionBeginUser;
   PetscCheck(ctx.load, comm, PETSC_ERR_ARG_WRONGSTATE, "Physics term body_force: this scene has no loads (-body_force)");
-  for (int d = 0; d < 2; d++) g[d] = ctx.load->body_acceleration[d];
-  load_ = *ctx.load;
+  load = *ctx.load;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode BodyForce::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const ParticleSet &P = *in.P;
-  const PetscReal    s = load_.BodyScale(in.t), gx = s * g[0], gy = s * g[1];
+  const PetscReal    s = load.BodyScale(in.t), gx = s * load.body_acceleration[0], gy = s * load.body_acceleration[1];
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < P.NumOwned(); i++) {
     f[2 * i] += P.mass[i] * gx;
@@ -26,10 +25,11 @@ PetscErrorCode BodyForce::AddForces(const ForceInput &in, PetscReal *f, PetscRea
 PetscErrorCode BodyForce::Energy(const ForceInput &in, PetscReal *E, PetscBool *has)
 {
   const ParticleSet &P = *in.P;
+  const PetscReal   *g = load.body_acceleration;
   PetscFunctionBeginUser;
   *E = 0;
   for (PetscInt i = 0; i < P.NumOwned(); i++) *E -= P.mass[i] * (g[0] * in.x[2 * i] + g[1] * in.x[2 * i + 1]);
-  *E *= load_.BodyScale(in.t);
+  *E *= load.BodyScale(in.t);
   *has = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -38,9 +38,9 @@ PetscErrorCode BodyForce::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
   char when[96] = "";
-  if (load_.Scheduled())
-    PetscCall(PetscSNPrintf(when, sizeof when, ", from t = %g µs, built up over %g µs", (double)load_.body_delay, (double)load_.body_ramp_time));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "body_force: g = (%g, %g) µm/µs^2%s\n", (double)g[0], (double)g[1], when));
+  if (load.Scheduled())
+    PetscCall(PetscSNPrintf(when, sizeof when, ", from t = %g µs, built up over %g µs", (double)load.body_delay, (double)load.body_ramp_time));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "body_force: g = (%g, %g) µm/µs^2%s\n", (double)load.body_acceleration[0], (double)load.body_acceleration[1], when));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -17,11 +17,9 @@ public:
   PetscErrorCode Energy(const ForceInput &in, PetscReal *E, PetscBool *has) override;
   PetscErrorCode View(PetscViewer viewer) const override;
 
-  PetscReal g[2] = {0.0, -0.2}; /* [µm/µs^2] */
-
-private:
-  LoadSpec load_; /* the schedule (the energy balance counts a load's work as the integral of f . v:
-                     a schedule needs no explicit-time term there) */
+  /* g and its schedule, as the scene gives them (the energy balance counts a load's work as the
+     integral of f . v: a schedule needs no explicit-time term there) */
+  LoadSpec load;
 };
 
 } // namespace turgor
