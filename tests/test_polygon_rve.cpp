@@ -5,7 +5,8 @@ static const char help[] = "Polygon RVE material (-material polygon_rve): period
                            " 4. exact tangents (implicit differentiation) against central differences, with turgor and plastic hinges;\n"
                            " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace;\n"
                            " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0;\n"
-                           " 7. the hexagonal lattice likewise: C11 + C12 = sqrt(3) / (1/(k_n s) + 3/(2 k_b)), C11 = C22.\n";
+                           " 7. the hexagonal lattice likewise: C11 + C12 = sqrt(3) / (1/(k_n s) + 3/(2 k_b)), C11 = C22;\n"
+                           " 8. the warm start's predictor w + (dw/dF) dF (spin included) is second order: its error falls 4x when dF halves.\n";
 #include "rve_test_util.h"
 #include <turgor/rve/polygon_rve_material.h>
 
@@ -276,6 +277,53 @@ static PetscErrorCode HexagonalLatticeClosedForm()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* 8. The predictor from the exact tangent's dw/dF: against the relaxed state at F0 + eps G (G with a
+   spin part, which the tangent's three directions do not hold and objectivity supplies), its error
+   is O(eps^2) while the unpredicted start's is O(eps). */
+static PetscErrorCode PredictorOrder()
+{
+  const std::string                   tight = std::string(kGlued) + " -rve_psi_atol 1e-14 -rve_psi_steptol 1e-14";
+  std::unique_ptr<PolygonRVEMaterial> m;
+  std::unique_ptr<RVE>                rve, truth;
+  const Tensor2                       F0 = {
+                          {{1.004, 0.003}, {-0.002, 0.998}}
+  };
+  const Tensor2 G = {
+    {{0.3, -0.8}, {0.6, -0.2}}
+  }; /* a stretch, a shear and a spin */
+  MaterialResponse r, status;
+  Tangents         D;
+  TangentOptions   opt;
+  PetscReal        err[2], lin[2];
+  PetscFunctionBeginUser;
+  PetscCall(MakePoint(tight.c_str(), &m, &rve));
+  PetscCall(CreateRVE(*m, &truth));
+  PetscCall(Eval(*rve, F0, &r));
+  opt.method    = TangentMethod::Implicit;
+  opt.viscosity = false;
+  PetscCall(ComputeTangents(*rve, F0, Tensor2::Zero(), r, opt, &D, &status));
+  TG_CHECK(status.ok, "exact tangents failed: %s", status.reason.c_str());
+  const std::vector<PetscScalar> w0 = rve->CurrentState();
+  std::vector<PetscScalar>       wp(w0.size());
+  for (int k = 0; k < 2; k++) {
+    const PetscReal eps = k ? 5e-4 : 1e-3;
+    const Tensor2   F   = F0 + eps * G;
+    TG_CHECK(rve->Predict(F, Tensor2::Zero(), w0, F0, Tensor2::Zero(), wp.data()), "no prediction after an exact tangent");
+    PetscCall(Eval(*truth, F, &r));
+    const std::vector<PetscScalar> &wt = truth->CurrentState();
+    PetscReal                       e = 0, l = 0;
+    for (size_t i = 0; i < wt.size(); i++) e += (wp[i] - wt[i]) * (wp[i] - wt[i]), l += (w0[i] - wt[i]) * (w0[i] - wt[i]);
+    err[k] = std::sqrt(e);
+    lin[k] = std::sqrt(l);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "8. predictor at F0 + %.0e G: |w_pred - w| = %.3e, |w0 - w| = %.3e\n", (double)eps, (double)err[k], (double)lin[k]));
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "8. halving the step: the predictor's error falls %.2fx, the unpredicted start's %.2fx\n", (double)(err[0] / err[1]),
+                        (double)(lin[0] / lin[1])));
+  TG_CHECK(err[0] / err[1] > 3.5 && err[0] / err[1] < 4.5, "the predictor is not second order (its error falls %.2fx)", (double)(err[0] / err[1]));
+  TG_CHECK(err[0] < 0.05 * lin[0], "the predictor gains too little (%.2e against %.2e)", (double)err[0], (double)lin[0]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
@@ -288,6 +336,7 @@ int main(int argc, char **argv)
   PetscCall(History());
   PetscCall(SquareLatticeClosedForm());
   PetscCall(HexagonalLatticeClosedForm());
+  PetscCall(PredictorOrder());
   PetscCall(PetscOptionsClear(NULL));
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_polygon_rve: all checks passed\n"));
   PetscCall(PetscFinalize());

@@ -519,7 +519,7 @@ PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
   PetscFunctionBeginUser;
   if (group_rank_ == 0)
     for (const auto &p : points_) p->AddCounters(k);
-  PetscInt v[15] = {k.solves,
+  PetscInt v[16] = {k.solves,
                     k.failures,
                     k.iterations,
                     k.snes_its,
@@ -531,11 +531,12 @@ PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
                     k.exact_tangents,
                     k.tangent_linear_its,
                     k.tangent_force_evals,
+                    k.predicted_solves,
                     k.bonds_intact,
                     k.bonds_broken,
                     k.contacts};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 15, MPIU_INT, MPI_SUM, comm_));
-  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12], v[13], v[14]};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 16, MPIU_INT, MPI_SUM, comm_));
+  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12], v[13], v[14], v[15]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -20,6 +20,9 @@ PetscErrorCode RVESpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscCall(TurgorOptionsReal(params, "-psi_atol", "Stop when ||G|| < atol (scaled forces)", "RVESpec", psi_atol, &psi_atol, NULL));
   PetscCall(TurgorOptionsReal(params, "-psi_steptol", "Stop when ||step|| < steptol (scaled displacements)", "RVESpec", psi_steptol, &psi_steptol, NULL));
   PetscCall(TurgorOptionsReal(params, "-warm_dt0", "Pseudo time step of warm solves (from a previous solution)", "RVESpec", warm_dt0, &warm_dt0, NULL));
+  PetscCall(TurgorOptionsBool(params, "-predictor",
+                              "Start a warm solve from the first-order prediction w + (dw/dF) dF of the last exact tangent (-material_tangent implicit)",
+                              "RVESpec", predictor, &predictor, NULL));
   PetscCall(TurgorOptionsEList(params, "-psi_rule",
                                "Pseudo step growth: seed (delta <- increment x delta) or ser (delta x min(increment, ||G_prev|| / ||G||): shrinks when the "
                                "residual grows)",
@@ -88,14 +91,41 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   const std::vector<PetscScalar> &start = spec_.relax == RelaxationMode::Frozen ? committed_ : (have_current_ ? current_ : committed_);
   const bool                      warm  = spec_.relax != RelaxationMode::CauchyBorn && (have_current_ || have_committed_);
   PetscScalar                    *w;
+  PetscInt                        predicted = 0;
   PetscCall(VecGetArray(W_, &w));
-  if (rank_ == 0)
-    for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = warm ? start[k] : 0.0;
+  if (rank_ == 0) {
+    const bool     from_current = spec_.relax != RelaxationMode::Frozen && have_current_;
+    const Tensor2 &F0 = from_current ? trial_F_ : committed_F_, &Fdot0 = from_current ? trial_Fdot_ : committed_Fdot_;
+    if (warm && relax && spec_.predictor && Predict(F, Fdot, start, F0, Fdot0, w)) predicted = 1;
+    else
+      for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = warm ? start[k] : 0.0;
+  }
   PetscCall(VecRestoreArray(W_, &w));
+  PetscCallMPI(MPI_Bcast(&predicted, 1, MPIU_INT, 0, comm_));
   if (relax) {
     bool        converged = false, inside = false;
     std::string why;
     if (warm) {
+      PetscCall(relax_.Warm(W_, out, &converged));
+      if (converged) PetscCall(Admissible(&inside, &why));
+      if (predicted && converged && inside) counters.predicted_solves++;
+      if (predicted && !(converged && inside)) { /* the prediction led astray (a contact or bond it crossed): from w itself */
+        PetscCall(VecGetArray(W_, &w));
+        if (rank_ == 0)
+          for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = start[k];
+        PetscCall(VecRestoreArray(W_, &w));
+        PetscCall(relax_.Warm(W_, out, &converged));
+        if (converged) PetscCall(Admissible(&inside, &why));
+      }
+    }
+    /* a first evaluation where another point of the material made its first: that point's state */
+    PetscInt shared = !warm && first_ && first_->have && (F - first_->F).Norm() == 0 && (Fdot - first_->Fdot).Norm() == 0;
+    PetscCallMPI(MPI_Bcast(&shared, 1, MPIU_INT, 0, comm_));
+    if (shared) {
+      PetscCall(VecGetArray(W_, &w));
+      if (rank_ == 0)
+        for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = first_->w[k];
+      PetscCall(VecRestoreArray(W_, &w));
       PetscCall(relax_.Warm(W_, out, &converged));
       if (converged) PetscCall(Admissible(&inside, &why));
     }
@@ -109,6 +139,15 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
           out->ok     = false;
           out->reason = why;
         }
+      }
+      if (out->ok && !warm && first_ && !first_->have) {
+        const PetscScalar *wr;
+        PetscCall(VecGetArrayRead(W_, &wr));
+        first_->w.assign(wr, wr + (rank_ == 0 ? NumUnknowns() : 0));
+        PetscCall(VecRestoreArrayRead(W_, &wr));
+        first_->F    = F;
+        first_->Fdot = Fdot;
+        first_->have = true;
       }
     }
   }
@@ -150,6 +189,71 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
   if (!out->ok) counters.failures++;
   PetscCall(PetscLogEventEnd(ev_solve_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+bool RVE::Predict(const Tensor2 &F, const Tensor2 &Fdot, const std::vector<PetscScalar> &w0, const Tensor2 &F0, const Tensor2 &Fdot0, PetscScalar *w) const
+{
+  const size_t n = w0.size(), ncol = pred_dirs_.size() / 8;
+  if (ncol == 0 || n != (size_t)NumUnknowns() || pred_z_.size() != ncol * n) return false;
+  bool rate = false; /* without rate directions the state does not depend on Fdot: fit F alone */
+  for (size_t c = 0; c < ncol; c++)
+    for (int i = 4; i < 8; i++) rate = rate || pred_dirs_[8 * c + i] != 0;
+  const int     m = (int)ncol + 1, len = rate ? 8 : 4;
+  const Tensor2 Om{
+    {{0, -1}, {1, 0}}
+  }; /* the spin's generator */
+  const Tensor2 spinF = Om * F0, spinFd = Om * Fdot0, dF = F - F0, dFd = Fdot - Fdot0;
+  /* the directions as rows of 8 (the spin last) and the target */
+  std::vector<PetscReal> D(8 * m);
+  for (size_t c = 0; c < ncol; c++)
+    for (int i = 0; i < 8; i++) D[8 * c + i] = pred_dirs_[8 * c + i];
+  for (int i = 0; i < 4; i++) {
+    D[8 * ncol + i]     = spinF.a[i / 2][i % 2];
+    D[8 * ncol + 4 + i] = spinFd.a[i / 2][i % 2];
+  }
+  PetscReal T[8];
+  for (int i = 0; i < 4; i++) {
+    T[i]     = dF.a[i / 2][i % 2];
+    T[4 + i] = dFd.a[i / 2][i % 2];
+  }
+  /* normal equations G alpha = b, m <= 7: Gaussian elimination with partial pivoting (too small for
+     a LAPACK call to pay) */
+  PetscReal G[7][8], scale = 0;
+  if (m > 7) return false;
+  for (int r = 0; r < m; r++) {
+    for (int c = 0; c < m; c++) {
+      G[r][c] = 0;
+      for (int i = 0; i < len; i++) G[r][c] += D[8 * r + i] * D[8 * c + i];
+    }
+    G[r][m] = 0;
+    for (int i = 0; i < len; i++) G[r][m] += D[8 * r + i] * T[i];
+    scale = std::max(scale, G[r][r]);
+  }
+  for (int k = 0; k < m; k++) {
+    int p = k;
+    for (int r = k + 1; r < m; r++)
+      if (std::abs(G[r][k]) > std::abs(G[p][k])) p = r;
+    if (!(std::abs(G[p][k]) > 1e-12 * scale)) return false; /* dependent directions */
+    for (int c = 0; c <= m; c++) std::swap(G[k][c], G[p][c]);
+    for (int r = k + 1; r < m; r++) {
+      const PetscReal f = G[r][k] / G[k][k];
+      for (int c = k; c <= m; c++) G[r][c] -= f * G[k][c];
+    }
+  }
+  PetscReal alpha[7];
+  for (int k = m - 1; k >= 0; k--) {
+    PetscReal v = G[k][m];
+    for (int c = k + 1; c < m; c++) v -= G[k][c] * alpha[c];
+    alpha[k] = v / G[k][k];
+  }
+  for (size_t k = 0; k < n; k += 2) { /* unknowns are (x, y) pairs: the spin turns each */
+    w[k]     = w0[k] - alpha[ncol] * w0[k + 1];
+    w[k + 1] = w0[k + 1] + alpha[ncol] * w0[k];
+  }
+  for (size_t c = 0; c < ncol; c++)
+    if (alpha[c] != 0)
+      for (size_t k = 0; k < n; k++) w[k] += alpha[c] * pred_z_[c * n + k];
+  return true;
 }
 
 /* The relaxed positions are those of the last evaluation, at W_; only rank 0 holds particles. */
@@ -205,8 +309,15 @@ PetscErrorCode RVE::StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, Pet
   const bool             relax    = spec_.relax == RelaxationMode::Relaxed;
   std::vector<PetscReal> ds(4 * n, 0.0);
   PetscInt               fail = 0;
+  /* the derivatives of the relaxed state are the next warm solve's predictor (not an output's) */
+  const bool     keep = relax && spec_.predictor && kind != EvaluationKind::Output;
+  const PetscInt nloc = rank_ == 0 ? NumUnknowns() : 0;
   PetscFunctionBeginUser;
   *status = MaterialResponse();
+  if (keep) {
+    pred_dirs_.clear(); /* none while it is rebuilt (a failed solve leaves none) */
+    pred_z_.assign((size_t)(n * nloc), 0.0);
+  }
   PetscCheck(last_ok_ && (last_F_ - F).Norm() == 0 && (last_Fdot_ - Fdot).Norm() == 0, comm_, PETSC_ERR_ORDER,
              "RVE::StressDerivatives: not at the state of the last successful evaluation");
   counters.exact_tangents++;
@@ -225,6 +336,12 @@ PetscErrorCode RVE::StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, Pet
       if (!ok) {
         fail = 1;
         break;
+      }
+      if (keep) {
+        const PetscScalar *z;
+        PetscCall(VecGetArrayRead(Z_, &z));
+        std::copy(z, z + nloc, pred_z_.begin() + k * nloc);
+        PetscCall(VecRestoreArrayRead(Z_, &z));
       }
     } else PetscCall(VecZeroEntries(Z_));
     /* d sigma = (sigma(p + h dp, w + h dw) - sigma(p - h dp, w - h dw)) / 2h */
@@ -246,6 +363,14 @@ PetscErrorCode RVE::StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, Pet
   if (fail) {
     status->ok     = false;
     status->reason = "the linearised relaxation G_w dw = -G_p dp did not converge (-rve_tangent_ksp_*)";
+    pred_z_.clear();
+  } else if (keep) {
+    pred_dirs_.assign(8 * n, 0.0);
+    for (PetscInt k = 0; k < n; k++)
+      for (int i = 0; i < 4; i++) {
+        pred_dirs_[8 * k + i]     = dF[k].a[i / 2][i % 2];
+        pred_dirs_[8 * k + 4 + i] = dFdot[k].a[i / 2][i % 2];
+      }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -269,6 +394,7 @@ void RVE::AddCounters(MaterialCounters &c) const
   c.exact_tangents += counters_.exact_tangents;
   c.tangent_linear_its += counters_.tangent_linear_its;
   c.tangent_force_evals += counters_.tangent_force_evals;
+  c.predicted_solves += counters_.predicted_solves;
 }
 
 PetscErrorCode RVE::Commit()
@@ -276,6 +402,8 @@ PetscErrorCode RVE::Commit()
   PetscFunctionBeginUser;
   if (have_current_) {
     committed_      = current_;
+    committed_F_    = trial_F_;
+    committed_Fdot_ = trial_Fdot_;
     have_committed_ = true;
     if (eq_.HasHistory()) { /* the terms' history moves on at the accepted state (plastic hinges, slip, breaks) */
       PetscScalar *w;
@@ -295,6 +423,8 @@ PetscErrorCode RVE::Revert()
 {
   PetscFunctionBeginUser;
   current_      = committed_;
+  trial_F_      = committed_F_;
+  trial_Fdot_   = committed_Fdot_;
   have_current_ = have_committed_;
   if (eq_.HasHistory() && !committed_history_.empty()) {
     StateDeclaration d("history");
@@ -306,25 +436,27 @@ PetscErrorCode RVE::Revert()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* [counters (12), have_current, have_committed, current, committed; equations; relaxation] */
+/* [counters (13), have_current, have_committed, current, committed; equations; relaxation] */
 void RVE::DeclareState(StateDeclaration &d)
 {
   MaterialCounters &k         = counters_;
-  const char       *names[12] = {"solves",        "failures",       "iterations",         "snes_its",
+  const char       *names[13] = {"solves",        "failures",       "iterations",         "snes_its",
                                  "ksp_its",       "jacobians",      "force_evals",        "tangent_solves",
-                                 "output_solves", "exact_tangents", "tangent_linear_its", "tangent_force_evals"};
-  PetscInt         *count[12] = {&k.solves,        &k.failures,       &k.iterations,         &k.snes_its,
+                                 "output_solves", "exact_tangents", "tangent_linear_its", "tangent_force_evals", "predicted_solves"};
+  PetscInt         *count[13] = {&k.solves,        &k.failures,       &k.iterations,         &k.snes_its,
                                  &k.ksp_its,       &k.jacobians,      &k.force_evals,        &k.tangent_solves,
-                                 &k.output_solves, &k.exact_tangents, &k.tangent_linear_its, &k.tangent_force_evals};
-  for (int c = 0; c < 12; c++) d.Scalar(names[c], count[c], Combine::Owner);
+                                 &k.output_solves, &k.exact_tangents, &k.tangent_linear_its, &k.tangent_force_evals, &k.predicted_solves};
+  for (int c = 0; c < 13; c++) d.Scalar(names[c], count[c], Combine::Owner);
   d.Scalar("have_current", &have_current_, Combine::Owner);
   d.Scalar("have_committed", &have_committed_, Combine::Owner);
   d.Sequence("current", &current_);
   d.Sequence("committed", &committed_);
-  if (eq_.HasHistory()) {
-    d.Array("trial_F", &trial_F_.a[0][0], 4, Combine::Owner);
-    d.Array("trial_Fdot", &trial_Fdot_.a[0][0], 4, Combine::Owner);
-  }
+  d.Array("trial_F", &trial_F_.a[0][0], 4, Combine::Owner);
+  d.Array("trial_Fdot", &trial_Fdot_.a[0][0], 4, Combine::Owner);
+  d.Array("committed_F", &committed_F_.a[0][0], 4, Combine::Owner);
+  d.Array("committed_Fdot", &committed_Fdot_.a[0][0], 4, Combine::Owner);
+  d.Sequence("predictor_z", &pred_z_);
+  d.Sequence("predictor_directions", &pred_dirs_);
   StateDeclaration eq("equations"), relax("relaxation");
   eq_.DeclareState(eq);
   relax_.DeclareState(relax);
@@ -338,6 +470,9 @@ PetscErrorCode RVE::AfterStateRead()
   const size_t n = rank_ == 0 ? (size_t)NumUnknowns() : 0;
   PetscCheck((current_.size() == n || current_.size() == (size_t)NumUnknowns()) && committed_.size() == current_.size(), PETSC_COMM_SELF,
              PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, current_.size(), NumUnknowns());
+  PetscCheck(pred_z_.size() == pred_dirs_.size() / 8 * current_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's RVE predictor has %zu derivative values in %zu directions, this RVE %zu unknowns", pred_z_.size(), pred_dirs_.size() / 8,
+             current_.size());
   last_ok_ = false;
   PetscCall(eq_.AfterStateRead());
   PetscCall(relax_.AfterStateRead());
@@ -366,7 +501,7 @@ PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *params)
 
 PetscErrorCode RVEMaterialBase::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
 {
-  auto rve = std::make_unique<RVE>(group, spec);
+  auto rve = std::make_unique<RVE>(group, spec, first_);
   PetscFunctionBeginUser;
   PetscCall(rve->SetUp(prototype_, physics, FluidDensity()));
   *point = std::move(rve);

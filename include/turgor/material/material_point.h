@@ -43,6 +43,7 @@ struct MaterialCounters {
   PetscInt output_solves      = 0;                          /* for snapshots, in no other counter */
   PetscInt exact_tangents     = 0;                          /* tangents by StressDerivatives (no perturbed solves) */
   PetscInt tangent_linear_its = 0, tangent_force_evals = 0; /* their Krylov iterations and force evaluations */
+  PetscInt predicted_solves   = 0;                          /* warm solves that converged from the tangent's prediction */
   /* Polygon RVEs: glue bonds intact and broken, contacts per evaluation (the points' sum) */
   PetscInt bonds_intact = 0, bonds_broken = 0, contacts = 0;
 };

@@ -8,12 +8,24 @@
    material point from them. */
 #include <turgor/material/material_point.h>
 #include <turgor/rve/relaxation.h>
+#include <memory>
 
 namespace turgor {
 
+/* The relaxed state of the first cold solve of a material's points, shared by them: every point
+   starts as a copy of one prototype cell with the same history, and all are first evaluated at the
+   same deformation (the coarse model's reference), so that one point's cold solve is every point's
+   (its relaxed state, bit for bit: the solve is deterministic). Kept by the material; on rank 0 of
+   a group the state, on every rank the deformation it belongs to. */
+struct FirstRelaxedState {
+  bool                     have = false;
+  Tensor2                  F, Fdot;
+  std::vector<PetscScalar> w;
+};
+
 class RVE : public MaterialPoint {
 public:
-  RVE(MPI_Comm comm, const RVESpec &spec) : comm_(comm), spec_(spec) { }
+  RVE(MPI_Comm comm, const RVESpec &spec, std::shared_ptr<FirstRelaxedState> first = nullptr) : comm_(comm), spec_(spec), first_(std::move(first)) { }
   RVE(const RVE &)            = delete;
   RVE &operator=(const RVE &) = delete;
   ~RVE() override;
@@ -43,6 +55,15 @@ public:
   PetscInt            NumUnknowns() const { return cell_.NumUnknowns(); }
   RelaxationMode      Mode() const { return spec_.relax; }
   void                SetMode(RelaxationMode m) { spec_.relax = m; }
+  /* The relaxed state w = u1 / L of the last trial evaluation (rank 0 of the group). */
+  const std::vector<PetscScalar> &CurrentState() const { return current_; }
+  /* The first-order prediction of the relaxed state at (F, Fdot) from the state w0 at (F0, Fdot0)
+     and the last exact tangent's derivatives (rank 0 of the group): w0 + sum_c alpha_c z_c +
+     alpha_r Omega w0, the z_c = dw along the tangent's directions D_c = (dF_c, dFdot_c), Omega w0
+     that along a rigid spin (objectivity: spinning F spins w), alpha the least-squares fit of
+     (F - F0, Fdot - Fdot0) by the D_c and the spin. false when there is none or the directions do
+     not determine alpha. */
+  bool Predict(const Tensor2 &F, const Tensor2 &Fdot, const std::vector<PetscScalar> &w0, const Tensor2 &F0, const Tensor2 &Fdot0, PetscScalar *w) const;
   /* The particle positions of the last evaluation (all particles, x = F X + u1), for output. */
   const std::vector<PetscReal> &Positions() const { return eq_.Positions(); }
 
@@ -66,12 +87,18 @@ private:
   Vec                      Wd_ = nullptr, Rp_ = nullptr, Rm_ = nullptr, B_ = nullptr, Z_ = nullptr; /* StressDerivatives' work */
   Tensor2                  last_F_, last_Fdot_;                                                     /* the last evaluation, at W_ */
   bool                     last_ok_ = false;
-  Tensor2                  trial_F_, trial_Fdot_; /* the last trial evaluation's, whose state Commit accepts */
+  Tensor2                  trial_F_, trial_Fdot_;         /* current_'s (the last trial evaluation's, whose state Commit accepts) */
+  Tensor2                  committed_F_, committed_Fdot_; /* committed_'s */
   std::vector<PetscReal>   committed_history_;    /* the terms' state at the last Commit, packed */
   std::vector<PetscScalar> current_, committed_;  /* u1 / L of the current and last accepted state */
   bool                     have_current_ = false, have_committed_ = false;
-  MaterialCounters         counters_;
-  PetscLogEvent            ev_solve_ = 0;
+  /* the predictor: the last exact tangent's derivatives of the relaxed state z_c (column after
+     column) and their directions (8 values each: dF, dFdot) */
+  std::vector<PetscScalar> pred_z_;
+  std::vector<PetscReal>   pred_dirs_;
+  MaterialCounters                   counters_;
+  PetscLogEvent                      ev_solve_ = 0;
+  std::shared_ptr<FirstRelaxedState> first_; /* the material's, or none */
 };
 
 /* What every periodic-RVE material shares: the relaxation settings and the physics read once, the
@@ -95,8 +122,9 @@ public:
 
 protected:
   /* the fluid's density (the force scale of an SPH cell); 0: none */
-  virtual PetscReal FluidDensity() const { return 0; }
-  PeriodicCell      prototype_; /* the cell every point copies */
+  virtual PetscReal                  FluidDensity() const { return 0; }
+  PeriodicCell                       prototype_; /* the cell every point copies */
+  std::shared_ptr<FirstRelaxedState> first_ = std::make_shared<FirstRelaxedState>(); /* its points' first cold solve */
 };
 
 class RVEMaterial : public RVEMaterialBase {

@@ -30,8 +30,11 @@ struct RVESpec {
   PetscInt       max_it  = 50; /* Psi-tc iterations before an evaluation fails */
   PetscReal      psi_dt0 = 1e-2, psi_increment = 10, psi_dt_max = 1e12;
   PetscReal      psi_atol = 1e-12, psi_steptol = 1e-12; /* stop at ||G|| < atol or ||step|| < steptol */
-  PetscReal      warm_dt0 = 1e4;                        /* pseudo step of warm (modified Newton) solves */
+  PetscReal      warm_dt0 = 1e4;                        /* pseudo step of warm (modified Newton) solves (polygon RVEs: 1e8) */
   PseudoStepRule psi_rule = PseudoStepRule::Seed;
+  /* a warm solve starts from w + (dw/dF) dF, the last exact tangent's derivative of the relaxed
+     state, rather than from w */
+  PetscBool predictor = PETSC_TRUE;
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
