@@ -23,6 +23,9 @@ beam is the plane-stress one with E', nu').
   cantilever_reference.py --faces 8,2 --element q2 --rule sri --g=-1e-8
   cantilever_reference.py --faces 16,4 --rule full --g=-1e-8 --check DIR --rtol 1e-4
         compare DIR/summary.json (a turgor -mode fe2_static run of the same beam) with the reference
+  cantilever_reference.py --faces 8,2 --element q2 --axial --g=1e-8 --check DIR
+        the body force along the beam (-body_force g,0): the tip's horizontal displacement
+        (tip_displacement_x_final)
   cantilever_reference.py --table --turgor build/turgor [--g=-1e-7] [--meshes 8,2 16,4 32,8 64,16] [--element q2]
         run turgor on each mesh with both rules and print the docs/benchmarks.md table
 """
@@ -52,7 +55,7 @@ def bmatrix(dN):
     return B
 
 
-def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule):
+def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule, c=1):
     if ny % 2:
         sys.exit("cantilever_reference.py: ny must be even (the tip vertex is at (L, H/2))")
     D = np.array([[lam + 2 * mu, lam, 0], [lam, lam + 2 * mu, 0], [0, 0, mu]])
@@ -74,7 +77,7 @@ def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule):
                 Ke += B.T @ (D if rule == "full" else D - Dvol) @ B * det
                 N = [0.25 * (1 + a * xi) * (1 + b * eta) for a, b in XI]
                 for a in range(4):
-                    fe[2 * a + 1] += rho * g * N[a] * det  # exact for the bilinear N det J of a parallelogram
+                    fe[2 * a + c] += rho * g * N[a] * det  # exact for the bilinear N det J of a parallelogram
             if rule == "sri":
                 dN, det = gradients(X, 0.0, 0.0)
                 B = bmatrix(dN)
@@ -85,7 +88,7 @@ def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule):
     free = np.array([d for d in range(2 * n) if d // 2 // (ny + 1) != 0])  # not on x = 0
     u = np.zeros(2 * n)
     u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free])
-    return u[2 * node(nx, ny // 2) + 1]
+    return u[2 * node(nx, ny // 2) + c]
 
 
 def quadratic(t):
@@ -93,7 +96,7 @@ def quadratic(t):
     return (np.array([0.5 * t * (t - 1), 1 - t * t, 0.5 * t * (t + 1)]), np.array([t - 0.5, -2 * t, t + 0.5]))
 
 
-def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule):
+def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule, c=1):
     """The same beam on biquadratic 9-node elements: nodes on the (2 nx + 1) x (2 ny + 1) grid."""
     D = np.array([[lam + 2 * mu, lam, 0], [lam, lam + 2 * mu, 0], [0, 0, mu]])
     m = np.array([1.0, 1.0, 0.0])
@@ -129,7 +132,7 @@ def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule):
                 for eta, wy in zip(t3, w3):
                     B, N = bmat(xi, eta)
                     Ke += B.T @ (D if rule == "full" else D - Dvol) @ B * wx * wy * det
-                    fe[1::2] += rho * g * N * wx * wy * det
+                    fe[c::2] += rho * g * N * wx * wy * det
             if rule == "sri":
                 for xi, wx in zip(t2, w2):
                     for eta, wy in zip(t2, w2):
@@ -141,7 +144,7 @@ def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule):
     free = np.array([d for d in range(2 * n) if d // 2 // nyn != 0])  # not on x = 0
     u = np.zeros(2 * n)
     u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free])
-    return u[2 * node(2 * nx, ny) + 1]
+    return u[2 * node(2 * nx, ny) + c]
 
 
 def timoshenko(L, H, mu, lam, rho, g):
@@ -174,6 +177,7 @@ def main():
     p.add_argument("--g", type=float, default=-1e-8, help="vertical body force (acceleration, -body_force 0,g)")
     p.add_argument("--rule", choices=["sri", "full", "both"], default="both")
     p.add_argument("--element", choices=["q1", "q2"], default="q1")
+    p.add_argument("--axial", action="store_true", help="the body force along the beam (-body_force g,0); the tip's horizontal displacement")
     p.add_argument("--check", metavar="DIR", help="compare DIR/summary.json's tip_displacement_final")
     p.add_argument("--rtol", type=float, default=1e-4)
     p.add_argument("--table", action="store_true")
@@ -213,15 +217,23 @@ def main():
                       f"({100 * (limit - theory) / theory:+.2f}% from Timoshenko)")
         return
     nx, ny = map(int, a.faces.split(","))
+    c, key = (0, "tip_displacement_x_final") if a.axial else (1, "tip_displacement_final")
+    if a.axial and a.table:
+        sys.exit("cantilever_reference.py: --table is for the bending load")
     for rule in rules:
-        ref = deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule)
-        print(f"{a.element} {rule}: {nx} x {ny} elements, tip deflection {ref:.10g} (Timoshenko {theory:.6g}, {100 * (ref - theory) / theory:+.2f}%)")
+        ref = deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule, c)
+        if a.axial:  # the bar's 1D limit, E' L^2 / 2 (the clamp's lateral restraint stiffens it near x = 0)
+            E = a.mu * (3 * a.lam + 2 * a.mu) / (a.lam + a.mu)
+            bar = a.density * a.g * a.L**2 / (2 * E / (1 - (a.lam / (2 * (a.lam + a.mu)))**2))
+            print(f"{a.element} {rule}: {nx} x {ny} elements, tip extension {ref:.10g} (the 1D bar's {bar:.6g}, {100 * (ref - bar) / bar:+.2f}%)")
+        else:
+            print(f"{a.element} {rule}: {nx} x {ny} elements, tip deflection {ref:.10g} (Timoshenko {theory:.6g}, {100 * (ref - theory) / theory:+.2f}%)")
         if a.check:
             s = json.load(open(os.path.join(a.check, "summary.json")))
             if s.get("quadrature") != rule or s.get("element", "q1") != a.element or s.get("n_elements") != nx * ny or s.get("status") != "completed":
                 sys.exit(f"FAIL: {a.check} is not a completed {a.element} {rule} run on {nx} x {ny} elements: {s.get('status')}, {s.get('element')}, "
                          f"{s.get('quadrature')}, {s.get('n_elements')}")
-            tip = s["tip_displacement_final"]
+            tip = s[key]
             rel = abs(tip - ref) / abs(ref)
             print(f"turgor ({a.check}): {tip:.10g}, relative difference {rel:.2e} (tolerance {a.rtol:g})")
             if not rel <= a.rtol:

@@ -1,13 +1,14 @@
-static const char help[] = "Polygon RVE material (-material polygon_rve): periodic cells of bars, hinges, turgor, contact and glue:\n"
-                           " 1. periodicity: 1, 4 and 9 glued cells of a square lattice give the same stress, at rest and deformed;\n"
-                           " 2. lattice symmetry: the turgor prestress of square and hexagonal lattices in contact is isotropic;\n"
-                           " 3. objectivity sigma(R F) = R sigma(F) R^T of a glued Voronoi RVE;\n"
-                           " 4. exact tangents (implicit differentiation) against central differences, with turgor and plastic hinges;\n"
-                           " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace;\n"
-                           " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0;\n"
-                           " 7. the hexagonal lattice likewise: C11 + C12 = sqrt(3) / (1/(k_n s) + 3/(2 k_b)), C11 = C22;\n"
-                           " 8. the warm start's predictor w + (dw/dF) dF (spin included) is second order: its error falls 4x when dF halves;\n"
-                           " 9. a material's points share their first cold solve: the second point's first state is the first's, bit for bit, without iterations.\n";
+static const char
+  help[] = "Polygon RVE material (-material polygon_rve): periodic cells of bars, hinges, turgor, contact and glue:\n"
+           " 1. periodicity: 1, 4 and 9 glued cells of a square lattice give the same stress, at rest and deformed;\n"
+           " 2. lattice symmetry: the turgor prestress of square and hexagonal lattices in contact is isotropic;\n"
+           " 3. objectivity sigma(R F) = R sigma(F) R^T of a glued Voronoi RVE;\n"
+           " 4. exact tangents (implicit differentiation) against central differences, with turgor and plastic hinges;\n"
+           " 5. history: glue bonds broken at an accepted step stay broken; a rejected step leaves no trace;\n"
+           " 6. the square lattice of one-bar walls glued across a lamella: C11 = C22 = 1 / (1/(2 k_b) + 1/(k_n s)), C12 = 0;\n"
+           " 7. the hexagonal lattice likewise: C11 + C12 = sqrt(3) / (1/(k_n s) + 3/(2 k_b)), C11 = C22;\n"
+           " 8. the warm start's predictor w + (dw/dF) dF (spin included) is second order: its error falls 4x when dF halves;\n"
+           " 9. a material's points share their first cold solve: the second point's first state is the first's, bit for bit, without iterations.\n";
 #include "rve_test_util.h"
 #include <turgor/rve/polygon_rve_material.h>
 
@@ -342,7 +343,8 @@ static PetscErrorCode SharedFirstSolve()
   PetscCall(Eval(*a, F, &ra));
   PetscCall(Eval(*b, F, &rb));
   PetscCall(Eval(*c, Tensor2::Identity(), &rc));
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "9. first solves: %" PetscInt_FMT " iterations, at the same F %" PetscInt_FMT " (stress %s), at another %" PetscInt_FMT "\n",
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "9. first solves: %" PetscInt_FMT " iterations, at the same F %" PetscInt_FMT " (stress %s), at another %" PetscInt_FMT "\n",
                         ra.iterations, rb.iterations, (ra.sigma - rb.sigma).Norm() == 0 ? "identical" : "differs", rc.iterations));
   TG_CHECK(ra.iterations > 0 && rb.iterations == 0 && (ra.sigma - rb.sigma).Norm() == 0, "the second point did not take the first one's relaxed state");
   TG_CHECK(rc.iterations > 0, "a point evaluated at another deformation took the first state without solving");

@@ -1268,9 +1268,9 @@ const char *CoarseModel::QuadratureDescription() const
   return ref_ ? ref_->description.c_str() : "";
 }
 
-PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy)
+PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy, PetscReal *ux)
 {
-  PetscReal val = 0;
+  PetscReal val[2] = {0, 0}, sum[2];
   PetscFunctionBeginUser;
   PetscCall(GlobalToLocal(U, Uloc_));
   if (tip_.e >= 0) {
@@ -1283,14 +1283,20 @@ PetscErrorCode CoarseModel::TipDisplacement(Vec U, PetscReal *uy)
     PetscCall(PetscSectionGetOffset(ls, tip_.e, &oe));
     PetscCall(PetscSectionGetDof(ls, tip_.e, &ne));
     PetscCall(VecGetArrayRead(Uloc_, &u));
-    const PetscReal t = tip_.sp, ua = PetscRealPart(u[oa + 1]), ub = PetscRealPart(u[ob + 1]);
-    if (t == 0) val = ua;
-    else if (t == 1) val = ub;
-    else if (ne > 0) val = ua * (1 - t) * (1 - 2 * t) + PetscRealPart(u[oe + 1]) * 4 * t * (1 - t) + ub * t * (2 * t - 1); /* Q2: the edge's middle node */
-    else val = (1 - t) * ua + t * ub;
+    const PetscReal t = tip_.sp;
+    for (int d = 0; d < 2; d++) { /* val[0]: y, val[1]: x */
+      const int       c  = 1 - d;
+      const PetscReal ua = PetscRealPart(u[oa + c]), ub = PetscRealPart(u[ob + c]);
+      if (t == 0) val[d] = ua;
+      else if (t == 1) val[d] = ub;
+      else if (ne > 0) val[d] = ua * (1 - t) * (1 - 2 * t) + PetscRealPart(u[oe + c]) * 4 * t * (1 - t) + ub * t * (2 * t - 1); /* Q2: the edge's middle node */
+      else val[d] = (1 - t) * ua + t * ub;
+    }
     PetscCall(VecRestoreArrayRead(Uloc_, &u));
   }
-  PetscCallMPI(MPI_Allreduce(&val, uy, 1, MPIU_REAL, MPIU_SUM, comm_));
+  PetscCallMPI(MPI_Allreduce(val, sum, 2, MPIU_REAL, MPIU_SUM, comm_));
+  *uy = sum[0];
+  if (ux) *ux = sum[1];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

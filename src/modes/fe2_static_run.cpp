@@ -172,7 +172,8 @@ PetscErrorCode FE2StaticRun::SetUp()
                   "lambda in increments of 1/%" PetscInt_FMT " (at least %g); SNES %s, rtol = %g, atol = %g\n",
                   (double)load_.body_acceleration[0], (double)load_.body_acceleration[1], (double)model_.ReferenceDensity(), (double)scale[1], (double)scale[0],
                   spec_.load_steps, (double)spec_.min_increment, type, (double)rtol, (double)atol));
-    if (rank == 0 && HasOutputDirectory()) PetscCall(tip_csv_.Open(PETSC_COMM_SELF, OutputPath("tip.csv"), {"load_factor", "tip_displacement_y", "snes_its"}));
+    if (rank == 0 && HasOutputDirectory())
+      PetscCall(tip_csv_.Open(PETSC_COMM_SELF, OutputPath("tip.csv"), {"load_factor", "tip_displacement_y", "snes_its", "tip_displacement_x"}));
   }
   if (spec_.snapshot && HasOutputDirectory()) PetscCall(fields_.Open(model_, OutputDir(), "coarse"));
   PetscCall(monitor_.SetUp(model_, HasOutputDirectory() ? OutputDir() : std::string()));
@@ -302,8 +303,8 @@ PetscErrorCode FE2StaticRun::Record(PetscReal lambda, PetscInt its)
   PetscCall(ToState(x_));
   PetscCall(VecCopy(x_, x_conv_));
   lambda_ = lambda;
-  PetscCall(model_.TipDisplacement(U_, &tip_));
-  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its}));
+  PetscCall(model_.TipDisplacement(U_, &tip_, &tip_x_));
+  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its, tip_x_}));
   PetscCall(CheckOutputError(comm_, tip_csv_.Error())); /* rank 0 writes it */
   PetscCall(PetscPrintf(comm_, "  load factor %-10.6g (increment %.4g): %2" PetscInt_FMT " Newton iterations, tip displacement %.8g µm\n", (double)lambda,
                         (double)increment_, its, (double)tip_));
@@ -442,6 +443,7 @@ PetscErrorCode FE2StaticRun::AddSummary(JsonObject &js)
   js.Set("material_failures", model_.Counters().failures);
   js.Set("force_scale", force_scale_);
   js.Set("tip_displacement_final", tip_);
+  js.Set("tip_displacement_x_final", tip_x_);
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("snapshots", fields_.Count());
   if (monitor_.Active()) monitor_.AddSummary(js);

@@ -14,7 +14,7 @@ PetscErrorCode PolygonRVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *
   PetscCheck(!poly.has_cut_box, comm, PETSC_ERR_ARG_INCOMP, "Option -tissue_cut_box: a periodic RVE (-material polygon_rve) has no notch to cut");
   PetscCheck(!poly.plates.Any(), comm, PETSC_ERR_ARG_INCOMP, "Option -tissue_plates: a periodic RVE (-material polygon_rve) has no sides for plates");
   spec.psi_rule = PseudoStepRule::SER; /* contact and glue are piecewise: the seed's schedule overshoots their kinks */
-  spec.warm_dt0 = 1e8; /* walls bend through hinges of ~1e-4 in the scaled units: a shift 1/warm_dt0 near that stalls modified Newton */
+  spec.warm_dt0 = 1e8;                 /* walls bend through hinges of ~1e-4 in the scaled units: a shift 1/warm_dt0 near that stalls modified Newton */
   PetscCall(spec.SetFromOptions(comm, params));
   physics.names      = {"bars", "hinges", "pressure", "contact", "glue"};
   physics.with_loads = false; /* the body force is a load on the coarse model, not part of the material */

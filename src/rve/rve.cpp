@@ -440,12 +440,14 @@ PetscErrorCode RVE::Revert()
 void RVE::DeclareState(StateDeclaration &d)
 {
   MaterialCounters &k         = counters_;
-  const char       *names[13] = {"solves",        "failures",       "iterations",         "snes_its",
-                                 "ksp_its",       "jacobians",      "force_evals",        "tangent_solves",
-                                 "output_solves", "exact_tangents", "tangent_linear_its", "tangent_force_evals", "predicted_solves"};
-  PetscInt         *count[13] = {&k.solves,        &k.failures,       &k.iterations,         &k.snes_its,
-                                 &k.ksp_its,       &k.jacobians,      &k.force_evals,        &k.tangent_solves,
-                                 &k.output_solves, &k.exact_tangents, &k.tangent_linear_its, &k.tangent_force_evals, &k.predicted_solves};
+  const char       *names[13] = {"solves",          "failures",       "iterations",         "snes_its",
+                                 "ksp_its",         "jacobians",      "force_evals",        "tangent_solves",
+                                 "output_solves",   "exact_tangents", "tangent_linear_its", "tangent_force_evals",
+                                 "predicted_solves"};
+  PetscInt         *count[13] = {&k.solves,          &k.failures,       &k.iterations,         &k.snes_its,
+                                 &k.ksp_its,         &k.jacobians,      &k.force_evals,        &k.tangent_solves,
+                                 &k.output_solves,   &k.exact_tangents, &k.tangent_linear_its, &k.tangent_force_evals,
+                                 &k.predicted_solves};
   for (int c = 0; c < 13; c++) d.Scalar(names[c], count[c], Combine::Owner);
   d.Scalar("have_current", &have_current_, Combine::Owner);
   d.Scalar("have_committed", &have_committed_, Combine::Owner);

@@ -160,8 +160,8 @@ public:
   const char *ElementName() const;
   const char *QuadratureName() const;
   const char *QuadratureDescription() const;
-  /* Vertical displacement of the vertex nearest to the middle of the right side (all ranks). */
-  PetscErrorCode TipDisplacement(Vec U, PetscReal *uy);
+  /* Displacement of the middle of the right side, vertical and (ux) horizontal (all ranks). */
+  PetscErrorCode TipDisplacement(Vec U, PetscReal *uy, PetscReal *ux = nullptr);
   /* Per local cell, [s11, s22, s12]: the mean Cauchy stress of its material points (sri: the mean
      deviator of the Gauss points with the centre pressure), at U, into CellStress(). For output:
      the material points' states and the cache of EvaluateMaterials stay as they are, so writing a

@@ -77,7 +77,7 @@ private:
   PetscLogStage      stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent      ev_increment_ = 0, ev_output_ = 0;
   /* results */
-  PetscReal      lambda_ = 0, tip_ = 0, increment_ = 0, force_scale_ = 0, residual_conv_ = 0; /* |f| at the last converged state */
+  PetscReal      lambda_ = 0, tip_ = 0, tip_x_ = 0, increment_ = 0, force_scale_ = 0, residual_conv_ = 0; /* |f| at the last converged state */
   PetscInt       levels_ = 0, increments_ = 0, cutbacks_ = 0, snes_its_ = 0, ksp_its_ = 0, solves_ = 0, failed_solves_ = 0;
   PetscLogDouble t0_ = 0, wall_ = 0;
   std::string    last_failure_;

@@ -89,13 +89,13 @@ private:
   bool                     last_ok_ = false;
   Tensor2                  trial_F_, trial_Fdot_;         /* current_'s (the last trial evaluation's, whose state Commit accepts) */
   Tensor2                  committed_F_, committed_Fdot_; /* committed_'s */
-  std::vector<PetscReal>   committed_history_;    /* the terms' state at the last Commit, packed */
-  std::vector<PetscScalar> current_, committed_;  /* u1 / L of the current and last accepted state */
+  std::vector<PetscReal>   committed_history_;            /* the terms' state at the last Commit, packed */
+  std::vector<PetscScalar> current_, committed_;          /* u1 / L of the current and last accepted state */
   bool                     have_current_ = false, have_committed_ = false;
   /* the predictor: the last exact tangent's derivatives of the relaxed state z_c (column after
      column) and their directions (8 values each: dF, dFdot) */
-  std::vector<PetscScalar> pred_z_;
-  std::vector<PetscReal>   pred_dirs_;
+  std::vector<PetscScalar>           pred_z_;
+  std::vector<PetscReal>             pred_dirs_;
   MaterialCounters                   counters_;
   PetscLogEvent                      ev_solve_ = 0;
   std::shared_ptr<FirstRelaxedState> first_; /* the material's, or none */
@@ -123,7 +123,7 @@ public:
 protected:
   /* the fluid's density (the force scale of an SPH cell); 0: none */
   virtual PetscReal                  FluidDensity() const { return 0; }
-  PeriodicCell                       prototype_; /* the cell every point copies */
+  PeriodicCell                       prototype_;                                     /* the cell every point copies */
   std::shared_ptr<FirstRelaxedState> first_ = std::make_shared<FirstRelaxedState>(); /* its points' first cold solve */
 };
 
