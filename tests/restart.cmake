@@ -100,6 +100,19 @@ set(RESTART_FE2 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fe2.
 turgor_restart_case(fe2 80 MODE fe2 INTERVAL 15 OPTIONS ${RESTART_FE2})
 turgor_add_test(restart_fe2_work COMMAND ${CHECK} identical restart_fe2_full restart_fe2_legs rve_solves psi_tc_iterations rhs_evals rejected_steps
   LABELS fe2 restart REQUIRES "restart_fe2_full;restart_fe2_leg2")
+# with -material_skip_tolerance (an implicit integrator: its tangents are the expansions' bases; the
+# checkpoints take explicit ones only): the points rebalanced over 2 ranks move with their expansions
+# (base, tangents, measured error; 4 points move after 1 000 evaluations), so the run is the same bits
+# as without the rebalance
+set(SKIP_FE2 -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fe2.yaml -ts_max_time 30 -fe2_snapshots 0 -fe2_progress_interval 0
+  -material_skip_tolerance 3e-3 -output_overwrite)
+turgor_add_test(skip_fe2_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${SKIP_FE2} -output_dir skip_fe2_np2 LABELS fe2 mpi
+  SETUP skip_fe2_np2)
+turgor_add_test(skip_fe2_np2_rebalanced COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${SKIP_FE2} -material_rebalance 1000
+  -output_dir skip_fe2_np2_rebalanced LABELS fe2 mpi SETUP skip_fe2_np2_rebalanced)
+turgor_add_test(skip_fe2_np2_rebalanced_same COMMAND ${CHECK} identical skip_fe2_np2 skip_fe2_np2_rebalanced rve_solves rve_skipped_solves
+  psi_tc_iterations LABELS fe2 mpi REQUIRES "skip_fe2_np2;skip_fe2_np2_rebalanced")
+turgor_add_test(skip_fe2_np2_skips COMMAND ${CHECK} positive skip_fe2_np2 rve_skipped_solves LABELS fe2 mpi REQUIRES skip_fe2_np2)
 turgor_restart_case(fe2_mpi2 80 MODE fe2 INTERVAL 15 LONG LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${RESTART_FE2} -fe2_snapshots 2)
 # ... and under ssp, which cannot interpolate (its tip.csv rows are its step ends; they stopped the
 # run before this stop), 2 µs with a checkpoint at 1 µs

@@ -1,9 +1,12 @@
 static const char help[] = "Tangent machinery (TW 562 eqs 46-53) on the closed-form neo-Hookean material:\n"
                            "forward- and central-difference D^e and D^v against the analytic tangents (1e-6), and the exact\n"
                            "ones of -material_tangent implicit (1e-13),\n"
-                           "for several deformations including shear and rotation; inverted F is a failed evaluation.\n";
+                           "for several deformations including shear and rotation; inverted F is a failed evaluation;\n"
+                           "the skipping point's first-order expansion about a solved state (-material_skip_tolerance): its error falls 4x\n"
+                           "when the step halves, with stretch, shear, spin and rate; and a skipped evaluation within the tolerance.\n";
 #include "test_util.h"
 #include <turgor/material/neo_hookean.h>
+#include <turgor/material/skipping_point.h>
 
 using namespace turgor;
 
@@ -70,6 +73,55 @@ int main(int argc, char **argv)
       Tensor2::Zero(), EvaluationKind::Trial, &r));
     TG_CHECK(!r.ok, "an inverted deformation must be a failed evaluation");
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "inverted F: ok = %d, reason: %s\n", (int)r.ok, r.reason.c_str()));
+  }
+  {
+    /* the expansion about (F0, Fdot0) against the viscous material's own stress at F0 + e G, Fdot0 + e H */
+    std::unique_ptr<MaterialPoint> inner;
+    PetscCall(PetscOptionsSetValue(NULL, "-nh_viscosity", "0.3"));
+    NeoHookeanMaterial viscous;
+    PetscCall(viscous.SetFromOptions(PETSC_COMM_SELF, nullptr));
+    PetscCall(viscous.CreatePoint(PETSC_COMM_SELF, &inner));
+    SkippingPoint sp(std::move(inner), 1e-3, 1.0);
+    const Tensor2 F0 = Tensor2::Rotation(0.3) *
+                       Tensor2{
+                         {{1.05, 0.1}, {-0.05, 0.9}}
+    },
+                  Fd0 = {{{0.01, -0.02}, {0.03, 0.005}}};
+    const Tensor2 G =
+                    {
+                      {{0.3, -0.8}, {0.6, -0.2}}
+    },
+                  H = {{{-0.5, 0.4}, {0.2, 0.7}}};
+    MaterialResponse r0, r, status;
+    Tangents         D;
+    TangentOptions   opt;
+    opt.method = TangentMethod::Implicit;
+    PetscCall(sp.Evaluate(F0, Fd0, EvaluationKind::Trial, &r0));
+    PetscCall(ComputeTangents(sp, F0, Fd0, r0, opt, &D, &status));
+    TG_CHECK(status.ok, "exact tangents failed: %s", status.reason.c_str());
+    sp.KeepTangents(F0, Fd0, r0, D);
+    PetscReal err[2];
+    for (int k = 0; k < 2; k++) {
+      const PetscReal e = k ? 5e-4 : 1e-3;
+      Tensor2         s;
+      PetscReal       d2;
+      TG_CHECK(sp.Expand(F0 + e * G, Fd0 + e * H, &s, &d2), "no expansion after tangents were kept");
+      MaterialResponse rr;
+      PetscCall(viscous.CreatePoint(PETSC_COMM_SELF, &inner));
+      PetscCall(inner->Evaluate(F0 + e * G, Fd0 + e * H, EvaluationKind::Trial, &rr));
+      err[k] = (s - rr.sigma).Norm();
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "expansion at e = %.0e: |error| = %.3e of |sigma - sigma0| = %.3e\n", (double)e, (double)err[k],
+                            (double)(rr.sigma - r0.sigma).Norm()));
+    }
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "expansion: the error falls %.2fx when the step halves\n", (double)(err[0] / err[1])));
+    TG_CHECK(err[0] / err[1] > 3.5 && err[0] / err[1] < 4.5, "the expansion is not first order exact (its error falls %.2fx)", (double)(err[0] / err[1]));
+    /* a solve measures the constant; then a trial within the tolerance is answered without one */
+    PetscCall(sp.Evaluate(F0 + 1e-2 * G, Fd0, EvaluationKind::Trial, &r));
+    MaterialCounters c;
+    PetscCall(sp.Evaluate(F0 + 1e-4 * G, Fd0, EvaluationKind::Trial, &r));
+    sp.AddCounters(c);
+    TG_CHECK(c.skipped_solves == 1, "a trial 1e-4 from the base was solved (%" PetscInt_FMT " skipped)", c.skipped_solves);
+    PetscCall(PetscOptionsClearValue(NULL, "-nh_viscosity"));
   }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_material: all checks passed\n"));
   PetscCall(PetscFinalize());

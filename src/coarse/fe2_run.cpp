@@ -430,6 +430,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("rve_output_solves", rc.output_solves);
   js.Set("psi_tc_iterations", rc.iterations);
   js.Set("rve_predicted_solves", rc.predicted_solves);
+  js.Set("rve_skipped_solves", rc.skipped_solves);
   js.Set("rve_failures", rc.failures);
   js.Set("material_evaluations", cc.material_evals);
   js.Set("material_failures", cc.failures); /* evaluations in which some material point failed */

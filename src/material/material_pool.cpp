@@ -1,4 +1,5 @@
 #include <turgor/material/material_pool.h>
+#include <turgor/material/skipping_point.h>
 #include <turgor/io/output.h>
 #include <algorithm>
 #include <unordered_map>
@@ -90,11 +91,17 @@ PetscErrorCode MaterialPointPool::SetFromOptions(ParameterList *params)
                                "MaterialPointPool", tangents, 3, tangents[tangent], &tangent, NULL));
   PetscCall(TurgorOptionsReal(params, "-tangent_fdot_typ", "Typical velocity gradient Fdot_typ of eq 53 [1/µs]", "MaterialPointPool", tangent_.Fdot_typ,
                               &tangent_.Fdot_typ, NULL));
+  PetscCall(TurgorOptionsReal(params, "-skip_tolerance",
+                              "Answer a trial evaluation from the point's last solve and its tangents (first order) while the estimated error of that "
+                              "is below this stress [N/m]; 0: always solve",
+                              "MaterialPointPool", skip_tolerance_, &skip_tolerance_, NULL));
   PetscCall(PetscOptionsInt("-rebalance",
                             "After N material evaluations, deal the points to the groups again in blocks of equal measured cost (the points that "
                             "change group move with their state: the same results); 0: never",
                             "MaterialPointPool", rebalance_after_, &rebalance_after_, NULL));
   PetscOptionsEnd();
+  PetscCheck(skip_tolerance_ >= 0 && std::isfinite(skip_tolerance_), comm_, PETSC_ERR_ARG_OUTOFRANGE,
+             "Option -material_skip_tolerance = %g: must be >= 0 (0: always solve)", (double)skip_tolerance_);
   PetscCheck(rebalance_after_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -material_rebalance = %" PetscInt_FMT ": must be >= 0 (0: never)",
              rebalance_after_);
   tangent_.method = (TangentMethod)tangent;
@@ -135,7 +142,7 @@ PetscErrorCode MaterialPointPool::SetUp(PetscInt n_local)
   offsets_ = offsets;
   for (PetscInt g = begin_; g < end_; g++) {
     std::unique_ptr<MaterialPoint> p;
-    PetscCall(model_->CreatePoint(group, &p));
+    PetscCall(CreatePoint(group, &p));
     points_.push_back(std::move(p));
   }
   cost_.assign(end_ - begin_, 0.0);
@@ -143,6 +150,14 @@ PetscErrorCode MaterialPointPool::SetUp(PetscInt n_local)
   PetscCall(ContiguousType(sizeof(PointResult) / sizeof(PetscReal), MPIU_REAL, &out_type_));
   PetscCall(ContiguousType(sizeof(PointReason), MPI_CHAR, &reason_type_));
   PetscCall(BuildTraffic());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MaterialPointPool::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(model_->CreatePoint(group, point));
+  if (skip_tolerance_ > 0) *point = std::make_unique<SkippingPoint>(std::move(*point), skip_tolerance_, tangent_.Fdot_typ);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -192,7 +207,7 @@ PetscErrorCode MaterialPointPool::SetBlock(PetscInt begin, PetscInt end, std::ve
       continue;
     }
     std::unique_ptr<MaterialPoint> p;
-    PetscCall(model_->CreatePoint(group, &p));
+    PetscCall(CreatePoint(group, &p));
     if (states) {
       const std::vector<PetscReal> &b = (*states)[g - begin];
       PetscCall(UnpackPoint(*p, b.data(), b.size()));
@@ -345,7 +360,7 @@ PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 
       if (!status.ok) {
         r.ok     = false;
         r.reason = "tangent: " + status.reason;
-      }
+      } else if (kind == EvaluationKind::Trial) mp.KeepTangents(Fg, Fdg, r, T);
       r.iterations += status.iterations;
     }
     reasons[k] = r.reason;
@@ -447,7 +462,7 @@ PetscErrorCode MaterialPointPool::UnpackPoint(MaterialPoint &p, const PetscReal 
 PetscErrorCode MaterialPointPool::DeclareState(StateDeclaration &d, const std::vector<PetscInt> &ids)
 {
   PetscFunctionBeginUser;
-  if (!prototype_) PetscCall(model_->CreatePoint(PETSC_COMM_SELF, &prototype_));
+  if (!prototype_) PetscCall(CreatePoint(PETSC_COMM_SELF, &prototype_));
   StateDeclaration proto("point");
   prototype_->DeclareState(proto);
   const std::vector<std::string> names = NestedColumns(proto);
@@ -519,24 +534,13 @@ PetscErrorCode MaterialPointPool::GlobalCounters(MaterialCounters *c) const
   PetscFunctionBeginUser;
   if (group_rank_ == 0)
     for (const auto &p : points_) p->AddCounters(k);
-  PetscInt v[16] = {k.solves,
-                    k.failures,
-                    k.iterations,
-                    k.snes_its,
-                    k.ksp_its,
-                    k.jacobians,
-                    k.force_evals,
-                    k.tangent_solves,
-                    k.output_solves,
-                    k.exact_tangents,
-                    k.tangent_linear_its,
-                    k.tangent_force_evals,
-                    k.predicted_solves,
-                    k.bonds_intact,
-                    k.bonds_broken,
+  PetscInt v[17] = {k.solves,           k.failures,       k.iterations,         k.snes_its,
+                    k.ksp_its,          k.jacobians,      k.force_evals,        k.tangent_solves,
+                    k.output_solves,    k.exact_tangents, k.tangent_linear_its, k.tangent_force_evals,
+                    k.predicted_solves, k.skipped_solves, k.bonds_intact,       k.bonds_broken,
                     k.contacts};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 16, MPIU_INT, MPI_SUM, comm_));
-  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12], v[13], v[14], v[15]};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 17, MPIU_INT, MPI_SUM, comm_));
+  *c = MaterialCounters{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12], v[13], v[14], v[15], v[16]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

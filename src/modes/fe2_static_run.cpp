@@ -464,6 +464,7 @@ PetscErrorCode FE2StaticRun::WriteSummary()
   js.Set("rve_output_solves", rc.output_solves);
   js.Set("psi_tc_iterations", rc.iterations);
   js.Set("rve_predicted_solves", rc.predicted_solves);
+  js.Set("rve_skipped_solves", rc.skipped_solves);
   js.Set("rve_failures", rc.failures);
   PetscCall(CloseOutput(tip_csv_));
   PetscCall(monitor_.CloseOutputs());

@@ -180,6 +180,7 @@ PetscErrorCode StrainPathRun::WriteSummary()
   js.Set("rve_solves", c.solves);
   js.Set("psi_tc_iterations", c.iterations);
   js.Set("rve_predicted_solves", c.predicted_solves);
+  js.Set("rve_skipped_solves", c.skipped_solves);
   js.Set("snes_its", c.snes_its);
   js.Set("ksp_its", c.ksp_its);
   js.Set("jacobian_evals", c.jacobians);

@@ -43,7 +43,8 @@ struct MaterialCounters {
   PetscInt output_solves      = 0;                          /* for snapshots, in no other counter */
   PetscInt exact_tangents     = 0;                          /* tangents by StressDerivatives (no perturbed solves) */
   PetscInt tangent_linear_its = 0, tangent_force_evals = 0; /* their Krylov iterations and force evaluations */
-  PetscInt predicted_solves   = 0;                          /* warm solves that converged from the tangent's prediction */
+  PetscInt predicted_solves = 0;                            /* warm solves that converged from the tangent's prediction */
+  PetscInt skipped_solves   = 0;                            /* trial evaluations answered by the last solve's expansion (skipping_point.h) */
   /* Polygon RVEs: glue bonds intact and broken, contacts per evaluation (the points' sum) */
   PetscInt bonds_intact = 0, bonds_broken = 0, contacts = 0;
 };
@@ -57,6 +58,8 @@ enum class EvaluationKind {
   Perturbed,
   Output
 };
+
+struct Tangents;
 
 class MaterialPoint {
 public:
@@ -75,7 +78,10 @@ public:
      HasStressDerivatives). */
   virtual PetscErrorCode StressDerivatives(const Tensor2 &F, const Tensor2 &Fdot, PetscInt n, const Tensor2 *dF, const Tensor2 *dFdot, EvaluationKind kind,
                                            Tensor2 *dsigma, MaterialResponse *status);
-  virtual void           AddCounters(MaterialCounters &c) const { }
+  /* The tangents the pool computed at this point's last trial evaluation, (F, Fdot) and its response
+     r (a point that expands about its solved states keeps them: skipping_point.h). */
+  virtual void KeepTangents(const Tensor2 &F, const Tensor2 &Fdot, const MaterialResponse &r, const Tangents &D) { }
+  virtual void AddCounters(MaterialCounters &c) const { }
   /* Declared state (io/declared_state.h; nested in the pool's table of points, whole, since a point
      moves whole): everything the point keeps between evaluations that decides its next answer bit
      for bit (an RVE: its current and committed fine state, the kept Jacobian, the neighbour lists)

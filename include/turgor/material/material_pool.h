@@ -105,13 +105,16 @@ private:
   PetscLogDouble                              time_trial_ = 0, time_tangents_ = 0;
   /* -material_rebalance */
   PetscInt               rebalance_after_ = 0, evaluations_ = 0, moved_ = 0;
-  std::vector<PetscReal> cost_; /* [block] seconds each point of this group took so far */
+  PetscReal              skip_tolerance_ = 0; /* -material_skip_tolerance [N/m]; 0: every evaluation solves */
+  std::vector<PetscReal> cost_;               /* [block] seconds each point of this group took so far */
   PetscReal              imbalance_before_ = 1, imbalance_after_ = 1;
   PetscErrorCode         BuildTraffic(); /* the SFs of [begin_, end_) */
   /* this group's points become [begin, end); the new ones take their state from states[g - begin]
      (PackPoint's numbers; none: they start afresh) */
   PetscErrorCode SetBlock(PetscInt begin, PetscInt end, std::vector<std::vector<PetscReal>> *states);
   /* a point's declared state as one sequence of numbers (a rebalance moves it), and back */
+  /* A point of the material on `group`, wrapped in a SkippingPoint with -material_skip_tolerance. */
+  PetscErrorCode        CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const;
   static PetscErrorCode PackPoint(MaterialPoint &p, std::vector<PetscReal> &out);
   static PetscErrorCode UnpackPoint(MaterialPoint &p, const PetscReal *in, size_t n);
   struct SavedPoint { /* a point's row of a checkpoint: its global index here, its nested state */
