@@ -162,8 +162,9 @@ PetscErrorCode EnergyBalance::Row(MPI_Comm comm, const PetscReal *x, const Petsc
   const PetscReal residual = (K + Es) - (K0_ + E0_) - Wext + D;
   /* relative to the external works' magnitudes summed (the controls' and a turgor ramp's works may
      have opposite signs: their sum could cancel and inflate the ratio), or to the energies in play
-     where they are larger (a load that has just begun has done next to no work yet) */
-  const PetscReal scale = std::max(Wabs, Etot_abs);
+     where they are larger (a load that has just begun has done next to no work yet), or to the
+     round-off's energy where both are below it */
+  const PetscReal scale = std::max({Wabs, Etot_abs, round_off_});
   *relative             = scale > 0 ? residual / scale : 0;
   worst_relative_       = std::max(worst_relative_, std::fabs(*relative));
   row                   = s;
@@ -179,6 +180,7 @@ void EnergyBalance::DeclareState(StateDeclaration &d)
   d.Scalar("stored_start", &E0_, Combine::Owner);
   d.Scalar("time", &t_, Combine::Owner);
   d.Scalar("largest_residual", &worst_relative_, Combine::Max);
+  d.Scalar("round_off_energy", &round_off_, Combine::Max);
   d.Vector("work", &W_, Combine::Sum);
   d.Vector("work_dashpot", &W_dashpot_, Combine::Sum);
   d.Vector("work_ramp", &W_time_, Combine::Sum);

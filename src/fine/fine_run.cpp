@@ -183,6 +183,20 @@ PetscErrorCode FineRun::SetUpModel()
   PetscCall(equations_.StabilityLimits(U_, limits_, &dt_stable_));
   dt_initial_ = spec_.dt > 0 ? spec_.dt : spec_.dt_safety * dt_stable_;
   PetscCall(TSSetTimeStep(ts_, dt_initial_));
+  if (spec_.energy) { /* the round-off's energy: every particle moved by 10 ulps of the largest coordinate, at the stiffest frequency 2 / dt_stable */
+    const PetscScalar *u;
+    PetscReal          mx[2] = {0, 0}; /* [mass, largest |x|] */
+    PetscCall(VecGetArrayRead(U_, &u));
+    for (PetscInt i = 0; i < n_local_; i++) {
+      mx[0] += tissue_.particles.mass[i];
+      mx[1] = std::max({mx[1], std::fabs(PetscRealPart(u[2 * i])), std::fabs(PetscRealPart(u[2 * i + 1]))});
+    }
+    PetscCall(VecRestoreArrayRead(U_, &u));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx[0], 1, MPIU_REAL, MPIU_SUM, comm_));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx[1], 1, MPIU_REAL, MPIU_MAX, comm_));
+    const PetscReal omega = dt_stable_ > 0 && std::isfinite(dt_stable_) ? 2 / dt_stable_ : 0, dx = 10 * PETSC_MACHINE_EPSILON * mx[1];
+    records_.SetRoundOffEnergy(0.5 * mx[0] * omega * omega * dx * dx);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

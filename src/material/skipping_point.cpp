@@ -43,7 +43,7 @@ bool SkippingPoint::Expand(const Tensor2 &F, const Tensor2 &Fdot, Tensor2 *sigma
 PetscErrorCode SkippingPoint::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKind kind, MaterialResponse *out)
 {
   Tensor2   s;
-  PetscReal d2;
+  PetscReal d2 = 0;
   PetscFunctionBeginUser;
   const bool expanded = Expand(F, Fdot, &s, &d2);
   /* a trial within the last measured step whose error, scaled down linearly, is within the
@@ -83,8 +83,8 @@ PetscErrorCode SkippingPoint::StressDerivatives(const Tensor2 &F, const Tensor2 
   }
   /* the expansion's derivatives: along dF, L = dF F0^-1 about the expansion's own stress */
   Tensor2   s;
-  PetscReal d2;
-  *status = MaterialResponse();
+  PetscReal d2 = 0;
+  *status      = MaterialResponse();
   Expand(F, Fdot, &s, &d2);
   const Tensor2 Finv = base_.F.Inverse();
   for (PetscInt k = 0; k < n; k++) {

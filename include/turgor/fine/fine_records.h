@@ -28,7 +28,8 @@ public:
   PetscErrorCode AfterStep(PetscReal t, const PetscReal *x, const PetscReal *v, PetscReal t_final);
   /* Declared state: the next energy row's time and the balance's sums. */
   void           DeclareState(std::deque<StateDeclaration> &decls);
-  PetscErrorCode AddSummary(JsonObject &js) const; /* collective */
+  PetscErrorCode AddSummary(JsonObject &js) const;                                /* collective */
+  void           SetRoundOffEnergy(PetscReal e) { energy_.SetRoundOffEnergy(e); } /* EnergyBalance::SetRoundOffEnergy */
 
 private:
   PetscErrorCode EnergyRow(PetscReal t, const PetscReal *x, const PetscReal *v);
