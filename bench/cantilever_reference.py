@@ -23,9 +23,10 @@ beam is the plane-stress one with E', nu').
   cantilever_reference.py --faces 8,2 --element q2 --rule sri --g=-1e-8
   cantilever_reference.py --faces 16,4 --rule full --g=-1e-8 --check DIR --rtol 1e-4
         compare DIR/summary.json (a turgor -mode fe2_static run of the same beam) with the reference
-  cantilever_reference.py --faces 8,2 --element q2 --axial --g=1e-8 --check DIR
+  cantilever_reference.py --faces 8,2 --element q2 [--skin EA] --axial --g=1e-8 --check DIR
         the body force along the beam (-body_force g,0): the tip's horizontal displacement
-        (tip_displacement_x_final)
+        (tip_displacement_x_final); --skin: a membrane of axial stiffness EA on the top and bottom
+        faces (-coarse_skin_stiffness EA)
   cantilever_reference.py --table --turgor build/turgor [--g=-1e-7] [--meshes 8,2 16,4 32,8 64,16] [--element q2]
         run turgor on each mesh with both rules and print the docs/benchmarks.md table
 """
@@ -55,7 +56,7 @@ def bmatrix(dN):
     return B
 
 
-def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule, c=1):
+def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule, c=1, skin=0.0):
     if ny % 2:
         sys.exit("cantilever_reference.py: ny must be even (the tip vertex is at (L, H/2))")
     D = np.array([[lam + 2 * mu, lam, 0], [lam, lam + 2 * mu, 0], [0, 0, mu]])
@@ -85,6 +86,10 @@ def tip_deflection(nx, ny, L, H, mu, lam, rho, g, rule, c=1):
             dofs = [2 * v + d for v in verts for d in range(2)]
             K[np.ix_(dofs, dofs)] += Ke
             f[dofs] += fe
+    for j in (0, ny):  # a membrane of axial stiffness skin along the bottom and top faces (linear: t = e_x)
+        for i in range(nx):
+            for a, b, k in [(i, i, 1), (i, i + 1, -1), (i + 1, i, -1), (i + 1, i + 1, 1)]:
+                K[2 * node(a, j), 2 * node(b, j)] += k * skin / (L / nx)
     free = np.array([d for d in range(2 * n) if d // 2 // (ny + 1) != 0])  # not on x = 0
     u = np.zeros(2 * n)
     u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free])
@@ -96,7 +101,7 @@ def quadratic(t):
     return (np.array([0.5 * t * (t - 1), 1 - t * t, 0.5 * t * (t + 1)]), np.array([t - 0.5, -2 * t, t + 0.5]))
 
 
-def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule, c=1):
+def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule, c=1, skin=0.0):
     """The same beam on biquadratic 9-node elements: nodes on the (2 nx + 1) x (2 ny + 1) grid."""
     D = np.array([[lam + 2 * mu, lam, 0], [lam, lam + 2 * mu, 0], [0, 0, mu]])
     m = np.array([1.0, 1.0, 0.0])
@@ -141,6 +146,13 @@ def tip_deflection_q2(nx, ny, L, H, mu, lam, rho, g, rule, c=1):
             dofs = [2 * v + d for v in nodes for d in range(2)]
             K[np.ix_(dofs, dofs)] += Ke
             f[dofs] += fe
+    for j in (0, 2 * ny):  # the membrane along the faces: 3-node edges, dN/dxi = xi - 1/2, -2 xi, xi + 1/2, |dX/dxi| = hx / 2
+        for i in range(nx):
+            for xi, wx in zip(t3, w3):
+                dN = [xi - 0.5, -2 * xi, xi + 0.5]
+                for a in range(3):
+                    for b in range(3):
+                        K[2 * node(2 * i + a, j), 2 * node(2 * i + b, j)] += wx * skin / (hx / 2) * dN[a] * dN[b]
     free = np.array([d for d in range(2 * n) if d // 2 // nyn != 0])  # not on x = 0
     u = np.zeros(2 * n)
     u[free] = np.linalg.solve(K[np.ix_(free, free)], f[free])
@@ -177,6 +189,7 @@ def main():
     p.add_argument("--g", type=float, default=-1e-8, help="vertical body force (acceleration, -body_force 0,g)")
     p.add_argument("--rule", choices=["sri", "full", "both"], default="both")
     p.add_argument("--element", choices=["q1", "q2"], default="q1")
+    p.add_argument("--skin", type=float, default=0.0, help="a membrane of this axial stiffness EA along the top and bottom faces (-coarse_skin_stiffness)")
     p.add_argument("--axial", action="store_true", help="the body force along the beam (-body_force g,0); the tip's horizontal displacement")
     p.add_argument("--check", metavar="DIR", help="compare DIR/summary.json's tip_displacement_final")
     p.add_argument("--rtol", type=float, default=1e-4)
@@ -221,7 +234,7 @@ def main():
     if a.axial and a.table:
         sys.exit("cantilever_reference.py: --table is for the bending load")
     for rule in rules:
-        ref = deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule, c)
+        ref = deflection(nx, ny, a.L, a.H, a.mu, a.lam, a.density, a.g, rule, c, a.skin)
         if a.axial:  # the bar's 1D limit, E' L^2 / 2 (the clamp's lateral restraint stiffens it near x = 0)
             E = a.mu * (3 * a.lam + 2 * a.mu) / (a.lam + a.mu)
             bar = a.density * a.g * a.L**2 / (2 * E / (1 - (a.lam / (2 * (a.lam + a.mu)))**2))

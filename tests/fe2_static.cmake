@@ -31,6 +31,26 @@ turgor_add_test(fe2_static_axial_q2 COMMAND ${STATIC} ${STATIC_NH} ${STATIC_BEAM
   TIMEOUT 60 SETUP static_axial_q2)
 turgor_add_test(fe2_static_axial_q2_reference COMMAND ${PROJECT_SOURCE_DIR}/bench/cantilever_reference.py --faces 8,2 --g=1e-10 --element q2 --rule sri
   --axial --check static_axial_q2 --rtol 1e-7 LABELS fe2 static TIMEOUT 60 REQUIRES static_axial_q2)
+# a membrane along the top and bottom faces (-coarse_skin_stiffness EA = 20: 6 EA / (E H) = 1.2, the
+# deflection about halved), bent and stretched, Q2 and Q1 and on 2 ranks, against the numpy
+# reference's own membrane elements: measured 1.2e-9 bent, 9.7e-9 stretched
+set(SKIN -coarse_skin_stiffness 20)
+turgor_add_test(fe2_static_skin_q2 COMMAND ${STATIC} ${STATIC_NH} ${STATIC_BEAM_Q2} ${SKIN} -body_force 0,-1e-8 -output_dir static_skin_q2 LABELS fe2 static
+  TIMEOUT 60 SETUP static_skin_q2)
+turgor_add_test(fe2_static_skin_q2_reference COMMAND ${PROJECT_SOURCE_DIR}/bench/cantilever_reference.py --faces 8,2 --g=-1e-8 --element q2 --rule sri
+  --skin 20 --check static_skin_q2 --rtol 1e-7 LABELS fe2 static TIMEOUT 60 REQUIRES static_skin_q2)
+turgor_add_test(fe2_static_skin_axial_q2 COMMAND ${STATIC} ${STATIC_NH} ${STATIC_BEAM_Q2} ${SKIN} -body_force 1e-10,0 -output_dir static_skin_axial_q2 LABELS fe2
+  static TIMEOUT 60 SETUP static_skin_axial_q2)
+turgor_add_test(fe2_static_skin_axial_q2_reference COMMAND ${PROJECT_SOURCE_DIR}/bench/cantilever_reference.py --faces 8,2 --g=1e-10 --element q2 --rule sri
+  --skin 20 --axial --check static_skin_axial_q2 --rtol 1e-7 LABELS fe2 static TIMEOUT 60 REQUIRES static_skin_axial_q2)
+turgor_add_test(fe2_static_skin_q1 COMMAND ${STATIC} ${STATIC_NH} ${STATIC_BEAM} ${SKIN} -body_force 0,-1e-8 -output_dir static_skin_q1 LABELS fe2 static
+  TIMEOUT 60 SETUP static_skin_q1)
+turgor_add_test(fe2_static_skin_q1_reference COMMAND ${REFERENCE} --rule sri --skin 20 --check static_skin_q1 --rtol 1e-7 LABELS fe2 static TIMEOUT 60
+  REQUIRES static_skin_q1)
+turgor_add_test(fe2_static_skin_q2_np2 COMMAND ${MPIEXEC_ROOT} -n 2 ${STATIC} ${STATIC_NH} ${STATIC_BEAM_Q2} ${SKIN} -body_force 0,-1e-8
+  -output_dir static_skin_q2_np2 LABELS fe2 static mpi TIMEOUT 60 SETUP static_skin_q2_np2)
+turgor_add_test(fe2_static_skin_q2_np2_reference COMMAND ${PROJECT_SOURCE_DIR}/bench/cantilever_reference.py --faces 8,2 --g=-1e-8 --element q2 --rule sri
+  --skin 20 --check static_skin_q2_np2 --rtol 1e-7 LABELS fe2 static mpi TIMEOUT 60 REQUIRES static_skin_q2_np2)
 turgor_add_test(fe2_static_summary COMMAND ${CHECK} keys static_cantilever_sri mode status material element quadrature n_elements n_material_points
   load_factor_final load_increments load_cutbacks snes_its ksp_its rhs_evals jacobian_evals material_evaluations tip_displacement_final wall_time_s
   rve_solves snapshots LABELS fe2 static REQUIRES static_cantilever_sri)

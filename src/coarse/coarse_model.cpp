@@ -111,6 +111,7 @@ PetscErrorCode CoarseModel::SetFromOptions(ParameterList *params)
 {
   PetscFunctionBeginUser;
   PetscCall(spec_.SetFromOptions(comm_, params));
+  PetscCall(skin_.SetFromOptions(comm_, params));
   PetscCall(pool_.SetFromOptions(params));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -550,6 +551,7 @@ PetscErrorCode CoarseModel::SetUp()
   }
   PetscCall(CreateSection());
   PetscCall(PrecomputeElements());
+  PetscCall(skin_.SetUp(dm_, c_start_, c_end_, spec_.element == CoarseElement::Q2 ? 3 : 2));
   const PetscInt np = (c_end_ - c_start_) * npts_;
   PetscCall(pool_.SetUp(np));
   first_point_ = 0;
@@ -972,6 +974,7 @@ PetscErrorCode CoarseModel::InternalForce(Vec Floc)
       for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] -= load_factor_ * f_ext_[2 * nn_ * k + 2 * a + d];
     PetscCall(DMPlexVecSetClosure(dm_, NULL, Floc, c, fe, ADD_VALUES));
   }
+  if (skin_.Active()) PetscCall(skin_.AddForce(dm_, Uloc_, Floc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1126,6 +1129,7 @@ PetscErrorCode CoarseModel::AssembleKC(const std::vector<Tensor2> &Fs, const std
     }
     PetscCall(DMPlexMatSetClosure(dm_, NULL, NULL, J, c, ke, ADD_VALUES));
   }
+  if (skin_.Active()) PetscCall(skin_.AddStiffness(dm_, Uloc_, J)); /* at Uloc_: every caller has just set it to the state of Fs */
   /* -I: d(udot - v)/dv, per owned free node */
   for (PetscInt off : free_rows_)
     for (PetscInt d = 0; d < 2; d++) PetscCall(MatSetValue(J, off + d, off + 2 + d, -1.0, ADD_VALUES));

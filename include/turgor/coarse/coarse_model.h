@@ -18,6 +18,7 @@
    essential condition are PETSc's (DMSetFromOptions, a Q1 PetscFE section, DMAddBoundary): the
    vertices on the Dirichlet label values are constrained (all four dofs; displacement from
    SetBoundaryDisplacement, zero by default, velocity zero); the assembly is our own. */
+#include <turgor/coarse/surface_membrane.h>
 #include <turgor/core/parameters.h>
 #include <turgor/material/material_pool.h>
 #include <turgor/physics/load_spec.h>
@@ -228,6 +229,7 @@ private:
 
   /* options */
   CoarseSpec                                                spec_;
+  SurfaceMembrane                                           skin_; /* -coarse_skin_*: a membrane along boundary faces */
   PetscReal                                                 g_[2]        = {0.0, -0.2};
   PetscReal                                                 load_factor_ = 1.0;
   std::function<void(const PetscReal X[2], PetscReal u[2])> boundary_;
