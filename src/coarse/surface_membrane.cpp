@@ -116,22 +116,37 @@ static int EdgeRule(PetscInt nodes, const PetscReal **xi, const PetscReal **w)
   return nodes == 3 ? 3 : 2;
 }
 
+/* The edge's kinematics at its Gauss points: weights, dN/dxi, |X'| and x' */
+PetscErrorCode SurfaceMembrane::EdgeKinematics(DM dm, Vec Uloc, PetscInt e, EdgeState *k) const
+{
+  PetscReal        X[6], x[6];
+  const PetscReal *xi, *w;
+  PetscFunctionBeginUser;
+  PetscCall(EdgeNodes(dm, Uloc, e, X, x));
+  k->points = EdgeRule(nodes_, &xi, &w);
+  for (int g = 0; g < k->points; g++) {
+    PetscReal Xp[2] = {0, 0};
+    EdgeDerivatives(nodes_, xi[g], k->dN[g]);
+    k->w[g]     = w[g];
+    k->xp[g][0] = k->xp[g][1] = 0;
+    for (PetscInt a = 0; a < nodes_; a++)
+      for (int d = 0; d < 2; d++) Xp[d] += k->dN[g][a] * X[2 * a + d], k->xp[g][d] += k->dN[g][a] * x[2 * a + d];
+    k->lX[g] = std::hypot(Xp[0], Xp[1]);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SurfaceMembrane::AddForce(DM dm, Vec Uloc, Vec Floc) const
 {
   PetscFunctionBeginUser;
   for (PetscInt e : edges_) {
-    PetscReal        X[6], x[6], fe[12] = {0}, dN[3];
-    const PetscReal *xi, *w;
-    PetscCall(EdgeNodes(dm, Uloc, e, X, x));
-    const int ng = EdgeRule(nodes_, &xi, &w);
-    for (int g = 0; g < ng; g++) {
-      EdgeDerivatives(nodes_, xi[g], dN);
-      PetscReal Xp[2] = {0, 0}, xp[2] = {0, 0};
+    EdgeState k;
+    PetscReal fe[12] = {0};
+    PetscCall(EdgeKinematics(dm, Uloc, e, &k));
+    for (int g = 0; g < k.points; g++) {
+      const PetscReal lx = std::hypot(k.xp[g][0], k.xp[g][1]), N = stiffness * (lx / k.lX[g] - 1);
       for (PetscInt a = 0; a < nodes_; a++)
-        for (int d = 0; d < 2; d++) Xp[d] += dN[a] * X[2 * a + d], xp[d] += dN[a] * x[2 * a + d];
-      const PetscReal lX = std::hypot(Xp[0], Xp[1]), lx = std::hypot(xp[0], xp[1]), N = stiffness * (lx / lX - 1);
-      for (PetscInt a = 0; a < nodes_; a++)
-        for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] += w[g] * N * (xp[d] / lx) * dN[a];
+        for (int d = 0; d < 2; d++) fe[4 * a + 2 + d] += k.w[g] * N * (k.xp[g][d] / lx) * k.dN[g][a];
     }
     PetscCall(DMPlexVecSetClosure(dm, NULL, Floc, e, fe, ADD_VALUES));
   }
@@ -143,22 +158,17 @@ PetscErrorCode SurfaceMembrane::AddStiffness(DM dm, Vec Uloc, Mat J) const
   PetscFunctionBeginUser;
   const PetscInt ne = 4 * nodes_;
   for (PetscInt e : edges_) {
-    PetscReal        X[6], x[6], ke[144] = {0}, dN[3];
-    const PetscReal *xi, *w;
-    PetscCall(EdgeNodes(dm, Uloc, e, X, x));
-    const int ng = EdgeRule(nodes_, &xi, &w);
-    for (int g = 0; g < ng; g++) {
-      EdgeDerivatives(nodes_, xi[g], dN);
-      PetscReal Xp[2] = {0, 0}, xp[2] = {0, 0};
-      for (PetscInt a = 0; a < nodes_; a++)
-        for (int d = 0; d < 2; d++) Xp[d] += dN[a] * X[2 * a + d], xp[d] += dN[a] * x[2 * a + d];
-      const PetscReal lX = std::hypot(Xp[0], Xp[1]), lx = std::hypot(xp[0], xp[1]), t[2] = {xp[0] / lx, xp[1] / lx};
-      const PetscReal axial = stiffness / lX, lateral = stiffness * (lx / lX - 1) / lx;
+    EdgeState k;
+    PetscReal ke[144] = {0};
+    PetscCall(EdgeKinematics(dm, Uloc, e, &k));
+    for (int g = 0; g < k.points; g++) {
+      const PetscReal lx = std::hypot(k.xp[g][0], k.xp[g][1]), t[2] = {k.xp[g][0] / lx, k.xp[g][1] / lx};
+      const PetscReal axial = stiffness / k.lX[g], lateral = stiffness * (lx / k.lX[g] - 1) / lx;
       for (PetscInt a = 0; a < nodes_; a++)
         for (PetscInt b = 0; b < nodes_; b++)
           for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++)
-              ke[(4 * a + 2 + i) * ne + 4 * b + j] += w[g] * dN[a] * dN[b] * (axial * t[i] * t[j] + lateral * ((i == j ? 1.0 : 0.0) - t[i] * t[j]));
+              ke[(4 * a + 2 + i) * ne + 4 * b + j] += k.w[g] * k.dN[g][a] * k.dN[g][b] * (axial * t[i] * t[j] + lateral * ((i == j ? 1.0 : 0.0) - t[i] * t[j]));
     }
     PetscCall(DMPlexMatSetClosure(dm, NULL, NULL, J, e, ke, ADD_VALUES));
   }

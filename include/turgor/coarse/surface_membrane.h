@@ -38,8 +38,13 @@ public:
   std::vector<PetscInt> values    = {1, 3};
 
 private:
+  struct EdgeState { /* at each Gauss point: weight, dN/dxi of the nodes, |X'|, x' */
+    int       points = 0;
+    PetscReal w[3], dN[3][3], lX[3], xp[3][2];
+  };
   /* The edge's reference and current node positions (2 per node, in closure order) */
   PetscErrorCode        EdgeNodes(DM dm, Vec Uloc, PetscInt e, PetscReal *X, PetscReal *x) const;
+  PetscErrorCode        EdgeKinematics(DM dm, Vec Uloc, PetscInt e, EdgeState *k) const;
   std::vector<PetscInt> edges_;
   PetscInt              nodes_ = 2;
 };
