@@ -118,10 +118,23 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
         if (converged) PetscCall(Admissible(&inside, &why));
       }
     }
-    /* a first evaluation where another point of the material made its first: that point's state */
-    PetscInt shared = !warm && first_ && first_->have && (F - first_->F).Norm() == 0 && (Fdot - first_->Fdot).Norm() == 0;
+    /* a first evaluation at the reference: the material's relaxed state there, solved once on a
+       scratch point */
+    PetscInt shared = !warm && first_ && first_->make && (F - Tensor2::Identity()).Norm() == 0 && Fdot.Norm() == 0;
     PetscCallMPI(MPI_Bcast(&shared, 1, MPIU_INT, 0, comm_));
-    if (shared) {
+    if (shared && !first_->tried) {
+      std::unique_ptr<RVE> scratch;
+      MaterialResponse     r;
+      first_->tried = true;
+      PetscCall(first_->make(comm_, spec_, &scratch));
+      PetscCall(scratch->Evaluate(F, Fdot, EvaluationKind::Trial, &r));
+      counters.iterations += r.iterations; /* its work is this point's */
+      if (r.ok) {
+        first_->w    = scratch->current_;
+        first_->have = true;
+      }
+    }
+    if (shared && first_->have) {
       PetscCall(VecGetArray(W_, &w));
       if (rank_ == 0)
         for (PetscInt k = 0; k < NumUnknowns(); k++) w[k] = first_->w[k];
@@ -139,15 +152,6 @@ PetscErrorCode RVE::Evaluate(const Tensor2 &F, const Tensor2 &Fdot, EvaluationKi
           out->ok     = false;
           out->reason = why;
         }
-      }
-      if (out->ok && !warm && first_ && !first_->have) {
-        const PetscScalar *wr;
-        PetscCall(VecGetArrayRead(W_, &wr));
-        first_->w.assign(wr, wr + (rank_ == 0 ? NumUnknowns() : 0));
-        PetscCall(VecRestoreArrayRead(W_, &wr));
-        first_->F    = F;
-        first_->Fdot = Fdot;
-        first_->have = true;
       }
     }
   }
@@ -503,7 +507,14 @@ PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *params)
 
 PetscErrorCode RVEMaterialBase::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
 {
-  auto rve = std::make_unique<RVE>(group, spec, first_);
+  if (!first_->make)
+    first_->make = [this](MPI_Comm g, const RVESpec &sp, std::unique_ptr<RVE> *scratch) {
+      PetscFunctionBeginUser;
+      *scratch = std::make_unique<RVE>(g, sp); /* without the cache: it fills it */
+      PetscCall((*scratch)->SetUp(prototype_, physics, FluidDensity()));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    };
+  auto rve = std::make_unique<RVE>(group, spec, ShareReferenceState() ? first_ : nullptr);
   PetscFunctionBeginUser;
   PetscCall(rve->SetUp(prototype_, physics, FluidDensity()));
   *point = std::move(rve);

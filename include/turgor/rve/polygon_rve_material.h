@@ -22,6 +22,9 @@ public:
 
   PeriodicPolygonSpec geometry; /* (spec: the relaxation, -rve_*; -rve_cells is the square grid's) */
   PolygonTissueSpec   poly;
+
+protected:
+  bool ShareReferenceState() const override { return true; } /* a cold solve: ~10 LU factorisations of G' */
 };
 
 } // namespace turgor

@@ -8,24 +8,29 @@
    material point from them. */
 #include <turgor/material/material_point.h>
 #include <turgor/rve/relaxation.h>
+#include <functional>
 #include <memory>
 
 namespace turgor {
 
-/* The relaxed state of the first cold solve of a material's points, shared by them: every point
-   starts as a copy of one prototype cell with the same history, and all are first evaluated at the
-   same deformation (the coarse model's reference), so that one point's cold solve is every point's
-   (its relaxed state, bit for bit: the solve is deterministic). Kept by the material; on rank 0 of
-   a group the state, on every rank the deformation it belongs to. */
-struct FirstRelaxedState {
-  bool                     have = false;
-  Tensor2                  F, Fdot;
-  std::vector<PetscScalar> w;
+class RVE;
+
+/* The relaxed state at the reference (F = I, Fdot = 0) of a material's points, shared by them: every
+   point starts as a copy of one prototype cell with the same history, and all are first evaluated
+   there (the coarse model's reference), so one cold solve is every point's. It is made on a scratch
+   point (`make`: a fresh point of the material, without this cache), and every point then takes it
+   the same way -- the state set, a warm solve that finds it converged, no kept Jacobian -- so that a
+   point's state does not depend on which point of which rank came first (1 and 2 ranks agree bit
+   for bit). Kept by the material; on rank 0 of a group the state. */
+struct ReferenceRelaxedState {
+  bool                                                                             tried = false, have = false;
+  std::vector<PetscScalar>                                                         w;
+  std::function<PetscErrorCode(MPI_Comm, const RVESpec &, std::unique_ptr<RVE> *)> make;
 };
 
 class RVE : public MaterialPoint {
 public:
-  RVE(MPI_Comm comm, const RVESpec &spec, std::shared_ptr<FirstRelaxedState> first = nullptr) : comm_(comm), spec_(spec), first_(std::move(first)) { }
+  RVE(MPI_Comm comm, const RVESpec &spec, std::shared_ptr<ReferenceRelaxedState> first = nullptr) : comm_(comm), spec_(spec), first_(std::move(first)) { }
   RVE(const RVE &)            = delete;
   RVE &operator=(const RVE &) = delete;
   ~RVE() override;
@@ -94,11 +99,11 @@ private:
   bool                     have_current_ = false, have_committed_ = false;
   /* the predictor: the last exact tangent's derivatives of the relaxed state z_c (column after
      column) and their directions (8 values each: dF, dFdot) */
-  std::vector<PetscScalar>           pred_z_;
-  std::vector<PetscReal>             pred_dirs_;
-  MaterialCounters                   counters_;
-  PetscLogEvent                      ev_solve_ = 0;
-  std::shared_ptr<FirstRelaxedState> first_; /* the material's, or none */
+  std::vector<PetscScalar>               pred_z_;
+  std::vector<PetscReal>                 pred_dirs_;
+  MaterialCounters                       counters_;
+  PetscLogEvent                          ev_solve_ = 0;
+  std::shared_ptr<ReferenceRelaxedState> first_; /* the material's, or none */
 };
 
 /* What every periodic-RVE material shares: the relaxation settings and the physics read once, the
@@ -121,10 +126,16 @@ public:
   PhysicsSpec physics;
 
 protected:
+  /* Do its points take their relaxed state at the reference from one solve (ReferenceRelaxedState)?
+     Where a cold solve is dear (a polygon RVE's: 10 LU factorisations of G'). The one-cell SPH RVE's
+     costs 1 ms, and with the shared state its bending bar restarted on another rank count drifted
+     from the uninterrupted run by 5e-10 instead of 8e-13 (the same round-off at the restart,
+     amplified along another warm-solve path): it keeps its own. */
+  virtual bool ShareReferenceState() const { return false; }
   /* the fluid's density (the force scale of an SPH cell); 0: none */
-  virtual PetscReal                  FluidDensity() const { return 0; }
-  PeriodicCell                       prototype_;                                     /* the cell every point copies */
-  std::shared_ptr<FirstRelaxedState> first_ = std::make_shared<FirstRelaxedState>(); /* its points' first cold solve */
+  virtual PetscReal                      FluidDensity() const { return 0; }
+  PeriodicCell                           prototype_;                                         /* the cell every point copies */
+  std::shared_ptr<ReferenceRelaxedState> first_ = std::make_shared<ReferenceRelaxedState>(); /* its points' state at the reference */
 };
 
 class RVEMaterial : public RVEMaterialBase {
