@@ -81,20 +81,11 @@ PetscErrorCode SkippingPoint::StressDerivatives(const Tensor2 &F, const Tensor2 
     PetscCall(inner_->StressDerivatives(F, Fdot, n, dF, dFdot, kind, dsigma, status));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  /* the expansion's derivatives: along dF, L = dF F0^-1 about the expansion's own stress */
-  Tensor2   s;
-  PetscReal d2 = 0;
-  *status      = MaterialResponse();
-  Expand(F, Fdot, &s, &d2);
+  /* the expansion's derivatives: sigma0 + Change(L) is linear in L = (F - F0) F0^-1 and Ld, so its
+     derivative along (dF, dFdot) is Change(dF F0^-1, dFdot F0^-1) */
+  *status            = MaterialResponse();
   const Tensor2 Finv = base_.F.Inverse();
-  for (PetscInt k = 0; k < n; k++) {
-    const Tensor2 L = dF[k] * Finv, Ld = dFdot[k] * Finv;
-    PetscReal     v[3], vd[3];
-    Voigt(L, v);
-    Voigt(Ld, vd);
-    /* d/de of sigma0 + D^e v(L(e)) + L(e) sigma0 + sigma0 L(e)^T - tr L(e) sigma0 + D^v v(Ld(e)) */
-    dsigma[k] = Apply(base_.D.De, v) + L * base_.sigma + base_.sigma * L.T() + (-L.Trace()) * base_.sigma + Apply(base_.D.Dv, vd);
-  }
+  for (PetscInt k = 0; k < n; k++) dsigma[k] = Change(base_.D, base_.sigma, dF[k] * Finv, dFdot[k] * Finv);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

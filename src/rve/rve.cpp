@@ -507,7 +507,7 @@ PetscErrorCode RVEMaterial::SetFromOptions(MPI_Comm comm, ParameterList *params)
 
 PetscErrorCode RVEMaterialBase::CreatePoint(MPI_Comm group, std::unique_ptr<MaterialPoint> *point) const
 {
-  if (!first_->make)
+  if (ShareReferenceState() && !first_->make)
     first_->make = [this](MPI_Comm g, const RVESpec &sp, std::unique_ptr<RVE> *scratch) {
       PetscFunctionBeginUser;
       *scratch = std::make_unique<RVE>(g, sp); /* without the cache: it fills it */

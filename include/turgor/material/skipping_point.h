@@ -22,8 +22,9 @@
 
    The inner point keeps the state of its last solve: Commit after a skipped trial commits that one
    (history -- plastic hinges, bonds -- moves on at the last solved state, within the tolerance's
-   reach); Revert returns the base and c to their committed values. The base, c and the count of
-   skipped evaluations are declared state beside the inner point's (they restart and move with it). */
+   reach); Revert returns the base and the measured error and step to their committed values. These
+   and the count of skipped evaluations are declared state beside the inner point's (they restart
+   and move with it). */
 #include <turgor/material/material_point.h>
 #include <memory>
 
