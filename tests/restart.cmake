@@ -62,6 +62,10 @@ turgor_add_test(restart_bar_extend COMMAND turgor_app ${RESTART_BAR} -ts_max_tim
   LABELS fine restart REQUIRES restart_bar_extend_copy SETUP restart_bar_extend)
 turgor_add_test(restart_bar_extend_rows COMMAND ${CHECK} increasing restart_bar_extend LABELS fine restart REQUIRES restart_bar_extend)
 turgor_add_test(restart_bar_fresh_state COMMAND ${CHECK} between restart_bar_full checkpoints_written 2 2 LABELS fine restart REQUIRES restart_bar_full)
+# The bar under the low-storage pair (TS lsrk, DSP controller), whose checkpoint holds only the
+# solution, the step and the controller's history: the rate at a step's end that tip.csv's
+# interpolation evaluated and the next step reuses is evaluated again after the restart, to the bit
+turgor_restart_case(bar_lsrk 300 INTERVAL 2 OPTIONS ${RESTART_BAR} -ts_type lsrk FILES tip.csv)
 
 # A 16-cell polygonal tissue under the lid (config/polygon_compression.yaml shortened): contact
 # with friction (tangential histories), plastic hinges, cell pressure, velocity controls, the energy
@@ -86,6 +90,8 @@ turgor_restart_case(glue 6000 INTERVAL 10 OPTIONS ${RESTART_GLUE} FILES groups.c
 # parallel), the small square grid with its snapshots.
 turgor_restart_case(mpi2 150 INTERVAL 5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS -mode fine -tissue_cells_x 4 -tissue_cells_y 4 -ts_max_time 10
   -fine_snapshots 2 -fine_progress_interval 0)
+turgor_restart_case(mpi2_lsrk 150 INTERVAL 5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS -mode fine -tissue_cells_x 4 -tissue_cells_y 4 -ts_max_time 10
+  -fine_snapshots 2 -fine_progress_interval 0 -ts_type lsrk FILES tip.csv)
 
 # FE^2 with RVEs: the seed's 4 x 4 bending bar (80 material points, one-cell RVEs) over 30 µs with
 # DOPRI 5(4) and the DSP step controller (163 steps, 4 rejected), stopped after 80 steps (t = 14.2

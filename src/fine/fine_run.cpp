@@ -5,6 +5,7 @@
 #include <turgor/fine/fine_run.h>
 #include <turgor/fine/particle_output.h>
 #include <turgor/parallel/rank_reductions.h>
+#include <turgor/ts/low_storage_rk.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cmath>
@@ -207,10 +208,11 @@ PetscErrorCode FineRun::CheckIntegrator()
   PetscBool explicit_type;
   TSType    type;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, "am", ""));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, TSLSRK, "am", ""));
   PetscCall(TSGetType(ts_, &type));
   PetscCheck(explicit_type, comm_, PETSC_ERR_SUP,
-             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, euler, ssp, verlet, basicsymplectic, am); an implicit one would need the "
+             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, lsrk, euler, ssp, verlet, basicsymplectic, am); an implicit one would "
+             "need the "
              "Jacobian "
              "of every particle interaction",
              type);

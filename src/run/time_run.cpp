@@ -85,7 +85,7 @@ PetscErrorCode TimeRun::SetFromOptions()
                               "TimeRun", ckpt_keep_, &ckpt_keep_, NULL));
     PetscCall(PetscOptionsString("-restart",
                                  "Continue from this checkpoint file (-mode fine, or -mode fe2 with its RVE states): the same scene options, integrator and "
-                                 "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, euler, ssp)",
+                                 "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, lsrk, euler, ssp)",
                                  "TimeRun", file, file, sizeof file, &set));
     {
       char     *allow[64];
@@ -150,7 +150,7 @@ PetscErrorCode TimeRun::SetUp()
     const std::string option = restart_file_.empty() ? (ckpt_interval_ > 0 ? "-checkpoint_interval" : "-checkpoint_wall_interval")
                                                      : "-restart " + restart_file_;
     PetscCheck(ok, comm_, PETSC_ERR_SUP,
-               "Option %s: %s, which a checkpoint does not hold; checkpoints support the one-step explicit integrators (-ts_type rk, euler, ssp%s)",
+               "Option %s: %s, which a checkpoint does not hold; checkpoints support the one-step explicit integrators (-ts_type rk, lsrk, euler, ssp%s)",
                option.c_str(), why, mode_ == "fine" ? ", basicsymplectic, verlet" : "");
   }
   if (!restart_file_.empty()) {

@@ -2,6 +2,7 @@
 #include <turgor/ts/integrator_state.h>
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/adapt_dsp.h>
+#include <turgor/ts/low_storage_rk.h>
 #include <turgor/ts/radau_iia.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <petsc/private/tsimpl.h> /* the controller's step-increase delay, the rejections: no public setter */
@@ -12,7 +13,7 @@ PetscErrorCode TSCheckpointSupported(TS ts, PetscBool *supported, const char **w
 {
   PetscBool ok, is;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts, &ok, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, ""));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts, &ok, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, TSLSRK, ""));
   *supported = ok;
   *why       = "";
   if (ok) PetscFunctionReturn(PETSC_SUCCESS);

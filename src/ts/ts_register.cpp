@@ -2,6 +2,7 @@
 #include <turgor/ts/ts_register.h>
 #include <turgor/ts/adams_moulton.h>
 #include <turgor/ts/adapt_dsp.h>
+#include <turgor/ts/low_storage_rk.h>
 #include <turgor/ts/radau_iia.h>
 #include <turgor/ts/velocity_verlet.h>
 #include "ts_types_internal.h"
@@ -32,6 +33,7 @@ PetscErrorCode TurgorTSRegisterAll(void)
 #endif
   PetscCall(TSRegister(TSAM, TSCreate_AM));
   PetscCall(TSRegister(TSVERLET, TSCreate_Verlet));
+  PetscCall(TSRegister(TSLSRK, TSCreate_LSRK));
   /* turgor's "dsp" in the place of PETSc's (the same controller, whose history a checkpoint keeps):
      PETSc's list first, so that its registration cannot come later and replace this one */
   PetscCall(TSAdaptInitializePackage());

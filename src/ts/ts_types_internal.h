@@ -5,3 +5,4 @@
 PetscErrorCode TSCreate_RadauIIA(TS ts);
 PetscErrorCode TSCreate_AM(TS ts);
 PetscErrorCode TSCreate_Verlet(TS ts);
+PetscErrorCode TSCreate_LSRK(TS ts);
