@@ -55,12 +55,22 @@ endfunction()
 # (about 250 steps).
 turgor_ranks_agree(bar OPTIONS -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_max_time 1 -fine_snapshots 0
   -fine_progress_interval 0)
+# The full halo checks send a cell's box only to the ranks near it: the 256-cell bar's 14 checks on 2
+# ranks received 9 856 B (the ranks' regions and the boxes of the cells near the cut), where
+# gathering every cell's box would move 14 x 256 x 40 B = 143 360 B.
+turgor_add_test(dist_bar_np2_check_bytes COMMAND ${CHECK} between dist_bar_np2 halo_check_bytes 1 30000 LABELS fine mpi REQUIRES dist_bar_np2)
 # The same bar under TS verlet without controls: the drift's velocities take their halo in place and
 # the accelerations carry room for the halo's forces (no copies of v and f, FineRun::LocalState,
 # TSVerletSetAccelerationRoom); a restart on 2 ranks continues it bit for bit.
 set(DIST_BAR_VERLET -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_type verlet -ts_max_time 0.5 -fine_snapshots 0
   -fine_progress_interval 0)
 turgor_ranks_agree(bar_verlet RANKS 2 OPTIONS ${DIST_BAR_VERLET})
+# ... and under the low-storage pair (TS lsrk: its rates carry room for the halo's forces,
+# TSLSRKSetRateRoom), continued bit for bit after a restart on 2 ranks
+set(DIST_BAR_LSRK -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_type lsrk -ts_max_time 1 -fine_snapshots 0
+  -fine_progress_interval 0)
+turgor_ranks_agree(bar_lsrk RANKS 2 OPTIONS ${DIST_BAR_LSRK})
+turgor_restart_case(dist_bar_lsrk 100 INTERVAL 0.5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_BAR_LSRK} FILES tip.csv)
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s).

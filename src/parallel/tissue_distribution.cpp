@@ -58,6 +58,7 @@ void NearestDistances(const std::vector<Box> &query, const std::vector<Box> &tar
 TissueDistribution::~TissueDistribution()
 {
   PetscCallVoid(PetscSFDestroy(&sf_));
+  if (comm_tag_ != MPI_COMM_NULL) PetscCallVoid(PetscCommDestroy(&comm_tag_));
 }
 
 PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin,
@@ -68,6 +69,8 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   PetscMPIInt        size, rank;
   PetscFunctionBeginUser;
   comm_ = comm;
+  if (comm_tag_ != MPI_COMM_NULL) PetscCall(PetscCommDestroy(&comm_tag_));
+  PetscCall(PetscCommDuplicate(comm, &comm_tag_, &tag_)); /* the full checks' messages: PETSc's inner communicator, a tag of their own */
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCheck(global.period[0] == 0 && global.period[1] == 0, comm, PETSC_ERR_SUP, "A periodic tissue cannot be distributed over ranks (run it on one rank)");
@@ -285,29 +288,70 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
     }
   }
   PetscCall(PetscInfo(NULL, "halo full check %d: box shift %g, slack %g\n", (int)full_checks_, (double)shift, (double)slack_));
-  /* every cell's current box, from its owner */
   full_checks_++;
+  /* The cells' current boxes, from their owners to the ranks near them only. Every rank's region
+     (the box of its cells grown by reach + margin: 4 numbers a rank) is gathered; a cell's box goes
+     to the ranks whose region it meets, over the pairs PetscCommBuildTwoSided finds. A cell that
+     meets no region of a rank is farther than reach + margin from all of that rank's cells, where
+     the distance below is capped anyway: the slack is the same as from every cell's box. */
+  PetscMPIInt rank;
   PetscCallMPI(MPI_Comm_size(comm_, &size));
-  std::vector<PetscReal> send;
-  for (size_t k = 0; k < owned_cells_.size(); k++)
-    send.insert(send.end(), {(PetscReal)owned_cells_[k], now[4 * k], now[4 * k + 1], now[4 * k + 2], now[4 * k + 3]});
-  PetscMPIInt              mine = (PetscMPIInt)send.size();
-  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
-  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-  std::vector<PetscReal> all(displs[size]);
-  PetscCallMPI(MPI_Allgatherv(send.data(), mine, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, comm_));
-  std::vector<Box> box(n_cells_), own;
-  for (size_t k = 0; k + 5 <= all.size(); k += 5) {
-    Box &b  = box[(size_t)all[k]];
-    b.lo[0] = all[k + 1], b.lo[1] = all[k + 2], b.hi[0] = all[k + 3], b.hi[1] = all[k + 4];
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  std::vector<Box> own(owned_cells_.size());
+  Box              region;
+  for (size_t k = 0; k < owned_cells_.size(); k++) {
+    own[k].lo[0] = now[4 * k], own[k].lo[1] = now[4 * k + 1], own[k].hi[0] = now[4 * k + 2], own[k].hi[1] = now[4 * k + 3];
+    region.Add(own[k].lo), region.Add(own[k].hi);
   }
-  for (PetscInt c : owned_cells_) own.push_back(box[c]);
+  const PetscReal grow = reach_ + margin_;
+  if (!owned_cells_.empty())
+    for (int d = 0; d < 2; d++) region.lo[d] -= grow, region.hi[d] += grow;
+  std::vector<PetscReal> regions(4 * (size_t)size);
+  const PetscReal        mine[4] = {region.lo[0], region.lo[1], region.hi[0], region.hi[1]};
+  PetscCallMPI(MPI_Allgather(mine, 4, MPIU_REAL, regions.data(), 4, MPIU_REAL, comm_));
+  std::vector<PetscMPIInt>            to_ranks, to_counts;
+  std::vector<std::vector<PetscReal>> to_data;
+  for (PetscMPIInt q = 0; q < size; q++) {
+    if (q == rank) continue;
+    const PetscReal       *R = &regions[4 * (size_t)q];
+    std::vector<PetscReal> send;
+    for (size_t k = 0; k < own.size(); k++)
+      if (!(own[k].hi[0] < R[0] || own[k].lo[0] > R[2] || own[k].hi[1] < R[1] || own[k].lo[1] > R[3]))
+        send.insert(send.end(), {(PetscReal)owned_cells_[k], own[k].lo[0], own[k].lo[1], own[k].hi[0], own[k].hi[1]});
+    if (send.empty()) continue;
+    to_ranks.push_back(q);
+    to_counts.push_back((PetscMPIInt)send.size());
+    to_data.push_back(std::move(send));
+  }
+  PetscMPIInt n_from, *from_ranks = nullptr, *from_counts = nullptr;
+  PetscCall(PetscCommBuildTwoSided(comm_tag_, 1, MPI_INT, (PetscMPIInt)to_ranks.size(), to_ranks.data(), to_counts.data(), &n_from, &from_ranks, &from_counts));
+  std::vector<std::vector<PetscReal>> from_data(n_from);
+  std::vector<MPI_Request>            req(n_from + to_ranks.size());
+  for (PetscMPIInt i = 0; i < n_from; i++) {
+    from_data[i].resize(from_counts[i]);
+    PetscCallMPI(MPI_Irecv(from_data[i].data(), from_counts[i], MPIU_REAL, from_ranks[i], tag_, comm_tag_, &req[i]));
+  }
+  for (size_t i = 0; i < to_ranks.size(); i++)
+    PetscCallMPI(MPI_Isend(to_data[i].data(), to_counts[i], MPIU_REAL, to_ranks[i], tag_, comm_tag_, &req[n_from + i]));
+  PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
+  PetscCall(PetscFree(from_ranks));
+  PetscCall(PetscFree(from_counts));
+  std::vector<Box> near;
+  check_bytes_ += sizeof(PetscReal) * (4.0 * size);
+  for (const std::vector<PetscReal> &v : from_data) {
+    check_bytes_ += sizeof(PetscReal) * (double)v.size();
+    for (size_t k = 0; k + 5 <= v.size(); k += 5) {
+      const PetscInt c = (PetscInt)v[k];
+      if (local_cell_[c]) continue; /* in the halo already */
+      Box b;
+      b.lo[0] = v[k + 1], b.lo[1] = v[k + 2], b.hi[0] = v[k + 3], b.hi[1] = v[k + 4];
+      near.push_back(b);
+    }
+  }
   std::vector<PetscReal> dist;
-  NearestDistances(own, box, reach_ + margin_, &dist);
+  NearestDistances(own, near, reach_ + margin_, &dist);
   PetscReal slack = margin_;
-  for (PetscInt c = 0; c < n_cells_; c++)
-    if (!local_cell_[c]) slack = std::min(slack, dist[c] - reach_);
+  for (PetscReal d : dist) slack = std::min(slack, d - reach_);
   PetscCallMPI(MPI_Allreduce(&slack, &slack_, 1, MPIU_REAL, MPIU_MIN, comm_));
   PetscCheck(slack_ >= 0, comm_, PETSC_ERR_NOT_CONVERGED,
              "A cell came within %g µm (the interactions' reach) of a rank's cells without being in its halo: the halo set up at the start "

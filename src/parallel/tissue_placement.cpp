@@ -117,16 +117,17 @@ PetscErrorCode TissuePlacement::View(MPI_Comm comm, PetscInt n_owned) const
 }
 
 /* The distribution: particles per rank, the halo and what it moves (every Gather and Return,
-   outputs included), the full halo checks; the partition report's figures. */
+   outputs included), the full halo checks and what they received; the partition report's figures. */
 PetscErrorCode TissuePlacement::AddSummary(MPI_Comm comm, JsonObject &js, PetscInt n_owned, PetscInt steps) const
 {
-  PetscReal   mx = (PetscReal)n_owned, sum = (PetscReal)n_owned, halo[3] = {(PetscReal)dist_.NumHalo(), dist_.Bytes(), (PetscReal)dist_.FullChecks()};
+  PetscReal mx = (PetscReal)n_owned, sum = (PetscReal)n_owned,
+            halo[4] = {(PetscReal)dist_.NumHalo(), dist_.Bytes(), (PetscReal)dist_.FullChecks(), dist_.CheckBytes()};
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(MaxOverRanks(comm, &mx));
   PetscCall(SumOverRanks(comm, &sum));
-  PetscCall(MaxOverRanks(comm, halo, 3));
+  PetscCall(MaxOverRanks(comm, halo, 4));
   js.Set("distributed", distributed_);
   js.Set("particles_per_rank_max", (PetscInt)mx);
   js.Set("particles_per_rank_mean", sum / size);
@@ -136,7 +137,8 @@ PetscErrorCode TissuePlacement::AddSummary(MPI_Comm comm, JsonObject &js, PetscI
   js.Set("halo_reach", reach_);
   js.Set("halo_margin", margin_);
   js.Set("halo_full_checks", (PetscInt)halo[2]);
-  if (options_.report_parts > 0) { /* the same numbers on every rank */
+  js.Set("halo_check_bytes", halo[3]); /* received by one rank's full checks, the most of any rank */
+  if (options_.report_parts > 0) {     /* the same numbers on every rank */
     js.Set("partition_parts", options_.report_parts);
     js.Set("partition_edge_cut", (PetscInt)partition_stats_[0]);
     js.Set("partition_edge_cut_length", partition_stats_[1]);

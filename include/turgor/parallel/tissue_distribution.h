@@ -17,9 +17,11 @@
    The halo is fixed at set-up; Check() keeps it honest as cells move: once an edge of some cell's
    box (of its ring and fluid) has moved half the smallest slack (the distance, beyond the reach,
    from a rank's cells to the nearest cell outside its halo) over sqrt 2 since the last full check,
-   the cells' current boxes are exchanged and each rank's halo must still hold every cell within
-   reach, else the run stops with an error naming -fine_halo_margin. Between full checks that costs
-   one pass over the boxes and one reduction of a number per evaluation.
+   the cells' current boxes are sent to the ranks near them (whose region, the box of their cells
+   grown by reach + margin, they meet: 4 numbers a rank are gathered, the cells' boxes go to their
+   neighbours only) and each rank's halo must still hold every cell within reach, else the run
+   stops with an error naming -fine_halo_margin. Between full checks that costs one pass over the
+   boxes and one reduction of a number per evaluation.
 
    The exchange pattern is one PetscSF over the halo particles' two components (roots: the owned
    particles' components on their owner; leaves: the halo slots), used for positions and velocities
@@ -55,7 +57,8 @@ public:
   PetscInt  NumLocalCells() const { return n_local_cells_; } /* owned + halo cells */
   PetscInt  NumOwnedCells() const { return (PetscInt)owned_cells_.size(); }
   PetscInt  FullChecks() const { return full_checks_; }
-  PetscReal Bytes() const { return bytes_; } /* received by Gather and sent by Return so far */
+  PetscReal Bytes() const { return bytes_; }            /* received by Gather and sent by Return so far */
+  PetscReal CheckBytes() const { return check_bytes_; } /* received by the full checks so far (this rank) */
   PetscReal Slack() const { return slack_; }
 
 private:
@@ -71,6 +74,9 @@ private:
   bool                   checked_ = false; /* a full check was made (the same on every rank: a rank may own no cell) */
   std::vector<PetscReal> box_now_;         /* ... and now (Check's work array, kept: it runs every evaluation) */
   mutable PetscReal      bytes_       = 0;
+  PetscReal              check_bytes_ = 0;
+  MPI_Comm               comm_tag_    = MPI_COMM_NULL; /* PetscCommDuplicate's inner communicator of comm_, and the checks' tag */
+  PetscMPIInt            tag_         = 0;
   PetscLogEvent          ev_exchange_ = 0, ev_check_ = 0; /* TgHaloExchange (Gather, Return), TgHaloCheck */
 };
 
