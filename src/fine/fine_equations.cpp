@@ -1,6 +1,7 @@
 #include <turgor/core/errors.h>
 #include <turgor/fine/fine_equations.h>
 #include <turgor/parallel/rank_reductions.h>
+#include <turgor/ts/low_storage_rk.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cmath>
@@ -49,6 +50,12 @@ PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields,
   PetscCheck(!predict_velocity || kdk, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP,
              "Option -fine_predict_velocity: only -ts_type verlet predicts the velocity its forces see (this run's integrator is another)");
   predict_ = predict_velocity;
+  PetscBool lsrk;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSLSRK, &lsrk));
+  if (lsrk && halo_) { /* the rates carry room for the halo's forces after their accelerations (Accelerations) */
+    PetscCall(TSLSRKSetRateRoom(ts, 2 * (n_all_ - n_owned_)));
+    rate_room_ = true;
+  }
   if (!symplectic && !kdk) PetscFunctionReturn(PETSC_SUCCESS);
   /* the split integrators' velocities of the last position update; a distributed run without
      controls gathers the halo's into their tail (LocalState: no copy of the velocities) */
@@ -204,7 +211,7 @@ PetscErrorCode FineEquations::RHSFunction(TS ts, PetscReal t, Vec U, Vec F, void
     PetscCall(eq->LocalState(t, u, u + n2, &x, &v));
     std::copy(v, v + n2, f);
     for (PetscInt i : eq->fixed_) f[2 * i] = f[2 * i + 1] = 0;
-    PetscCall(eq->Accelerations(x, v, f + n2));
+    PetscCall(eq->Accelerations(x, v, f + n2, eq->rate_room_));
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, f + n2);
     PetscCall(VecRestoreArray(F, &f));
     PetscCall(VecRestoreArrayRead(U, &u));

@@ -14,24 +14,22 @@ namespace {
 struct Scheme {
   const char *name;
   PetscInt    s, order, embedded_order;
-  PetscReal   gamma[5][3], beta[5], delta[7];
+  const PetscReal (*gamma)[3], *beta, *delta; /* [s][3], [s], [s + 2] */
 };
 
 /* RK4(3)5[3S*], Ketcheson (2010) table 5, to the 15 digits published: its order conditions hold to
    about 1e-15 (test_low_storage_rk checks them on the tableau reconstructed below). */
-constexpr Scheme kRK435 = {
-  "RK4(3)5[3S*]",
-  5,
-  4,
-  3,
-  {{0.0, 1.0, 0.0},
-    {-0.497531095840104, 1.384996869124138, 0.0},
-    {1.010070514199942, 3.878155713328178, 0.0},
-    {-3.196559004608766, -2.324512951813145, 1.642598936063715},
-    {1.717835630267259, -0.514633322274467, 0.188295940828347}           },
-  {                  0.075152045700771,         0.211361016946069,        1.100713347634329, 0.728537814675568, 0.393172889823198},
-  { 1.0, 0.081252332929194,       -1.083849060586449,      -1.096110881845602,      2.859440022030827,    -0.655568367959557, -0.194421504490852},
+constexpr PetscReal kRK435Gamma[5][3] = {
+  {0.0,                1.0,                0.0              },
+  {-0.497531095840104, 1.384996869124138,  0.0              },
+  {1.010070514199942,  3.878155713328178,  0.0              },
+  {-3.196559004608766, -2.324512951813145, 1.642598936063715},
+  {1.717835630267259,  -0.514633322274467, 0.188295940828347},
 };
+constexpr PetscReal kRK435Beta[5] = {0.075152045700771, 0.211361016946069, 1.100713347634329, 0.728537814675568, 0.393172889823198};
+constexpr PetscReal kRK435Delta[7] =
+  {1.0, 0.081252332929194, -1.083849060586449, -1.096110881845602, 2.859440022030827, -0.655568367959557, -0.194421504490852};
+constexpr Scheme kRK435 = {"RK4(3)5[3S*]", 5, 4, 3, kRK435Gamma, kRK435Beta, kRK435Delta};
 
 struct LSRK {
   const Scheme *scheme = &kRK435;
@@ -39,6 +37,8 @@ struct LSRK {
   std::vector<PetscReal> A, b, bembed, c;
   PetscReal              delta_sum = 0;
   Vec                    S2 = NULL, S3 = NULL, F = NULL; /* the registers besides the solution (S1) */
+  PetscInt               room     = 0;                   /* TSLSRKSetRateRoom */
+  PetscScalar           *array[2] = {NULL, NULL};        /* S2's and F's with that room */
   /* the last accepted step, [t_prev, t_prev + h_prev]: S3 holds its start until the next step */
   PetscBool have_step = PETSC_FALSE;
   PetscReal t_prev = 0, h_prev = 0;
@@ -80,6 +80,7 @@ PetscErrorCode TSReset_LSRK(TS ts)
   LSRK *lk = (LSRK *)ts->data;
   PetscFunctionBeginUser;
   for (Vec *v : {&lk->S2, &lk->S3, &lk->F}) PetscCall(VecDestroy(v));
+  for (PetscScalar *&a : lk->array) PetscCall(PetscFree(a));
   lk->have_step = lk->have_rates = lk->f_is_end = lk->have_embedded = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -101,9 +102,9 @@ PetscErrorCode TSSetUp_LSRK(TS ts)
   TSAdapt adapt;
   PetscFunctionBeginUser;
   PetscCall(TSReset_LSRK(ts));
-  PetscCall(VecDuplicate(ts->vec_sol, &lk->S2));
+  PetscCall(TurgorVecDuplicateWithRoom(ts->vec_sol, lk->room, &lk->S2, &lk->array[0]));
   PetscCall(VecDuplicate(ts->vec_sol, &lk->S3));
-  PetscCall(VecDuplicate(ts->vec_sol, &lk->F));
+  PetscCall(TurgorVecDuplicateWithRoom(ts->vec_sol, lk->room, &lk->F, &lk->array[1]));
   PetscCall(TSGetAdapt(ts, &adapt));
   PetscCall(TSAdaptCandidatesClear(adapt));
   PetscCall(TSAdaptCandidateAdd(adapt, lk->scheme->name, lk->scheme->order, 1, 1.0, (PetscReal)lk->scheme->s, PETSC_TRUE));
@@ -315,6 +316,19 @@ PetscErrorCode TSLSRKGetCounters(TS ts, PetscInt *stage_evaluations, PetscInt *i
   PetscFunctionBeginUser;
   PetscValidHeaderSpecific(ts, TS_CLASSID, 1);
   PetscUseMethod(ts, "TSLSRKGetCounters_C", (TS, PetscInt *, PetscInt *), (ts, stage_evaluations, interpolation_evaluations));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSLSRKSetRateRoom(TS ts, PetscInt extra)
+{
+  PetscBool is;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSLSRK, &is));
+  PetscCheck(is, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "TSLSRKSetRateRoom: the TS is not of type lsrk");
+  PetscCheck(extra >= 0, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_OUTOFRANGE, "TSLSRKSetRateRoom: extra = %" PetscInt_FMT " < 0", extra);
+  LSRK *lk = (LSRK *)ts->data;
+  PetscCheck(!lk->F, PetscObjectComm((PetscObject)ts), PETSC_ERR_ORDER, "TSLSRKSetRateRoom: call before TSSetUp");
+  lk->room = extra;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

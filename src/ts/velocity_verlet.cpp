@@ -86,27 +86,6 @@ PetscErrorCode CreateViews(TS ts, Verlet *vv)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* a duplicate of p whose array has `room` spare entries after its local part (*array: allocated
-   here, freed by the caller after the Vec) */
-PetscErrorCode DuplicateWithRoom(Vec p, PetscInt room, Vec *A, PetscScalar **array)
-{
-  PetscInt n, N, bs, any_room = room;
-  PetscFunctionBeginUser;
-  *array = NULL;
-  /* the same kind of Vec on every rank (creating one is collective): a rank without a halo has no room */
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any_room, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)p)));
-  if (!any_room) {
-    PetscCall(VecDuplicate(p, A));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  PetscCall(VecGetLocalSize(p, &n));
-  PetscCall(VecGetSize(p, &N));
-  PetscCall(VecGetBlockSize(p, &bs));
-  PetscCall(PetscCalloc1(n + room, array));
-  PetscCall(VecCreateMPIWithArray(PetscObjectComm((PetscObject)p), bs, n, N, *array, A));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode TSReset_Verlet(TS ts)
 {
   Verlet *vv = (Verlet *)ts->data;
@@ -142,8 +121,8 @@ PetscErrorCode TSSetUp_Verlet(TS ts)
              "TS verlet needs the right-hand sides of the splits \"position\" and \"momentum\" (TSRHSSplitSetRHSFunction)");
   PetscCall(TSReset_Verlet(ts));
   PetscCall(VecGetSubVector(ts->vec_sol, vv->is_p, &p));
-  PetscCall(DuplicateWithRoom(p, vv->room, &vv->A0, &vv->array[0]));
-  PetscCall(DuplicateWithRoom(p, vv->room, &vv->A1, &vv->array[1]));
+  PetscCall(TurgorVecDuplicateWithRoom(p, vv->room, &vv->A0, &vv->array[0]));
+  PetscCall(TurgorVecDuplicateWithRoom(p, vv->room, &vv->A1, &vv->array[1]));
   PetscCall(VecRestoreSubVector(ts->vec_sol, vv->is_p, &p));
   PetscCall(CreateViews(ts, vv));
   PetscCall(TSGetAdapt(ts, &ts->adapt));

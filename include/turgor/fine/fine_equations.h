@@ -27,7 +27,8 @@ public:
      check; `observe`: asked first by the whole right-hand side (a restart's first derivative). */
   PetscErrorCode SetTS(TS ts, IS is_x, IS is_v, std::function<PetscErrorCode(PetscReal, Vec, Vec, PetscBool *)> observe);
   /* After TSSetFromOptions: a split integrator's set-up (its velocity of the last drift, declared
-     for the checkpoints in `fields`; TSVERLET's room for the halo's forces). predict_velocity
+     for the checkpoints in `fields`; TSVERLET's room for the halo's forces), and TSLSRK's room for
+     them in its rates. predict_velocity
      (TSVERLET only): the velocity-dependent forces at x_{n+1} see the velocity predicted to the
      step's end, v_n + h a_n, instead of the drift's v_n + h/2 a_n -- second order with dashpots
      and viscosity instead of first, for half the stability limit of a damping-dominated step (the
@@ -90,6 +91,7 @@ private:
   bool                               predict_ = false;           /* ConfigureIntegrator's predict_velocity */
   std::vector<PetscReal>             a_last_;                    /* with predict_: the owned particles' last accelerations */
   bool                               acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
+  bool                               rate_room_         = false; /* TSLSRK's rates have room for them after their accelerations */
   PetscReal                          drift_fraction_    = 0;     /* splitting integrators: a position update's share of the step */
   PetscInt                           rhs_evals_         = 0;
 };

@@ -37,3 +37,10 @@ PETSC_EXTERN PetscErrorCode TSLSRKGetTableau(TS ts, PetscInt *s, const PetscReal
    and those that interpolation asked for (at most one a step: f(u_n); f(u_{n+1}) is counted with
    the next step's stages, which reuse it). Errors on a TS of another type. */
 PETSC_EXTERN PetscErrorCode TSLSRKGetCounters(TS ts, PetscInt *stage_evaluations, PetscInt *interpolation_evaluations);
+
+/* Before TSSetUp: the vectors that the right-hand side fills (the rate register, and S2, which
+   receives f(u_n) for an interpolation) get `extra` spare entries after their local part, which
+   that function may use as scratch (a distributed particle code computes its halo particles'
+   forces there before returning them to their owners: no separate force array). 0 (the default):
+   none. */
+PETSC_EXTERN PetscErrorCode TSLSRKSetRateRoom(TS ts, PetscInt extra);
