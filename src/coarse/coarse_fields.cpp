@@ -3,24 +3,9 @@
 #include <turgor/io/xdmf.h>
 #include <petscviewerhdf5.h>
 #include <hdf5.h>
+#include <algorithm>
 
 namespace turgor {
-
-/* Gather variable-length blocks of doubles to rank 0 (MPI_Gatherv). */
-static PetscErrorCode GatherToZero(MPI_Comm comm, const std::vector<PetscReal> &mine, std::vector<PetscReal> &all)
-{
-  PetscMPIInt size, rank, n = (PetscMPIInt)mine.size();
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  std::vector<PetscMPIInt> counts(size), displs(size, 0);
-  PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
-  if (rank == 0)
-    for (int r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
-  all.resize(rank == 0 ? displs[size - 1] + counts[size - 1] : 0);
-  PetscCallMPI(MPI_Gatherv(mine.data(), n, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, 0, comm));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 
 /* Signed area of a quadrilateral (shoelace over its four vertices in cell order) at the points
    x + u (x: 2 per vertex; u: 3 per vertex, or NULL). */
@@ -32,11 +17,13 @@ static PetscReal QuadArea(const PetscInt *cell, const std::vector<PetscReal> &x,
   });
 }
 
+/* One dataset of the snapshot: this rank's block of `a` (bs values an entry), the blocks in rank
+   order, written collectively (VecView of an MPI Vec on the HDF5 viewer) */
 PetscErrorCode CoarseFieldsWriter::WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs)
 {
   Vec v;
   PetscFunctionBeginUser;
-  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, bs, (PetscInt)a.size(), a.data(), &v));
+  PetscCall(VecCreateMPIWithArray(comm_, bs, (PetscInt)a.size(), PETSC_DECIDE, a.empty() ? nullptr : a.data(), &v));
   PetscCall(PetscObjectSetName((PetscObject)v, name));
   PetscCall(VecView(v, viewer_));
   PetscCall(VecDestroy(&v));
@@ -48,7 +35,7 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
   DM                 dm = model.GetDM(), cdm;
   IS                 gnum;
   const PetscInt    *g;
-  PetscInt           vs, ve, cs, ce, gmax = -1;
+  PetscInt           vs, ve, cs, ce, counts[2];
   Vec                coords;
   PetscSection       csec;
   const PetscScalar *x;
@@ -67,72 +54,86 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
   PetscCall(DMPlexGetVertexNumbering(dm, &gnum));
   PetscCall(ISGetIndices(gnum, &g));
-  vertex_gid_.assign(g, g + (ve - vs));
+  std::vector<PetscInt> gid(g, g + (ve - vs)); /* global number of each local vertex, -(number + 1) where another rank owns it */
   PetscCall(ISRestoreIndices(gnum, &g));
-  for (PetscInt k : vertex_gid_) gmax = PetscMax(gmax, k >= 0 ? k : -(k + 1));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_INT, MPI_MAX, comm_));
-  n_vertices_ = gmax + 1;
 
-  /* owned vertices: (gid, x, y); cells: the global numbers of their four vertices, counter-clockwise */
-  std::vector<PetscReal> mine, all, conn, allconn;
+  /* this rank's owned vertices, by global number: DMPlex numbers them consecutively, rank after
+     rank, so the file's vertex array is the ranks' blocks in order */
+  owned_.clear();
+  for (PetscInt v = 0; v < ve - vs; v++)
+    if (gid[v] >= 0) owned_.push_back(v);
+  std::sort(owned_.begin(), owned_.end(), [&](PetscInt a, PetscInt b) { return gid[a] < gid[b]; });
+  counts[0]         = (PetscInt)owned_.size();
+  counts[1]         = ce - cs;
+  PetscInt first[2] = {0, 0};
+  PetscCallMPI(MPI_Exscan(counts, first, 2, MPIU_INT, MPI_SUM, comm_));
+  if (rank_ == 0) first[0] = first[1] = 0;
+  for (size_t k = 0; k < owned_.size(); k++)
+    PetscCheck(gid[owned_[k]] == first[0] + (PetscInt)k, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "vertex numbering: rank %d's owned vertices are not the block from %" PetscInt_FMT, rank_, first[0]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm_));
+  n_vertices_ = counts[0];
+  n_cells_    = counts[1];
+
+  /* the local vertices' coordinates (ghosts too: the density of an element reads all four); the
+     elements: their four vertices, as local indices and as global numbers, counter-clockwise */
   PetscCall(DMGetCoordinateDM(dm, &cdm));
   PetscCall(DMGetLocalSection(cdm, &csec));
   PetscCall(DMGetCoordinatesLocal(dm, &coords));
   PetscCall(VecGetArrayRead(coords, &x));
+  xy_.assign(2 * (ve - vs), 0);
   for (PetscInt v = vs; v < ve; v++) {
-    if (vertex_gid_[v - vs] < 0) continue;
     PetscInt off;
     PetscCall(PetscSectionGetOffset(csec, v, &off));
-    mine.insert(mine.end(), {(PetscReal)vertex_gid_[v - vs], PetscRealPart(x[off]), PetscRealPart(x[off + 1])});
+    xy_[2 * (v - vs)]     = PetscRealPart(x[off]);
+    xy_[2 * (v - vs) + 1] = PetscRealPart(x[off + 1]);
   }
   PetscCall(VecRestoreArrayRead(coords, &x));
+  cells_.clear();
+  std::vector<PetscInt> conn;
   for (PetscInt c = cs; c < ce; c++) {
     PetscInt *cl = NULL, n;
     PetscCall(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &n, &cl));
     for (PetscInt r = 0; r < n; r++)
       if (cl[2 * r] >= vs && cl[2 * r] < ve) {
-        const PetscInt k = vertex_gid_[cl[2 * r] - vs];
-        conn.push_back((PetscReal)(k >= 0 ? k : -(k + 1)));
+        const PetscInt v = cl[2 * r] - vs;
+        cells_.push_back(v);
+        conn.push_back(gid[v] >= 0 ? gid[v] : -(gid[v] + 1));
       }
     PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &n, &cl));
   }
-  PetscCall(GatherToZero(comm_, mine, all));
-  PetscCall(GatherToZero(comm_, conn, allconn));
-  n_cells_ = (PetscInt)allconn.size() / 4;
-  PetscCallMPI(MPI_Bcast(&n_cells_, 1, MPIU_INT, 0, comm_));
+  PetscCheck(cells_.size() == 4 * (size_t)(ce - cs), PETSC_COMM_SELF, PETSC_ERR_SUP, "coarse fields: the elements are not quadrilaterals");
   rho0_ = model.ReferenceDensity();
-  if (rank_ == 0) {
-    xy_.assign(2 * n_vertices_, 0);
-    for (size_t k = 0; k + 3 <= all.size(); k += 3) {
-      const PetscInt id = (PetscInt)all[k];
-      xy_[2 * id]       = all[k + 1];
-      xy_[2 * id + 1]   = all[k + 2];
-    }
-    cells_.assign(allconn.begin(), allconn.end());
-    area0_.resize(n_cells_);
-    for (PetscInt c = 0; c < n_cells_; c++) area0_[c] = QuadArea(&cells_[4 * c], xy_, NULL);
-    PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, (dir + "/" + h5name_).c_str(), FILE_MODE_WRITE, &viewer_));
-    PetscCall(PetscViewerHDF5PushGroup(viewer_, "/mesh"));
-    PetscCall(WriteArray("vertices", xy_, 2));
-    IS is;
-    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)cells_.size(), cells_.data(), PETSC_COPY_VALUES, &is));
-    PetscCall(ISSetBlockSize(is, 4));
-    PetscCall(PetscObjectSetName((PetscObject)is, "cells"));
-    PetscCall(ISView(is, viewer_));
-    PetscCall(ISDestroy(&is));
-    PetscCall(PetscViewerHDF5PopGroup(viewer_));
-  }
+  area0_.resize(ce - cs);
+  for (PetscInt c = 0; c < ce - cs; c++) area0_[c] = QuadArea(&cells_[4 * c], xy_, NULL);
+
+  PetscCall(PetscViewerHDF5Open(comm_, (dir + "/" + h5name_).c_str(), FILE_MODE_WRITE, &viewer_));
+  PetscCall(PetscViewerHDF5PushGroup(viewer_, "/mesh"));
+  std::vector<PetscReal> own_xy(2 * owned_.size());
+  for (size_t k = 0; k < owned_.size(); k++)
+    for (int d = 0; d < 2; d++) own_xy[2 * k + d] = xy_[2 * owned_[k] + d];
+  PetscCall(WriteArray("vertices", own_xy, 2));
+  IS is;
+  PetscCall(ISCreateGeneral(comm_, (PetscInt)conn.size(), conn.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(ISSetBlockSize(is, 4));
+  PetscCall(PetscObjectSetName((PetscObject)is, "cells"));
+  PetscCall(ISView(is, viewer_));
+  PetscCall(ISDestroy(&is));
+  PetscCall(PetscViewerHDF5PopGroup(viewer_));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseFieldsWriter::GatherVertexVector(CoarseModel &model, Vec V, PetscInt offset, bool boundary_values, std::vector<PetscReal> &xyz)
+/* Components [offset, offset + 1] of every local vertex of a global vector V of the model's layout
+   into `local` (2 a local vertex, ghosts too), and this rank's owned vertices' as 3 a vertex (z = 0)
+   into `owned`; the clamped vertices get their boundary values (state) or 0 */
+PetscErrorCode CoarseFieldsWriter::VertexVector(CoarseModel &model, Vec V, PetscInt offset, bool boundary_values, std::vector<PetscReal> *local,
+                                                std::vector<PetscReal> &owned)
 {
-  DM                     dm  = model.GetDM();
-  Vec                    loc = boundary_values ? Uloc_ : Vloc_;
-  PetscSection           ls;
-  PetscInt               vs, ve;
-  const PetscScalar     *u;
-  std::vector<PetscReal> mine, all;
+  DM                 dm  = model.GetDM();
+  Vec                loc = boundary_values ? Uloc_ : Vloc_;
+  PetscSection       ls;
+  PetscInt           vs, ve;
+  const PetscScalar *u;
   PetscFunctionBeginUser;
   if (boundary_values) PetscCall(model.GlobalToLocal(V, loc));
   else { /* the constrained entries stay 0 */ PetscCall(VecZeroEntries(loc));
@@ -141,69 +142,68 @@ PetscErrorCode CoarseFieldsWriter::GatherVertexVector(CoarseModel &model, Vec V,
   PetscCall(DMGetLocalSection(dm, &ls));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
   PetscCall(VecGetArrayRead(loc, &u));
+  std::vector<PetscReal> all(2 * (ve - vs));
   for (PetscInt v = vs; v < ve; v++) {
-    if (vertex_gid_[v - vs] < 0) continue;
     PetscInt off;
     PetscCall(PetscSectionGetOffset(ls, v, &off));
-    mine.insert(mine.end(), {(PetscReal)vertex_gid_[v - vs], PetscRealPart(u[off + offset]), PetscRealPart(u[off + offset + 1])});
+    for (int d = 0; d < 2; d++) all[2 * (v - vs) + d] = PetscRealPart(u[off + offset + d]);
   }
   PetscCall(VecRestoreArrayRead(loc, &u));
-  PetscCall(GatherToZero(comm_, mine, all));
-  xyz.assign(rank_ == 0 ? 3 * n_vertices_ : 0, 0);
-  for (size_t k = 0; k + 2 < all.size(); k += 3) {
-    const PetscInt id = (PetscInt)all[k];
-    for (int d = 0; d < 2; d++) xyz[3 * id + d] = all[k + 1 + d];
-  }
+  owned.assign(3 * owned_.size(), 0);
+  for (size_t k = 0; k < owned_.size(); k++)
+    for (int d = 0; d < 2; d++) owned[3 * k + d] = all[2 * owned_[k] + d];
+  if (local) local->swap(all);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal time, const std::vector<Vec> &vectors)
 {
-  std::vector<PetscReal>              disp, vel, stress, acoustic;
+  std::vector<PetscReal>              disp_local, disp, vel;
   std::vector<std::vector<PetscReal>> extra(extra_.size());
   PetscFunctionBeginUser;
   PetscCheck(vectors.size() == extra_.size(), comm_, PETSC_ERR_ARG_SIZ, "CoarseFieldsWriter::Write: %zu vertex vectors for %zu added fields", vectors.size(),
              extra_.size());
   /* vectors with z = 0 (ParaView's Xdmf3 readers keep 2-component vectors as such, and Warp By
      Vector takes only 3) */
-  PetscCall(GatherVertexVector(model, U, 0, true, disp));
-  PetscCall(GatherVertexVector(model, U, 2, true, vel));
-  for (size_t k = 0; k < extra_.size(); k++) PetscCall(GatherVertexVector(model, vectors[k], 0, false, extra[k]));
-  PetscCall(GatherToZero(comm_, model.CellStress(), stress));
-  if (acoustic_) PetscCall(GatherToZero(comm_, model.CellAcoustic(), acoustic));
-  if (rank_ == 0) {
-    /* the stress as a 3 x 3 tensor (row-major, the z row and column 0: the model is 2D) beside its
-       three components; the density of the element, its mass over its current area: rho0 A0 / A
-       (rho dv = rho0 dV, as in the mass matrix) */
-    std::vector<PetscReal> sigma(9 * n_cells_, 0), sxx(n_cells_), syy(n_cells_), sxy(n_cells_), rho(n_cells_);
-    for (PetscInt c = 0; c < n_cells_; c++) {
-      sxx[c]           = stress[3 * c];
-      syy[c]           = stress[3 * c + 1];
-      sxy[c]           = stress[3 * c + 2];
-      sigma[9 * c]     = sxx[c];
-      sigma[9 * c + 1] = sxy[c];
-      sigma[9 * c + 3] = sxy[c];
-      sigma[9 * c + 4] = syy[c];
-      rho[c]           = rho0_ * area0_[c] / QuadArea(&cells_[4 * c], xy_, disp.data());
-    }
-    char group[64];
-    PetscCall(PetscSNPrintf(group, sizeof group, "/snapshot_%04d", (int)times_.size()));
-    PetscCall(PetscViewerHDF5PushGroup(viewer_, group));
-    PetscCall(WriteArray("displacement", disp, 3));
-    PetscCall(WriteArray("velocity", vel, 3));
-    PetscCall(WriteArray("stress", sigma, 9));
-    PetscCall(WriteArray("stress_xx", sxx, 1));
-    PetscCall(WriteArray("stress_yy", syy, 1));
-    PetscCall(WriteArray("stress_xy", sxy, 1));
-    PetscCall(WriteArray("density", rho, 1));
-    if (acoustic_) PetscCall(WriteArray("acoustic_min_det", acoustic, 1));
-    for (size_t k = 0; k < extra_.size(); k++) PetscCall(WriteArray(extra_[k].name.c_str(), extra[k], 3));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
-    PetscCall(PetscViewerHDF5PopGroup(viewer_));
-    hid_t fid;
-    PetscCall(PetscViewerHDF5GetFileId(viewer_, &fid));
-    PetscCheck(H5Fflush(fid, H5F_SCOPE_GLOBAL) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot flush %s", h5name_.c_str());
+  PetscCall(VertexVector(model, U, 0, true, &disp_local, disp));
+  PetscCall(VertexVector(model, U, 2, true, nullptr, vel));
+  for (size_t k = 0; k < extra_.size(); k++) PetscCall(VertexVector(model, vectors[k], 0, false, nullptr, extra[k]));
+  /* this rank's elements: the stress as a 3 x 3 tensor (row-major, the z row and column 0: the
+     model is 2D) beside its three components; the density of the element, its mass over its current
+     area: rho0 A0 / A (rho dv = rho0 dV, as in the mass matrix) */
+  const std::vector<PetscReal> &stress = model.CellStress();
+  const PetscInt                nc     = (PetscInt)area0_.size();
+  PetscCheck((PetscInt)stress.size() == 3 * nc, PETSC_COMM_SELF, PETSC_ERR_PLIB, "coarse fields: %zu stress values for %" PetscInt_FMT " elements",
+             stress.size(), nc);
+  std::vector<PetscReal> sigma(9 * nc, 0), sxx(nc), syy(nc), sxy(nc), rho(nc), u3(3 * disp_local.size() / 2, 0);
+  for (size_t v = 0; v < disp_local.size() / 2; v++) u3[3 * v] = disp_local[2 * v], u3[3 * v + 1] = disp_local[2 * v + 1];
+  for (PetscInt c = 0; c < nc; c++) {
+    sxx[c]           = stress[3 * c];
+    syy[c]           = stress[3 * c + 1];
+    sxy[c]           = stress[3 * c + 2];
+    sigma[9 * c]     = sxx[c];
+    sigma[9 * c + 1] = sxy[c];
+    sigma[9 * c + 3] = sxy[c];
+    sigma[9 * c + 4] = syy[c];
+    rho[c]           = rho0_ * area0_[c] / QuadArea(&cells_[4 * c], xy_, u3.data());
   }
+  char group[64];
+  PetscCall(PetscSNPrintf(group, sizeof group, "/snapshot_%04d", (int)times_.size()));
+  PetscCall(PetscViewerHDF5PushGroup(viewer_, group));
+  PetscCall(WriteArray("displacement", disp, 3));
+  PetscCall(WriteArray("velocity", vel, 3));
+  PetscCall(WriteArray("stress", sigma, 9));
+  PetscCall(WriteArray("stress_xx", sxx, 1));
+  PetscCall(WriteArray("stress_yy", syy, 1));
+  PetscCall(WriteArray("stress_xy", sxy, 1));
+  PetscCall(WriteArray("density", rho, 1));
+  if (acoustic_) PetscCall(WriteArray("acoustic_min_det", model.CellAcoustic(), 1));
+  for (size_t k = 0; k < extra_.size(); k++) PetscCall(WriteArray(extra_[k].name.c_str(), extra[k], 3));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer_, group, "time", PETSC_REAL, &time));
+  PetscCall(PetscViewerHDF5PopGroup(viewer_));
+  hid_t fid;
+  PetscCall(PetscViewerHDF5GetFileId(viewer_, &fid));
+  PetscCheck(H5Fflush(fid, H5F_SCOPE_GLOBAL) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot flush %s", h5name_.c_str());
   times_.push_back(time);
   PetscCall(WriteXdmf());
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,8 +4,10 @@
    element the Cauchy stress as a 3 x 3 tensor and as stress_xx, stress_yy, stress_xy, and the
    density; acoustic_min_det when the model computes it, CoarseSpec::acoustic_field; and any further
    vertex vectors a caller adds, such as mode shapes), and an XDMF file describing the temporal
-   collection, with units. The mesh is small: rank 0 gathers and writes (PetscViewerHDF5 on
-   PETSC_COMM_SELF); the XDMF is rewritten after every snapshot. */
+   collection, with units. Written collectively (PetscViewerHDF5 on the mesh's communicator): each
+   rank writes its owned vertices (DMPlex numbers them rank after rank, so the file's vertex order is
+   the global numbering) and its elements (in rank order), nothing is gathered to one rank; the XDMF
+   (rank 0) is rewritten after every snapshot. */
 #include <turgor/coarse/coarse_model.h>
 #include <petscviewer.h>
 #include <string>
@@ -30,9 +32,10 @@ public:
 private:
   PetscErrorCode WriteXdmf();
   PetscErrorCode WriteArray(const char *name, const std::vector<PetscReal> &a, PetscInt bs);
-  /* rank 0: components [offset, offset + 1] of each vertex of a global vector V of the model's
-     layout, 3 per vertex (z = 0); the clamped vertices get their boundary values (state) or 0 */
-  PetscErrorCode GatherVertexVector(CoarseModel &model, Vec V, PetscInt offset, bool boundary_values, std::vector<PetscReal> &xyz);
+  /* components [offset, offset + 1] of a global vector V of the model's layout: every local
+     vertex's (2 each, into *local if given) and the owned vertices' (3 each, z = 0); the clamped
+     vertices get their boundary values (state) or 0 */
+  PetscErrorCode VertexVector(CoarseModel &model, Vec V, PetscInt offset, bool boundary_values, std::vector<PetscReal> *local, std::vector<PetscReal> &owned);
 
   struct Field {
     std::string name, unit;
@@ -44,13 +47,13 @@ private:
   PetscMPIInt            rank_   = 0;
   PetscViewer            viewer_ = nullptr;
   std::string            h5name_, xmfpath_;
-  PetscInt               n_vertices_ = 0, n_cells_ = 0;
-  std::vector<PetscInt>  vertex_gid_; /* per local vertex: global number, < 0 if not owned */
+  PetscInt               n_vertices_ = 0, n_cells_ = 0; /* over all ranks */
+  std::vector<PetscInt>  owned_;                        /* this rank's owned vertices (local indices), by global number */
   std::vector<PetscReal> times_;
   Vec                    Uloc_ = nullptr, Vloc_ = nullptr;
   PetscReal              rho0_ = 0;   /* the model's reference density */
-  std::vector<PetscReal> xy_, area0_; /* rank 0: reference vertex coordinates, element areas */
-  std::vector<PetscInt>  cells_;      /* rank 0: the four vertices of each element */
+  std::vector<PetscReal> xy_, area0_; /* the local vertices' reference coordinates, this rank's elements' areas */
+  std::vector<PetscInt>  cells_;      /* this rank's elements' four vertices (local indices) */
 };
 
 } // namespace turgor
