@@ -1,4 +1,5 @@
 #include <turgor/core/memory.h>
+#include <sys/resource.h>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -76,6 +77,17 @@ PetscErrorCode CheckMemory(MPI_Comm comm, PetscReal bytes, const std::string &wh
     PetscCall(PetscPrintf(comm, "WARNING: the estimate exceeds the available memory (-memory_check false)\n"));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace turgor
+
+namespace turgor {
+
+PetscReal PeakResidentBytes()
+{
+  struct rusage u;
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  return 1024.0 * (PetscReal)u.ru_maxrss; /* kilobytes on Linux */
 }
 
 } // namespace turgor

@@ -255,9 +255,23 @@ PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(ranges.SetUp(comm, R.key.data(), R.Count()));
-  const size_t                   ncol = cols.size();
-  std::vector<size_t>            first(ncol, 0); /* a ragged column's offset of the current row */
+  const size_t ncol = cols.size();
+  /* Each row as bytes (key, holder, owned, then each column's values, a ragged one after its
+     length) for the rank of its key's range. At most two copies of the table live at once (a
+     checkpoint of 10^7 particles writes tables of hundreds of MB): the rows and their bytes, the
+     bytes sent and received, the bytes received and the rows in order. */
+  auto row_bytes = [&](size_t r) {
+    size_t b = 24;
+    for (size_t c = 0; c < ncol; c++) b += 8 * (cols[c].width > 0 ? (size_t)cols[c].width : 1 + (size_t)R.length[c][r]);
+    return b;
+  };
   std::vector<std::vector<char>> out((size_t)size);
+  {
+    std::vector<size_t> bytes((size_t)size, 0);
+    for (size_t r = 0; r < R.Count(); r++) bytes[ranges.Rank(R.key[r])] += row_bytes(r);
+    for (int q = 0; q < size; q++) out[q].reserve(bytes[q]);
+  }
+  std::vector<size_t> first(ncol, 0); /* a ragged column's offset of the current row */
   for (size_t r = 0; r < R.Count(); r++) {
     std::vector<char> &o   = out[ranges.Rank(R.key[r])];
     auto               put = [&o](const void *p, size_t n) { o.insert(o.end(), (const char *)p, (const char *)p + n); };
@@ -274,58 +288,60 @@ PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols
       }
     }
   }
+  R = Rows(); /* (its storage freed) */
   std::vector<char> recv;
   PetscCall(ExchangeBytes(comm, out, recv, NULL, "Checkpoint: one table"));
-  /* parse, then order */
-  Rows in;
-  in.data.assign(ncol, {});
-  in.length.assign(ncol, {});
-  std::vector<size_t> at; /* each row's byte offset */
+  /* the received rows' keys, holders and places, ordered; then the rows copied in that order */
+  struct Place {
+    std::uint64_t key;
+    std::int64_t  holder;
+    size_t        at;
+  };
+  std::vector<Place>  place;
+  std::vector<size_t> values(ncol, 0); /* each ragged column's values in all */
   for (size_t p = 0; p < recv.size();) {
-    at.push_back(p);
-    auto get = [&recv, &p](void *dst, size_t n) {
-      if (n) std::memcpy(dst, recv.data() + p, n); /* an empty ragged entry's destination may be null */
-      p += n;
-    };
-    std::uint64_t k;
-    std::int64_t  h, o;
-    get(&k, 8), get(&h, 8), get(&o, 8);
-    in.key.push_back(k), in.holder.push_back(h), in.owned.push_back(o);
+    Place pl;
+    std::memcpy(&pl.key, recv.data() + p, 8);
+    std::memcpy(&pl.holder, recv.data() + p + 8, 8);
+    pl.at = p;
+    place.push_back(pl);
+    p += 24;
     for (size_t c = 0; c < ncol; c++) {
       std::int64_t n = cols[c].width;
       if (cols[c].width == 0) {
-        get(&n, 8);
-        in.length[c].push_back(n);
+        std::memcpy(&n, recv.data() + p, 8);
+        p += 8;
+        values[c] += (size_t)n;
       }
-      const size_t s = in.data[c].size();
-      in.data[c].resize(s + (size_t)n);
-      get(in.data[c].data() + s, 8 * (size_t)n);
+      p += 8 * (size_t)n;
     }
   }
-  std::vector<size_t> perm(in.Count());
-  std::iota(perm.begin(), perm.end(), 0);
-  std::stable_sort(perm.begin(), perm.end(),
-                   [&in](size_t a, size_t b) { return in.key[a] != in.key[b] ? in.key[a] < in.key[b] : in.holder[a] < in.holder[b]; });
-  R.key.clear(), R.holder.clear(), R.owned.clear();
+  std::stable_sort(place.begin(), place.end(), [](const Place &a, const Place &b) { return a.key != b.key ? a.key < b.key : a.holder < b.holder; });
+  const size_t nr = place.size();
   R.data.assign(ncol, {});
   R.length.assign(ncol, {});
-  std::vector<std::vector<size_t>> offset(ncol); /* ragged: each received row's first value */
-  for (size_t c = 0; c < ncol; c++)
-    if (cols[c].width == 0) {
-      size_t s = 0;
-      for (std::int64_t n : in.length[c]) offset[c].push_back(s), s += (size_t)n;
-    }
-  for (size_t i : perm) {
-    R.key.push_back(in.key[i]), R.holder.push_back(in.holder[i]), R.owned.push_back(in.owned[i]);
+  R.key.reserve(nr), R.holder.reserve(nr), R.owned.reserve(nr);
+  for (size_t c = 0; c < ncol; c++) {
+    if (cols[c].width > 0) R.data[c].reserve(nr * (size_t)cols[c].width);
+    else R.data[c].reserve(values[c]), R.length[c].reserve(nr);
+  }
+  for (const Place &pl : place) {
+    const char  *p = recv.data() + pl.at;
+    std::int64_t o;
+    std::memcpy(&o, p + 16, 8);
+    R.key.push_back(pl.key), R.holder.push_back(pl.holder), R.owned.push_back(o);
+    p += 24;
     for (size_t c = 0; c < ncol; c++) {
-      if (cols[c].width > 0) {
-        const size_t w = (size_t)cols[c].width;
-        R.data[c].insert(R.data[c].end(), in.data[c].begin() + i * w, in.data[c].begin() + (i + 1) * w);
-      } else {
-        const std::int64_t n = in.length[c][i];
+      std::int64_t n = cols[c].width;
+      if (cols[c].width == 0) {
+        std::memcpy(&n, p, 8);
+        p += 8;
         R.length[c].push_back(n);
-        R.data[c].insert(R.data[c].end(), in.data[c].begin() + offset[c][i], in.data[c].begin() + offset[c][i] + n);
       }
+      const size_t s = R.data[c].size();
+      R.data[c].resize(s + (size_t)n);
+      if (n) std::memcpy(R.data[c].data() + s, p, 8 * (size_t)n); /* an empty ragged entry's destination may be null */
+      p += 8 * (size_t)n;
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -362,6 +378,11 @@ PetscErrorCode CheckpointWriter::WriteTable(const std::string &group, const Stat
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
   R.data.assign(ncol, {});
   R.length.assign(ncol, {});
+  R.key.reserve(n), R.holder.reserve(n), R.owned.reserve(n);
+  for (size_t c = 0; c < ncol; c++) {
+    if (cols[c].width > 0) R.data[c].reserve(n * (size_t)cols[c].width);
+    else R.length[c].reserve(n);
+  }
   const int anchor = table.IsRecords() ? table.AnchorColumn() : -1;
   for (size_t r = 0; r < n; r++) {
     std::uint64_t key;

@@ -1,5 +1,6 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/log.h>
+#include <turgor/core/memory.h>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -184,6 +185,7 @@ PetscErrorCode TimeRun::SetUp()
   PetscCall(CheckOutputs(SeriesStep::Check));
   PetscCall(AfterSetUp());
   PetscCall(StopIfInterrupted(comm_, ("the set-up of the " + mode_ + " run: no step was taken").c_str()));
+  peak_rss_setup_ = PeakResidentBytes();
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -453,6 +455,14 @@ PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
   js.Set("rhs_evals", FunctionEvaluations());
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("mpi_ranks", (PetscInt)size);
+  {
+    /* the largest rank's peak resident set by the end of the set-up and by now (what the
+       operating system counts: libraries and MPI included) */
+    PetscReal peak[2] = {peak_rss_setup_, PeakResidentBytes()};
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, peak, 2, MPIU_REAL, MPI_MAX, comm_));
+    js.Set("peak_rss_setup_bytes", peak[0]);
+    js.Set("peak_rss_bytes", peak[1]);
+  }
   if (ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty()) js.Set("checkpoint_last", ckpt_last_file_);
   if (ckpt_interval_ > 0 || ckpt_wall_ > 0) {
     js.Set("checkpoints_written", ckpt_count_);

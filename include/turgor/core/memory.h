@@ -14,5 +14,7 @@ PetscErrorCode CheckMemory(MPI_Comm comm, PetscReal bytes, const std::string &wh
 /* A count computed in floating point (to detect overflow) that must fit in PetscInt. */
 PetscErrorCode CheckCount(MPI_Comm comm, PetscReal count, const std::string &what);
 std::string    FormatBytes(PetscReal bytes);
+/* This process's peak resident set so far [bytes] (getrusage's ru_maxrss); 0 where unknown. */
+PetscReal PeakResidentBytes();
 
 } // namespace turgor

@@ -208,8 +208,9 @@ private:
   CsvWriter                               tip_csv_;
   std::vector<std::unique_ptr<CsvWriter>> series_csv_;
   TimeSampler                             sampler_;
-  PetscLogDouble                          wall_        = 0;
-  PetscReal                               observed_    = 0;
+  PetscLogDouble                          wall_           = 0;
+  PetscReal                               peak_rss_setup_ = 0; /* this rank's peak resident set at the end of the set-up [bytes] */
+  PetscReal                               observed_       = 0;
   PetscLogStage                           stage_setup_ = 0, stage_solve_ = 0;
   PetscLogEvent                           ev_output_   = 0;
   bool                                    interrupted_ = false, solving_ = false, stopped_ = false; /* stopped_: at -ts_max_steps, before the end */
