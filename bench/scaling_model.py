@@ -11,6 +11,8 @@ RUN1 and RUN2 are the output directories of the same square tissue on 1 and 2 ra
   h_line   halo particles per cell length of cut (the 2-rank run's largest halo over the cut: a
            square tissue of C x C cells split in two halves is cut along C cells)
   checks   full halo checks per step (the 2-rank run's halo_full_checks / steps)
+  b_line   bytes a full check receives per cell length of cut (the 2-rank run's halo_check_bytes per
+           check, less the ranks' regions, over the cut)
 
 and for N particles on P ranks (square parts of a square tissue with the run's particles per cell):
 
@@ -19,7 +21,12 @@ and for N particles on P ranks (square parts of a square tissue with the run's p
             in (32 B) and its force goes out (16 B), in 2 rounds of `neighbours` messages:
             2 * neighbours * latency + 48 B * halo / bandwidth
   check     an allreduce of one number per evaluation: ceil(log2 P) * latency; and `checks` times per
-            step an allgather of every cell's box (40 B per cell): 40 B * cells / bandwidth + log2 P latency
+            step a full check: an allgather of the ranks' regions (32 B a rank), the two-sided
+            discovery of the neighbours (log2 P latency) and the boxes of the cells near the part's
+            4 sqrt(cells / P)-cell boundary from `neighbours` ranks:
+            2 log2 P latency + 32 P / bandwidth + neighbours latency + b_line 4 sqrt(cells / P) / bandwidth
+            (a run without halo_check_bytes, from before the checks went to the neighbours only:
+            an allgather of every cell's box, 40 B * cells / bandwidth + log2 P latency)
   E(P) = (t_eval N / P) / (compute + halo + check), the evaluations per step cancelling except in
   the full checks (counted per evaluation with the run's evaluations per step). The model leaves
   out what two ranks on one machine measure beyond it (shared memory bandwidth and caches, noise):
@@ -63,11 +70,15 @@ def main(argv):
     side = math.sqrt(cells1)  # the measured tissue is C x C cells
     h_line = s2["halo_particles_max"] / side
     checks = s2.get("halo_full_checks", 0) / max(s2["steps"], 1)
+    neighbour_checks = "halo_check_bytes" in s2 and s2.get("halo_full_checks", 0) > 0
+    b_line = (s2["halo_check_bytes"] / s2["halo_full_checks"] - 32 * s2["mpi_ranks"]) / side if neighbour_checks else 0.0
     per_cell = n1 / cells1
     cells = a.particles / per_cell
     print(f"inputs: t_eval = {t_eval * 1e9:.1f} ns per particle-evaluation ({n1} particles, {s1['rhs_evals']} evaluations, "
           f"{s1['wall_time_s']:.3f} s), {evals_per_step:.2f} evaluations per step, halo {s2['halo_particles_max']} particles over a "
-          f"{side:.0f}-cell cut = {h_line:.2f} per cell length, {checks:.3f} full halo checks per step, {per_cell:.2f} particles per cell")
+          f"{side:.0f}-cell cut = {h_line:.2f} per cell length, {checks:.3f} full halo checks per step"
+          + (f" receiving {b_line:.1f} B per cell length of cut" if neighbour_checks else " (every cell's box gathered)")
+          + f", {per_cell:.2f} particles per cell")
     print(f"model: N = {a.particles:.3g} particles ({cells:.3g} cells), latency {a.latency * 1e6:g} µs, bandwidth {a.bandwidth / 1e9:g} GB/s, "
           f"{a.neighbours} neighbours, imbalance {a.imbalance}")
     print()
@@ -76,7 +87,11 @@ def main(argv):
         halo = 4 * math.sqrt(ncells / P) * h_line if P > 1 else 0.0
         t_halo = (2 * a.neighbours * a.latency + 48 * halo / a.bandwidth) if P > 1 else 0.0
         lg = math.ceil(math.log2(P)) if P > 1 else 0
-        t_check = (lg * a.latency + checks / evals_per_step * (40 * ncells / a.bandwidth + lg * a.latency)) if P > 1 else 0.0
+        if neighbour_checks:
+            full = 2 * lg * a.latency + 32 * P / a.bandwidth + a.neighbours * a.latency + b_line * 4 * math.sqrt(ncells / P) / a.bandwidth
+        else:
+            full = 40 * ncells / a.bandwidth + lg * a.latency
+        t_check = (lg * a.latency + checks / evals_per_step * full) if P > 1 else 0.0
         return comp, halo, t_halo, t_check, (t_eval * N / P) / (comp + t_halo + t_check)
 
     # the measured 2-rank efficiency against the model's for the measured tissue (its imbalance)
