@@ -37,6 +37,10 @@ turgor_hard_run(fine_stiff_walls_verlet fine_stiff_walls ${VERLET})
 turgor_hard_run_np2(fine_stiff_walls_np2 fine_stiff_walls)
 turgor_hard_check(fine_stiff_walls_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_verlet" ${HCHECK} tiprel hard/fine_stiff_walls_verlet hard/fine_stiff_walls 1e-5)
 turgor_hard_check(fine_stiff_walls_ranks "hard_fine_stiff_walls;hard_fine_stiff_walls_np2" ${HCHECK} tip hard/fine_stiff_walls_np2 hard/fine_stiff_walls 1e-10)
+# ... and the low-storage pair (TS lsrk, DSP controller) against DOPRI at the scene's tolerance
+turgor_hard_run(fine_stiff_walls_lsrk fine_stiff_walls -ts_type lsrk)
+turgor_hard_check(fine_stiff_walls_lsrk_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_lsrk" ${HCHECK} tiprel hard/fine_stiff_walls_lsrk hard/fine_stiff_walls
+  1e-5)
 # TS verlet with the dashpots and the SPH viscosity at the velocity predicted to the step's end
 # (-fine_predict_velocity, at its halved limit: the same step as Verlet at 0.5): 1.5e-8 from DOPRI
 # at 1e-6 (the drift's velocity at that step: 8.7e-6, first order)
@@ -44,7 +48,7 @@ turgor_hard_run(fine_stiff_walls_predicted fine_stiff_walls -ts_type verlet -fin
 turgor_hard_check(fine_stiff_walls_predicted_agree "hard_fine_stiff_walls;hard_fine_stiff_walls_predicted" ${HCHECK} tiprel hard/fine_stiff_walls_predicted
   hard/fine_stiff_walls 1e-7)
 turgor_long(hard_fine_stiff_walls hard_fine_stiff_walls_verlet hard_fine_stiff_walls_agree hard_fine_stiff_walls_np2 hard_fine_stiff_walls_ranks
-  hard_fine_stiff_walls_predicted hard_fine_stiff_walls_predicted_agree)
+  hard_fine_stiff_walls_predicted hard_fine_stiff_walls_predicted_agree hard_fine_stiff_walls_lsrk hard_fine_stiff_walls_lsrk_agree)
 # 500x load: DOPRI and Verlet agree
 turgor_hard_run(fine_large_load fine_large_load)
 turgor_hard_run(fine_large_load_verlet fine_large_load ${VERLET})

@@ -455,14 +455,6 @@ PetscErrorCode TimeRun::CommonSummary(JsonObject &js, const char *status)
   js.Set("rhs_evals", FunctionEvaluations());
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("mpi_ranks", (PetscInt)size);
-  {
-    /* the largest rank's peak resident set by the end of the set-up and by now (what the
-       operating system counts: libraries and MPI included) */
-    PetscReal peak[2] = {peak_rss_setup_, PeakResidentBytes()};
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, peak, 2, MPIU_REAL, MPI_MAX, comm_));
-    js.Set("peak_rss_setup_bytes", peak[0]);
-    js.Set("peak_rss_bytes", peak[1]);
-  }
   if (ckpt_interval_ > 0 || ckpt_wall_ > 0 || !restart_file_.empty()) js.Set("checkpoint_last", ckpt_last_file_);
   if (ckpt_interval_ > 0 || ckpt_wall_ > 0) {
     js.Set("checkpoints_written", ckpt_count_);
@@ -555,6 +547,15 @@ PetscErrorCode TimeRun::Summarize(JsonObject &js)
     js.Set("final_state_hash", std::string(hex));
   }
   js.Set("snapshots", SnapshotCount());
+  {
+    /* the largest rank's peak resident set by the end of the set-up and by now (what the
+       operating system counts: libraries and MPI included); collective, so not in CommonSummary,
+       which a failure writes from rank 0 alone */
+    PetscReal peak[2] = {peak_rss_setup_, PeakResidentBytes()};
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, peak, 2, MPIU_REAL, MPI_MAX, comm_));
+    js.Set("peak_rss_setup_bytes", peak[0]);
+    js.Set("peak_rss_bytes", peak[1]);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
