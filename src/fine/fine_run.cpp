@@ -211,10 +211,8 @@ PetscErrorCode FineRun::CheckIntegrator()
   PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, TSLSRK, "am", ""));
   PetscCall(TSGetType(ts_, &type));
   PetscCheck(explicit_type, comm_, PETSC_ERR_SUP,
-             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, lsrk, euler, ssp, verlet, basicsymplectic, am); an implicit one would "
-             "need the "
-             "Jacobian "
-             "of every particle interaction",
+             "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, lsrk, euler, ssp, verlet, basicsymplectic, am); an implicit one "
+             "would need the Jacobian of every particle interaction",
              type);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -112,20 +112,6 @@ PetscErrorCode TSSetUp_LSRK(TS ts)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* f(t, U) into F, unless F already holds it: the rate at the last step's end, evaluated by an
-   interpolation, is the next step's first stage if the solution has not changed since */
-PetscErrorCode FirstRate(TS ts, LSRK *lk, PetscReal t)
-{
-  PetscObjectState state;
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectStateGet((PetscObject)ts->vec_sol, &state));
-  if (!(lk->f_is_end && lk->have_step && t == lk->t_prev + lk->h_prev && state == lk->state_end)) {
-    PetscCall(TSComputeRHSFunction(ts, t, ts->vec_sol, lk->F));
-    lk->n_stage++;
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode TSStep_LSRK(TS ts)
 {
   LSRK         *lk = (LSRK *)ts->data;
@@ -136,8 +122,14 @@ PetscErrorCode TSStep_LSRK(TS ts)
   PetscBool     accept     = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(TSGetAdapt(ts, &adapt));
-  const PetscReal t0 = ts->ptime;
+  const PetscReal  t0 = ts->ptime;
+  PetscObjectState state;
+  PetscCall(PetscObjectStateGet((PetscObject)S1, &state));
+  /* the rate at u_n: the one an interpolation of the last step evaluated at its end, if the
+     solution has not changed since (first attempt only: later stages overwrite F) */
+  bool first_in_F = lk->f_is_end && lk->have_step && t0 == lk->t_prev + lk->h_prev && state == lk->state_end;
   PetscCall(VecCopy(S1, lk->S3));
+  lk->have_step = lk->have_rates = lk->f_is_end = PETSC_FALSE; /* S3 no longer holds the last step's start */
   while (!ts->reason) {
     const PetscReal h     = ts->time_step;
     PetscBool       stage = PETSC_TRUE;
@@ -148,12 +140,11 @@ PetscErrorCode TSStep_LSRK(TS ts)
       PetscCall(TSPostStage(ts, ti, i, &S1));
       PetscCall(TSAdaptCheckStage(adapt, ts, ti, S1, &stage));
       if (!stage) break;
-      if (i == 0) PetscCall(FirstRate(ts, lk, ti));
-      else {
+      if (!(i == 0 && first_in_F)) {
         PetscCall(TSComputeRHSFunction(ts, ti, S1, lk->F));
         lk->n_stage++;
       }
-      lk->f_is_end = lk->have_rates = PETSC_FALSE;
+      first_in_F = false;
       if (i == 0) { /* S2 = delta_1 u_n (S2's old values, possibly not finite, not read) */
         PetscCall(VecCopy(S1, lk->S2));
         if (m.delta[0] != 1) PetscCall(VecScale(lk->S2, m.delta[0]));
