@@ -6,7 +6,7 @@ static const char help[] = "The lsrk TS type (RK4(3)5[3S*], three registers) aga
                            "function against exp(z) and its real stability limit; (5) TSSetFunctionDomainError rejections;\n"
                            "(6) TSRollBack; (7) the work vectors: three state-size vectors (DOPRI's TSRK: 15);\n"
                            "(8) interpolation reuses f(u_{n+1}) as the next step's first stage, and the run is bitwise the same\n"
-                           "as one without interpolation.\n";
+                           "as one without interpolation; (9) a problem in implicit form (TSSetIFunction) is refused.\n";
 #include "test_util.h"
 #include <turgor/ts/low_storage_rk.h>
 #include <vector>
@@ -413,6 +413,39 @@ PetscErrorCode CheckRollBackAndStorage()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode IFunction(TS, PetscReal, Vec, Vec Udot, Vec F, void *)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(Udot, F));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* (9) U' = 0 in implicit form: an explicit method would see a zero right-hand side and integrate
+   nothing, so it must refuse */
+PetscErrorCode CheckImplicitRefused()
+{
+  TS             ts;
+  Vec            U;
+  std::string    msg;
+  PetscErrorCode ierr;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2, &U));
+  PetscCall(VecSet(U, 1));
+  PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
+  PetscCall(TSSetType(ts, TSLSRK));
+  PetscCall(TSSetIFunction(ts, NULL, IFunction, NULL));
+  PetscCall(TSSetMaxTime(ts, 1));
+  PetscCall(TSSetTimeStep(ts, 0.1));
+  PetscCall(turgor_test::PushMessageCatcher(&msg));
+  ierr = TSSolve(ts, U);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "(9) an IFunction: %s\n", msg.c_str()));
+  TG_CHECK(ierr && msg.find("implicit form") != std::string::npos, "an implicit problem was not refused (%d)", (int)ierr);
+  PetscCall(TSDestroy(&ts));
+  PetscCall(VecDestroy(&U));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -425,6 +458,7 @@ int main(int argc, char **argv)
   PetscCall(CheckAdaptive());
   PetscCall(CheckDomain());
   PetscCall(CheckRollBackAndStorage());
+  PetscCall(CheckImplicitRefused());
   PetscCall(PetscFinalize());
   return 0;
 }

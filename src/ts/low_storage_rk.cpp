@@ -101,6 +101,18 @@ PetscErrorCode TSSetUp_LSRK(TS ts)
   LSRK   *lk = (LSRK *)ts->data;
   TSAdapt adapt;
   PetscFunctionBeginUser;
+  {
+    /* U' = f(t, U) only: with an implicit form F(t, U, U') = 0 alone, TSComputeRHSFunction would
+       return 0 and the run integrate nothing */
+    TSIFunction   ifunction;
+    TSRHSFunction rhs;
+    PetscCall(TSGetIFunction(ts, NULL, &ifunction, NULL));
+    PetscCall(TSGetRHSFunction(ts, NULL, &rhs, NULL));
+    PetscCheck(!ifunction, PetscObjectComm((PetscObject)ts), PETSC_ERR_SUP,
+               "TS lsrk integrates U' = f(t, U) given by TSSetRHSFunction(); this problem is given in implicit form (TSSetIFunction), which an explicit method "
+               "cannot use");
+    PetscCheck(rhs, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONGSTATE, "TS lsrk: no right-hand side (TSSetRHSFunction)");
+  }
   PetscCall(TSReset_LSRK(ts));
   PetscCall(TurgorVecDuplicateWithRoom(ts->vec_sol, lk->room, &lk->S2, &lk->array[0]));
   PetscCall(VecDuplicate(ts->vec_sol, &lk->S3));
