@@ -343,11 +343,11 @@ PetscErrorCode FineRun::WriteSnapshot(PetscReal t, Vec U)
   PetscCall(equations_.TotalForces(x, v, force_.data()));
   for (const ParticleField *f : fields_.With(kSnapshot)) { /* the owned particles' values (position and velocity: the geometry and its motion) */
     if (f->name == "position" || f->name == "velocity") continue;
-    const PetscReal *a = f->values();
-    fields.nodes.push_back({f->name, f->unit, std::vector<PetscReal>(a, a + f->components * n_local_), f->components});
+    fields.nodes.push_back({f->name, f->unit, {}, f->components, f->values(), (size_t)(f->components * n_local_)}); /* read in place */
   }
   PetscCall(AddTermSnapshotFields(model_, tissue_.particles, snapshots_writer_, x, v, &fields));
   PetscCall(snapshots_writer_.Write(swarm_, t, x, v, fields));
+  std::vector<PetscReal>().swap(force_); /* made again for the next snapshot: 16 B a particle not held between them */
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -185,13 +185,17 @@ PetscErrorCode ParticleSnapshotWriter::WriteOrdered(KeyOrder &order, const std::
   PetscFunctionBeginUser;
   PetscCall(order.Order(values, components, slab));
   const PetscInt out = components == 2 ? 3 : components, n = order.SlabRows();
-  PetscCall(VecCreateMPI(comm_, out * n, PETSC_DETERMINE, &v));
-  if (out > 1) PetscCall(VecSetBlockSize(v, out));
+  if (out == components) /* the slab itself (no copy) */
+    PetscCall(VecCreateMPIWithArray(comm_, out, out * n, PETSC_DETERMINE, slab.empty() ? nullptr : slab.data(), &v));
+  else {
+    PetscCall(VecCreateMPI(comm_, out * n, PETSC_DETERMINE, &v));
+    if (out > 1) PetscCall(VecSetBlockSize(v, out));
+    PetscCall(VecGetArray(v, &a));
+    for (PetscInt i = 0; i < n; i++)
+      for (PetscInt d = 0; d < out; d++) a[out * i + d] = d < components ? slab[components * i + d] : 0.0;
+    PetscCall(VecRestoreArray(v, &a));
+  }
   PetscCall(PetscObjectSetName((PetscObject)v, name.c_str()));
-  PetscCall(VecGetArray(v, &a));
-  for (PetscInt i = 0; i < n; i++)
-    for (PetscInt d = 0; d < out; d++) a[out * i + d] = d < components ? slab[components * i + d] : 0.0;
-  PetscCall(VecRestoreArray(v, &a));
   PetscCall(VecView(v, viewer_));
   PetscCall(VecDestroy(&v));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -211,9 +215,9 @@ PetscErrorCode ParticleSnapshotWriter::WritePolygonFields(const PetscReal *x, co
   field_names_.clear();
   field_units_.clear();
   for (const Field &f : cell_fields) {
-    PetscCheck((PetscInt)f.values.size() == np, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Cell field %s has %zu values for %" PetscInt_FMT " closed cells",
-               f.name.c_str(), f.values.size(), np);
-    PetscCall(WriteOrdered(cells_order_, f.name, f.values.data(), 1));
+    PetscCheck((PetscInt)f.Size() == np, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Cell field %s has %zu values for %" PetscInt_FMT " closed cells", f.name.c_str(),
+               f.Size(), np);
+    PetscCall(WriteOrdered(cells_order_, f.name, f.Data(), 1));
     field_names_.push_back(f.name);
     field_units_.push_back(f.unit);
   }
@@ -254,13 +258,13 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Pet
   node_meta_.clear();
   bar_meta_.clear();
   for (const Field &f : fields.nodes) {
-    PetscCheck((f.components == 1 || f.components == 2) && (PetscInt)f.values.size() == f.components * nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
-               "Node field %s: %zu values for %" PetscInt_FMT " particles x %d components", f.name.c_str(), f.values.size(), nlocal, f.components);
+    PetscCheck((f.components == 1 || f.components == 2) && (PetscInt)f.Size() == f.components * nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "Node field %s: %zu values for %" PetscInt_FMT " particles x %d components", f.name.c_str(), f.Size(), nlocal, f.components);
     node_meta_.push_back({f.name, f.unit, {}, f.components});
   }
   for (const Field &f : fields.bars) {
-    PetscCheck(f.components == 1 && f.values.size() == bars_local_, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Bar field %s: %zu values for %zu springs",
-               f.name.c_str(), f.values.size(), bars_local_);
+    PetscCheck(f.components == 1 && f.Size() == bars_local_, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Bar field %s: %zu values for %zu springs", f.name.c_str(),
+               f.Size(), bars_local_);
     bar_meta_.push_back({f.name, f.unit, {}, 1});
   }
   PetscCheck(n_polys_ > 0 || fields.cells.empty(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Cell fields given for a tissue without closed polygonal cells");
@@ -273,20 +277,15 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Pet
   {
     std::vector<PetscReal> slab;
     Vec                    v;
-    PetscScalar           *a;
     PetscCall(nodes_.Order(x, 2, slab));
-    PetscCall(VecCreateMPI(comm_, (PetscInt)slab.size(), PETSC_DETERMINE, &v));
-    PetscCall(VecSetBlockSize(v, 2));
+    PetscCall(VecCreateMPIWithArray(comm_, 2, (PetscInt)slab.size(), PETSC_DETERMINE, slab.empty() ? nullptr : slab.data(), &v));
     PetscCall(PetscObjectSetName((PetscObject)v, "position"));
-    PetscCall(VecGetArray(v, &a));
-    std::copy(slab.begin(), slab.end(), a);
-    PetscCall(VecRestoreArray(v, &a));
     PetscCall(VecView(v, viewer_));
     PetscCall(VecDestroy(&v));
   }
   PetscCall(WriteOrdered(nodes_, "velocity", vel, 2));
-  for (const Field &f : fields.nodes) PetscCall(WriteOrdered(nodes_, f.name, f.values.data(), f.components));
-  for (const Field &f : fields.bars) PetscCall(WriteOrdered(bars_order_, f.name, f.values.data(), 1));
+  for (const Field &f : fields.nodes) PetscCall(WriteOrdered(nodes_, f.name, f.Data(), f.components));
+  for (const Field &f : fields.bars) PetscCall(WriteOrdered(bars_order_, f.name, f.Data(), 1));
   for (const Segments &g : fields.segments) { /* end points (2 per segment, n x 2 as the geometry) in id order, then the fields */
     const size_t nloc = g.xy.size() / 4;
     PetscCheck(g.id.size() == nloc, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Segments %s: %zu ids for %zu segments", g.name.c_str(), g.id.size(), nloc);
@@ -329,9 +328,8 @@ PetscErrorCode ParticleSnapshotWriter::Write(DM swarm, PetscReal time, const Pet
       PetscCall(VecDestroy(&v));
     }
     for (const Field &f : g.fields) {
-      PetscCheck(f.values.size() == nloc, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Segment field %s: %zu values for %zu segments", f.name.c_str(), f.values.size(),
-                 nloc);
-      PetscCall(WriteOrdered(*it->order, g.name + "_" + f.name, f.values.data(), 1));
+      PetscCheck(f.Size() == nloc, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "Segment field %s: %zu values for %zu segments", f.name.c_str(), f.Size(), nloc);
+      PetscCall(WriteOrdered(*it->order, g.name + "_" + f.name, f.Data(), 1));
       it->fields.push_back({f.name, f.unit, {}, 1});
     }
   }

@@ -40,11 +40,16 @@ public:
      drawn by their owners, named by id); x: the local positions (P's numbering) of the cells'
      reference areas. Files: dir/base.h5, dir/base.xmf. */
   PetscErrorCode Open(DM swarm, const ParticleSet &P, const PetscReal *x, const std::string &dir, const std::string &base);
-  /* A field of one snapshot: `components` (1, or 2 for a vector) values per item. */
+  /* A field of one snapshot: `components` (1, or 2 for a vector) values per item, held in `values`
+     or, where `view` is set, read from there (`count` values: the caller's array, not copied). */
   struct Field {
     std::string            name, unit;
     std::vector<PetscReal> values;
     int                    components = 1;
+    const PetscReal       *view       = nullptr;
+    size_t                 count      = 0;
+    const PetscReal       *Data() const { return view ? view : values.data(); }
+    size_t                 Size() const { return view ? count : values.size(); }
   };
   /* nodes: one item per local particle; cells: per closed polygon (ParticleSet::polygons order,
      closed cells only: a pressure); bars: per spring (ParticleSet::springs order: a bar's force).
