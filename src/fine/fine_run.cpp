@@ -3,6 +3,7 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/memory.h>
 #include <turgor/fine/fine_run.h>
+#include <turgor/io/checkpoint_file.h>
 #include <turgor/fine/particle_output.h>
 #include <turgor/parallel/rank_reductions.h>
 #include <turgor/ts/low_storage_rk.h>
@@ -671,17 +672,26 @@ PetscErrorCode FineRun::PrimeReferences()
 
 PetscErrorCode FineRun::StateOrder(IS *order)
 {
-  PetscInt  n = n_local_, N = n_local_;
-  PetscInt *idx; /* handed to the IS (no copy: 16 B a particle less at the end of a run and at each checkpoint, where it is made) */
+  PetscInt  n = 4 * n_local_, N = n_local_;
+  PetscInt *idx; /* handed to the IS (no copy) */
   PetscFunctionBeginUser;
   PetscCall(SumOverRanks(comm_, &N));
-  PetscCall(PetscMalloc1(4 * n, &idx));
-  for (PetscInt l = 0; l < n; l++) /* [x | v], each in the tissue's particle order */
-    for (PetscInt d = 0; d < 2; d++) {
-      idx[2 * l + d]         = 2 * tissue_.particles.gid[l] + d;
-      idx[2 * n + 2 * l + d] = 2 * N + 2 * tissue_.particles.gid[l] + d;
-    }
-  PetscCall(ISCreateGeneral(comm_, 4 * n, idx, PETSC_OWN_POINTER, order));
+  PetscCall(PetscMalloc1(n, &idx));
+  for (PetscInt k = 0; k < n; k++) idx[k] = StateIndex(k, N);
+  PetscCall(ISCreateGeneral(comm_, n, idx, PETSC_OWN_POINTER, order));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* entry by entry: no IS of 16 B a particle at the end of the run, where the memory peaks */
+PetscErrorCode FineRun::StateChecksum(Vec U, std::uint64_t *h)
+{
+  const PetscScalar *u;
+  PetscInt           N = n_local_;
+  PetscFunctionBeginUser;
+  PetscCall(SumOverRanks(comm_, &N));
+  PetscCall(VecGetArrayRead(U, &u));
+  for (PetscInt k = 0; k < 4 * n_local_; k++) *h += ChecksumTerm((std::uint64_t)StateIndex(k, N), (PetscReal)PetscRealPart(u[k]));
+  PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -501,6 +501,26 @@ PetscErrorCode TimeRun::InterruptWhileWriting(const std::string &pending)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* This rank's share of final_state_hash: each local entry at its StateOrder place. */
+PetscErrorCode TimeRun::StateChecksum(Vec U, std::uint64_t *h)
+{
+  const PetscScalar *u;
+  PetscInt           n, first;
+  const PetscInt    *order = NULL;
+  IS                 is;
+  PetscFunctionBeginUser;
+  PetscCall(StateOrder(&is));
+  PetscCall(VecGetLocalSize(U, &n));
+  PetscCall(VecGetOwnershipRange(U, &first, NULL));
+  if (is) PetscCall(ISGetIndices(is, &order));
+  PetscCall(VecGetArrayRead(U, &u));
+  for (PetscInt l = 0; l < n; l++) *h += ChecksumTerm((std::uint64_t)(order ? order[l] : first + l), (PetscReal)PetscRealPart(u[l]));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  if (is) PetscCall(ISRestoreIndices(is, &order));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* The summary of a run that ended (completed, stopped or interrupted); collective. */
 PetscErrorCode TimeRun::Summarize(JsonObject &js)
 {
@@ -527,20 +547,8 @@ PetscErrorCode TimeRun::Summarize(JsonObject &js)
     /* a checksum of the final state's bits, each entry at its rank-free place (StateOrder): equal
        hashes are (all but surely) equal states bit for bit, whatever the ranks and the distribution
        (restart tests; 1 rank against -fine_distribute 0 on 2) */
-    const PetscScalar *u;
-    PetscInt           n, first;
-    const PetscInt    *order = NULL;
-    IS                 is;
-    std::uint64_t      h = 0;
-    PetscCall(StateOrder(&is));
-    PetscCall(VecGetLocalSize(U_, &n));
-    PetscCall(VecGetOwnershipRange(U_, &first, NULL));
-    if (is) PetscCall(ISGetIndices(is, &order));
-    PetscCall(VecGetArrayRead(U_, &u));
-    for (PetscInt l = 0; l < n; l++) h += ChecksumTerm((std::uint64_t)(order ? order[l] : first + l), (PetscReal)PetscRealPart(u[l]));
-    PetscCall(VecRestoreArrayRead(U_, &u));
-    if (is) PetscCall(ISRestoreIndices(is, &order));
-    PetscCall(ISDestroy(&is));
+    std::uint64_t h = 0;
+    PetscCall(StateChecksum(U_, &h));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &h, 1, MPI_UINT64_T, MPI_SUM, comm_));
     char hex[24];
     std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);

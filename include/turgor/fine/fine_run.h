@@ -112,7 +112,15 @@ protected:
   PetscErrorCode BeforeStateRead() override { return PrimeReferences(); }
   PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override;
   PetscErrorCode StateOrder(IS *order) override;
-  bool           RestartsOnOtherRanks(std::string *why) const override { return true; }
+  PetscErrorCode StateChecksum(Vec U, std::uint64_t *h) override;
+  /* the rank-free place of local state entry k ([x | v], each in the tissue's particle order), of N
+     particles in all: StateOrder's entries and the checksum's */
+  PetscInt StateIndex(PetscInt k, PetscInt N) const
+  {
+    const PetscInt n2 = 2 * n_local_, part = k / n2, r = k % n2;
+    return part * 2 * N + 2 * tissue_.particles.gid[r / 2] + r % 2;
+  }
+  bool RestartsOnOtherRanks(std::string *why) const override { return true; }
   /* The tissue's reference positions and initial velocities are read only at set-up (the initial
      state, the swarm, the controls' groups, a restart's PrimeReferences): released once the state
      holds them (a restart: after its checkpoint is read), before the set-up's first force

@@ -8,6 +8,7 @@
    Order: SetFromOptions() creates the TS with the defaults and reads the options; programs may
    then adjust the TS or the specs through the API; SetUp() builds the model, calls
    TSSetFromOptions() and opens the outputs. */
+#include <cstdint>
 #include <turgor/core/parameters.h>
 #include <turgor/io/declared_state.h>
 #include <turgor/io/output.h>
@@ -145,7 +146,11 @@ protected:
     *order = NULL;
     return PETSC_SUCCESS;
   }
-  virtual bool RestartsOnOtherRanks(std::string *why) const
+  /* Adds this rank's share of final_state_hash for the state U to *h: ChecksumTerm of each local
+     entry at its StateOrder place. The default makes StateOrder's IS; a mode whose order is a
+     formula may compute it entry by entry instead (no IS at the run's end, its memory peak). */
+  virtual PetscErrorCode StateChecksum(Vec U, std::uint64_t *h);
+  virtual bool           RestartsOnOtherRanks(std::string *why) const
   {
     *why = "this mode's checkpoint holds per-rank state";
     return false;
