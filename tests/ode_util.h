@@ -1,7 +1,9 @@
 #pragma once
-/* Small ODE pieces shared by the time-integrator tests: Van der Pol's equation, a state vector
-   from its values, and a dense Jacobian set into a PETSc matrix. */
+/* Small ODE pieces shared by the time-integrator tests: Van der Pol's equation, Kepler's problem
+   and a forced linear system with their exact solutions, a state vector from its values, and a
+   dense Jacobian set into a PETSc matrix. */
 #include <petscmat.h>
+#include <cmath>
 #include <vector>
 
 namespace turgor_test {
@@ -22,6 +24,49 @@ inline void VanDerPolJacobian(PetscReal eps, const PetscScalar y[2], PetscScalar
   J[1] = 1;
   J[2] = (-2 * y[0] * y[1] - 1) / eps;
   J[3] = (1 - y[0] * y[0]) / eps;
+}
+
+/* Kepler's problem q'' = -q/|q|^3, y = (q, p = q'), q(0) = (1 - e, 0), p(0) = (0, sqrt((1 + e)/(1 - e))):
+   with the eccentric anomaly E - e sin E = t (Newton), q = (cos E - e, sqrt(1 - e^2) sin E),
+   p = (-sin E, sqrt(1 - e^2) cos E) / (1 - e cos E). */
+inline void KeplerExact(PetscReal e, PetscReal t, PetscReal y[4])
+{
+  PetscReal E = t;
+  for (int it = 0; it < 50; it++) {
+    const PetscReal dE = (E - e * std::sin(E) - t) / (1 - e * std::cos(E));
+    E -= dE;
+    if (std::fabs(dE) < 1e-16) break;
+  }
+  const PetscReal s = std::sqrt(1 - e * e), d = 1 - e * std::cos(E);
+  y[0] = std::cos(E) - e;
+  y[1] = s * std::sin(E);
+  y[2] = -std::sin(E) / d;
+  y[3] = s * std::cos(E) / d;
+}
+
+inline void KeplerRHS(const PetscScalar y[4], PetscScalar f[4])
+{
+  const PetscScalar r2 = y[0] * y[0] + y[1] * y[1], r3 = r2 * PetscSqrtScalar(r2);
+  f[0] = y[2];
+  f[1] = y[3];
+  f[2] = -y[0] / r3;
+  f[3] = -y[1] / r3;
+}
+
+/* y' = A (y - g(t)) + g'(t), A = [[-1, 1], [-1, -1]], g = (sin t, cos 2t): with y(0) = g(0) the
+   solution is g, and errors decay like exp(-t). */
+inline void ForcedExact(PetscReal t, PetscReal y[2])
+{
+  y[0] = std::sin(t);
+  y[1] = std::cos(2 * t);
+}
+
+inline void ForcedRHS(PetscReal t, const PetscScalar y[2], PetscScalar f[2])
+{
+  const PetscReal   g[2] = {std::sin(t), std::cos(2 * t)}, dg[2] = {std::cos(t), -2 * std::sin(2 * t)};
+  const PetscScalar e0 = y[0] - g[0], e1 = y[1] - g[1];
+  f[0] = -e0 + e1 + dg[0];
+  f[1] = -e0 - e1 + dg[1];
 }
 
 /* A sequential vector holding values[0 .. n-1]. */

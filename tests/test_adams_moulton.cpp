@@ -46,22 +46,9 @@ struct Problem {
   PetscInt Size() const { return kind == Kind::kepler ? 4 : (kind == Kind::forced || kind == Kind::vdp) ? 2 : 1; }
   void     Exact(PetscReal t, PetscReal y[]) const
   {
-    if (kind == Kind::forced) {
-      y[0] = std::sin(t);
-      y[1] = std::cos(2 * t);
-    } else if (kind == Kind::kepler) {
-      PetscReal E = t;
-      for (int it = 0; it < 50; it++) {
-        const PetscReal dE = (E - ecc * std::sin(E) - t) / (1 - ecc * std::cos(E));
-        E -= dE;
-        if (std::fabs(dE) < 1e-16) break;
-      }
-      const PetscReal s = std::sqrt(1 - ecc * ecc), d = 1 - ecc * std::cos(E);
-      y[0] = std::cos(E) - ecc;
-      y[1] = s * std::sin(E);
-      y[2] = -std::sin(E) / d;
-      y[3] = s * std::cos(E) / d;
-    } else if (kind == Kind::vdp) {
+    if (kind == Kind::forced) turgor_test::ForcedExact(t, y);
+    else if (kind == Kind::kepler) turgor_test::KeplerExact(ecc, t, y);
+    else if (kind == Kind::vdp) {
       y[0] = 2;
       y[1] = 0;
     } else {
@@ -81,18 +68,9 @@ PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec Y, Vec F, void *ctx)
   p->nf++;
   PetscCall(VecGetArrayRead(Y, &y));
   PetscCall(VecGetArray(F, &f));
-  if (p->kind == Kind::forced) {
-    const PetscReal   g[2] = {std::sin(t), std::cos(2 * t)}, dg[2] = {std::cos(t), -2 * std::sin(2 * t)};
-    const PetscScalar e0 = y[0] - g[0], e1 = y[1] - g[1];
-    f[0] = -e0 + e1 + dg[0];
-    f[1] = -e0 - e1 + dg[1];
-  } else if (p->kind == Kind::kepler) {
-    const PetscScalar r2 = y[0] * y[0] + y[1] * y[1], r3 = r2 * PetscSqrtScalar(r2);
-    f[0] = y[2];
-    f[1] = y[3];
-    f[2] = -y[0] / r3;
-    f[3] = -y[1] / r3;
-  } else if (p->kind == Kind::vdp) {
+  if (p->kind == Kind::forced) turgor_test::ForcedRHS(t, y, f);
+  else if (p->kind == Kind::kepler) turgor_test::KeplerRHS(y, f);
+  else if (p->kind == Kind::vdp) {
     turgor_test::VanDerPol(1, y, f);
   } else f[0] = -p->lambda * (y[0] - std::cos(t));
   PetscCall(VecRestoreArray(F, &f));

@@ -8,6 +8,7 @@ static const char help[] = "The lsrk TS type (RK4(3)5[3S*], three registers) aga
                            "(8) interpolation reuses f(u_{n+1}) as the next step's first stage, and the run is bitwise the same\n"
                            "as one without interpolation; (9) a problem in implicit form (TSSetIFunction) is refused.\n";
 #include "test_util.h"
+#include "ode_util.h"
 #include <turgor/ts/low_storage_rk.h>
 #include <vector>
 
@@ -23,22 +24,8 @@ struct Problem {
   PetscInt  Size() const { return kepler ? 4 : 2; }
   void      Exact(PetscReal t, PetscReal y[]) const
   {
-    if (!kepler) {
-      y[0] = std::sin(t);
-      y[1] = std::cos(2 * t);
-      return;
-    }
-    PetscReal E = t;
-    for (int it = 0; it < 50; it++) {
-      const PetscReal dE = (E - ecc * std::sin(E) - t) / (1 - ecc * std::cos(E));
-      E -= dE;
-      if (std::fabs(dE) < 1e-16) break;
-    }
-    const PetscReal s = std::sqrt(1 - ecc * ecc), d = 1 - ecc * std::cos(E);
-    y[0] = std::cos(E) - ecc;
-    y[1] = s * std::sin(E);
-    y[2] = -std::sin(E) / d;
-    y[3] = s * std::cos(E) / d;
+    if (kepler) turgor_test::KeplerExact(ecc, t, y);
+    else turgor_test::ForcedExact(t, y);
   }
 };
 
@@ -51,18 +38,8 @@ PetscErrorCode RHSFunction(TS, PetscReal t, Vec Y, Vec F, void *ctx)
   p->nf++;
   PetscCall(VecGetArrayRead(Y, &y));
   PetscCall(VecGetArray(F, &f));
-  if (p->kepler) {
-    const PetscScalar r2 = y[0] * y[0] + y[1] * y[1], r3 = r2 * PetscSqrtScalar(r2);
-    f[0] = y[2];
-    f[1] = y[3];
-    f[2] = -y[0] / r3;
-    f[3] = -y[1] / r3;
-  } else {
-    const PetscReal   g[2] = {std::sin(t), std::cos(2 * t)}, dg[2] = {std::cos(t), -2 * std::sin(2 * t)};
-    const PetscScalar e0 = y[0] - g[0], e1 = y[1] - g[1];
-    f[0] = -e0 + e1 + dg[0];
-    f[1] = -e0 - e1 + dg[1];
-  }
+  if (p->kepler) turgor_test::KeplerRHS(y, f);
+  else turgor_test::ForcedRHS(t, y, f);
   PetscCall(VecRestoreArray(F, &f));
   PetscCall(VecRestoreArrayRead(Y, &y));
   PetscFunctionReturn(PETSC_SUCCESS);
