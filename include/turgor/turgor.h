@@ -16,6 +16,7 @@
 #include <turgor/ts/radau_iia.h>       /* TSRADAUIIA, TSRadauIIA*() */
 #include <turgor/ts/adams_moulton.h>   /* TSAM, TSAM*() */
 #include <turgor/ts/velocity_verlet.h> /* TSVERLET, TSVerletGetCounters() */
+#include <turgor/ts/low_storage_rk.h>  /* TSLSRK, TSLSRKGetTableau(), TSLSRKGetCounters() */
 
 #define TURGOR_VERSION_STRING "0.1.0"
 
