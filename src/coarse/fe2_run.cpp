@@ -1,7 +1,6 @@
 #include <turgor/core/errors.h>
 #include <turgor/coarse/fe2_run.h>
 #include <turgor/ts/adams_moulton.h>
-#include <turgor/ts/low_storage_rk.h>
 #include <turgor/ts/radau_iia.h>
 #include <algorithm>
 #include <cmath>
@@ -104,7 +103,7 @@ PetscErrorCode FE2Run::AfterTSSetFromOptions()
   PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &arkimex, TSARKIMEX, ""));
   {
     PetscBool is_explicit;
-    PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &is_explicit, TSRK, TSEULER, TSSSP, TSAM, TSLSRK, ""));
+    PetscCall(TSIsExplicit(ts_, &is_explicit));
     explicit_ = is_explicit;
   }
   if (jacobian_max_age_ < 0) {

@@ -6,7 +6,6 @@
 #include <turgor/io/checkpoint_file.h>
 #include <turgor/fine/particle_output.h>
 #include <turgor/parallel/rank_reductions.h>
-#include <turgor/ts/low_storage_rk.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cmath>
@@ -209,7 +208,7 @@ PetscErrorCode FineRun::CheckIntegrator()
   PetscBool explicit_type;
   TSType    type;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts_, &explicit_type, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, TSLSRK, "am", ""));
+  PetscCall(TSIsExplicit(ts_, &explicit_type));
   PetscCall(TSGetType(ts_, &type));
   PetscCheck(explicit_type, comm_, PETSC_ERR_SUP,
              "Option -ts_type = %s: -mode fine integrates with explicit methods (rk, lsrk, euler, ssp, verlet, basicsymplectic, am); an implicit one "

@@ -9,11 +9,20 @@
 
 namespace turgor {
 
+PetscErrorCode TSIsExplicit(TS ts, PetscBool *is)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts, is, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, TSLSRK, TSAM, ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TSCheckpointSupported(TS ts, PetscBool *supported, const char **why)
 {
   PetscBool ok, is;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)ts, &ok, TSRK, TSEULER, TSSSP, TSBASICSYMPLECTIC, TSVERLET, TSLSRK, ""));
+  PetscCall(TSIsExplicit(ts, &ok));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSAM, &is));
+  ok         = (PetscBool)(ok && !is); /* Adams-Moulton carries its steps' history */
   *supported = ok;
   *why       = "";
   if (ok) PetscFunctionReturn(PETSC_SUCCESS);

@@ -3,7 +3,7 @@
    size, as declared state (io/declared_state.h) for checkpoints:
      verlet: the acceleration at the last step's end (reused as the next step's first);
      rk with an FSAL tableau (5dp, 3bs): the last stage's derivative, the next step's first;
-     other explicit types (rk without FSAL, euler, ssp, basicsymplectic): nothing;
+     other explicit types (rk without FSAL, euler, ssp, basicsymplectic, lsrk): nothing;
    the step rejections so far, and the step-size controller's history: every controller's
    -ts_adapt_time_step_increase_delay count, and the "dsp" controller's past control errors and
    step ratios (turgor's own controller, ts/adapt_dsp.h). Multistep and implicit types (am, bdf,
@@ -14,13 +14,21 @@
    every evaluation (ObserveRHS): the evaluation at the last stage is the FSAL derivative (its
    vector is remembered, not copied); after a restart the first step's first evaluation, at the
    restored solution, is answered with the restored derivative instead of being computed -- what
-   the uninterrupted run's step took from its previous step. */
+   the uninterrupted run's step took from its previous step. Also here: which TS types are
+   explicit (TSIsExplicit), the list the modes and the checkpoints decide by. */
 #include <turgor/io/declared_state.h>
 #include <petscts.h>
 
 namespace turgor {
 
-/* Whether a run of this TS type can be checkpointed; *why says why not. */
+/* Whether the TS integrates U' = f(t, U) from TSSetRHSFunction (an explicit method: rk, euler, ssp,
+   lsrk, am; basicsymplectic and verlet also need the splits of TSRHSSplitSetIS). One list: a mode
+   gives its equations in explicit form exactly to these, and an implicit form to the others (an
+   explicit method given only an implicit form sees a zero right-hand side). */
+PetscErrorCode TSIsExplicit(TS ts, PetscBool *is);
+
+/* Whether a run of this TS type can be checkpointed (the one-step explicit methods); *why says why
+   not. */
 PetscErrorCode TSCheckpointSupported(TS ts, PetscBool *supported, const char **why);
 
 class IntegratorState {
