@@ -2,7 +2,7 @@
 /* Small ODE pieces shared by the time-integrator tests: Van der Pol's equation, Kepler's problem
    and a forced linear system with their exact solutions, a state vector from its values, and a
    dense Jacobian set into a PETSc matrix. */
-#include <petscmat.h>
+#include <petscts.h>
 #include <cmath>
 #include <vector>
 
@@ -67,6 +67,29 @@ inline void ForcedRHS(PetscReal t, const PetscScalar y[2], PetscScalar f[2])
   const PetscScalar e0 = y[0] - g[0], e1 = y[1] - g[1];
   f[0] = -e0 + e1 + dg[0];
   f[1] = -e0 - e1 + dg[1];
+}
+
+/* F(t, U, U') = U': U' = 0 in implicit form (TSSetIFunction), for checks of how a TS type takes it. */
+inline PetscErrorCode ZeroRateIFunction(TS, PetscReal, Vec, Vec Udot, Vec F, void *)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(Udot, F));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* TSSetFunctionDomainError callback refusing any state more than P::hlim (> 0; 0: none) past the
+   step's start, P the TS's application context: a stage that far is rejected, so no step longer
+   than about hlim survives. */
+template <class P>
+PetscErrorCode RejectBeyondStepLimit(TS ts, PetscReal t, Vec, PetscBool *accept)
+{
+  P        *p;
+  PetscReal tn;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetApplicationContext(ts, &p));
+  PetscCall(TSGetTime(ts, &tn));
+  *accept = (PetscBool) !(p->hlim > 0 && t - tn > p->hlim * (1 + 1e-12));
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* A sequential vector holding values[0 .. n-1]. */

@@ -92,24 +92,6 @@ PetscErrorCode VdPJacobian(TS ts, PetscReal t, Vec Y, Mat A, Mat B, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IFunction(TS ts, PetscReal t, Vec Y, Vec Ydot, Vec F, void *ctx)
-{
-  PetscFunctionBeginUser;
-  PetscCall(VecCopy(Ydot, F));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode DomainCheck(TS ts, PetscReal t, Vec Y, PetscBool *accept)
-{
-  Problem  *p;
-  PetscReal tn;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &p));
-  PetscCall(TSGetTime(ts, &tn));
-  *accept = (PetscBool) !(p->hlim > 0 && t - tn > p->hlim * (1 + 1e-12));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* after each step: the dense output at interior points against the exact solution */
 PetscErrorCode SampleInterior(TS ts)
 {
@@ -198,9 +180,9 @@ PetscErrorCode Run(Problem &p, const RunSpec &spec, Result *res)
   if (spec.fixed_order) PetscCall(TSAMSetFixedOrder(ts, PETSC_TRUE));
   if (spec.max_it > 0) PetscCall(TSAMSetMaxIterations(ts, spec.max_it));
   if (spec.max_conv_fails > 0) PetscCall(TSAMSetMaxConvergenceFailures(ts, spec.max_conv_fails));
-  if (spec.ifunction) PetscCall(TSSetIFunction(ts, NULL, IFunction, &p));
+  if (spec.ifunction) PetscCall(TSSetIFunction(ts, NULL, turgor_test::ZeroRateIFunction, &p));
   else PetscCall(TSSetRHSFunction(ts, NULL, RHSFunction, &p));
-  if (spec.domain) PetscCall(TSSetFunctionDomainError(ts, DomainCheck));
+  if (spec.domain) PetscCall(TSSetFunctionDomainError(ts, turgor_test::RejectBeyondStepLimit<Problem>));
   PetscCall(TSSetTime(ts, 0));
   if (spec.dt > 0) PetscCall(TSSetTimeStep(ts, spec.dt));
   PetscCall(TSSetMaxTime(ts, spec.tf));

@@ -45,17 +45,6 @@ PetscErrorCode RHSFunction(TS, PetscReal t, Vec Y, Vec F, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode DomainCheck(TS ts, PetscReal t, Vec, PetscBool *accept)
-{
-  Problem  *p;
-  PetscReal tn;
-  PetscFunctionBeginUser;
-  PetscCall(TSGetApplicationContext(ts, &p));
-  PetscCall(TSGetTime(ts, &tn));
-  *accept = (PetscBool) !(p->hlim > 0 && t - tn > p->hlim * (1 + 1e-12));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 struct Result {
   PetscReal              err = 0, interp_err = 0, step_err = 0; /* max |error| at the end, of TSInterpolate at 0.3 and 0.7 of every step, at every step's end */
   PetscInt               steps = 0, rejects = 0, nf = 0, stage_evals = 0, interp_evals = 0;
@@ -117,7 +106,7 @@ PetscErrorCode Run(Problem p, PetscReal tf, PetscReal dt, PetscReal tol, bool in
   if (!std::string(type).compare(TSRK)) PetscCall(TSRKSetType(ts, TSRK5DP));
   PetscCall(TSSetApplicationContext(ts, &p));
   PetscCall(TSSetRHSFunction(ts, NULL, RHSFunction, &p));
-  PetscCall(TSSetFunctionDomainError(ts, DomainCheck));
+  PetscCall(TSSetFunctionDomainError(ts, turgor_test::RejectBeyondStepLimit<Problem>));
   PetscCall(TSSetMaxTime(ts, tf));
   PetscCall(TSSetMaxSteps(ts, 10000000));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
@@ -390,13 +379,6 @@ PetscErrorCode CheckRollBackAndStorage()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode IFunction(TS, PetscReal, Vec, Vec Udot, Vec F, void *)
-{
-  PetscFunctionBeginUser;
-  PetscCall(VecCopy(Udot, F));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* (9) U' = 0 in implicit form: an explicit method would see a zero right-hand side and integrate
    nothing, so it must refuse */
 PetscErrorCode CheckImplicitRefused()
@@ -410,7 +392,7 @@ PetscErrorCode CheckImplicitRefused()
   PetscCall(VecSet(U, 1));
   PetscCall(TSCreate(PETSC_COMM_SELF, &ts));
   PetscCall(TSSetType(ts, TSLSRK));
-  PetscCall(TSSetIFunction(ts, NULL, IFunction, NULL));
+  PetscCall(TSSetIFunction(ts, NULL, turgor_test::ZeroRateIFunction, NULL));
   PetscCall(TSSetMaxTime(ts, 1));
   PetscCall(TSSetTimeStep(ts, 0.1));
   PetscCall(turgor_test::PushMessageCatcher(&msg));
