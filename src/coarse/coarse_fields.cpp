@@ -1,6 +1,7 @@
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/core/geometry.h>
 #include <turgor/io/xdmf.h>
+#include <turgor/parallel/rank_reductions.h>
 #include <petscviewerhdf5.h>
 #include <hdf5.h>
 #include <algorithm>
@@ -68,9 +69,13 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
   PetscInt first[2] = {0, 0};
   PetscCallMPI(MPI_Exscan(counts, first, 2, MPIU_INT, MPI_SUM, comm_));
   if (rank_ == 0) first[0] = first[1] = 0;
+  PetscInt scrambled = -1; /* the lowest rank whose owned vertices are not its block (every rank learns it) */
   for (size_t k = 0; k < owned_.size(); k++)
-    PetscCheck(gid[owned_[k]] == first[0] + (PetscInt)k, PETSC_COMM_SELF, PETSC_ERR_PLIB,
-               "vertex numbering: rank %d's owned vertices are not the block from %" PetscInt_FMT, rank_, first[0]);
+    if (gid[owned_[k]] != first[0] + (PetscInt)k) scrambled = rank_;
+  if (scrambled < 0) scrambled = PETSC_MAX_INT;
+  PetscCall(MinOverRanks(comm_, &scrambled));
+  PetscCheck(scrambled == PETSC_MAX_INT, comm_, PETSC_ERR_PLIB,
+             "coarse fields: rank %" PetscInt_FMT "'s owned vertices are not a consecutive block of the vertex numbering", scrambled);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm_));
   n_vertices_ = counts[0];
   n_cells_    = counts[1];
@@ -102,7 +107,9 @@ PetscErrorCode CoarseFieldsWriter::Open(CoarseModel &model, const std::string &d
       }
     PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &n, &cl));
   }
-  PetscCheck(cells_.size() == 4 * (size_t)(ce - cs), PETSC_COMM_SELF, PETSC_ERR_SUP, "coarse fields: the elements are not quadrilaterals");
+  PetscInt not_quads = cells_.size() != 4 * (size_t)(ce - cs);
+  PetscCall(MaxOverRanks(comm_, &not_quads));
+  PetscCheck(!not_quads, comm_, PETSC_ERR_SUP, "coarse fields: the elements are not quadrilaterals");
   rho0_ = model.ReferenceDensity();
   area0_.resize(ce - cs);
   for (PetscInt c = 0; c < ce - cs; c++) area0_[c] = QuadArea(&cells_[4 * c], xy_, NULL);
@@ -203,7 +210,9 @@ PetscErrorCode CoarseFieldsWriter::Write(CoarseModel &model, Vec U, PetscReal ti
   PetscCall(PetscViewerHDF5PopGroup(viewer_));
   hid_t fid;
   PetscCall(PetscViewerHDF5GetFileId(viewer_, &fid));
-  PetscCheck(H5Fflush(fid, H5F_SCOPE_GLOBAL) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot flush %s", h5name_.c_str());
+  PetscInt flush_failed = H5Fflush(fid, H5F_SCOPE_GLOBAL) < 0;
+  PetscCall(MaxOverRanks(comm_, &flush_failed)); /* every rank stops, not only the one that saw it */
+  PetscCheck(!flush_failed, comm_, PETSC_ERR_FILE_WRITE, "Cannot flush %s", h5name_.c_str());
   times_.push_back(time);
   PetscCall(WriteXdmf());
   PetscFunctionReturn(PETSC_SUCCESS);
