@@ -249,17 +249,19 @@ PetscErrorCode ForceModel::PotentialEnergy(const PetscReal *x, PetscReal *E, Pet
 PetscErrorCode ForceModel::TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits,
                                           const std::function<PetscErrorCode(PetscReal *)> &sum_halo_shares)
 {
-  std::vector<PetscReal> a;
+  PetscReal a_max = -1;
   PetscFunctionBeginUser;
   if (std::any_of(terms_.begin(), terms_.end(), [](const auto &t) { return t->NeedsAccelerations(); })) {
-    a.resize(2 * P_->n);
+    std::vector<PetscReal> a(2 * P_->n); /* freed before the terms' own work arrays are made */
     PetscCall(ComputeAcceleration(x, v, a.data()));
     evaluations_--; /* not an integrator evaluation */
+    a_max = 0;
+    for (PetscInt i = 0; i < P_->n; i++) a_max = PetscMax(a_max, std::hypot(a[2 * i], a[2 * i + 1]));
   }
   PetscCall(nb_.Update(*P_, x, images_));
   ForceInput in      = {P_, x, v, &nb_, &images_};
   in.t               = t_;
-  in.a               = a.empty() ? nullptr : a.data();
+  in.a_max           = a_max;
   in.sum_halo_shares = sum_halo_shares;
   limits.clear();
   for (auto &t : terms_) PetscCall(t->AddTimeStepLimits(in, limits));

@@ -318,11 +318,7 @@ PetscErrorCode SPHFluid::AddTimeStepLimits(const ForceInput &in, std::vector<Tim
   const PetscReal h = smoothing_length;
   char            why[256];
   PetscFunctionBeginUser;
-  if (in.a) { /* the force criterion, with the accelerations of all terms together */
-    PetscReal amax = 0;
-    for (PetscInt i = 0; i < in.P->n; i++) amax = PetscMax(amax, std::hypot(in.a[2 * i], in.a[2 * i + 1]));
-    if (amax > 0) limits.push_back({0.25 * std::sqrt(h / amax), "largest acceleration: 0.25 sqrt(h / |a|) (eq 40)"});
-  }
+  if (in.a_max > 0) limits.push_back({0.25 * std::sqrt(h / in.a_max), "largest acceleration: 0.25 sqrt(h / |a|) (eq 40)"}); /* with all terms' forces */
   if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   if (sound_speed > 0) {
     PetscCall(PetscSNPrintf(why, sizeof why, "sound speed: 0.25 h / c_s (eq 40), c_s = %g µm/µs", (double)sound_speed));

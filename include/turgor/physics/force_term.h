@@ -23,8 +23,10 @@ struct ForceInput {
   const ParticleSet     *P;
   const PetscReal       *x, *v;
   const NeighbourSearch *nb;
-  const PeriodicImages  *images;      /* never NULL; all zero shifts unless periodic */
-  const PetscReal       *a = nullptr; /* accelerations of all terms together, where a criterion needs them */
+  const PeriodicImages  *images; /* never NULL; all zero shifts unless periodic */
+  /* AddTimeStepLimits: the largest |acceleration| of all terms together over the local particles,
+     where a criterion needs it; < 0: not computed */
+  PetscReal a_max = -1;
   /* AcceptStep only: the positions are those of the last AddForces, bit for bit, so a term may
      commit what that evaluation computed instead of recomputing it (ForceModel compares once for all
      terms; the velocities may differ: Verlet's last evaluation saw the half-step ones). */
@@ -115,7 +117,7 @@ public:
     return PETSC_SUCCESS;
   }
   /* Stability bounds for an explicit step at the current state (TW 562 eq 40 and bond
-     frequencies); in.a holds the accelerations if NeedsAccelerations(). */
+     frequencies); in.a_max holds the largest acceleration if NeedsAccelerations(). */
   virtual PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) { return PETSC_SUCCESS; }
   virtual bool           NeedsAccelerations() const { return false; }
   /* Internal state (plastic angles, contact history) is updated here, once per accepted step, at
