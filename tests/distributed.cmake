@@ -71,6 +71,20 @@ set(DIST_BAR_LSRK -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fi
   -fine_progress_interval 0)
 turgor_ranks_agree(bar_lsrk RANKS 2 OPTIONS ${DIST_BAR_LSRK})
 turgor_restart_case(dist_bar_lsrk 100 INTERVAL 0.5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${DIST_BAR_LSRK} FILES tip.csv)
+# Dealt by cell ranges (-fine_partitioner ranges), the grid is generated in parts: each rank builds
+# its cells and those within the halo's width, no rank the whole tissue. The same run to the bit as
+# the whole tissue generated on every rank and dealt by the same ranges (-fine_setup_in_parts 0), and
+# the 1-rank run's tip to 1e-10.
+set(DIST_BAR_RANGES -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_max_time 1 -fine_snapshots 0 -fine_progress_interval 0
+  -fine_partitioner ranges -output_overwrite)
+turgor_add_test(dist_bar_parts_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${DIST_BAR_RANGES} -output_dir dist_bar_parts_np2 LABELS fine mpi
+  SETUP dist_bar_parts_np2)
+turgor_add_test(dist_bar_whole_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${DIST_BAR_RANGES} -fine_setup_in_parts 0
+  -output_dir dist_bar_whole_np2 LABELS fine mpi SETUP dist_bar_whole_np2)
+turgor_add_test(dist_bar_parts_identical COMMAND ${CHECK} identical dist_bar_parts_np2 dist_bar_whole_np2 final_state_hash halo_particles_max
+  particles_per_rank_max LABELS fine mpi REQUIRES "dist_bar_parts_np2;dist_bar_whole_np2")
+turgor_add_test(dist_bar_parts_built COMMAND ${CHECK} equals dist_bar_parts_np2 setup_in_parts True LABELS fine mpi REQUIRES dist_bar_parts_np2)
+turgor_add_test(dist_bar_parts_tip COMMAND ${CHECK} tiprel dist_bar_parts_np2 dist_bar_np1 1e-10 LABELS fine mpi REQUIRES "dist_bar_np1;dist_bar_parts_np2")
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s).

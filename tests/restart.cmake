@@ -190,6 +190,25 @@ foreach(np 1 3)
     LABELS fine restart mpi ${tier} REQUIRES "restart_ranks_full;restart_ranks_to${np}")
 endforeach()
 
+# ... with the tissue generated in parts (-fine_partitioner ranges: no rank holds the whole grid):
+# stopped on 2 ranks so built, continued on 1; stopped on 1, continued on 2 so built. The reference
+# positions' hash in the checkpoint's fingerprint is the same whatever the ranks and the set-up.
+turgor_add_test(restart_ranks_parts_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${RESTART_XR} -fine_partitioner ranges -ts_max_steps 150
+  -checkpoint_interval 1e6 -output_dir restart_ranks_parts_leg1 LABELS fine restart mpi SETUP restart_ranks_parts_leg1)
+turgor_add_test(restart_ranks_parts_to1 COMMAND turgor_app ${RESTART_XR} -restart restart_ranks_parts_leg1/checkpoint.h5 -output_dir restart_ranks_parts_to1
+  LABELS fine restart mpi REQUIRES restart_ranks_parts_leg1 SETUP restart_ranks_parts_to1)
+turgor_add_test(restart_ranks_one_leg1 COMMAND turgor_app ${RESTART_XR} -ts_max_steps 150 -checkpoint_interval 1e6 -output_dir restart_ranks_one_leg1
+  LABELS fine restart SETUP restart_ranks_one_leg1)
+turgor_add_test(restart_ranks_to2_parts COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${RESTART_XR} -fine_partitioner ranges
+  -restart restart_ranks_one_leg1/checkpoint.h5 -output_dir restart_ranks_to2_parts LABELS fine restart mpi REQUIRES restart_ranks_one_leg1
+  SETUP restart_ranks_to2_parts)
+foreach(run parts_to1 to2_parts)
+  turgor_add_test(restart_ranks_${run}_agrees COMMAND ${CHECK} samekey restart_ranks_${run} restart_ranks_full tip_displacement_final 1e-10
+    LABELS fine restart mpi REQUIRES "restart_ranks_full;restart_ranks_${run}")
+endforeach()
+turgor_add_test(restart_ranks_to2_parts_built COMMAND ${CHECK} equals restart_ranks_to2_parts setup_in_parts True LABELS fine restart mpi
+  REQUIRES restart_ranks_to2_parts)
+
 # Another rank count with internal state: a run stopped on 2 ranks, continued on 1 and on 3 in a copy
 # of its directory (the time series go on), against the uninterrupted 1-rank run. Every rank reads
 # every writing rank's rank-independent state (global_state: contact histories, plastic and

@@ -1,5 +1,6 @@
 static const char help[] = "Tissue generator: particle and spring counts, cell polygons, clamps.\n";
 #include "test_util.h"
+#include <algorithm>
 
 using namespace turgor;
 
@@ -56,6 +57,92 @@ int main(int argc, char **argv)
     TG_CHECK(T.particles.Count(KIND_WALL) == walls, "5x3, s=4: %" PetscInt_FMT " wall particles, expected %" PetscInt_FMT, T.particles.Count(KIND_WALL), walls);
     TG_CHECK(T.particles.Count(KIND_FLUID) == 15 * 9, "5x3 fluid");
     TG_CHECK(T.particles.springs.size() == (size_t)(4 * (5 * 4 + 6 * 3)), "5x3 springs");
+  }
+  {
+    /* Parts of a grid (distributed set-up): every particle, spring and cell as in the whole grid under
+       the whole grid's numbers; every cell within the distance there, with the joints of its springs;
+       the parts of a partition cover the whole grid */
+    struct Case {
+      PetscInt  nx, ny, s, k, parts;
+      PetscReal distance;
+    };
+    const Case cases[] = {
+      {5, 7, 2, 4, 3, 30.0},
+      {4, 9, 3, 1, 4, 0.0 },
+      {6, 5, 1, 9, 2, 60.0},
+      {3, 4, 2, 0, 5, 10.0},
+    };
+    for (const Case &cs : cases) {
+      SquareGridSpec spec;
+      spec.cells_x          = cs.nx;
+      spec.cells_y          = cs.ny;
+      spec.springs_per_side = cs.s;
+      spec.fluid_per_cell   = cs.k;
+      Tissue W;
+      PetscCall(GenerateSquareGridTissue(PETSC_COMM_SELF, spec, &W));
+      const ParticleSet    &PW = W.particles;
+      const PetscInt        C  = cs.nx * cs.ny;
+      std::vector<char>     seen(PW.n, 0), seen_spring(PW.springs.size(), 0);
+      std::vector<PetscInt> wring; /* a whole cell's ring */
+      for (PetscInt r = 0; r < cs.parts; r++) {
+        const PetscInt c0 = r * C / cs.parts, c1 = (r + 1) * C / cs.parts;
+        Tissue         T;
+        PetscCall(GenerateSquareGridPart(PETSC_COMM_SELF, spec, c0, c1, cs.distance, &T));
+        const ParticleSet &P = T.particles;
+        TG_CHECK(T.lo[0] == W.lo[0] && T.lo[1] == W.lo[1] && T.hi[0] == W.hi[0] && T.hi[1] == W.hi[1], "part %" PetscInt_FMT ": bounds", r);
+        for (PetscInt i = 0; i < P.n; i++) {
+          const PetscInt g = P.gid[i];
+          TG_CHECK(g >= 0 && g < PW.n && (i == 0 || g > P.gid[i - 1]), "part %" PetscInt_FMT ": particle %" PetscInt_FMT " numbered %" PetscInt_FMT, r, i, g);
+          TG_CHECK(T.X[2 * i] == W.X[2 * g] && T.X[2 * i + 1] == W.X[2 * g + 1] && P.mass[i] == PW.mass[g] && P.kind[i] == PW.kind[g] &&
+                     P.cell[i] == PW.cell[g],
+                   "part %" PetscInt_FMT ": particle %" PetscInt_FMT " differs", r, g);
+          seen[g] = 1;
+        }
+        /* the cells: [c0, c1) and all within the distance (boxes of the rings) */
+        auto gap = [&](PetscInt a, PetscInt b) {
+          const PetscInt ax = a % cs.nx, ay = a / cs.nx, bx = b % cs.nx, by = b / cs.nx;
+          const PetscInt dx = std::max((PetscInt)0, std::abs(ax - bx) - 1), dy = std::max((PetscInt)0, std::abs(ay - by) - 1);
+          return spec.cell_size * std::hypot((PetscReal)dx, (PetscReal)dy);
+        };
+        std::vector<char> near(C, 0);
+        for (PetscInt c = 0; c < C; c++)
+          for (PetscInt o = c0; o < c1 && !near[c]; o++) near[c] = gap(c, o) <= cs.distance;
+        for (PetscInt c = 0; c < C; c++)
+          if (near[c]) TG_CHECK(std::binary_search(T.cell_gid.begin(), T.cell_gid.end(), c), "part %" PetscInt_FMT ": cell %" PetscInt_FMT " missing", r, c);
+        for (PetscInt c = 0; c < T.NumCells(); c++) {
+          const PetscInt g = T.CellGid(c);
+          TG_CHECK(c == 0 || g > T.CellGid(c - 1), "part %" PetscInt_FMT ": cells not increasing", r);
+          TG_CHECK(T.cell_walls[c].size() == W.cell_walls[g].size(), "part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
+          for (size_t k = 0; k < T.cell_walls[c].size(); k++)
+            TG_CHECK(P.gid[T.cell_walls[c][k]] == W.cell_walls[g][k], "part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
+        }
+        /* springs; joints where both ends are on the ring of a cell within the distance */
+        std::vector<char> on_near(P.n, 0);
+        for (PetscInt c = 0; c < T.NumCells(); c++)
+          if (near[T.CellGid(c)])
+            for (PetscInt i : T.cell_walls[c]) on_near[i] = 1;
+        for (size_t q = 0; q < P.springs.size(); q++) {
+          const Spring  &a = P.springs[q];
+          const PetscInt g = P.spring_gid[q];
+          TG_CHECK(g >= 0 && g < (PetscInt)PW.springs.size() && (q == 0 || g > P.spring_gid[q - 1]), "part %" PetscInt_FMT ": spring numbered %" PetscInt_FMT,
+                   r, g);
+          const Spring &b = PW.springs[g];
+          TG_CHECK(P.gid[a.i] == b.i && P.gid[a.j] == b.j && a.rest_length == b.rest_length, "part %" PetscInt_FMT ": spring %" PetscInt_FMT " differs", r, g);
+          seen_spring[g] = 1;
+          if (!on_near[a.i] || !on_near[a.j]) continue;
+          for (int e = 0; e < 2; e++) {
+            const PetscInt j = a.joint[e] < 0 ? -1 : 2 * P.spring_gid[a.joint[e] / 2] + a.joint[e] % 2;
+            TG_CHECK(j == b.joint[e], "part %" PetscInt_FMT ": joint %d of spring %" PetscInt_FMT ": %" PetscInt_FMT " vs %" PetscInt_FMT, r, e, g, j,
+                     b.joint[e]);
+          }
+        }
+      }
+      for (PetscInt g = 0; g < PW.n; g++) TG_CHECK(seen[g], "%" PetscInt_FMT " x %" PetscInt_FMT ": particle %" PetscInt_FMT " in no part", cs.nx, cs.ny, g);
+      for (size_t g = 0; g < PW.springs.size(); g++) TG_CHECK(seen_spring[g], "%" PetscInt_FMT " x %" PetscInt_FMT ": spring %zu in no part", cs.nx, cs.ny, g);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "parts of %" PetscInt_FMT " x %" PetscInt_FMT " (s %" PetscInt_FMT ", %" PetscInt_FMT " ranges, %g µm): as in the whole grid\n",
+                            cs.nx, cs.ny, cs.s, cs.parts, (double)cs.distance));
+    }
   }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_tissue: all checks passed\n"));
   PetscCall(PetscFinalize());

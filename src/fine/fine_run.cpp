@@ -38,6 +38,18 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "On several ranks, partition the cells with METIS and keep every particle on the rank of its cell, with a halo of the "
                              "neighbouring ranks' particles (false: all particles on rank 0, the other ranks idle)",
                              "FineRunSpec", distribute, &distribute, NULL));
+  {
+    const char *names[] = {"metis", "ranges"};
+    PetscCall(PetscOptionsEList("-partitioner",
+                                "Distributed runs: how the cells are dealt to the ranks: metis (a partition of the cell graph on the first rank; every "
+                                "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells' numbering; a square grid is then "
+                                "generated in parts, no rank holding the whole tissue)",
+                                "FineRunSpec", names, 2, names[partitioner], &partitioner, NULL));
+  }
+  PetscCall(PetscOptionsBool("-setup_in_parts",
+                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid); "
+                             "false: every rank generates the whole tissue first (the same run, more memory at set-up)",
+                             "FineRunSpec", setup_in_parts, &setup_in_parts, NULL));
   PetscCall(PetscOptionsReal("-halo_margin",
                              "Distributed runs: width [µm] of the halo beyond the interactions' reach (cutoffs + neighbour skin); cells may move this "
                              "far relative to each other before the run stops (default: the reach)",
@@ -96,15 +108,40 @@ PetscErrorCode FineRun::SetUpModel()
   PetscMPIInt rank, size;
   PetscFunctionBeginUser;
   PetscCall(RankAndSize(comm_, &rank, &size));
+  const bool                     distributed = size > 1 && spec_.distribute;
+  const TissuePlacement::Options placing     = {spec_.distribute == PETSC_TRUE, spec_.partition, spec_.halo_margin, spec_.partitioner == 1};
+  /* dealt by cell ranges, a generator that can builds the tissue in parts, no rank holding all of
+     it (not for controls, which select their particles in the whole tissue, nor for the partition
+     report, which partitions it) */
+  const bool in_parts = distributed && !have_tissue_ && placing.ranges && spec_.setup_in_parts && placing.report_parts == 0 && !controls_.Active() &&
+                        tissues_.Generator()->NumCellsOfParts() >= 0;
   if (!have_tissue_) {
     PetscReal particles, springs;
     PetscCall(tissues_.Generator()->Estimate(&particles, &springs));
     const std::string what = "the fine tissue (" + tissues_.Generator()->SizeOptions() + ": " + std::to_string((long long)particles) + " particles)";
     PetscCall(CheckCount(comm_, 4 * particles, what + ", its state vector"));
-    PetscCall(CheckMemory(comm_, rank == 0 ? kProcessBytes + kBytesPerParticle * particles : kProcessBytes, what));
-    PetscCall(tissues_.Generate(comm_, &tissue_));
+    PetscCall(CheckMemory(comm_, kProcessBytes + (in_parts ? kBytesPerParticle * particles / size : rank == 0 ? kBytesPerParticle * particles : 0), what));
+    if (!in_parts) PetscCall(tissues_.Generate(comm_, &tissue_));
   }
-  PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp"));
+  /* the halo's width: the farthest reach of any term into another cell, with the neighbour lists' skin */
+  auto reach_of = [this](PetscReal *reach) {
+    PetscFunctionBeginUser;
+    *reach = 0;
+    for (const auto &t : physics_.Terms()) *reach = std::max(*reach, t->Reach(tissue_.particles));
+    PetscCall(MaxOverRanks(comm_, reach));
+    *reach += physics_.neighbour_skin;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  if (in_parts) {
+    PetscInt  c0, c1;
+    PetscReal reach;
+    TissuePlacement::OwnedRange(comm_, tissues_.Generator()->NumCellsOfParts(), &c0, &c1);
+    PetscCall(tissues_.Generator()->GeneratePart(comm_, c0, c1, 0, &tissue_)); /* this rank's cells, for the terms' reach */
+    PetscCall(reach_of(&reach));
+    tissue_ = Tissue();
+    PetscCall(placement_.PlaceParts(comm_, placing, reach, *tissues_.Generator(), &tissue_));
+  }
+  PetscCall(tissue_.Clamp(comm_, spec_.clamp, "-fine_clamp")); /* a part knows the whole tissue's bounds */
   { /* the skin is a length in µm: in a scene of much smaller lengths every neighbour list would hold most of the tissue */
     const PetscReal extent = std::max(tissue_.hi[0] - tissue_.lo[0], tissue_.hi[1] - tissue_.lo[1]), r = tissue_.particles.bar_radius;
     if (extent > 0 && physics_.neighbour_skin > 0.25 * extent)
@@ -114,27 +151,18 @@ PetscErrorCode FineRun::SetUpModel()
                             (double)physics_.neighbour_skin, (double)extent, (double)(r > 0 ? r : 0.02 * extent),
                             r > 0 ? "the bar radius" : "2% of the tissue's size"));
   }
-  PetscCall(TissueReferenceHash(comm_, tissue_, &reference_hash_)); /* of the whole tissue, which every rank holds here */
-  const bool distributed = size > 1 && spec_.distribute;
-  PetscCall(controls_.SetUp(comm_, tissue_, rank == 0 || distributed));
-  /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3) */
-  tip_    = tissue_.ClosestWallParticle(tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]));
-  tip_y0_ = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
-  {
-    /* the halo: the farthest reach of any term into another cell, with the neighbour lists' skin */
-    PetscReal reach = 0;
-    if (distributed) {
-      for (const auto &t : physics_.Terms()) reach = std::max(reach, t->Reach(tissue_.particles));
-      reach += physics_.neighbour_skin;
-    }
+  PetscCall(controls_.SetUp(comm_, tissue_, in_parts || rank == 0 || distributed)); /* in parts: no control groups */
+  if (!in_parts) {
+    PetscReal             reach = 0;
     std::vector<PetscInt> local_of;
-    PetscCall(placement_.Place(comm_, {spec_.distribute == PETSC_TRUE, spec_.partition, spec_.halo_margin}, reach, &tissue_, &local_of));
-    if (placement_.Distributed()) {
-      controls_.Localize(local_of, tissue_.particles);
-      tip_ = tip_ >= 0 ? local_of[tip_] : -1;
-      if (tip_ >= tissue_.particles.NumOwned()) tip_ = -1; /* observed by its owner */
-    } else if (rank != 0) tip_ = -1;
+    if (distributed) PetscCall(reach_of(&reach));
+    PetscCall(placement_.Place(comm_, placing, reach, &tissue_, &local_of));
+    if (placement_.Distributed()) controls_.Localize(local_of, tissue_.particles);
   }
+  PetscCall(TissueReferenceHash(comm_, tissue_, &reference_hash_));
+  /* the observed point: the wall particle in the middle of the right side (seed's Fig. 3), on its owner */
+  PetscCall(ClosestOwnedWallParticle(comm_, tissue_, tissue_.hi[0], 0.5 * (tissue_.lo[1] + tissue_.hi[1]), &tip_));
+  tip_y0_  = tip_ >= 0 ? tissue_.X[2 * tip_ + 1] : 0;
   n_all_   = tissue_.particles.n;
   n_local_ = tissue_.particles.NumOwned();
   { /* the closed cells this rank owns, as their reference orientation (a cell's nodes are its owner's) */
@@ -150,9 +178,11 @@ PetscErrorCode FineRun::SetUpModel()
   fields_.Declare("force", "µN", 2, kSnapshot, [this] { return force_.data(); });
   if (spec_.partition > 0) /* -fine_partition_report: the part of the particle's cell */
     fields_.Declare("part", "1", 1, kSnapshot, [this] { return const_cast<PetscReal *>(placement_.ReportParts().data()); });
-  if (placement_.Distributed()) { /* the rank that owns the particle */
-    rank_of_.assign(n_local_, (PetscReal)rank);
-    fields_.Declare("rank", "1", 1, kSnapshot, [this] { return rank_of_.data(); });
+  if (placement_.Distributed()) {                             /* the rank that owns the particle */
+    fields_.Declare("rank", "1", 1, kSnapshot, [this, rank] { /* made when first written: a run without snapshots holds none */
+                                                              if (rank_of_.size() != (size_t)n_local_) rank_of_.assign(n_local_, (PetscReal)rank);
+                                                              return rank_of_.data();
+    });
   }
 
   /* state [x | v] and the position/momentum splits used by basicsymplectic */

@@ -26,7 +26,13 @@ void OwnerCells(const Tissue &tissue, std::vector<PetscInt> *owner)
       for (PetscInt i : tissue.cell_walls[c]) (*owner)[i] = c;
   for (PetscInt i = 0; i < P.n; i++) {
     if (!P.node_polygon.empty() && P.node_polygon[i] >= 0) (*owner)[i] = P.node_polygon[i];
-    if (P.kind[i] == KIND_FLUID && P.cell[i] >= 0) (*owner)[i] = P.cell[i];
+    if (P.kind[i] == KIND_FLUID && P.cell[i] >= 0) { /* ParticleSet::cell is the whole tissue's number */
+      if (tissue.cell_gid.empty()) (*owner)[i] = P.cell[i];
+      else {
+        auto it     = std::lower_bound(tissue.cell_gid.begin(), tissue.cell_gid.end(), P.cell[i]);
+        (*owner)[i] = it != tissue.cell_gid.end() && *it == P.cell[i] ? (PetscInt)(it - tissue.cell_gid.begin()) : -1;
+      }
+    }
   }
 }
 

@@ -2,6 +2,7 @@
 #include <turgor/parallel/cell_partition.h>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace turgor {
 
@@ -76,8 +77,9 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   PetscCheck(global.period[0] == 0 && global.period[1] == 0, comm, PETSC_ERR_SUP, "A periodic tissue cannot be distributed over ranks (run it on one rank)");
   PetscCheck((PetscInt)cell_rank.size() == global.NumCells(), comm, PETSC_ERR_ARG_SIZ, "cell_rank has %zu entries for %" PetscInt_FMT " cells",
              cell_rank.size(), global.NumCells());
-  reach_  = reach;
-  margin_ = margin;
+  const bool part = !global.cell_gid.empty(); /* a part of the tissue (its numbers: ParticleSet::gid, spring_gid, Tissue::cell_gid) */
+  reach_          = reach;
+  margin_         = margin;
   PetscCall(PetscLogEventRegister("TgHaloExchange", PETSC_OBJECT_CLASSID, &ev_exchange_));
   PetscCall(PetscLogEventRegister("TgHaloCheck", PETSC_OBJECT_CLASSID, &ev_check_));
 
@@ -88,6 +90,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   std::vector<PetscInt>              crank(cell_rank.begin(), cell_rank.end());
   for (PetscInt i = 0; i < N; i++)
     if (owner_cell[i] < 0) {
+      PetscCheck(!part, PETSC_COMM_SELF, PETSC_ERR_PLIB, "particle %" PetscInt_FMT " of a part of the tissue is in no cell", G.gid[i]);
       owner_cell[i] = (PetscInt)rings.size();
       rings.push_back({i});
       crank.push_back(0);
@@ -95,30 +98,33 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   n_cells_ = (PetscInt)rings.size();
   for (PetscInt i = 0; i < N; i++) owner_rank[i] = crank[owner_cell[i]];
 
-  /* owned positions and the ranks' blocks (global order within a rank) */
-  std::vector<PetscInt> pos(N), count(size, 0), offset(size + 1, 0);
-  for (PetscInt g = 0; g < N; g++) pos[g] = count[owner_rank[g]]++;
-  for (PetscMPIInt r = 0; r < size; r++) offset[r + 1] = offset[r] + count[r];
-  start_   = offset[rank];
-  n_owned_ = count[rank];
+  /* the ranks' blocks (global order within a rank) */
+  n_owned_ = 0;
+  for (PetscInt g = 0; g < N; g++) n_owned_ += owner_rank[g] == rank;
+  start_ = 0;
+  PetscCallMPI(MPI_Exscan(&n_owned_, &start_, 1, MPIU_INT, MPI_SUM, comm));
+  if (rank == 0) start_ = 0; /* MPI_Exscan leaves rank 0's undefined */
 
   /* the halo cells: another rank's cells within reach + margin of this rank's (reference boxes, of
      the rings and fluid) */
-  std::vector<Box> box(n_cells_), mine;
+  std::vector<Box>      box(n_cells_), mine;
+  std::vector<PetscInt> owned; /* this rank's cells (indices here) */
   owned_cells_.clear();
   for (PetscInt i = 0; i < N; i++) box[owner_cell[i]].Add(&global.X[2 * i]);
   for (PetscInt c = 0; c < n_cells_; c++) {
     for (PetscInt i : rings[c]) box[c].Add(&global.X[2 * i]);
-    if (crank[c] == rank) owned_cells_.push_back(c), mine.push_back(box[c]);
+    if (crank[c] == rank) owned.push_back(c), owned_cells_.push_back(global.CellGid(c)), mine.push_back(box[c]);
   }
   std::vector<PetscReal> dist;
   NearestDistances(mine, box, reach + margin + 1, &dist);
-  local_cell_.assign(n_cells_, 0);
-  n_local_cells_ = 0;
+  std::vector<char> local_cell(n_cells_, 0);
+  local_cells_.clear();
   for (PetscInt c = 0; c < n_cells_; c++) {
-    local_cell_[c] = crank[c] == rank || dist[c] <= reach + margin;
-    n_local_cells_ += local_cell_[c];
+    local_cell[c] = crank[c] == rank || dist[c] <= reach + margin;
+    if (local_cell[c]) local_cells_.push_back(global.CellGid(c));
   }
+  n_local_cells_ = (PetscInt)local_cells_.size();
+  std::sort(local_cells_.begin(), local_cells_.end());
 
   /* local particles: owned, then the other ranks' wall particles of the local cells */
   std::vector<PetscInt> &local_of = *local_of_out, order; /* the set-up's only (the caller's) */
@@ -128,7 +134,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
   {
     std::vector<PetscInt> halo;
     for (PetscInt c = 0; c < n_cells_; c++)
-      if (local_cell_[c])
+      if (local_cell[c])
         for (PetscInt i : rings[c])
           if (owner_rank[i] != rank && G.kind[i] != KIND_FLUID) halo.push_back(i);
     std::sort(halo.begin(), halo.end());
@@ -168,7 +174,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
       const PetscInt i = local_of[G.springs[s].i], j = local_of[G.springs[s].j];
       if (i < 0 || j < 0 || (i < n_owned_) != (pass == 0)) continue;
       spring_of[s] = (PetscInt)P.springs.size();
-      P.spring_gid.push_back((PetscInt)s);
+      P.spring_gid.push_back(G.SpringGid(s));
       Spring sp = G.springs[s];
       sp.i = i, sp.j = j;
       P.springs.push_back(sp);
@@ -183,7 +189,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
     std::vector<PetscInt> polygon_of(G.polygons.size(), -1);
     for (int pass = 0; pass < 2; pass++)
       for (size_t c = 0; c < G.polygons.size(); c++) {
-        if (!local_cell_[c] || (crank[c] == rank) != (pass == 0)) continue;
+        if (!local_cell[c] || (crank[c] == rank) != (pass == 0)) continue;
         PolygonCell C = G.polygons[c];
         for (PetscInt &i : C.nodes) i = local_of[i];
         for (PetscInt &s : C.bars) s = spring_of[s];
@@ -191,7 +197,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
                    PETSC_COMM_SELF, PETSC_ERR_PLIB, "cell %zu is not whole on rank %d", c, rank);
         polygon_of[c] = (PetscInt)P.polygons.size();
         P.polygons.push_back(C);
-        P.polygon_gid.push_back((PetscInt)c);
+        P.polygon_gid.push_back(G.PolygonGid(c));
         if (pass == 0) P.n_polygons_owned = (PetscInt)P.polygons.size();
       }
     if (P.n_polygons_owned < 0) P.n_polygons_owned = 0;
@@ -209,9 +215,9 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
     for (PetscInt i = 0; i < N; i++)
       if (G.kind[i] == KIND_FLUID && crank[owner_cell[i]] == rank) fluid[owner_cell[i]].push_back(local_of[i]);
     size_t total = 0;
-    for (PetscInt c : owned_cells_) total += rings[c].size() + fluid[c].size();
+    for (PetscInt c : owned) total += rings[c].size() + fluid[c].size();
     ring_.reserve(total);
-    for (PetscInt c : owned_cells_) {
+    for (PetscInt c : owned) {
       std::vector<PetscInt> ring;
       for (PetscInt i : rings[c]) ring.push_back(local_of[i]);
       ring_.insert(ring_.end(), ring.begin(), ring.end());
@@ -221,14 +227,66 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
     }
   }
   for (int d = 0; d < 2; d++) T.lo[d] = global.lo[d], T.hi[d] = global.hi[d];
-  *local = std::move(T);
+  for (PetscInt l = 1; l < n_owned_; l++)
+    PetscCheck(P.gid[l - 1] < P.gid[l], PETSC_COMM_SELF, PETSC_ERR_PLIB, "the owned particles are not in increasing global order");
 
-  /* the exchange pattern: halo components <- their owners' */
+  /* the exchange pattern: halo components <- their owners'; a halo particle's place in its owner's
+     block is asked of the owner (no rank knows every rank's particles) */
   std::vector<PetscSFNode> remote(2 * n_halo_);
-  for (PetscInt k = 0; k < n_halo_; k++) {
-    const PetscInt g = order[n_owned_ + k];
-    for (int d = 0; d < 2; d++) remote[2 * k + d] = {owner_rank[g], 2 * pos[g] + d};
+  {
+    std::vector<PetscMPIInt>           to_ranks, to_counts;
+    std::vector<std::vector<PetscInt>> asked, answer_of; /* per rank asked: the global ids, then their places */
+    std::vector<std::vector<PetscInt>> slot;             /* ... and the halo slots they fill */
+    std::map<PetscMPIInt, size_t>      index_of;
+    for (PetscInt k = 0; k < n_halo_; k++) {
+      const PetscInt g     = order[n_owned_ + k];
+      auto           added = index_of.emplace((PetscMPIInt)owner_rank[g], to_ranks.size());
+      if (added.second) {
+        to_ranks.push_back((PetscMPIInt)owner_rank[g]);
+        asked.emplace_back();
+        slot.emplace_back();
+      }
+      asked[added.first->second].push_back(G.gid[g]);
+      slot[added.first->second].push_back(k);
+    }
+    for (const auto &a : asked) to_counts.push_back((PetscMPIInt)a.size());
+    PetscMPIInt n_from, *from_ranks = nullptr, *from_counts = nullptr, tag_answer;
+    PetscCall(
+      PetscCommBuildTwoSided(comm_tag_, 1, MPI_INT, (PetscMPIInt)to_ranks.size(), to_ranks.data(), to_counts.data(), &n_from, &from_ranks, &from_counts));
+    PetscCall(PetscCommGetNewTag(comm_tag_, &tag_answer));
+    std::vector<std::vector<PetscInt>> questions(n_from);
+    std::vector<MPI_Request>           req(n_from + to_ranks.size());
+    for (PetscMPIInt i = 0; i < n_from; i++) {
+      questions[i].resize(from_counts[i]);
+      PetscCallMPI(MPI_Irecv(questions[i].data(), from_counts[i], MPIU_INT, from_ranks[i], tag_, comm_tag_, &req[i]));
+    }
+    for (size_t i = 0; i < to_ranks.size(); i++)
+      PetscCallMPI(MPI_Isend(asked[i].data(), to_counts[i], MPIU_INT, to_ranks[i], tag_, comm_tag_, &req[n_from + i]));
+    PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
+    PetscErrorCode missing = PETSC_SUCCESS;
+    for (std::vector<PetscInt> &q : questions)
+      for (PetscInt &g : q) { /* the answer replaces the question */
+        auto it = std::lower_bound(P.gid.begin(), P.gid.begin() + n_owned_, g);
+        if (it == P.gid.begin() + n_owned_ || *it != g) missing = PETSC_ERR_PLIB;
+        g = (PetscInt)(it - P.gid.begin());
+      }
+    answer_of.resize(to_ranks.size());
+    for (PetscMPIInt i = 0; i < n_from; i++)
+      PetscCallMPI(MPI_Isend(questions[i].data(), from_counts[i], MPIU_INT, from_ranks[i], tag_answer, comm_tag_, &req[i]));
+    for (size_t i = 0; i < to_ranks.size(); i++) {
+      answer_of[i].resize(to_counts[i]);
+      PetscCallMPI(MPI_Irecv(answer_of[i].data(), to_counts[i], MPIU_INT, to_ranks[i], tag_answer, comm_tag_, &req[n_from + i]));
+    }
+    PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
+    PetscCall(PetscFree(from_ranks));
+    PetscCall(PetscFree(from_counts));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &missing, 1, MPI_INT, MPI_MAX, comm));
+    PetscCheck(!missing, comm, PETSC_ERR_PLIB, "a rank was asked for a halo particle it does not own");
+    for (size_t i = 0; i < to_ranks.size(); i++)
+      for (size_t j = 0; j < slot[i].size(); j++)
+        for (int d = 0; d < 2; d++) remote[2 * slot[i][j] + d] = {to_ranks[i], 2 * answer_of[i][j] + d};
   }
+  *local = std::move(T);
   PetscCall(PetscSFDestroy(&sf_));
   PetscCall(PetscSFCreate(comm, &sf_));
   PetscCall(PetscSFSetGraph(sf_, 2 * n_owned_, 2 * n_halo_, NULL, PETSC_OWN_POINTER, remote.data(), PETSC_COPY_VALUES));
@@ -342,7 +400,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
     check_bytes_ += sizeof(PetscReal) * (double)v.size();
     for (size_t k = 0; k + 5 <= v.size(); k += 5) {
       const PetscInt c = (PetscInt)v[k];
-      if (local_cell_[c]) continue; /* in the halo already */
+      if (std::binary_search(local_cells_.begin(), local_cells_.end(), c)) continue; /* in the halo already */
       Box b;
       b.lo[0] = v[k + 1], b.lo[1] = v[k + 2], b.hi[0] = v[k + 3], b.hi[1] = v[k + 4];
       near.push_back(b);

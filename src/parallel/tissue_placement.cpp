@@ -1,6 +1,7 @@
 #include <turgor/parallel/rank_reductions.h>
 #include <turgor/parallel/tissue_placement.h>
 #include <algorithm>
+#include <cstdint>
 
 namespace turgor {
 
@@ -40,8 +41,8 @@ PetscErrorCode TissuePlacement::PartitionReport(MPI_Comm comm, const Tissue &tis
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The cells partitioned on rank 0 (METIS, weighted as in cell_partition.h); each rank keeps its
-   cells' particles and its halo (tissue_distribution.h). */
+/* The cells partitioned on rank 0 (METIS, weighted as in cell_partition.h) or by ranges; each rank
+   keeps its cells' particles and its halo (tissue_distribution.h). */
 PetscErrorCode TissuePlacement::Distribute(MPI_Comm comm, Tissue *tissue, std::vector<PetscInt> *local_of)
 {
   const char *option = "-fine_distribute";
@@ -52,7 +53,9 @@ PetscErrorCode TissuePlacement::Distribute(MPI_Comm comm, Tissue *tissue, std::v
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   std::vector<PetscInt> cell_rank(ncells, 0);
   PetscErrorCode        failed = PETSC_SUCCESS;
-  if (rank == 0 && ncells < size) /* fewer cells than ranks: one cell a rank, the last ranks hold none (an empty rank is a valid rank) */
+  if (options_.ranges)
+    for (PetscInt c = 0; c < ncells; c++) cell_rank[c] = RangeRank(c, ncells, size);
+  else if (rank == 0 && ncells < size) /* fewer cells than ranks: one cell a rank, the last ranks hold none (an empty rank is a valid rank) */
     for (PetscInt c = 0; c < ncells; c++) cell_rank[c] = c;
   else if (rank == 0) {
     CellGraph     graph;
@@ -94,6 +97,40 @@ PetscErrorCode TissuePlacement::Place(MPI_Comm comm, const Options &options, Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void TissuePlacement::OwnedRange(MPI_Comm comm, PetscInt C, PetscInt *c0, PetscInt *c1)
+{
+  PetscMPIInt size, rank;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  *c0 = (PetscInt)((long long)rank * C / size);
+  *c1 = (PetscInt)((long long)(rank + 1) * C / size);
+}
+
+PetscErrorCode TissuePlacement::PlaceParts(MPI_Comm comm, const Options &options, PetscReal reach, const TissueGenerator &generator, Tissue *tissue)
+{
+  PetscMPIInt    size;
+  const PetscInt C = generator.NumCellsOfParts();
+  PetscInt       c0, c1;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCheck(options.ranges && options.distribute && options.report_parts == 0 && size > 1 && C >= 0, comm, PETSC_ERR_PLIB,
+             "a tissue is built in parts only by cell ranges, on several ranks, without a partition report, by a generator that can");
+  options_     = options;
+  distributed_ = true;
+  parts_       = true;
+  reach_       = reach;
+  margin_      = options.halo_margin >= 0 ? options.halo_margin : reach;
+  OwnedRange(comm, C, &c0, &c1);
+  Tissue         part;
+  PetscErrorCode failed = generator.GeneratePart(comm, c0, c1, reach_ + margin_, &part);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
+  PetscCheck(!failed, comm, PETSC_ERR_LIB, "Option -fine_partitioner ranges: generating a part of the tissue failed on some rank");
+  std::vector<PetscInt> cell_rank(part.NumCells()), local_of;
+  for (PetscInt c = 0; c < part.NumCells(); c++) cell_rank[c] = RangeRank(part.CellGid(c), C, size);
+  PetscCall(dist_.SetUp(comm, part, cell_rank, reach_, margin_, tissue, &local_of));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TissuePlacement::View(MPI_Comm comm, PetscInt n_owned) const
 {
   PetscFunctionBeginUser;
@@ -103,9 +140,13 @@ PetscErrorCode TissuePlacement::View(MPI_Comm comm, PetscInt n_owned) const
     PetscCallMPI(MPI_Comm_size(comm, &size));
     PetscCall(MaxOverRanks(comm, r, 3));
     PetscCall(PetscPrintf(comm,
-                          "Distributed over %d ranks (METIS cells, -fine_distribute): %.0f..%.0f particles per rank, halo up to %.0f particles "
+                          "Distributed over %d ranks (%s, -fine_distribute): %.0f..%.0f particles per rank, halo up to %.0f particles "
                           "(cells within %.4g µm reach + %.4g µm -fine_halo_margin); the terms' lines above count rank 0's particles\n",
-                          size, -(double)r[1], (double)r[0], (double)r[2], (double)reach_, (double)margin_));
+                          size,
+                          !options_.ranges ? "METIS cells"
+                          : parts_         ? "cell ranges, each rank built its own part of the tissue"
+                                           : "cell ranges",
+                          -(double)r[1], (double)r[0], (double)r[2], (double)reach_, (double)margin_));
   }
   if (options_.report_parts > 0)
     PetscCall(PetscPrintf(comm,
@@ -129,6 +170,8 @@ PetscErrorCode TissuePlacement::AddSummary(MPI_Comm comm, JsonObject &js, PetscI
   PetscCall(SumOverRanks(comm, &sum));
   PetscCall(MaxOverRanks(comm, halo, 4));
   js.Set("distributed", distributed_);
+  js.Set("partitioner", options_.ranges ? "ranges" : "metis");
+  js.Set("setup_in_parts", parts_); /* no rank held the whole tissue */
   js.Set("particles_per_rank_max", (PetscInt)mx);
   js.Set("particles_per_rank_mean", sum / size);
   js.Set("load_imbalance", sum > 0 ? mx * size / sum : 1.0);
@@ -152,18 +195,46 @@ PetscErrorCode TissuePlacement::AddSummary(MPI_Comm comm, JsonObject &js, PetscI
 
 PetscErrorCode TissueReferenceHash(MPI_Comm comm, const Tissue &tissue, std::string *hex)
 {
-  std::uint64_t hash = 1469598103934665603ull;
-  auto          add  = [&hash](const void *p, size_t bytes) {
-    const unsigned char *b = (const unsigned char *)p;
-    for (size_t k = 0; k < bytes; k++) hash = (hash ^ b[k]) * 1099511628211ull;
-  };
-  char buf[24];
+  const ParticleSet &P   = tissue.particles;
+  std::uint64_t      sum = 0;
+  char               buf[24];
   PetscFunctionBeginUser;
-  add(tissue.X.data(), tissue.X.size() * sizeof(PetscReal));
-  add(tissue.particles.mass.data(), tissue.particles.mass.size() * sizeof(PetscReal));
-  PetscCallMPI(MPI_Bcast(&hash, 1, MPI_UINT64_T, 0, comm));
-  PetscCall(PetscSNPrintf(buf, sizeof buf, "%016llx", (unsigned long long)hash));
+  for (PetscInt i = 0; i < P.NumOwned(); i++) {
+    std::uint64_t hash = 1469598103934665603ull;
+    auto          add  = [&hash](const void *p, size_t bytes) {
+      const unsigned char *b = (const unsigned char *)p;
+      for (size_t k = 0; k < bytes; k++) hash = (hash ^ b[k]) * 1099511628211ull;
+    };
+    const long long gid = P.gid.empty() ? i : P.gid[i]; /* the same width on every build */
+    add(&gid, sizeof gid);
+    add(&tissue.X[2 * i], 2 * sizeof(PetscReal));
+    add(&P.mass[i], sizeof(PetscReal));
+    sum += hash;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_UINT64_T, MPI_SUM, comm));
+  PetscCall(PetscSNPrintf(buf, sizeof buf, "%016llx", (unsigned long long)sum));
   *hex = buf;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ClosestOwnedWallParticle(MPI_Comm comm, const Tissue &tissue, PetscReal px, PetscReal py, PetscInt *local)
+{
+  const ParticleSet &P    = tissue.particles;
+  PetscReal          best = PETSC_MAX_REAL;
+  PetscInt           gid  = PETSC_MAX_INT;
+  PetscFunctionBeginUser;
+  *local = -1;
+  for (PetscInt i = 0; i < P.NumOwned(); i++) {
+    if (P.kind[i] != KIND_WALL) continue;
+    const PetscReal dx = tissue.X[2 * i] - px, dy = tissue.X[2 * i + 1] - py, r2 = dx * dx + dy * dy;
+    if (r2 < best) best = r2, *local = i;
+  }
+  PetscReal mine = best;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &best, 1, MPIU_REAL, MPIU_MIN, comm));
+  if (*local >= 0 && mine == best) gid = P.gid.empty() ? *local : P.gid[*local]; /* the first owned one at that distance: global order */
+  PetscInt min_gid = gid;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &min_gid, 1, MPIU_INT, MPI_MIN, comm));
+  if (gid != min_gid) *local = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

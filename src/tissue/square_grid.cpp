@@ -3,6 +3,7 @@
    coordinate on a cell boundary. For 16 x 16 cells and s = 2 this gives 17^2 corners + 544 edge
    midpoints = 833 wall particles, as in the seed (TW 562, Fig. 2). */
 #include <turgor/tissue/square_grid.h>
+#include <algorithm>
 #include <cmath>
 
 namespace turgor {
@@ -93,6 +94,91 @@ PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spe
       T.cell_walls.push_back(ring);
     }
   T.Finalize();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The numbers are GenerateSquareGridTissue's: particles cell by cell (bottom and left wall points,
+   fluid), then the top row and the right column; springs cell by cell (bottom, left), then the top
+   and the right boundary. A part emits them in that order, so that its numbering increases. */
+PetscErrorCode GenerateSquareGridPart(MPI_Comm comm, const SquareGridSpec &spec, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part)
+{
+  GridLattice L;
+  PetscFunctionBeginUser;
+  PetscCall(GetGridLattice(comm, spec, &L));
+  const PetscInt  nx = L.nx, ny = L.ny, s = L.s, k = L.k;
+  const PetscInt  ax = nx * s + 1, ay = ny * s + 1, per_cell = 2 * s - 1 + k * k;
+  const PetscInt  walls_base = nx * ny * per_cell, springs_base = nx * ny * 2 * s;
+  const PetscReal dl = L.dl;
+  PetscCheck(0 <= c0 && c0 <= c1 && c1 <= nx * ny, comm, PETSC_ERR_ARG_OUTOFRANGE, "cells [%" PetscInt_FMT ", %" PetscInt_FMT ") of a grid of %" PetscInt_FMT,
+             c0, c1, nx * ny);
+  PetscCheck(distance >= 0 && std::isfinite(distance), comm, PETSC_ERR_ARG_OUTOFRANGE, "a part's distance must be finite and >= 0 (got %g)", (double)distance);
+  *part     = Tissue();
+  Tissue &T = *part;
+  if (c0 < c1) {
+    /* rows within `distance`: a cell j rows away is (j - 1) cells away; two rows more against the
+       rounding of the positions that the halo measures, and one for complete springs */
+    const PetscInt        h  = (PetscInt)std::min((PetscReal)ny, std::floor(distance / spec.cell_size)) + 2;
+    const PetscInt        r0 = std::max((PetscInt)0, c0 / nx - h - 1), r1 = std::min(ny - 1, (c1 - 1) / nx + h + 1);
+    const PetscInt        b0 = r0 * s, b1 = (r1 + 1) * s; /* the lattice rows of the part's rings */
+    std::vector<PetscInt> id((size_t)ax * (b1 - b0 + 1), -1), gid, sgid;
+    auto                  at   = [&](PetscInt a, PetscInt b) -> PetscInt                    &{ return id[(size_t)(b - b0) * ax + a]; };
+    auto                  wall = [&](PetscInt a, PetscInt b, PetscInt g) {
+      at(a, b) = T.AddParticle(a * dl, b * dl, spec.wall_mass, KIND_WALL);
+      gid.push_back(g);
+    };
+    auto spring = [&](PetscInt a, PetscInt b, PetscInt a2, PetscInt b2, PetscInt g) {
+      T.particles.springs.push_back({at(a, b), at(a2, b2), dl});
+      sgid.push_back(g);
+    };
+    const PetscInt rows = r1 - r0 + 1;
+    T.Reserve(rows * nx * per_cell + nx * s + ax + (b1 - b0 + 1), (size_t)rows * nx * 2 * s + nx * s + ax + (b1 - b0));
+    for (PetscInt cy = r0; cy <= r1; cy++)
+      for (PetscInt cx = 0; cx < nx; cx++) {
+        const PetscInt c = cy * nx + cx, a0 = cx * s, bb = cy * s;
+        for (PetscInt t = 0; t < s; t++) wall(a0 + t, bb, c * per_cell + t);
+        for (PetscInt t = 1; t < s; t++) wall(a0, bb + t, c * per_cell + s + t - 1);
+        AddCellFluid(spec, L, cx, cy, T);
+        for (PetscInt f = 0; f < k * k; f++) gid.push_back(c * per_cell + 2 * s - 1 + f);
+      }
+    if (r1 + 1 < ny) /* the top edge of the part: the next row's bottom wall points */
+      for (PetscInt cx = 0; cx < nx; cx++)
+        for (PetscInt t = 0; t < s; t++) wall(cx * s + t, b1, ((r1 + 1) * nx + cx) * per_cell + t);
+    else
+      for (PetscInt a = 0; a < ax; a++) wall(a, ay - 1, walls_base + a);
+    for (PetscInt b = b0; b <= std::min(b1, ay - 2); b++) wall(ax - 1, b, walls_base + ax + b);
+
+    for (PetscInt cy = r0; cy <= r1; cy++)
+      for (PetscInt cx = 0; cx < nx; cx++) {
+        const PetscInt c = cy * nx + cx, a0 = cx * s, bb = cy * s;
+        for (PetscInt t = 0; t < s; t++) spring(a0 + t, bb, a0 + t + 1, bb, c * 2 * s + t);
+        for (PetscInt t = 0; t < s; t++) spring(a0, bb + t, a0, bb + t + 1, c * 2 * s + s + t);
+      }
+    if (r1 + 1 < ny)
+      for (PetscInt cx = 0; cx < nx; cx++)
+        for (PetscInt t = 0; t < s; t++) spring(cx * s + t, b1, cx * s + t + 1, b1, ((r1 + 1) * nx + cx) * 2 * s + t);
+    else
+      for (PetscInt a = 0; a + 1 < ax; a++) spring(a, ay - 1, a + 1, ay - 1, springs_base + a);
+    for (PetscInt b = b0; b < b1; b++) spring(ax - 1, b, ax - 1, b + 1, springs_base + ax - 1 + b);
+
+    for (PetscInt cy = r0; cy <= r1; cy++)
+      for (PetscInt cx = 0; cx < nx; cx++) {
+        const PetscInt        a0 = cx * s, bb = cy * s;
+        std::vector<PetscInt> ring;
+        for (PetscInt t = 0; t < s; t++) ring.push_back(at(a0 + t, bb));
+        for (PetscInt t = 0; t < s; t++) ring.push_back(at(a0 + s, bb + t));
+        for (PetscInt t = 0; t < s; t++) ring.push_back(at(a0 + s - t, bb + s));
+        for (PetscInt t = 0; t < s; t++) ring.push_back(at(a0, bb + s - t));
+        T.cell_walls.push_back(ring);
+        T.cell_gid.push_back(cy * nx + cx);
+      }
+    T.Finalize(); /* the joints: every spring of a particle within `distance` is here */
+    T.particles.gid.swap(gid);
+    T.particles.spring_gid.swap(sgid);
+  }
+  /* the whole grid's bounding box, as Tissue::UpdateBounds finds it */
+  T.lo[0] = T.lo[1] = 0;
+  T.hi[0]           = (ax - 1) * dl;
+  T.hi[1]           = (ay - 1) * dl;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

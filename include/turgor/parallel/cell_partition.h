@@ -57,7 +57,8 @@ PetscErrorCode PartitionCells(MPI_Comm comm, const CellGraph &graph, PetscInt np
    imbalance. */
 void PartitionStatistics(const CellGraph &graph, CellPartition *partition);
 
-/* The cell that owns every particle (the rule above; -1: a particle in no cell). */
+/* The cell that owns every particle (the rule above; a part of a tissue: its own cells' indices; -1: a
+   particle in no cell). */
 void OwnerCells(const Tissue &tissue, std::vector<PetscInt> *owner);
 
 /* The part of every particle (the part of the cell that owns it; -1 for an unowned particle), for

@@ -35,8 +35,10 @@ namespace turgor {
 class TissueDistribution {
 public:
   ~TissueDistribution();
-  /* Collective. Every rank holds the whole tissue `global`; cell_rank[c] is the rank that owns cell
-     c (Tissue::cell_walls order). Builds this rank's tissue `local` (owned particles, then the halo;
+  /* Collective. Every rank holds the whole tissue `global`, or a part of it (Tissue::cell_gid) that
+     holds every cell within reach + margin of this rank's cells, with all the springs of their
+     particles (TissueGenerator::GeneratePart); cell_rank[c] is the rank that owns cell c
+     (Tissue::cell_walls order). Builds this rank's tissue `local` (owned particles, then the halo;
      ParticleSet's owned counts and halo indices) and the exchange pattern; local_of[g] is the local
      index of global particle g, -1 where this rank has no copy (for the set-up's own maps: it is
      not kept, a rank holding N entries would not scale). A periodic tissue is refused. */
@@ -68,7 +70,7 @@ private:
   std::vector<PetscInt>  owned_cells_; /* global ids of this rank's cells */
   std::vector<PetscInt>  ring_start_;  /* [owned cells + 1] into ring_: */
   std::vector<PetscInt>  ring_;        /* their particles: rings and fluid (local indices) */
-  std::vector<char>      local_cell_;  /* [cells]: owned or halo here */
+  std::vector<PetscInt>  local_cells_; /* global ids of the cells here (owned, halo), increasing */
   PetscReal              reach_ = 0, margin_ = 0, slack_ = 0;
   std::vector<PetscReal> box_check_;       /* this rank's cells' boxes at the last full check */
   bool                   checked_ = false; /* a full check was made (the same on every rank: a rank may own no cell) */

@@ -26,6 +26,9 @@ struct SquareGridSpec {
 };
 
 PetscErrorCode GenerateSquareGridTissue(MPI_Comm comm, const SquareGridSpec &spec, Tissue *tissue);
+/* Rows of that grid (TissueGenerator::GeneratePart): the rows of cells [c0, c1), the rows of cells
+   within `distance` of them and one row more on each side, numbered as in the whole grid. */
+PetscErrorCode GenerateSquareGridPart(MPI_Comm comm, const SquareGridSpec &spec, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part);
 /* The same grid as one period of an infinite tissue (an RVE): the top row and right column of wall
    points are the periodic images of the bottom row and left column, so springs that cross the
    boundary bond to an image (Spring::image); the corner particle at the origin is fixed. */
@@ -40,6 +43,11 @@ public:
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;
   PetscErrorCode View(PetscViewer viewer) const override;
+  PetscInt       NumCellsOfParts() const override { return spec.cells_x * spec.cells_y; }
+  PetscErrorCode GeneratePart(MPI_Comm comm, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part) const override
+  {
+    return GenerateSquareGridPart(comm, spec, c0, c1, distance, part);
+  }
 
   SquareGridSpec spec;
 };

@@ -17,8 +17,13 @@ struct Tissue {
   PetscReal                                     lo[2] = {0, 0}, hi[2] = {0, 0}; /* bounding box of X */
   PetscReal                                     period[2] = {0, 0};             /* periodic cell [0,Lx) x [0,Ly); 0: not periodic */
   std::vector<std::pair<std::string, PetscInt>> named_cells;                    /* cells with a name (the plates: "bottom", ...) */
+  /* A part of a tissue (TissueGenerator::GeneratePart): the whole tissue's number of each cell here,
+     increasing; empty: the whole tissue, numbered as here. Its particles' and springs' numbers are
+     ParticleSet::gid and spring_gid, its fluid's ParticleSet::cell the whole tissue's cell. */
+  std::vector<PetscInt> cell_gid;
 
   PetscInt NumCells() const { return (PetscInt)cell_walls.size(); }
+  PetscInt CellGid(PetscInt c) const { return cell_gid.empty() ? c : cell_gid[c]; }
   /* Build a tissue by hand (tests, custom geometries): add particles and springs, then Finalize(),
      which sets global ids, clears the clamps, computes the bounding box and finds the straight
      joints of the walls (Spring::joint; a periodic tissue sets `period` first). */

@@ -24,6 +24,20 @@ public:
   /* The options and values that set the size, for messages ("-tissue_cells_x 4 ..."). */
   virtual std::string    SizeOptions() const            = 0;
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+
+  /* Distributed set-up without the whole tissue on any rank (-fine_partitioner ranges). A generator
+     that can build a part of its tissue alone returns its number of cells here (-1: it cannot, and
+     every rank generates the whole tissue). */
+  virtual PetscInt NumCellsOfParts() const { return -1; }
+  /* The cells [c0, c1) of the whole tissue's numbering, every cell within `distance` µm of them and
+     one layer of cells more, so that each particle of a cell within `distance` has all its springs
+     here: their particles, springs and cells as in the whole tissue (in its order, with its numbers
+     in ParticleSet::gid and spring_gid and Tissue::cell_gid, and its bounding box), joints found as
+     Tissue::Finalize finds them. Not collective. */
+  virtual PetscErrorCode GeneratePart(MPI_Comm comm, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part) const
+  {
+    return PetscError(comm, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_SUP, PETSC_ERROR_INITIAL, "tissue generator %s cannot build a part", Name());
+  }
 };
 
 using TissueGeneratorCreator = Registry<TissueGenerator>::Creator;
