@@ -270,6 +270,15 @@ endfunction()
 set(XR_POLY ${RESTART_POLY} -ts_max_time 6 -bar_damping 0.002)
 turgor_restart_other_ranks(polygon 3000 TOL 1e-10 OPTIONS ${XR_POLY}
   COMPARE csvrel:groups.csv:1e-9 csvrel:energy.csv:1e-9)
+# ... continued on 1 rank reading the checkpoint 7 rows at a time (-restart_read_rows: chunk
+# boundaries in every table, between the rows of a key that two ranks wrote): the same continuation,
+# bit for bit, as the one that read 65 536 rows at a time.
+turgor_add_test(restart_xr_polygon_rows_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_xr_polygon_leg1 restart_xr_polygon_rows LABELS fine restart mpi
+  REQUIRES restart_xr_polygon_leg1 SETUP restart_xr_polygon_rows_copy)
+turgor_add_test(restart_xr_polygon_rows COMMAND turgor_app ${XR_POLY} -restart_read_rows 7 -restart restart_xr_polygon_rows/checkpoint.h5
+  -output_dir restart_xr_polygon_rows LABELS fine restart mpi REQUIRES restart_xr_polygon_rows_copy SETUP restart_xr_polygon_rows)
+turgor_add_test(restart_xr_polygon_rows_same COMMAND ${CHECK} identical restart_xr_polygon_rows restart_xr_polygon_to1 final_state_hash
+  LABELS fine restart mpi REQUIRES "restart_xr_polygon_rows;restart_xr_polygon_to1")
 # ... stopped on 2 ranks with the whole tissue on rank 0 (-fine_distribute 0: rank 1 holds nothing; a
 # checkpoint of Verlet's acceleration once hung there, the ranks taking different branches of a
 # collective call) and continued on 2 distributed ranks: the same rank count, another distribution
@@ -300,6 +309,14 @@ turgor_restart_other_ranks(glue 6000 TOL 1e-7 RANKS 1 LONG OPTIONS ${RESTART_GLU
 # step-size decision of the controller, 4 rejections against 5.) Long: the default tier restarts the
 # FE² bar on 2 ranks bit for bit (fe2_rebalance) and a fine tissue on another rank count (xr_polygon).
 turgor_restart_other_ranks(fe2 80 MODE fe2 FULL_RANKS 2 TOL 1e-10 LONG OPTIONS ${RESTART_FE2} COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0)
+# ... continued on 1 rank reading 3 rows at a time: the RVEs' ragged columns split between chunks; the
+# same continuation to the bit
+turgor_add_test(restart_xr_fe2_rows_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_xr_fe2_leg1 restart_xr_fe2_rows LABELS fe2 restart mpi long
+  REQUIRES restart_xr_fe2_leg1 SETUP restart_xr_fe2_rows_copy)
+turgor_add_test(restart_xr_fe2_rows COMMAND turgor_app ${RESTART_FE2} -restart_read_rows 3 -restart restart_xr_fe2_rows/checkpoint.h5 -output_dir restart_xr_fe2_rows
+  LABELS fe2 restart mpi long REQUIRES restart_xr_fe2_rows_copy SETUP restart_xr_fe2_rows)
+turgor_add_test(restart_xr_fe2_rows_same COMMAND ${CHECK} identical restart_xr_fe2_rows restart_xr_fe2_to1 final_state_hash rve_solves
+  LABELS fe2 restart mpi long REQUIRES "restart_xr_fe2_rows;restart_xr_fe2_to1")
 # The polygon-RVE block (RESTART_FE2_POLYGON above) stopped on 2 ranks after 10 steps, continued on 1, against the uninterrupted 1-rank run: every
 # RVE's state (warm start, kept Jacobian, the terms' history) found by its element's position; the
 # same RVE work and the tip to 1e-10 of its largest value (1 and 2 ranks agree to 2e-13 µm).

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numeric>
-#include <unordered_map>
 
 namespace turgor {
 
@@ -549,46 +549,273 @@ PetscErrorCode CheckpointReader::Attribute(const std::string &name, PetscInt *va
 
 namespace {
 
+/* A dataset opened for reading: its dimensions (dims[1] = 0 for a vector) and the checksum it
+   carries. Errors name it. */
+class Dataset {
+public:
+  ~Dataset()
+  {
+    if (id_ >= 0) H5Dclose(id_);
+  }
+  PetscErrorCode Open(hid_t loc, const std::string &path)
+  {
+    PetscFunctionBeginUser;
+    path_ = path;
+    id_   = H5Dopen2(loc, path.c_str(), H5P_DEFAULT);
+    TG_H5R(id_, "the checkpoint has no dataset %s (written by another version of turgor, or for another scene?)", path.c_str());
+    hid_t space = H5Dget_space(id_);
+    nd_         = H5Sget_simple_extent_ndims(space);
+    if (nd_ >= 1 && nd_ <= 2) H5Sget_simple_extent_dims(space, dims_, NULL);
+    H5Sclose(space);
+    PetscCheck(nd_ >= 1 && nd_ <= 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "dataset %s has %d dimensions", path.c_str(), nd_);
+    if (nd_ == 1) dims_[1] = 0;
+    herr_t ea = -1;
+    if (H5Aexists(id_, "checksum") > 0) {
+      hid_t a = H5Aopen(id_, "checksum", H5P_DEFAULT);
+      ea      = H5Aread(a, H5T_NATIVE_UINT64, &stored_);
+      H5Aclose(a);
+    }
+    TG_H5R(ea, "dataset %s has no checksum attribute", path.c_str());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  hsize_t            Rows() const { return dims_[0]; }
+  hsize_t            Columns() const { return dims_[1]; } /* 0: a vector */
+  std::uint64_t      Stored() const { return stored_; }
+  const std::string &Path() const { return path_; }
+  /* Rows [lo, hi) (clipped) as `kind`, and their share of the checksum (added to *share). */
+  template <class T>
+  PetscErrorCode Read(Kind kind, hsize_t lo, hsize_t hi, std::vector<T> &out, std::uint64_t *share) const
+  {
+    PetscFunctionBeginUser;
+    const hsize_t width = dims_[1] ? dims_[1] : 1;
+    lo                  = std::min(lo, dims_[0]);
+    hi                  = std::max(lo, std::min(hi, dims_[0]));
+    const size_t nv     = (size_t)(hi - lo) * (size_t)width;
+    out.resize(nv);
+    herr_t e = 0;
+    if (nv > 0) {
+      const hsize_t start[2] = {lo, 0}, count[2] = {hi - lo, dims_[1]};
+      hid_t         space = H5Dget_space(id_), mem = H5Screate_simple(nd_, count, NULL);
+      e = H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
+      if (e >= 0) e = H5Dread(id_, MemType(kind), mem, space, H5P_DEFAULT, out.data());
+      H5Sclose(mem);
+      H5Sclose(space);
+    }
+    TG_H5R(e, "dataset %s is damaged (HDF5 cannot read it, or its Fletcher32 checksum fails)", path_.c_str());
+    std::uint64_t h = 0;
+    for (size_t k = 0; k < nv; k++) {
+      std::uint64_t w;
+      if constexpr (sizeof(T) == 8) std::memcpy(&w, &out[k], 8);
+      else w = (std::uint64_t)out[k];
+      h += Mix(Mix((std::uint64_t)(lo * width + k)) ^ w);
+    }
+    *share += h;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+private:
+  hid_t         id_      = -1;
+  hsize_t       dims_[2] = {0, 0};
+  int           nd_      = 0;
+  std::uint64_t stored_  = 0;
+  std::string   path_;
+};
+
+PetscErrorCode CheckChecksum(const std::string &path, std::uint64_t share, std::uint64_t stored)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(share == stored, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "dataset %s was changed after it was written (its values do not match its checksum)",
+             path.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* A whole dataset on this rank (its values as `kind`), checked against its checksum; dims[1] = 0 for a
-   vector. Errors name the dataset. */
+   vector. */
 template <class T>
 PetscErrorCode ReadDataset(hid_t loc, const std::string &path, Kind kind, std::vector<T> &out, hsize_t dims[2])
 {
+  Dataset       d;
+  std::uint64_t share = 0;
   PetscFunctionBeginUser;
-  hid_t d = H5Dopen2(loc, path.c_str(), H5P_DEFAULT);
-  TG_H5R(d, "the checkpoint has no dataset %s (written by another version of turgor, or for another scene?)", path.c_str());
-  hid_t space = H5Dget_space(d);
-  int   nd    = H5Sget_simple_extent_ndims(space);
-  dims[0] = dims[1] = 0;
-  if (nd >= 1 && nd <= 2) H5Sget_simple_extent_dims(space, dims, NULL);
-  H5Sclose(space);
-  if (nd < 1 || nd > 2) {
-    H5Dclose(d);
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "dataset %s has %d dimensions", path.c_str(), nd);
+  PetscCall(d.Open(loc, path));
+  dims[0] = d.Rows(), dims[1] = d.Columns();
+  PetscCall(d.Read(kind, 0, d.Rows(), out, &share));
+  PetscCall(CheckChecksum(path, share, d.Stored()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Collective: an error on every rank where some rank's `e` is one (the others' says so; the first
+   rank's message is the one the reader reports, TimeRun::ReadCheckpoint). */
+PetscErrorCode AgreeOnError(MPI_Comm comm, PetscErrorCode e)
+{
+  int bad = e ? 1 : 0;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm));
+  if (e) PetscFunctionReturn(e);
+  PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "read error on another rank");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* This rank's entities of a table: (id, row), sorted by id, ids unique. */
+using KeyRows = std::vector<std::pair<std::uint64_t, size_t>>;
+
+/* An indexed table's rows for this rank's keys (`keys`), handed to `consume` a
+   chunk at a time in the file's order. No rank holds more of the table than a chunk:
+   - the checksums: each rank streams an equal slab of every dataset's rows in chunks, and the
+     slabs' shares are summed over the ranks (collective; the same verdict everywhere);
+   - the rows (in key order, SortOverRanks): the range from the first key >= this rank's smallest
+     to the last <= its largest is found by bisection on the keys and streamed in chunks of
+     chunk rows (-restart_read_rows: the reader's transient, whatever the table's size), keeping
+     the rows of this rank's keys (every row of such a key, whatever its holder). On any rank
+     count the ranks' own keys are close in the numbering, so the range is about their share.
+   A rank's read error is every rank's. */
+PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &group, const std::vector<StateColumn> &cols, const KeyRows &keys, hsize_t chunk,
+                              const std::function<PetscErrorCode(const Rows &)> &consume)
+{
+  const size_t           ncol = cols.size();
+  PetscMPIInt            size, rank;
+  Dataset                key, holder, owned;
+  std::vector<Dataset>   data(ncol), length(ncol);
+  std::vector<Dataset *> all; /* every dataset, in one order on every rank */
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  auto open = [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(key.Open(file, group + "/key"));
+    PetscCall(holder.Open(file, group + "/holder"));
+    PetscCall(owned.Open(file, group + "/owned"));
+    const hsize_t N = key.Rows();
+    PetscCheck(holder.Rows() == N && owned.Rows() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: key, holder and owned differ in length",
+               group.c_str());
+    all = {&key, &holder, &owned};
+    for (size_t c = 0; c < ncol; c++) {
+      const StateColumn &col  = cols[c];
+      const std::string  path = group + "/" + col.name;
+      PetscCall(data[c].Open(file, path));
+      all.push_back(&data[c]);
+      if (col.width > 0)
+        PetscCheck(data[c].Rows() == N && data[c].Columns() == (hsize_t)col.width, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                   "%s holds %llu x %llu values, this run keeps %llu x %d (another scene?)", path.c_str(), (unsigned long long)data[c].Rows(),
+                   (unsigned long long)data[c].Columns(), (unsigned long long)N, col.width);
+      else {
+        PetscCall(length[c].Open(file, path + ".length"));
+        all.push_back(&length[c]);
+        PetscCheck(length[c].Rows() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length has %llu rows, the table %llu", path.c_str(),
+                   (unsigned long long)length[c].Rows(), (unsigned long long)N);
+      }
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  PetscCall(AgreeOnError(comm, open()));
+
+  /* the checksums, from the ranks' slabs */
+  std::vector<std::uint64_t> shares(all.size(), 0);
+  auto                       hash_slabs = [&]() -> PetscErrorCode {
+    std::vector<PetscReal>     real;
+    std::vector<std::int64_t>  ints;
+    std::vector<std::uint64_t> words;
+    PetscFunctionBeginUser;
+    for (size_t k = 0; k < all.size(); k++) {
+      const Dataset &d  = *all[k];
+      const hsize_t  lo = d.Rows() * (hsize_t)rank / (hsize_t)size, hi = d.Rows() * (hsize_t)(rank + 1) / (hsize_t)size;
+      for (hsize_t a = lo; a < hi; a += chunk) {
+        if (&d == &key) PetscCall(d.Read(Kind::Key, a, std::min(hi, a + chunk), words, &shares[k]));
+        else if (&d == &holder || &d == &owned) PetscCall(d.Read(Kind::Int, a, std::min(hi, a + chunk), ints, &shares[k]));
+        else {
+          bool integer = false;
+          for (size_t c = 0; c < ncol; c++) integer = integer || (&d == &length[c]) || (&d == &data[c] && cols[c].integer);
+          if (integer) PetscCall(d.Read(Kind::Int, a, std::min(hi, a + chunk), ints, &shares[k]));
+          else PetscCall(d.Read(Kind::Real, a, std::min(hi, a + chunk), real, &shares[k]));
+        }
+      }
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  PetscCall(AgreeOnError(comm, hash_slabs()));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, shares.data(), (PetscMPIInt)shares.size(), MPI_UINT64_T, MPI_SUM, comm));
+  for (size_t k = 0; k < all.size(); k++) PetscCall(CheckChecksum(all[k]->Path(), shares[k], all[k]->Stored()));
+
+  /* this rank's range of rows: bisection on the keys (one key read a probe) */
+  if (keys.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  std::vector<std::uint64_t> probe;
+  std::uint64_t              ignore    = 0;
+  auto                       first_row = [&](std::uint64_t k, bool after, hsize_t *row) -> PetscErrorCode { /* the first row whose key is >= k (> k) */
+                                                                                      hsize_t lo = 0, hi = key.Rows();
+                                                                                      PetscFunctionBeginUser;
+                                                                                      while (lo < hi) {
+                                                                                                              const hsize_t mid = lo + (hi - lo) / 2;
+                                                                                                              PetscCall(key.Read(Kind::Key, mid, mid + 1, probe, &ignore));
+                                                                                                              if (after ? probe[0] <= k : probe[0] < k) lo = mid + 1;
+                                                                                                              else hi = mid;
+                                                                                      }
+                                                                                      *row = lo;
+                                                                                      PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  hsize_t a = 0, b = 0;
+  PetscCall(first_row(keys.front().first, false, &a));
+  PetscCall(first_row(keys.back().first, true, &b));
+  /* the ragged columns' values before row a */
+  std::vector<hsize_t>      value_at(ncol, 0);
+  std::vector<std::int64_t> lens;
+  for (size_t c = 0; c < ncol; c++)
+    if (cols[c].width == 0)
+      for (hsize_t r = 0; r < a; r += chunk) {
+        PetscCall(length[c].Read(Kind::Int, r, std::min(a, r + chunk), lens, &ignore));
+        for (std::int64_t l : lens) value_at[c] += (hsize_t)std::max((std::int64_t)0, l);
+      }
+  /* rows [a, b) in chunks, this rank's keys' handed on chunk by chunk */
+  Rows          C, R;
+  size_t        next = 0; /* this rank's first key not yet passed */
+  std::uint64_t last = 0;
+  C.data.assign(ncol, {});
+  C.length.assign(ncol, {});
+  for (hsize_t r0 = a; r0 < b; r0 += chunk) {
+    R.key.clear(), R.holder.clear(), R.owned.clear();
+    R.data.assign(ncol, {});
+    R.length.assign(ncol, {});
+    const hsize_t r1 = std::min(b, r0 + chunk);
+    PetscCall(key.Read(Kind::Key, r0, r1, C.key, &ignore));
+    PetscCall(holder.Read(Kind::Int, r0, r1, C.holder, &ignore));
+    PetscCall(owned.Read(Kind::Int, r0, r1, C.owned, &ignore));
+    std::vector<size_t> start(ncol, 0);
+    for (size_t c = 0; c < ncol; c++) {
+      if (cols[c].width == 0) {
+        PetscCall(length[c].Read(Kind::Int, r0, r1, C.length[c], &ignore));
+        hsize_t n = 0;
+        for (std::int64_t l : C.length[c]) {
+          PetscCheck(l >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length: a negative length", data[c].Path().c_str());
+          n += (hsize_t)l;
+        }
+        if (cols[c].integer) {
+          PetscCall(data[c].Read(Kind::Int, value_at[c], value_at[c] + n, lens, &ignore));
+          C.data[c].assign(lens.begin(), lens.end());
+        } else PetscCall(data[c].Read(Kind::Real, value_at[c], value_at[c] + n, C.data[c], &ignore));
+        PetscCheck(C.data[c].size() == n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: fewer values than its lengths say", data[c].Path().c_str());
+        value_at[c] += n;
+      } else if (cols[c].integer) {
+        PetscCall(data[c].Read(Kind::Int, r0, r1, lens, &ignore));
+        C.data[c].assign(lens.begin(), lens.end());
+      } else PetscCall(data[c].Read(Kind::Real, r0, r1, C.data[c], &ignore));
+    }
+    for (size_t i = 0; i < C.key.size(); i++) {
+      PetscCheck(C.key[i] >= last, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the rows are not in key order", group.c_str());
+      last = C.key[i];
+      while (next < keys.size() && keys[next].first < C.key[i]) next++;
+      const bool mine = next < keys.size() && keys[next].first == C.key[i];
+      for (size_t c = 0; c < ncol; c++) {
+        const size_t w = cols[c].width > 0 ? (size_t)cols[c].width : (size_t)C.length[c][i];
+        if (mine) R.data[c].insert(R.data[c].end(), C.data[c].begin() + start[c], C.data[c].begin() + start[c] + w);
+        if (mine && cols[c].width == 0) R.length[c].push_back((std::int64_t)w);
+        start[c] += w;
+      }
+      if (!mine) continue;
+      R.key.push_back(C.key[i]);
+      R.holder.push_back(C.holder[i]);
+      R.owned.push_back(C.owned[i]);
+    }
+    PetscCall(consume(R));
   }
-  if (nd == 1) dims[1] = 0;
-  const size_t nv = (size_t)dims[0] * (size_t)(dims[1] ? dims[1] : 1);
-  out.resize(nv);
-  herr_t        e      = nv > 0 ? H5Dread(d, MemType(kind), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) : 0;
-  std::uint64_t stored = 0;
-  herr_t        ea     = -1;
-  if (H5Aexists(d, "checksum") > 0) {
-    hid_t a = H5Aopen(d, "checksum", H5P_DEFAULT);
-    ea      = H5Aread(a, H5T_NATIVE_UINT64, &stored);
-    H5Aclose(a);
-  }
-  H5Dclose(d);
-  TG_H5R(e, "dataset %s is damaged (HDF5 cannot read it, or its Fletcher32 checksum fails)", path.c_str());
-  TG_H5R(ea, "dataset %s has no checksum attribute", path.c_str());
-  std::uint64_t h = 0;
-  for (size_t k = 0; k < nv; k++) {
-    std::uint64_t w;
-    if constexpr (sizeof(T) == 8) std::memcpy(&w, &out[k], 8);
-    else w = (std::uint64_t)out[k];
-    h += Mix(Mix((std::uint64_t)k) ^ w);
-  }
-  PetscCheck(h == stored, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "dataset %s was changed after it was written (its values do not match its checksum)",
-             path.c_str());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -673,47 +900,65 @@ PetscErrorCode CheckpointReader::ReadTable(const std::string &group, StateTable 
     }
     H5Gclose(g);
   }
-  PetscCall(ReadDataset(file_, group + "/key", Kind::Key, R.key, dims));
-  const size_t N = R.key.size();
-  PetscCall(ReadDataset(file_, group + "/holder", Kind::Int, R.holder, dims));
-  PetscCall(ReadDataset(file_, group + "/owned", Kind::Int, R.owned, dims));
-  PetscCheck(R.holder.size() == N && R.owned.size() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: key, holder and owned differ in length",
-             group.c_str());
-  R.data.assign(ncol, {});
-  R.length.assign(ncol, {});
-  std::vector<std::vector<size_t>> offset(ncol);
-  for (size_t c = 0; c < ncol; c++) {
-    const StateColumn &col  = cols[c];
-    const std::string  path = group + "/" + col.name;
-    if (col.integer) {
-      std::vector<std::int64_t> v;
-      PetscCall(ReadDataset(file_, path, Kind::Int, v, dims));
-      R.data[c].assign(v.begin(), v.end());
-    } else PetscCall(ReadDataset(file_, path, Kind::Real, R.data[c], dims));
-    if (col.width > 0)
-      PetscCheck(dims[0] == N && dims[1] == (hsize_t)col.width, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
-                 "%s holds %llu x %llu values, this run keeps %zu x %d (another scene?)", path.c_str(), (unsigned long long)dims[0],
-                 (unsigned long long)dims[1], N, col.width);
-    else {
-      PetscCall(ReadDataset(file_, path + ".length", Kind::Int, R.length[c], dims));
-      PetscCheck(R.length[c].size() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length has %zu rows, the table %zu", path.c_str(), R.length[c].size(),
-                 N);
-      size_t s = 0;
-      for (std::int64_t n : R.length[c]) {
-        PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length: a negative length", path.c_str());
-        offset[c].push_back(s), s += (size_t)n;
+  if (e == StateEntity::Rank || table.IsRecords()) { /* a row per writer, or records found by their contents: the whole table on every rank */
+    PetscCall(ReadDataset(file_, group + "/key", Kind::Key, R.key, dims));
+    const size_t N = R.key.size();
+    PetscCall(ReadDataset(file_, group + "/holder", Kind::Int, R.holder, dims));
+    PetscCall(ReadDataset(file_, group + "/owned", Kind::Int, R.owned, dims));
+    PetscCheck(R.holder.size() == N && R.owned.size() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: key, holder and owned differ in length",
+               group.c_str());
+    R.data.assign(ncol, {});
+    R.length.assign(ncol, {});
+    for (size_t c = 0; c < ncol; c++) {
+      const StateColumn &col  = cols[c];
+      const std::string  path = group + "/" + col.name;
+      if (col.integer) {
+        std::vector<std::int64_t> v;
+        PetscCall(ReadDataset(file_, path, Kind::Int, v, dims));
+        R.data[c].assign(v.begin(), v.end());
+      } else PetscCall(ReadDataset(file_, path, Kind::Real, R.data[c], dims));
+      if (col.width > 0)
+        PetscCheck(dims[0] == N && dims[1] == (hsize_t)col.width, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+                   "%s holds %llu x %llu values, this run keeps %zu x %d (another scene?)", path.c_str(), (unsigned long long)dims[0],
+                   (unsigned long long)dims[1], N, col.width);
+      else {
+        PetscCall(ReadDataset(file_, path + ".length", Kind::Int, R.length[c], dims));
+        PetscCheck(R.length[c].size() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length has %zu rows, the table %zu", path.c_str(),
+                   R.length[c].size(), N);
       }
-      PetscCheck(s == R.data[c].size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: %zu values, its lengths say %zu", path.c_str(), R.data[c].size(), s);
     }
   }
+  /* the rows being read (the whole table, or a chunk of this rank's rows), and a ragged column's
+     rows' starts in them */
+  const Rows                      *rows = &R;
+  std::vector<std::vector<size_t>> offset(ncol);
+  auto                             take = [&](const Rows &T) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    rows = &T;
+    for (size_t c = 0; c < ncol; c++) {
+      offset[c].clear();
+      if (cols[c].width > 0) continue;
+      const std::string path = group + "/" + cols[c].name;
+      size_t            sum  = 0;
+      for (std::int64_t l : T.length[c]) {
+        PetscCheck(l >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length: a negative length", path.c_str());
+        offset[c].push_back(sum), sum += (size_t)l;
+      }
+      PetscCheck(sum == T.data[c].size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: %zu values, its lengths say %zu", path.c_str(), T.data[c].size(),
+                                             sum);
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };
+  PetscCall(take(R));
+  const size_t N = R.key.size();
   /* row i's values of column c into the table's row r (references made local) */
   std::vector<PetscReal> buf;
   auto                   put = [&](size_t i, size_t c, size_t r) -> PetscErrorCode {
     const StateColumn &col = cols[c];
     PetscFunctionBeginUser;
-    const size_t w = col.width > 0 ? (size_t)col.width : (size_t)R.length[c][i];
+    const size_t w = col.width > 0 ? (size_t)col.width : (size_t)rows->length[c][i];
     const size_t o = col.width > 0 ? i * w : offset[c][i];
-    buf.assign(R.data[c].begin() + o, R.data[c].begin() + o + w);
+    buf.assign(rows->data[c].begin() + o, rows->data[c].begin() + o + w);
     if (col.is_ref)
       for (PetscReal &v : buf) {
         if (v < 0) continue;
@@ -727,7 +972,7 @@ PetscErrorCode CheckpointReader::ReadTable(const std::string &group, StateTable 
     else PetscCall(col.set_ragged(r, buf.data(), buf.size()));
     PetscFunctionReturn(PETSC_SUCCESS);
   };
-  auto value = [&](size_t i, size_t c, size_t k) { return R.data[c][i * (size_t)cols[c].width + k]; };
+  auto value = [&](size_t i, size_t c, size_t k) { return rows->data[c][i * (size_t)cols[c].width + k]; };
 
   if (e == StateEntity::Rank) {
     /* one row per writer: this rank's writer's, or the rules */
@@ -796,29 +1041,43 @@ PetscErrorCode CheckpointReader::ReadTable(const std::string &group, StateTable 
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  /* indexed rows: each local row by its entity's id */
-  const size_t                              n = table.Count();
-  std::unordered_map<std::uint64_t, size_t> row_of;
-  std::vector<char>                         owned(n), found(n, 0);
+  /* indexed rows: each local row by its entity's id, read in chunks of this rank's rows
+     (ReadRowsOfKeys) */
+  const size_t      n = table.Count();
+  std::vector<char> owned(n), found(n, 0);
+  KeyRows           keys(n); /* (id, row), by id: the chunks come in the ids' order, a cursor finds a row's (a hash map took 40 B an entity) */
   for (size_t r = 0; r < n; r++) {
-    row_of.emplace(numbering.Id(e, table.Local(r)), r);
+    keys[r]  = {numbering.Id(e, table.Local(r)), r};
     owned[r] = table.OwnedOverride() ? table.Owned(r) : numbering.Owned(e, table.Local(r));
   }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end(), [](const auto &x, const auto &y) { return x.first == y.first; }), keys.end());
+  size_t cursor = 0;
+  auto   row_of = [&](std::uint64_t id) -> PetscInt { /* ids asked in increasing order */
+                                                    while (cursor < keys.size() && keys[cursor].first < id) cursor++;
+                                                    return cursor < keys.size() && keys[cursor].first == id ? (PetscInt)keys[cursor].second : -1;
+  };
   if (matched_ >= 0) {
-    for (size_t i = 0; i < N; i++) {
-      if (R.holder[i] != matched_) continue;
-      auto it = row_of.find(R.key[i]);
-      PetscCheck(it != row_of.end(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint's %s %llu is not on rank %d", group.c_str(),
-                 StateEntityName(e), (unsigned long long)R.key[i], rank);
-      for (size_t c = 0; c < ncol; c++) PetscCall(put(i, c, it->second));
-      found[it->second] = 1;
-    }
+    PetscCall(ReadRowsOfKeys(comm_, file_, group, cols, keys, read_rows_, [&](const Rows &T) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      PetscCall(take(T));
+      for (size_t i = 0; i < T.key.size(); i++) {
+        if (T.holder[i] != matched_) continue;
+        const PetscInt r = row_of(T.key[i]);
+        PetscCheck(r >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint's %s %llu is not on rank %d", group.c_str(), StateEntityName(e),
+                   (unsigned long long)T.key[i], rank);
+        for (size_t c = 0; c < ncol; c++) PetscCall(put(i, c, (size_t)r));
+        found[r] = 1;
+      }
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }));
     for (size_t r = 0; r < n; r++)
       PetscCheck(found[r], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint has no row for rank %d's %s %llu", group.c_str(), rank,
                  StateEntityName(e), (unsigned long long)numbering.Id(e, table.Local(r)));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  /* another layout: sums start from zero on every local row, shares are added on the owner */
+  /* another layout: sums start from zero on every local row, shares are added on the owner (in the
+     file's order, as one rank reading the whole table would) */
   std::vector<PetscReal> zero;
   for (size_t c = 0; c < ncol; c++)
     if (cols[c].combine == Combine::Sum) {
@@ -826,32 +1085,37 @@ PetscErrorCode CheckpointReader::ReadTable(const std::string &group, StateTable 
       zero.assign((size_t)cols[c].width, 0);
       for (size_t r = 0; r < n; r++) cols[c].set(r, zero.data());
     }
-  std::vector<PetscReal> acc, cur;
-  for (size_t i = 0; i < N; i++) {
-    auto it = row_of.find(R.key[i]);
-    if (it == row_of.end()) continue;
-    const size_t r = it->second;
-    for (size_t c = 0; c < ncol; c++) {
-      const StateColumn &col = cols[c];
-      switch (col.combine) {
-      case Combine::Sum:
-        if (!owned[r]) break;
-        cur.resize((size_t)col.width);
-        col.get(r, cur.data());
-        for (int k = 0; k < col.width; k++) cur[k] += value(i, c, (size_t)k);
-        col.set(r, cur.data());
-        break;
-      case Combine::Copy:
-        if (R.owned[i]) PetscCall(put(i, c, r));
-        break;
-      case Combine::Local:
-        break;
-      default:
-        if (R.owned[i] && owned[r]) PetscCall(put(i, c, r));
+  std::vector<PetscReal> cur;
+  PetscCall(ReadRowsOfKeys(comm_, file_, group, cols, keys, read_rows_, [&](const Rows &T) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(take(T));
+    for (size_t i = 0; i < T.key.size(); i++) {
+      const PetscInt ri = row_of(T.key[i]);
+      if (ri < 0) continue;
+      const size_t r = (size_t)ri;
+      for (size_t c = 0; c < ncol; c++) {
+        const StateColumn &col = cols[c];
+        switch (col.combine) {
+        case Combine::Sum:
+          if (!owned[r]) break;
+          cur.resize((size_t)col.width);
+          col.get(r, cur.data());
+          for (int k = 0; k < col.width; k++) cur[k] += value(i, c, (size_t)k);
+          col.set(r, cur.data());
+          break;
+        case Combine::Copy:
+          if (T.owned[i]) PetscCall(put(i, c, r));
+          break;
+        case Combine::Local:
+          break;
+        default:
+          if (T.owned[i] && owned[r]) PetscCall(put(i, c, r));
+        }
       }
+      if (T.owned[i]) found[r] = 1;
     }
-    if (R.owned[i]) found[r] = 1;
-  }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }));
   for (size_t r = 0; r < n; r++)
     PetscCheck(found[r] || !owned[r], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the checkpoint has no row for %s %llu", group.c_str(),
                StateEntityName(e), (unsigned long long)numbering.Id(e, table.Local(r)));
@@ -864,7 +1128,9 @@ PetscErrorCode CheckpointReader::State(const std::vector<StateDeclaration *> &de
   PetscCheck(writers_ > 0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "CheckpointReader::Layouts() first");
   PetscCall(CheckSameDeclarations(comm_, decls));
   for (StateDeclaration *d : decls)
-    for (StateTable &t : d->Tables()) PetscCall(ReadTable("/state/" + d->Name() + "/" + t.Name(), t, numbering));
+    for (StateTable &t : d->Tables())
+      PetscCall(AgreeOnError(comm_, ReadTable("/state/" + d->Name() + "/" + t.Name(), t,
+                                              numbering))); /* a rank's error, every rank's: the next table reads collectively */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -88,6 +88,10 @@ PetscErrorCode TimeRun::SetFromOptions()
                                  "Continue from this checkpoint file (-mode fine, or -mode fe2 with its RVE states): the same scene options, integrator and "
                                  "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, lsrk, euler, ssp)",
                                  "TimeRun", file, file, sizeof file, &set));
+    PetscCall(PetscOptionsInt("-restart_read_rows",
+                              "Rows of a checkpoint's table that a restart reads at once (each rank reads only its own entities' rows, in pieces of "
+                              "this many: the read's memory beyond the run's)",
+                              "TimeRun", restart_read_rows_, &restart_read_rows_, NULL));
     {
       char     *allow[64];
       PetscInt  na = 64;
@@ -109,6 +113,7 @@ PetscErrorCode TimeRun::SetFromOptions()
                (double)ckpt_wall_);
     PetscCheck(ckpt_keep_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -checkpoint_keep = %" PetscInt_FMT ": must be >= 0 (0 keeps all)", ckpt_keep_);
     PetscCheck(!set || file[0], comm_, PETSC_ERR_ARG_WRONG, "Option -restart: empty (give the checkpoint file to continue from)");
+    PetscCheck(restart_read_rows_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -restart_read_rows = %" PetscInt_FMT ": must be >= 1", restart_read_rows_);
     restart_file_ = set ? file : "";
     PetscCheck(restart_allow_.empty() || set, comm_, PETSC_ERR_ARG_WRONG, "Option -restart_allow: only with -restart");
     PetscCheck(Checkpointable() || (ckpt_interval_ == 0 && ckpt_wall_ == 0 && !set), comm_, PETSC_ERR_SUP,

@@ -499,6 +499,7 @@ PetscErrorCode TimeRun::ReadCheckpoint()
   H5Eget_auto2(H5E_DEFAULT, &hfunc, &hdata);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's own error stack would bury the message */
   PetscCall(PetscPushErrorHandler(KeepFirstError, &first));
+  reader.SetReadRows(restart_read_rows_);
   PetscErrorCode ierr = reader.Open(comm_, file);
   if (!ierr) ierr = ReadCheckpointFile(reader, &problem);
   (void)reader.Close();

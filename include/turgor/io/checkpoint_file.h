@@ -14,7 +14,8 @@
    Rows are in the order of their keys (then of their holders), whatever the number of ranks: the
    writer sorts them over the ranks (a bucket sort by key ranges), so a file of the same state written
    on 1 or 3 ranks holds the same rows in the same order. An object's scalars are its table
-   "scalars", one row per rank.
+   "scalars", one row per rank. A reader takes only its own entities' rows, streamed in chunks from
+   the range its keys span (records and per-rank tables whole).
 
    Integrity: every dataset is written in chunks with HDF5's Fletcher32 filter (damage to the file is
    found by HDF5 when the chunk is read) and carries the attribute `checksum`, a hash of its values
@@ -74,6 +75,8 @@ public:
   /* Fill every declaration (collective; a file whose declarations differ from the run's, or whose
      rows do not fit this rank's entities, is refused naming the dataset). */
   PetscErrorCode State(const std::vector<StateDeclaration *> &decls, const StateNumbering &numbering);
+  /* Rows of a table read at once (the read's memory beyond the run's; default 65 536). */
+  void SetReadRows(PetscInt rows) { read_rows_ = rows > 0 ? (hsize_t)rows : 1; }
   /* After Layouts: whether this rank's rows are its writer's, as they were written. */
   bool           Matched() const { return matched_ >= 0; }
   PetscErrorCode Close();
@@ -83,7 +86,8 @@ private:
   MPI_Comm       comm_ = MPI_COMM_NULL;
   hid_t          file_ = -1;
   std::string    path_;
-  PetscInt       writers_ = 0;
+  PetscInt       writers_   = 0;
+  hsize_t        read_rows_ = 1 << 16;
   /* the writer whose rows this rank takes as they are (-1: none, another layout), and whether some
      writer's rows were taken by no rank (its shares go to the first rank) */
   PetscInt          matched_ = -1;

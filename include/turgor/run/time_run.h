@@ -227,8 +227,9 @@ private:
   PetscReal               ckpt_interval_ = 0, ckpt_wall_ = 0, ckpt_next_ = 0; /* -checkpoint_interval [µs], -checkpoint_wall_interval [s]; the next due time */
   PetscLogDouble          ckpt_wall_last_ = 0;
   PetscInt                ckpt_last_step_ = -1, ckpt_count_ = 0, restart_step_ = -1;
-  PetscInt                ckpt_keep_ = 2; /* -checkpoint_keep: the numbered checkpoints kept (0: all) */
-  std::deque<std::string> ckpt_kept_;     /* this run's numbered checkpoints, oldest first (rank 0) */
+  PetscInt                ckpt_keep_         = 2;       /* -checkpoint_keep: the numbered checkpoints kept (0: all) */
+  PetscInt                restart_read_rows_ = 1 << 16; /* -restart_read_rows: a table's rows a restart reads at once */
+  std::deque<std::string> ckpt_kept_;                   /* this run's numbered checkpoints, oldest first (rank 0) */
   bool                    ckpt_every_step_warned_ = false;
   std::string             ckpt_last_file_;         /* the last complete checkpoint (this run's, or the one it continues) */
   std::string             writing_;                /* the snapshot or checkpoint being written: a failure's summary names it */
