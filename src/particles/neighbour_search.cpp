@@ -69,13 +69,8 @@ PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x,
    second copy of the list (the rebuild's memory peak). */
 void NeighbourSearch::SortFluidPairs()
 {
-  std::vector<PetscInt> &I = fluid_pairs_.i, &J = fluid_pairs_.j;
-  for (size_t q = 0; q < I.size();) {
-    size_t e = q + 1;
-    while (e < I.size() && I[e] == I[q]) e++;
-    std::sort(J.begin() + q, J.begin() + e);
-    q = e;
-  }
+  std::vector<PetscInt> &J = fluid_pairs_.j;
+  for (PetscInt i = 0; i < fluid_pairs_.Rows(); i++) std::sort(J.begin() + fluid_pairs_.start[i], J.begin() + fluid_pairs_.start[i + 1]);
 }
 
 void NeighbourSearch::BinParticles(const ParticleSet &P, const PetscReal *x, PetscReal bin)
@@ -110,7 +105,7 @@ PetscErrorCode NeighbourSearch::StartBuild(const ParticleSet &P, const PetscReal
   PetscFunctionBeginUser;
   rebuilds_++;
   x_ref_.assign(x, x + 2 * P.n);
-  fluid_pairs_.i.clear();
+  fluid_pairs_.start.clear();
   fluid_pairs_.j.clear();
   particle_spring_.p.clear();
   particle_spring_.s.clear();
@@ -130,7 +125,9 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
 
   if (WantsFluidPairs()) {
     const PetscReal rf2 = rf * rf;
+    fluid_pairs_.start.assign(P.n + 1, 0);
     for (PetscInt i = 0; i < P.n; i++) {
+      fluid_pairs_.start[i] = (PetscInt)fluid_pairs_.j.size();
       if (P.kind[i] != KIND_FLUID) continue;
       const PetscInt bi = BinOf(x, i), bx = bi % nbx_, by = bi / nbx_;
       for (PetscInt jy = std::max<PetscInt>(0, by - 1); jy <= std::min(nby_ - 1, by + 1); jy++)
@@ -140,13 +137,11 @@ PetscErrorCode NeighbourSearch::Build(const ParticleSet &P, const PetscReal *x)
             const PetscInt j = bin_items_[t];
             if (j <= i || P.kind[j] != KIND_FLUID || P.cell[j] != P.cell[i]) continue;
             const PetscReal dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
-            if (dx * dx + dy * dy < rf2) {
-              fluid_pairs_.i.push_back(i);
-              fluid_pairs_.j.push_back(j);
-            }
+            if (dx * dx + dy * dy < rf2) fluid_pairs_.j.push_back(j);
           }
         }
     }
+    fluid_pairs_.start[P.n] = (PetscInt)fluid_pairs_.j.size();
     SortFluidPairs(); /* pairs were found bin by bin: sort each row by j for the SPH passes */
   }
 
@@ -186,17 +181,17 @@ PetscErrorCode NeighbourSearch::BuildPeriodic(const ParticleSet &P, const PetscR
   PetscCall(StartBuild(P, x));
   if (WantsFluidPairs()) {
     const PetscReal rf = fluid_cutoff_ + skin_, rf2 = rf * rf;
+    fluid_pairs_.start.assign(P.n + 1, 0);
     for (PetscInt i = 0; i < P.n; i++) {
+      fluid_pairs_.start[i] = (PetscInt)fluid_pairs_.j.size();
       if (P.kind[i] != KIND_FLUID) continue;
       for (PetscInt j = i + 1; j < P.n; j++) {
         if (P.kind[j] != KIND_FLUID || P.cell[j] != P.cell[i]) continue;
         const PetscReal dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
-        if (dx * dx + dy * dy < rf2) {
-          fluid_pairs_.i.push_back(i);
-          fluid_pairs_.j.push_back(j);
-        }
+        if (dx * dx + dy * dy < rf2) fluid_pairs_.j.push_back(j);
       }
     }
+    fluid_pairs_.start[P.n] = (PetscInt)fluid_pairs_.j.size();
   }
   if (WantsParticleSpringPairs()) {
     const PetscReal rs = spring_cutoff_ + skin_, rs2 = rs * rs;

@@ -46,8 +46,19 @@ PetscErrorCode SPHFluid::SetUp(const ParticleSet &P, NeighbourSearch &nb)
     PetscCheck(P.kind[i] != KIND_FLUID, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SPH: halo particle %" PetscInt_FMT " is fluid (a cell's fluid is its owner's)", i);
   vol_.assign(nf, 0);
   P_.assign(nf, 0);
-  M_.assign(3 * nf, 0);
-  GA_.assign(4 * nf, 0);
+  { /* the groups: runs of one cell's slots, if no cell has two runs */
+    std::vector<PetscInt> run_cell;
+    group_start_.assign(1, 0);
+    for (PetscInt s = 1; s <= nf; s++)
+      if (s == nf || P.cell[fluid_[s]] != P.cell[fluid_[s - 1]]) group_start_.push_back(s), run_cell.push_back(P.cell[fluid_[s - 1]]);
+    std::sort(run_cell.begin(), run_cell.end());
+    const bool split = std::adjacent_find(run_cell.begin(), run_cell.end()) != run_cell.end() || (!run_cell.empty() && run_cell.front() < 0);
+    if (split) group_start_ = {0, nf};
+    PetscInt g = 0;
+    for (size_t k = 0; k + 1 < group_start_.size(); k++) g = std::max(g, group_start_[k + 1] - group_start_[k]);
+    M_.assign(3 * g, 0);
+    GA_.assign(4 * g, 0);
+  }
   pair_start_.assign(nf + 1, 0);
   pair_j_.clear();
   pair_F_.clear();
@@ -93,13 +104,14 @@ PetscErrorCode SPHFluid::DensityPass(const ForceInput &in, Each each)
   pair_j_.resize(L.size());
   pair_F_.resize(L.size());
   PetscInt na = 0, row = 0;
-  /* the list is sorted by i (so by slot): row i accumulates in a register */
-  for (size_t q = 0; q < L.size();) {
-    const PetscInt  i = L.i[q], si = slot_[i];
+  /* the list's rows are by i (so by slot): row i accumulates in a register */
+  for (PetscInt i = 0; i < L.Rows(); i++) {
+    if (L.start[i] == L.start[i + 1]) continue;
+    const PetscInt  si = slot_[i];
     const PetscReal xi = x[2 * i], yi = x[2 * i + 1], mi = m[i];
     PetscReal       rho_i = 0;
     while (row <= si) pair_start_[row++] = na;
-    for (; q < L.size() && L.i[q] == i; q++) {
+    for (PetscInt q = L.start[i]; q < L.start[i + 1]; q++) {
       const PetscInt  j  = L.j[q];
       const PetscReal ex = xi - x[2 * j], ey = yi - x[2 * j + 1], r2 = ex * ex + ey * ey;
       if (r2 >= r2max) continue;
@@ -165,19 +177,18 @@ static inline void GuardedInverse(PetscReal a, PetscReal b, PetscReal c, PetscRe
 /* Pass 2: M_i = sum_j V_j (-W'/r) e (x) e (the inverse of L_i, eq 14) and
    G_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij; then grad v_i = G_i L_i (into gradv[4 n] when asked),
    tau_i, and A_i = tau_i L_i, which replaces G_i. */
-PetscErrorCode SPHFluid::GradientPass(const ForceInput &in, PetscReal *gradv)
+PetscErrorCode SPHFluid::GradientPass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *gradv)
 {
   const PetscReal *x = in.x, *v = in.v;
-  const PetscInt   nf = (PetscInt)fluid_.size(), *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
+  const PetscInt  *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
   const PetscReal *pF = pair_F_.data(), *vol = vol_.data();
-  PetscReal       *M = M_.data(), *G = GA_.data();
+  PetscReal       *M = M_.data(), *G = GA_.data(); /* by slot - s0 */
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ev_gradient_, 0, 0, 0, 0));
-  std::fill(M_.begin(), M_.end(), 0);
-  std::fill(GA_.begin(), GA_.end(), 0);
+  std::fill(M_.begin(), M_.begin() + 3 * (s1 - s0), 0);
+  std::fill(GA_.begin(), GA_.begin() + 4 * (s1 - s0), 0);
   /* rows by slot: accumulate row i in registers, scatter only to j */
-  for (PetscInt si = 0; si < nf; si++) {
+  for (PetscInt si = s0; si < s1; si++) {
     if (start[si] == start[si + 1]) continue;
     const PetscInt  i  = fl[si];
     const PetscReal Vi = vol[si], xi = x[2 * i], yi = x[2 * i + 1], vxi = v[2 * i], vyi = v[2 * i + 1];
@@ -197,22 +208,22 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in, PetscReal *gradv)
       Gi[1] += Vj * t1;
       Gi[2] += Vj * t2;
       Gi[3] += Vj * t3;
-      M[3 * sj] += Vi * sxx;
-      M[3 * sj + 1] += Vi * sxy;
-      M[3 * sj + 2] += Vi * syy;
-      G[4 * sj] += Vi * t0;
-      G[4 * sj + 1] += Vi * t1;
-      G[4 * sj + 2] += Vi * t2;
-      G[4 * sj + 3] += Vi * t3;
+      M[3 * (sj - s0)] += Vi * sxx;
+      M[3 * (sj - s0) + 1] += Vi * sxy;
+      M[3 * (sj - s0) + 2] += Vi * syy;
+      G[4 * (sj - s0)] += Vi * t0;
+      G[4 * (sj - s0) + 1] += Vi * t1;
+      G[4 * (sj - s0) + 2] += Vi * t2;
+      G[4 * (sj - s0) + 3] += Vi * t3;
     }
-    for (int k = 0; k < 3; k++) M[3 * si + k] += Mi[k];
-    for (int k = 0; k < 4; k++) G[4 * si + k] += Gi[k];
+    for (int k = 0; k < 3; k++) M[3 * (si - s0) + k] += Mi[k];
+    for (int k = 0; k < 4; k++) G[4 * (si - s0) + k] += Gi[k];
   }
   const PetscReal mu = viscosity;
-  for (PetscInt s = 0; s < nf; s++) {
+  for (PetscInt s = s0; s < s1; s++) {
     PetscReal L[3] = {1, 0, 1};
-    if (correction) GuardedInverse(M[3 * s], M[3 * s + 1], M[3 * s + 2], guard, L);
-    PetscReal *g = &G[4 * s];
+    if (correction) GuardedInverse(M[3 * (s - s0)], M[3 * (s - s0) + 1], M[3 * (s - s0) + 2], guard, L);
+    PetscReal *g = &G[4 * (s - s0)];
     /* grad v = G L (L symmetric) */
     const PetscReal gv0 = g[0] * L[0] + g[1] * L[1], gv1 = g[0] * L[1] + g[1] * L[2];
     const PetscReal gv2 = g[2] * L[0] + g[3] * L[1], gv3 = g[2] * L[1] + g[3] * L[2];
@@ -228,26 +239,22 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in, PetscReal *gradv)
     g[2] = txy * L[0] + tyy * L[1];
     g[3] = txy * L[1] + tyy * L[2];
   }
-  PetscCall(PetscLogFlops(40.0 * pair_j_.size() + 40.0 * fluid_.size()));
-  PetscCall(PetscLogEventEnd(ev_gradient_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 template <bool VIRIAL>
-PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial)
+PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *f, PetscReal w[4])
 {
-  const PetscReal *x = in.x, *m = in.P->mass.data(), *A = GA_.data(), *Pp = P_.data(), *vol = vol_.data(), *pF = pair_F_.data();
-  const PetscInt   nf = (PetscInt)fluid_.size(), *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
+  const PetscReal *x = in.x, *m = in.P->mass.data(), *A = GA_.data() /* by slot - s0 */, *Pp = P_.data(), *vol = vol_.data(), *pF = pair_F_.data();
+  const PetscInt  *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
   const bool       visc = viscosity > 0;
-  PetscReal        w[4] = {0, 0, 0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ev_force_, 0, 0, 0, 0));
-  for (PetscInt si = 0; si < nf; si++) {
+  for (PetscInt si = s0; si < s1; si++) {
     if (start[si] == start[si + 1]) continue;
     const PetscInt  i  = fl[si];
     const PetscReal mi = m[i], Pi = Pp[si], Vi = vol[si], xi = x[2 * i], yi = x[2 * i + 1];
-    const PetscReal A0 = A[4 * si], A1 = A[4 * si + 1], A2 = A[4 * si + 2], A3 = A[4 * si + 3];
+    const PetscReal A0 = A[4 * (si - s0)], A1 = A[4 * (si - s0) + 1], A2 = A[4 * (si - s0) + 2], A3 = A[4 * (si - s0) + 3];
     PetscReal       fxi = 0, fyi = 0;
     for (PetscInt q = start[si]; q < start[si + 1]; q++) {
       const PetscInt  sj = pj[q], j = fl[sj];
@@ -257,8 +264,8 @@ PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal
       PetscReal       fx = pp * gx, fy = pp * gy;
       if (visc) {
         const PetscReal vv = Vi * vol[sj];
-        fx += vv * ((A0 + A[4 * sj]) * gx + (A1 + A[4 * sj + 1]) * gy);
-        fy += vv * ((A2 + A[4 * sj + 2]) * gx + (A3 + A[4 * sj + 3]) * gy);
+        fx += vv * ((A0 + A[4 * (sj - s0)]) * gx + (A1 + A[4 * (sj - s0) + 1]) * gy);
+        fy += vv * ((A2 + A[4 * (sj - s0) + 2]) * gx + (A3 + A[4 * (sj - s0) + 3]) * gy);
       }
       fxi += fx;
       fyi += fy;
@@ -274,21 +281,28 @@ PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscReal *f, PetscReal
     f[2 * i] += fxi;
     f[2 * i + 1] += fyi;
   }
-  if (VIRIAL)
-    for (int k = 0; k < 4; k++) virial[k] += w[k];
-  PetscCall(PetscLogFlops((visc ? 30.0 : 12.0) * pair_j_.size()));
-  PetscCall(PetscLogEventEnd(ev_force_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
+  const bool visc = viscosity > 0;
+  PetscReal  w[4] = {0, 0, 0, 0};
   PetscFunctionBeginUser;
   if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DensityPass(in, [](PetscInt, PetscReal) {}));
-  if (viscosity > 0) PetscCall(GradientPass(in, NULL));
-  if (virial) PetscCall(ForcePass<true>(in, f, virial));
-  else PetscCall(ForcePass<false>(in, f, NULL));
+  /* a group at a time: its gradients (A), then its forces (the events time the two together) */
+  PetscCall(PetscLogEventBegin(ev_force_, 0, 0, 0, 0));
+  for (size_t k = 0; k + 1 < group_start_.size(); k++) {
+    const PetscInt s0 = group_start_[k], s1 = group_start_[k + 1];
+    if (visc) PetscCall(GradientPass(in, s0, s1, NULL));
+    if (virial) PetscCall(ForcePass<true>(in, s0, s1, f, w));
+    else PetscCall(ForcePass<false>(in, s0, s1, f, w));
+  }
+  if (virial)
+    for (int k = 0; k < 4; k++) virial[k] += w[k];
+  PetscCall(PetscLogFlops((visc ? 70.0 : 12.0) * pair_j_.size() + (visc ? 40.0 * fluid_.size() : 0)));
+  PetscCall(PetscLogEventEnd(ev_force_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -298,7 +312,9 @@ PetscErrorCode SPHFluid::DensityAndVelocityGradient(const ForceInput &in, std::v
   rho.assign(in.P->n, 0);
   PetscCall(DensityPass(in, [&](PetscInt s, PetscReal r) { rho[fluid_[s]] = r; }));
   gradv.assign(4 * in.P->n, 0);
-  PetscCall(GradientPass(in, gradv.data()));
+  PetscCall(PetscLogEventBegin(ev_gradient_, 0, 0, 0, 0));
+  for (size_t k = 0; k + 1 < group_start_.size(); k++) PetscCall(GradientPass(in, group_start_[k], group_start_[k + 1], gradv.data()));
+  PetscCall(PetscLogEventEnd(ev_gradient_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

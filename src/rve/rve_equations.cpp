@@ -176,7 +176,8 @@ PetscErrorCode RVEEquations::PatternColumns(std::vector<std::vector<PetscInt>> &
     link(ps.p[q], P.springs[ps.s[q]].j);
   }
   const PairList &fp = nb.FluidPairs();
-  for (size_t q = 0; q < fp.size(); q++) link(fp.i[q], fp.j[q]);
+  for (PetscInt i = 0; i < fp.Rows(); i++)
+    for (PetscInt q = fp.start[i]; q < fp.start[i + 1]; q++) link(i, fp.j[q]);
   std::vector<PetscInt> dof(P.n, -1);
   for (size_t k = 0; k < free.size(); k++) dof[free[k]] = (PetscInt)k;
   cols.assign(free.size(), {});

@@ -11,9 +11,10 @@
 
 namespace turgor {
 
-struct PairList { /* half list: each unordered pair once */
-  std::vector<PetscInt> i, j;
-  size_t                size() const { return i.size(); }
+struct PairList {                 /* half list: each unordered pair once, as rows: particle i's pairs (i, j), j > i, are j[start[i] .. start[i + 1]) */
+  std::vector<PetscInt> start, j; /* [n + 1] (empty: no pairs), [pairs] */
+  size_t                size() const { return j.size(); }
+  PetscInt              Rows() const { return start.empty() ? 0 : (PetscInt)start.size() - 1; }
 };
 
 struct PointSegmentList { /* particle p near image `img` of spring s (p is not an end point of s) */

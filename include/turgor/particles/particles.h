@@ -6,6 +6,7 @@
    Positions and velocities are NOT stored here: they are the integrator's state and are passed
    to the kernels as interleaved arrays x[2*i+d], v[2*i+d]. */
 #include <turgor/core/petsc_compat.h>
+#include <cstdint>
 #include <vector>
 
 namespace turgor {
@@ -73,17 +74,17 @@ struct PolygonCell {
    of its particle or node. The other springs and polygons are there as geometry (contact,
    repulsion, glue). A serial run owns everything (the counts stay -1: all). */
 struct ParticleSet {
-  PetscInt               n                = 0;    /* local particles (owned + halo) */
-  PetscInt               n_owned          = -1;   /* -1: all n */
-  PetscInt               n_springs_owned  = -1;   /* -1: all springs */
-  PetscInt               n_polygons_owned = -1;   /* -1: all polygons */
-  std::vector<PetscInt>  spring_gid, polygon_gid; /* the tissue's numbers of the springs and polygons (records); empty: the same as here */
-  std::vector<PetscReal> mass;                    /* [n] */
-  std::vector<PetscInt>  kind;                    /* [n] ParticleKind */
-  std::vector<PetscInt>  cell;                    /* [n] cell id for fluid particles, -1 for walls */
-  std::vector<PetscInt>  gid;                     /* [n] global id */
-  std::vector<char>      fixed;                   /* [n] 1 if clamped (position and velocity held) */
-  std::vector<Spring>    springs;
+  PetscInt                 n                = 0;    /* local particles (owned + halo) */
+  PetscInt                 n_owned          = -1;   /* -1: all n */
+  PetscInt                 n_springs_owned  = -1;   /* -1: all springs */
+  PetscInt                 n_polygons_owned = -1;   /* -1: all polygons */
+  std::vector<PetscInt>    spring_gid, polygon_gid; /* the tissue's numbers of the springs and polygons (records); empty: the same as here */
+  std::vector<PetscReal>   mass;                    /* [n] */
+  std::vector<std::int8_t> kind;                    /* [n] ParticleKind (a byte: two kinds) */
+  std::vector<PetscInt>    cell;                    /* [n] cell id for fluid particles, -1 for walls */
+  std::vector<PetscInt>    gid;                     /* [n] global id */
+  std::vector<char>        fixed;                   /* [n] 1 if clamped (position and velocity held) */
+  std::vector<Spring>      springs;
   /* Polygonal tissues only (empty for the square grid, whose walls are shared by two cells): the
      cells, the cell of every node (-1 for a particle in none), and the bar radius (a node is a disk
      and a bar a capsule of this radius; neighbouring polygons are a distance 2 r apart at rest). */

@@ -46,9 +46,10 @@ public:
 private:
   template <class Each>
   PetscErrorCode DensityPass(const ForceInput &in, Each each);
-  PetscErrorCode GradientPass(const ForceInput &in, PetscReal *gradv);
+  /* slots [s0, s1): a group (below) */
+  PetscErrorCode GradientPass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *gradv);
   template <bool VIRIAL>
-  PetscErrorCode ForcePass(const ForceInput &in, PetscReal *f, PetscReal *virial);
+  PetscErrorCode ForcePass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *f, PetscReal w[4]);
 
   /* Memory: the per-particle arrays are over the fluid only, indexed by slot s
      (particle fluid_[s]); the pairs within 2h are rows of slots, pair_start_[s] .. pair_start_[s+1],
@@ -59,8 +60,14 @@ private:
   std::vector<PetscInt>  pair_start_;  /* [nf + 1] */
   std::vector<PetscInt>  pair_j_;      /* slot of j */
   std::vector<PetscReal> pair_F_;      /* W'(r)/r */
-  std::vector<PetscReal> vol_, P_, M_; /* [nf], [nf], [3 nf]; the density passes through vol_ */
-  std::vector<PetscReal> GA_;          /* [4 nf]: G during the gradient pass, then A = tau L */
+  std::vector<PetscReal> vol_, P_;     /* [nf], [nf]; the density passes through vol_ */
+  /* A cell's fluid meets only its own cell: where every cell's slots are consecutive, the gradient
+     and force passes run a cell (a group of slots) at a time, and M, G and A are kept for one group,
+     not for every fluid particle (56 B a particle); the sums are made in the same order. Else one
+     group of all slots. */
+  std::vector<PetscInt>  group_start_; /* [groups + 1] */
+  std::vector<PetscReal> M_;           /* [3 g] for the largest group g */
+  std::vector<PetscReal> GA_;          /* [4 g]: G during the gradient pass, then A = tau L */
   PetscLogEvent          ev_density_ = 0, ev_gradient_ = 0, ev_force_ = 0;
 };
 
