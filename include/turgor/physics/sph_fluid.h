@@ -55,12 +55,12 @@ private:
      (particle fluid_[s]); the pairs within 2h are rows of slots, pair_start_[s] .. pair_start_[s+1],
      each with the slot of j and F = W'(r)/r only (12 B): e = x_i - x_j is read again from x. */
   PetscReal              norm_ = 0, W0_ = 0;
-  std::vector<PetscInt>  fluid_;       /* [nf] slot -> particle (owned fluid particles, ascending) */
-  std::vector<PetscInt>  slot_;        /* [n] particle -> slot, -1 for a wall particle */
-  std::vector<PetscInt>  pair_start_;  /* [nf + 1] */
-  std::vector<PetscInt>  pair_j_;      /* slot of j */
-  std::vector<PetscReal> pair_F_;      /* W'(r)/r */
-  std::vector<PetscReal> vol_, P_;     /* [nf], [nf]; the density passes through vol_ */
+  std::vector<PetscInt>  fluid_;      /* [nf] slot -> particle (owned fluid particles, ascending) */
+  std::vector<PetscInt>  slot_;       /* [n] particle -> slot, -1 for a wall particle */
+  std::vector<PetscInt>  pair_start_; /* [nf + 1] */
+  std::vector<PetscInt>  pair_j_;     /* slot of j */
+  std::vector<PetscReal> pair_F_;     /* W'(r)/r */
+  std::vector<PetscReal> vol_, P_;    /* [nf], [nf]; the density passes through vol_ */
   /* A cell's fluid meets only its own cell: where every cell's slots are consecutive, the gradient
      and force passes run a cell (a group of slots) at a time, and M, G and A are kept for one group,
      not for every fluid particle (56 B a particle); the sums are made in the same order. Else one
