@@ -42,8 +42,8 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
     const char *names[] = {"metis", "ranges"};
     PetscCall(PetscOptionsEList("-partitioner",
                                 "Distributed runs: how the cells are dealt to the ranks: metis (a partition of the cell graph on the first rank; every "
-                                "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells' numbering; a square grid is then "
-                                "generated in parts, no rank holding the whole tissue)",
+                                "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells' numbering, square grids only; the grid "
+                                "is then generated in parts, no rank holding the whole tissue)",
                                 "FineRunSpec", names, 2, names[partitioner], &partitioner, NULL));
   }
   PetscCall(PetscOptionsBool("-setup_in_parts",
@@ -115,6 +115,11 @@ PetscErrorCode FineRun::SetUpModel()
      report, which partitions it) */
   const bool in_parts = distributed && !have_tissue_ && placing.ranges && spec_.setup_in_parts && placing.report_parts == 0 && !controls_.Active() &&
                         tissues_.Generator()->NumCellsOfParts() >= 0;
+  /* ranges of a numbering in no spatial order (a Voronoi tissue's seeds) would be scattered parts,
+     every rank's halo most of the tissue */
+  PetscCheck(!placing.ranges || (!have_tissue_ && tissues_.Generator()->NumCellsOfParts() >= 0), comm_, PETSC_ERR_ARG_INCOMP,
+             "Option -fine_partitioner ranges: %s numbers its cells in no spatial order (a range of them is no compact part); use -fine_partitioner metis",
+             have_tissue_ ? "a tissue given through the API" : ("-tissue_type " + std::string(tissues_.Generator()->Name())).c_str());
   if (!have_tissue_) {
     PetscReal particles, springs;
     PetscCall(tissues_.Generator()->Estimate(&particles, &springs));

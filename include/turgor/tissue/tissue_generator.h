@@ -26,8 +26,8 @@ public:
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
 
   /* Distributed set-up without the whole tissue on any rank (-fine_partitioner ranges). A generator
-     that can build a part of its tissue alone returns its number of cells here (-1: it cannot, and
-     every rank generates the whole tissue). */
+     whose cells are numbered in space (a range of them is a compact part) and that can build a part
+     of its tissue alone returns its number of cells here (-1: it cannot; ranges are refused). */
   virtual PetscInt NumCellsOfParts() const { return -1; }
   /* The cells [c0, c1) of the whole tissue's numbering, every cell within `distance` µm of them and
      one layer of cells more, so that each particle of a cell within `distance` has all its springs
