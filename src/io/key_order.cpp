@@ -29,6 +29,11 @@ PetscErrorCode ExchangeBytes(MPI_Comm comm, std::vector<std::vector<char>> &out,
   }
   PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm));
   std::vector<char> send;
+  {
+    size_t bytes = 0;
+    for (int q = 0; q < size; q++) bytes += out[q].size();
+    send.reserve(bytes); /* its exact size: grown piece by piece it would hold up to twice the rows, the checkpoint's peak */
+  }
   for (int q = 0; q < size; q++) {
     sdisp[q] = (int)send.size();
     send.insert(send.end(), out[q].begin(), out[q].end());
