@@ -183,11 +183,13 @@ PetscErrorCode FineRun::SetUpModel()
   fields_.Declare("force", "µN", 2, kSnapshot, [this] { return force_.data(); });
   if (spec_.partition > 0) /* -fine_partition_report: the part of the particle's cell */
     fields_.Declare("part", "1", 1, kSnapshot, [this] { return const_cast<PetscReal *>(placement_.ReportParts().data()); });
-  if (placement_.Distributed()) {                             /* the rank that owns the particle */
-    fields_.Declare("rank", "1", 1, kSnapshot, [this, rank] { /* made when first written: a run without snapshots holds none */
-                                                              if (rank_of_.size() != (size_t)n_local_) rank_of_.assign(n_local_, (PetscReal)rank);
-                                                              return rank_of_.data();
-    });
+  if (placement_.Distributed()) {
+    /* the rank that owns the particle, made when first written: a run without snapshots holds none */
+    auto ranks = [this, rank] {
+      if (rank_of_.size() != (size_t)n_local_) rank_of_.assign(n_local_, (PetscReal)rank);
+      return rank_of_.data();
+    };
+    fields_.Declare("rank", "1", 1, kSnapshot, ranks);
   }
 
   /* state [x | v] and the position/momentum splits used by basicsymplectic */

@@ -54,6 +54,40 @@ void NearestDistances(const std::vector<Box> &query, const std::vector<Box> &tar
     (*dist)[t] = best;
   }
 }
+/* Messages of one tag on comm, all in flight at once: to_data[i] to rank to[i], from_data[i] (sized
+   by the caller) from rank from[i]. */
+template <class T>
+PetscErrorCode ExchangeKnown(MPI_Comm comm, PetscMPIInt tag, MPI_Datatype type, const std::vector<PetscMPIInt> &to, std::vector<std::vector<T>> &to_data,
+                             const std::vector<PetscMPIInt> &from, std::vector<std::vector<T>> &from_data)
+{
+  std::vector<MPI_Request> req(from.size() + to.size());
+  PetscFunctionBeginUser;
+  for (size_t i = 0; i < from.size(); i++) PetscCallMPI(MPI_Irecv(from_data[i].data(), (PetscMPIInt)from_data[i].size(), type, from[i], tag, comm, &req[i]));
+  for (size_t i = 0; i < to.size(); i++)
+    PetscCallMPI(MPI_Isend(to_data[i].data(), (PetscMPIInt)to_data[i].size(), type, to[i], tag, comm, &req[from.size() + i]));
+  PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The same where a rank does not know who sends to it: PetscCommBuildTwoSided finds its senders
+   and their counts (neighbours only, no all-to-all of every rank's counts). */
+template <class T>
+PetscErrorCode ExchangeFound(MPI_Comm comm, PetscMPIInt tag, MPI_Datatype type, const std::vector<PetscMPIInt> &to, std::vector<std::vector<T>> &to_data,
+                             std::vector<PetscMPIInt> *from, std::vector<std::vector<T>> *from_data)
+{
+  std::vector<PetscMPIInt> counts;
+  PetscMPIInt              n_from, *from_ranks = nullptr, *from_counts = nullptr;
+  PetscFunctionBeginUser;
+  for (const std::vector<T> &d : to_data) counts.push_back((PetscMPIInt)d.size());
+  PetscCall(PetscCommBuildTwoSided(comm, 1, MPI_INT, (PetscMPIInt)to.size(), to.data(), counts.data(), &n_from, &from_ranks, &from_counts));
+  from->assign(from_ranks, from_ranks + n_from);
+  from_data->assign(n_from, {});
+  for (PetscMPIInt i = 0; i < n_from; i++) (*from_data)[i].resize(from_counts[i]);
+  PetscCall(PetscFree(from_ranks));
+  PetscCall(PetscFree(from_counts));
+  PetscCall(ExchangeKnown(comm, tag, type, to, to_data, *from, *from_data));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 } // namespace
 
 TissueDistribution::~TissueDistribution()
@@ -234,7 +268,7 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
      block is asked of the owner (no rank knows every rank's particles) */
   std::vector<PetscSFNode> remote(2 * n_halo_);
   {
-    std::vector<PetscMPIInt>           to_ranks, to_counts;
+    std::vector<PetscMPIInt>           to_ranks;
     std::vector<std::vector<PetscInt>> asked, answer_of; /* per rank asked: the global ids, then their places */
     std::vector<std::vector<PetscInt>> slot;             /* ... and the halo slots they fill */
     std::map<PetscMPIInt, size_t>      index_of;
@@ -249,20 +283,10 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
       asked[added.first->second].push_back(G.gid[g]);
       slot[added.first->second].push_back(k);
     }
-    for (const auto &a : asked) to_counts.push_back((PetscMPIInt)a.size());
-    PetscMPIInt n_from, *from_ranks = nullptr, *from_counts = nullptr, tag_answer;
-    PetscCall(
-      PetscCommBuildTwoSided(comm_tag_, 1, MPI_INT, (PetscMPIInt)to_ranks.size(), to_ranks.data(), to_counts.data(), &n_from, &from_ranks, &from_counts));
-    PetscCall(PetscCommGetNewTag(comm_tag_, &tag_answer));
-    std::vector<std::vector<PetscInt>> questions(n_from);
-    std::vector<MPI_Request>           req(n_from + to_ranks.size());
-    for (PetscMPIInt i = 0; i < n_from; i++) {
-      questions[i].resize(from_counts[i]);
-      PetscCallMPI(MPI_Irecv(questions[i].data(), from_counts[i], MPIU_INT, from_ranks[i], tag_, comm_tag_, &req[i]));
-    }
-    for (size_t i = 0; i < to_ranks.size(); i++)
-      PetscCallMPI(MPI_Isend(asked[i].data(), to_counts[i], MPIU_INT, to_ranks[i], tag_, comm_tag_, &req[n_from + i]));
-    PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
+    std::vector<PetscMPIInt>           from_ranks;
+    std::vector<std::vector<PetscInt>> questions;
+    PetscMPIInt                        tag_answer;
+    PetscCall(ExchangeFound(comm_tag_, tag_, MPIU_INT, to_ranks, asked, &from_ranks, &questions));
     PetscErrorCode missing = PETSC_SUCCESS;
     for (std::vector<PetscInt> &q : questions)
       for (PetscInt &g : q) { /* the answer replaces the question */
@@ -270,16 +294,9 @@ PetscErrorCode TissueDistribution::SetUp(MPI_Comm comm, const Tissue &global, co
         if (it == P.gid.begin() + n_owned_ || *it != g) missing = PETSC_ERR_PLIB;
         g = (PetscInt)(it - P.gid.begin());
       }
-    answer_of.resize(to_ranks.size());
-    for (PetscMPIInt i = 0; i < n_from; i++)
-      PetscCallMPI(MPI_Isend(questions[i].data(), from_counts[i], MPIU_INT, from_ranks[i], tag_answer, comm_tag_, &req[i]));
-    for (size_t i = 0; i < to_ranks.size(); i++) {
-      answer_of[i].resize(to_counts[i]);
-      PetscCallMPI(MPI_Irecv(answer_of[i].data(), to_counts[i], MPIU_INT, to_ranks[i], tag_answer, comm_tag_, &req[n_from + i]));
-    }
-    PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
-    PetscCall(PetscFree(from_ranks));
-    PetscCall(PetscFree(from_counts));
+    for (const auto &a : asked) answer_of.emplace_back(a.size());
+    PetscCall(PetscCommGetNewTag(comm_tag_, &tag_answer));
+    PetscCall(ExchangeKnown(comm_tag_, tag_answer, MPIU_INT, from_ranks, questions, to_ranks, answer_of));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &missing, 1, MPI_INT, MPI_MAX, comm));
     PetscCheck(!missing, comm, PETSC_ERR_PLIB, "a rank was asked for a halo particle it does not own");
     for (size_t i = 0; i < to_ranks.size(); i++)
@@ -367,7 +384,7 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
   std::vector<PetscReal> regions(4 * (size_t)size);
   const PetscReal        mine[4] = {region.lo[0], region.lo[1], region.hi[0], region.hi[1]};
   PetscCallMPI(MPI_Allgather(mine, 4, MPIU_REAL, regions.data(), 4, MPIU_REAL, comm_));
-  std::vector<PetscMPIInt>            to_ranks, to_counts;
+  std::vector<PetscMPIInt>            to_ranks;
   std::vector<std::vector<PetscReal>> to_data;
   for (PetscMPIInt q = 0; q < size; q++) {
     if (q == rank) continue;
@@ -378,22 +395,11 @@ PetscErrorCode TissueDistribution::Check(const PetscReal *x)
         send.insert(send.end(), {(PetscReal)owned_cells_[k], own[k].lo[0], own[k].lo[1], own[k].hi[0], own[k].hi[1]});
     if (send.empty()) continue;
     to_ranks.push_back(q);
-    to_counts.push_back((PetscMPIInt)send.size());
     to_data.push_back(std::move(send));
   }
-  PetscMPIInt n_from, *from_ranks = nullptr, *from_counts = nullptr;
-  PetscCall(PetscCommBuildTwoSided(comm_tag_, 1, MPI_INT, (PetscMPIInt)to_ranks.size(), to_ranks.data(), to_counts.data(), &n_from, &from_ranks, &from_counts));
-  std::vector<std::vector<PetscReal>> from_data(n_from);
-  std::vector<MPI_Request>            req(n_from + to_ranks.size());
-  for (PetscMPIInt i = 0; i < n_from; i++) {
-    from_data[i].resize(from_counts[i]);
-    PetscCallMPI(MPI_Irecv(from_data[i].data(), from_counts[i], MPIU_REAL, from_ranks[i], tag_, comm_tag_, &req[i]));
-  }
-  for (size_t i = 0; i < to_ranks.size(); i++)
-    PetscCallMPI(MPI_Isend(to_data[i].data(), to_counts[i], MPIU_REAL, to_ranks[i], tag_, comm_tag_, &req[n_from + i]));
-  PetscCallMPI(MPI_Waitall((PetscMPIInt)req.size(), req.data(), MPI_STATUSES_IGNORE));
-  PetscCall(PetscFree(from_ranks));
-  PetscCall(PetscFree(from_counts));
+  std::vector<PetscMPIInt>            from_ranks;
+  std::vector<std::vector<PetscReal>> from_data;
+  PetscCall(ExchangeFound(comm_tag_, tag_, MPIU_REAL, to_ranks, to_data, &from_ranks, &from_data));
   std::vector<Box> near;
   check_bytes_ += sizeof(PetscReal) * (4.0 * size);
   for (const std::vector<PetscReal> &v : from_data) {
