@@ -9,6 +9,7 @@
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace turgor {
 
@@ -16,6 +17,8 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
 {
   PetscBool pset, hset;
   PetscFunctionBeginUser;
+  char partitioner_name[16]; /* -fine_partitioner, read as a string and checked after PetscOptionsEnd */
+  PetscCall(PetscStrncpy(partitioner_name, partitioner == 1 ? "ranges" : "metis", sizeof partitioner_name));
   PetscOptionsBegin(comm, "fine_", "Full fine-scale run (-mode fine)", "turgor");
   PetscCall(TurgorOptionsReal(params, "-dt_safety", "Fixed-step integrators: dt = safety x the smallest stability limit (unless -ts_dt is given)",
                               "FineRunSpec", dt_safety, &dt_safety, NULL));
@@ -35,17 +38,14 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                             "ranks partitions its cells by itself, -fine_distribute; 0: no report)",
                             "FineRunSpec", partition, &partition, &pset));
   PetscCall(PetscOptionsBool("-distribute",
-                             "On several ranks, partition the cells with METIS and keep every particle on the rank of its cell, with a halo of the "
-                             "neighbouring ranks' particles (false: all particles on rank 0, the other ranks idle)",
+                             "On several ranks, deal the cells to the ranks (-fine_partitioner) and keep every particle on the rank of its cell, with a "
+                             "halo of the neighbouring ranks' particles (false: all particles on rank 0, the other ranks idle)",
                              "FineRunSpec", distribute, &distribute, NULL));
-  {
-    const char *names[] = {"metis", "ranges"};
-    PetscCall(PetscOptionsEList("-partitioner",
-                                "Distributed runs: how the cells are dealt to the ranks: metis (a partition of the cell graph on the first rank; every "
-                                "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells' numbering, square grids only; the grid "
-                                "is then generated in parts, no rank holding the whole tissue)",
-                                "FineRunSpec", names, 2, names[partitioner], &partitioner, NULL));
-  }
+  PetscCall(PetscOptionsString("-partitioner",
+                               "Distributed runs: how the cells are dealt to the ranks: metis (a partition of the cell graph on the first rank; every "
+                               "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells' numbering, square grids only; the grid "
+                               "is then generated in parts, no rank holding the whole tissue)",
+                               "FineRunSpec", partitioner_name, partitioner_name, sizeof partitioner_name, NULL));
   PetscCall(PetscOptionsBool("-setup_in_parts",
                              "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid); "
                              "false: every rank generates the whole tissue first (the same run, more memory at set-up)",
@@ -56,6 +56,11 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "FineRunSpec", halo_margin, &halo_margin, &hset));
   PetscOptionsEnd();
   PetscCall(ClampFromOptions(comm, &clamp, params));
+  /* checked here: an unknown value refused inside PetscOptionsBegin/End would leave its items allocated */
+  PetscCall(CheckNotEmpty(comm, "-fine_partitioner", "metis or ranges"));
+  PetscCheck(!std::strcmp(partitioner_name, "metis") || !std::strcmp(partitioner_name, "ranges"), comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+             "Option -fine_partitioner = %s: unknown partitioner (known: metis, ranges)", partitioner_name);
+  partitioner = std::strcmp(partitioner_name, "ranges") ? 0 : 1;
   PetscCheck(!hset || (halo_margin >= 0 && std::isfinite(halo_margin)), comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_halo_margin = %g: must be >= 0",
              (double)halo_margin);
   PetscCheck(!pset || partition >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fine_partition_report = %" PetscInt_FMT ": the number of parts must be >= 1",
