@@ -739,18 +739,19 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
   /* this rank's range of rows: bisection on the keys (one key read a probe) */
   if (keys.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   std::vector<std::uint64_t> probe;
-  std::uint64_t              ignore    = 0;
-  auto                       first_row = [&](std::uint64_t k, bool after, hsize_t *row) -> PetscErrorCode { /* the first row whose key is >= k (> k) */
-                                                                                      hsize_t lo = 0, hi = key.Rows();
-                                                                                      PetscFunctionBeginUser;
-                                                                                      while (lo < hi) {
-                                                                                                              const hsize_t mid = lo + (hi - lo) / 2;
-                                                                                                              PetscCall(key.Read(Kind::Key, mid, mid + 1, probe, &ignore));
-                                                                                                              if (after ? probe[0] <= k : probe[0] < k) lo = mid + 1;
-                                                                                                              else hi = mid;
-                                                                                      }
-                                                                                      *row = lo;
-                                                                                      PetscFunctionReturn(PETSC_SUCCESS);
+  std::uint64_t              ignore = 0;
+  /* the first row whose key is >= k (with `after`: > k) */
+  auto first_row = [&](std::uint64_t k, bool after, hsize_t *row) -> PetscErrorCode {
+    hsize_t lo = 0, hi = key.Rows();
+    PetscFunctionBeginUser;
+    while (lo < hi) {
+      const hsize_t mid = lo + (hi - lo) / 2;
+      PetscCall(key.Read(Kind::Key, mid, mid + 1, probe, &ignore));
+      if (after ? probe[0] <= k : probe[0] < k) lo = mid + 1;
+      else hi = mid;
+    }
+    *row = lo;
+    PetscFunctionReturn(PETSC_SUCCESS);
   };
   hsize_t a = 0, b = 0;
   PetscCall(first_row(keys.front().first, false, &a));
