@@ -1128,10 +1128,9 @@ PetscErrorCode CheckpointReader::State(const std::vector<StateDeclaration *> &de
   PetscFunctionBeginUser;
   PetscCheck(writers_ > 0, PETSC_COMM_SELF, PETSC_ERR_ORDER, "CheckpointReader::Layouts() first");
   PetscCall(CheckSameDeclarations(comm_, decls));
+  /* a rank's error is every rank's: the next table is read collectively */
   for (StateDeclaration *d : decls)
-    for (StateTable &t : d->Tables())
-      PetscCall(AgreeOnError(comm_, ReadTable("/state/" + d->Name() + "/" + t.Name(), t,
-                                              numbering))); /* a rank's error, every rank's: the next table reads collectively */
+    for (StateTable &t : d->Tables()) PetscCall(AgreeOnError(comm_, ReadTable("/state/" + d->Name() + "/" + t.Name(), t, numbering)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
