@@ -85,6 +85,16 @@ turgor_add_test(dist_bar_parts_identical COMMAND ${CHECK} identical dist_bar_par
   particles_per_rank_max LABELS fine mpi REQUIRES "dist_bar_parts_np2;dist_bar_whole_np2")
 turgor_add_test(dist_bar_parts_built COMMAND ${CHECK} equals dist_bar_parts_np2 setup_in_parts True LABELS fine mpi REQUIRES dist_bar_parts_np2)
 turgor_add_test(dist_bar_parts_tip COMMAND ${CHECK} tiprel dist_bar_parts_np2 dist_bar_np1 1e-10 LABELS fine mpi REQUIRES "dist_bar_np1;dist_bar_parts_np2")
+# ... on 3 ranks (long: three ranks on two cores): ranges that end inside a row of cells, a middle
+# rank with a neighbour on either side
+turgor_add_test(dist_bar_parts_np3 COMMAND ${MPIEXEC_ROOT} -n 3 $<TARGET_FILE:turgor_app> ${DIST_BAR_RANGES} -output_dir dist_bar_parts_np3 LABELS fine mpi long
+  SETUP dist_bar_parts_np3)
+turgor_add_test(dist_bar_whole_np3 COMMAND ${MPIEXEC_ROOT} -n 3 $<TARGET_FILE:turgor_app> ${DIST_BAR_RANGES} -fine_setup_in_parts 0
+  -output_dir dist_bar_whole_np3 LABELS fine mpi long SETUP dist_bar_whole_np3)
+turgor_add_test(dist_bar_parts_np3_identical COMMAND ${CHECK} identical dist_bar_parts_np3 dist_bar_whole_np3 final_state_hash halo_particles_max
+  particles_per_rank_max LABELS fine mpi long REQUIRES "dist_bar_parts_np3;dist_bar_whole_np3")
+turgor_add_test(dist_bar_parts_np3_tip COMMAND ${CHECK} tiprel dist_bar_parts_np3 dist_bar_np1 1e-10 LABELS fine mpi long
+  REQUIRES "dist_bar_np1;dist_bar_parts_np3")
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s).
