@@ -146,6 +146,10 @@ turgor_add_test(dist_halo_outgrown COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:tu
 # against 1.38e-3 when each rank bounded its own bonds' rows; bonds are built on empty ranks too).
 turgor_ranks_agree(empty_grid TOL 1e-9 OPTIONS -mode fine -tissue_cells_x 2 -tissue_cells_y 1 -ts_max_time 0.2 -fine_snapshots 0
   -fine_progress_interval 0)
+# ... and one cell generated in parts (-fine_partitioner ranges): the first rank's range is empty,
+# its part of the grid too (GeneratePart of no cells), and on 3 ranks two ranks hold nothing
+turgor_ranks_agree(empty_parts TOL 1e-9 OPTIONS -mode fine -tissue_cells_x 1 -tissue_cells_y 1 -ts_max_time 0.2 -fine_snapshots 0
+  -fine_progress_interval 0 -fine_partitioner ranges)
 turgor_ranks_agree(empty_glue TOL 1e-9 OPTIONS -mode fine -tissue_type voronoi -tissue_voronoi_cells 2 -tissue_box 0,0,100,100
   -physics bars,hinges,contact,pressure,glue -ts_type verlet -ts_max_time 0.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_clamp none
   COMPARE samekey:dt_stable:1e-14)
