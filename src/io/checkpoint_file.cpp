@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <map>
-#include <numeric>
 
 namespace turgor {
 
@@ -549,18 +547,19 @@ PetscErrorCode CheckpointReader::Attribute(const std::string &name, PetscInt *va
 
 namespace {
 
-/* A dataset opened for reading: its dimensions (dims[1] = 0 for a vector) and the checksum it
-   carries. Errors name it. */
+/* A dataset opened for reading: its dimensions (dims[1] = 0 for a vector), the kind its values are
+   read as and the checksum it carries. Errors name it. */
 class Dataset {
 public:
   ~Dataset()
   {
     if (id_ >= 0) H5Dclose(id_);
   }
-  PetscErrorCode Open(hid_t loc, const std::string &path)
+  PetscErrorCode Open(hid_t loc, const std::string &path, Kind kind)
   {
     PetscFunctionBeginUser;
     path_ = path;
+    kind_ = kind;
     id_   = H5Dopen2(loc, path.c_str(), H5P_DEFAULT);
     TG_H5R(id_, "the checkpoint has no dataset %s (written by another version of turgor, or for another scene?)", path.c_str());
     hid_t space = H5Dget_space(id_);
@@ -581,10 +580,12 @@ public:
   hsize_t            Rows() const { return dims_[0]; }
   hsize_t            Columns() const { return dims_[1]; } /* 0: a vector */
   std::uint64_t      Stored() const { return stored_; }
+  Kind               ValueKind() const { return kind_; }
   const std::string &Path() const { return path_; }
-  /* Rows [lo, hi) (clipped) as `kind`, and their share of the checksum (added to *share). */
+  /* Rows [lo, hi) (clipped), and their share of the checksum (added to *share); T is the type of
+     the dataset's kind (PetscReal, std::int64_t, std::uint64_t, unsigned char). */
   template <class T>
-  PetscErrorCode Read(Kind kind, hsize_t lo, hsize_t hi, std::vector<T> &out, std::uint64_t *share) const
+  PetscErrorCode Read(hsize_t lo, hsize_t hi, std::vector<T> &out, std::uint64_t *share) const
   {
     PetscFunctionBeginUser;
     const hsize_t width = dims_[1] ? dims_[1] : 1;
@@ -597,7 +598,7 @@ public:
       const hsize_t start[2] = {lo, 0}, count[2] = {hi - lo, dims_[1]};
       hid_t         space = H5Dget_space(id_), mem = H5Screate_simple(nd_, count, NULL);
       e = H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
-      if (e >= 0) e = H5Dread(id_, MemType(kind), mem, space, H5P_DEFAULT, out.data());
+      if (e >= 0) e = H5Dread(id_, MemType(kind_), mem, space, H5P_DEFAULT, out.data());
       H5Sclose(mem);
       H5Sclose(space);
     }
@@ -607,7 +608,7 @@ public:
       std::uint64_t w;
       if constexpr (sizeof(T) == 8) std::memcpy(&w, &out[k], 8);
       else w = (std::uint64_t)out[k];
-      h += Mix(Mix((std::uint64_t)(lo * width + k)) ^ w);
+      h += ChecksumTerm((std::uint64_t)(lo * width + k), w);
     }
     *share += h;
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -615,6 +616,7 @@ public:
 
 private:
   hid_t         id_      = -1;
+  Kind          kind_    = Kind::Real;
   hsize_t       dims_[2] = {0, 0};
   int           nd_      = 0;
   std::uint64_t stored_  = 0;
@@ -637,9 +639,9 @@ PetscErrorCode ReadDataset(hid_t loc, const std::string &path, Kind kind, std::v
   Dataset       d;
   std::uint64_t share = 0;
   PetscFunctionBeginUser;
-  PetscCall(d.Open(loc, path));
+  PetscCall(d.Open(loc, path, kind));
   dims[0] = d.Rows(), dims[1] = d.Columns();
-  PetscCall(d.Read(kind, 0, d.Rows(), out, &share));
+  PetscCall(d.Read(0, d.Rows(), out, &share));
   PetscCall(CheckChecksum(path, share, d.Stored()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -682,9 +684,9 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   auto open = [&]() -> PetscErrorCode {
     PetscFunctionBeginUser;
-    PetscCall(key.Open(file, group + "/key"));
-    PetscCall(holder.Open(file, group + "/holder"));
-    PetscCall(owned.Open(file, group + "/owned"));
+    PetscCall(key.Open(file, group + "/key", Kind::Key));
+    PetscCall(holder.Open(file, group + "/holder", Kind::Int));
+    PetscCall(owned.Open(file, group + "/owned", Kind::Int));
     const hsize_t N = key.Rows();
     PetscCheck(holder.Rows() == N && owned.Rows() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: key, holder and owned differ in length",
                group.c_str());
@@ -692,14 +694,14 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
     for (size_t c = 0; c < ncol; c++) {
       const StateColumn &col  = cols[c];
       const std::string  path = group + "/" + col.name;
-      PetscCall(data[c].Open(file, path));
+      PetscCall(data[c].Open(file, path, col.integer ? Kind::Int : Kind::Real));
       all.push_back(&data[c]);
       if (col.width > 0)
         PetscCheck(data[c].Rows() == N && data[c].Columns() == (hsize_t)col.width, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
                    "%s holds %llu x %llu values, this run keeps %llu x %d (another scene?)", path.c_str(), (unsigned long long)data[c].Rows(),
                    (unsigned long long)data[c].Columns(), (unsigned long long)N, col.width);
       else {
-        PetscCall(length[c].Open(file, path + ".length"));
+        PetscCall(length[c].Open(file, path + ".length", Kind::Int));
         all.push_back(&length[c]);
         PetscCheck(length[c].Rows() == N, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length has %llu rows, the table %llu", path.c_str(),
                    (unsigned long long)length[c].Rows(), (unsigned long long)N);
@@ -720,14 +722,10 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
       const Dataset &d  = *all[k];
       const hsize_t  lo = d.Rows() * (hsize_t)rank / (hsize_t)size, hi = d.Rows() * (hsize_t)(rank + 1) / (hsize_t)size;
       for (hsize_t a = lo; a < hi; a += chunk) {
-        if (&d == &key) PetscCall(d.Read(Kind::Key, a, std::min(hi, a + chunk), words, &shares[k]));
-        else if (&d == &holder || &d == &owned) PetscCall(d.Read(Kind::Int, a, std::min(hi, a + chunk), ints, &shares[k]));
-        else {
-          bool integer = false;
-          for (size_t c = 0; c < ncol; c++) integer = integer || (&d == &length[c]) || (&d == &data[c] && cols[c].integer);
-          if (integer) PetscCall(d.Read(Kind::Int, a, std::min(hi, a + chunk), ints, &shares[k]));
-          else PetscCall(d.Read(Kind::Real, a, std::min(hi, a + chunk), real, &shares[k]));
-        }
+        const hsize_t b = std::min(hi, a + chunk);
+        if (d.ValueKind() == Kind::Real) PetscCall(d.Read(a, b, real, &shares[k]));
+        else if (d.ValueKind() == Kind::Key) PetscCall(d.Read(a, b, words, &shares[k]));
+        else PetscCall(d.Read(a, b, ints, &shares[k]));
       }
     }
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -746,7 +744,7 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
     PetscFunctionBeginUser;
     while (lo < hi) {
       const hsize_t mid = lo + (hi - lo) / 2;
-      PetscCall(key.Read(Kind::Key, mid, mid + 1, probe, &ignore));
+      PetscCall(key.Read(mid, mid + 1, probe, &ignore));
       if (after ? probe[0] <= k : probe[0] < k) lo = mid + 1;
       else hi = mid;
     }
@@ -762,7 +760,7 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
   for (size_t c = 0; c < ncol; c++)
     if (cols[c].width == 0)
       for (hsize_t r = 0; r < a; r += chunk) {
-        PetscCall(length[c].Read(Kind::Int, r, std::min(a, r + chunk), lens, &ignore));
+        PetscCall(length[c].Read(r, std::min(a, r + chunk), lens, &ignore));
         for (std::int64_t l : lens) value_at[c] += (hsize_t)std::max((std::int64_t)0, l);
       }
   /* rows [a, b) in chunks, this rank's keys' handed on chunk by chunk */
@@ -776,28 +774,28 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
     R.data.assign(ncol, {});
     R.length.assign(ncol, {});
     const hsize_t r1 = std::min(b, r0 + chunk);
-    PetscCall(key.Read(Kind::Key, r0, r1, C.key, &ignore));
-    PetscCall(holder.Read(Kind::Int, r0, r1, C.holder, &ignore));
-    PetscCall(owned.Read(Kind::Int, r0, r1, C.owned, &ignore));
+    PetscCall(key.Read(r0, r1, C.key, &ignore));
+    PetscCall(holder.Read(r0, r1, C.holder, &ignore));
+    PetscCall(owned.Read(r0, r1, C.owned, &ignore));
     std::vector<size_t> start(ncol, 0);
     for (size_t c = 0; c < ncol; c++) {
       if (cols[c].width == 0) {
-        PetscCall(length[c].Read(Kind::Int, r0, r1, C.length[c], &ignore));
+        PetscCall(length[c].Read(r0, r1, C.length[c], &ignore));
         hsize_t n = 0;
         for (std::int64_t l : C.length[c]) {
           PetscCheck(l >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s.length: a negative length", data[c].Path().c_str());
           n += (hsize_t)l;
         }
         if (cols[c].integer) {
-          PetscCall(data[c].Read(Kind::Int, value_at[c], value_at[c] + n, lens, &ignore));
+          PetscCall(data[c].Read(value_at[c], value_at[c] + n, lens, &ignore));
           C.data[c].assign(lens.begin(), lens.end());
-        } else PetscCall(data[c].Read(Kind::Real, value_at[c], value_at[c] + n, C.data[c], &ignore));
+        } else PetscCall(data[c].Read(value_at[c], value_at[c] + n, C.data[c], &ignore));
         PetscCheck(C.data[c].size() == n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: fewer values than its lengths say", data[c].Path().c_str());
         value_at[c] += n;
       } else if (cols[c].integer) {
-        PetscCall(data[c].Read(Kind::Int, r0, r1, lens, &ignore));
+        PetscCall(data[c].Read(r0, r1, lens, &ignore));
         C.data[c].assign(lens.begin(), lens.end());
-      } else PetscCall(data[c].Read(Kind::Real, r0, r1, C.data[c], &ignore));
+      } else PetscCall(data[c].Read(r0, r1, C.data[c], &ignore));
     }
     for (size_t i = 0; i < C.key.size(); i++) {
       PetscCheck(C.key[i] >= last, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "%s: the rows are not in key order", group.c_str());
