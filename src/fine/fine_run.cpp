@@ -145,8 +145,11 @@ PetscErrorCode FineRun::SetUpModel()
   if (in_parts) {
     PetscInt  c0, c1;
     PetscReal reach;
-    TissuePlacement::OwnedRange(comm_, tissues_.Generator()->NumCellsOfParts(), &c0, &c1);
-    PetscCall(tissues_.Generator()->GeneratePart(comm_, c0, c1, 0, &tissue_)); /* this rank's cells, for the terms' reach */
+    PetscCall(TissuePlacement::OwnedRange(comm_, tissues_.Generator()->NumCellsOfParts(), &c0, &c1));
+    /* the terms' reach reads the tissue's constants (the bar radius), which a part of one cell and
+       its neighbours carries: not this rank's whole range, which the placement generates next */
+    c0 = c0 < c1 ? c0 : 0;
+    PetscCall(tissues_.Generator()->GeneratePart(comm_, c0, c0 + 1, 0, &tissue_));
     PetscCall(reach_of(&reach));
     tissue_ = Tissue();
     PetscCall(placement_.PlaceParts(comm_, placing, reach, *tissues_.Generator(), &tissue_));

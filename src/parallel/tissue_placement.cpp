@@ -97,13 +97,15 @@ PetscErrorCode TissuePlacement::Place(MPI_Comm comm, const Options &options, Pet
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void TissuePlacement::OwnedRange(MPI_Comm comm, PetscInt C, PetscInt *c0, PetscInt *c1)
+PetscErrorCode TissuePlacement::OwnedRange(MPI_Comm comm, PetscInt C, PetscInt *c0, PetscInt *c1)
 {
   PetscMPIInt size, rank;
-  MPI_Comm_size(comm, &size);
-  MPI_Comm_rank(comm, &rank);
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   *c0 = (PetscInt)((long long)rank * C / size);
   *c1 = (PetscInt)((long long)(rank + 1) * C / size);
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode TissuePlacement::PlaceParts(MPI_Comm comm, const Options &options, PetscReal reach, const TissueGenerator &generator, Tissue *tissue)
@@ -120,7 +122,7 @@ PetscErrorCode TissuePlacement::PlaceParts(MPI_Comm comm, const Options &options
   parts_       = true;
   reach_       = reach;
   margin_      = options.halo_margin >= 0 ? options.halo_margin : reach;
-  OwnedRange(comm, C, &c0, &c1);
+  PetscCall(OwnedRange(comm, C, &c0, &c1));
   Tissue         part;
   PetscErrorCode failed = generator.GeneratePart(comm, c0, c1, reach_ + margin_, &part);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));

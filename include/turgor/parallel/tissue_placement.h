@@ -40,9 +40,9 @@ public:
      keeps its part as Place does. */
   PetscErrorCode PlaceParts(MPI_Comm comm, const Options &options, PetscReal reach, const TissueGenerator &generator, Tissue *tissue);
   /* The cells [c0, c1) that this rank owns under the ranges (of the generator's C cells). */
-  static void         OwnedRange(MPI_Comm comm, PetscInt C, PetscInt *c0, PetscInt *c1);
-  bool                Distributed() const { return distributed_; }
-  TissueDistribution *Halo() { return distributed_ ? &dist_ : nullptr; }
+  static PetscErrorCode OwnedRange(MPI_Comm comm, PetscInt C, PetscInt *c0, PetscInt *c1);
+  bool                  Distributed() const { return distributed_; }
+  TissueDistribution   *Halo() { return distributed_ ? &dist_ : nullptr; }
   /* -fine_partition_report: the part of each owned particle's cell (empty without the report). */
   const std::vector<PetscReal> &ReportParts() const { return particle_part_; }
   /* The start-up report's lines, and the summary's keys (collective). */
