@@ -104,7 +104,7 @@ public:
      glue's bonding distance (without the neighbour skin; 0: only within its own cell). A distributed
      run keeps every cell within this distance of a rank's cells as its halo. From the tissue's
      constants (the bar radius) and the term's options only: a tissue generated in parts takes it
-     from a part of one cell. */
+     from each rank's part without its halo. */
   virtual PetscReal Reach(const ParticleSet &P) const { return 0; }
   /* Precompute per-particle/per-bond data and ask the neighbour search for the lists needed. */
   virtual PetscErrorCode SetUp(const ParticleSet &P, NeighbourSearch &nb) = 0;
