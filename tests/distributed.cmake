@@ -95,6 +95,38 @@ turgor_add_test(dist_bar_parts_np3_identical COMMAND ${CHECK} identical dist_bar
   particles_per_rank_max LABELS fine mpi long REQUIRES "dist_bar_parts_np3;dist_bar_whole_np3")
 turgor_add_test(dist_bar_parts_np3_tip COMMAND ${CHECK} tiprel dist_bar_parts_np3 dist_bar_np1 1e-10 LABELS fine mpi long
   REQUIRES "dist_bar_np1;dist_bar_parts_np3")
+# A Voronoi tissue in parts: the Lloyd steps run by ranges of seeds on every rank, the cells are
+# ordered along the Hilbert curve through their seeds and dealt in ranges of it, each rank builds its
+# cells and those near. The same run to the bit as the serial tissue dealt by the same ranges
+# (-fine_setup_in_parts 0), on 2 and 3 ranks (3: long), and the 1-rank run's tip to 1e-8 (glue and
+# contact summed in another order: 2e-9 measured); a Laguerre tissue (-tissue_size_cv: the weights
+# fitted on every rank) the same on 2.
+set(DIST_VORONOI_RANGES -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_voronoi_cells 48 -tissue_box 0,0,300,100 -ts_max_time 2
+  -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges)
+turgor_ranks_agree(voronoi_parts TOL 1e-8 OPTIONS ${DIST_VORONOI_RANGES})
+set(DIST_LAGUERRE_RANGES ${DIST_VORONOI_RANGES} -tissue_size_cv 0.3 -ts_max_time 0.5)
+foreach(np 2 3)
+  set(tier "")
+  if(np EQUAL 3)
+    set(tier long)
+  endif()
+  turgor_add_test(dist_voronoi_whole_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${DIST_VORONOI_RANGES} -fine_setup_in_parts 0
+    -output_overwrite -output_dir dist_voronoi_whole_np${np} LABELS fine mpi ${tier} SETUP dist_voronoi_whole_np${np})
+  turgor_add_test(dist_voronoi_parts_np${np}_identical COMMAND ${CHECK} identical dist_voronoi_parts_np${np} dist_voronoi_whole_np${np} final_state_hash
+    halo_particles_max particles_per_rank_max tip_displacement_final LABELS fine mpi ${tier} REQUIRES "dist_voronoi_parts_np${np};dist_voronoi_whole_np${np}")
+  turgor_add_test(dist_voronoi_parts_np${np}_built COMMAND ${CHECK} equals dist_voronoi_parts_np${np} setup_in_parts True LABELS fine mpi ${tier}
+    REQUIRES dist_voronoi_parts_np${np})
+endforeach()
+foreach(setup parts whole)
+  set(in_parts 1)
+  if(setup STREQUAL whole)
+    set(in_parts 0)
+  endif()
+  turgor_add_test(dist_laguerre_${setup}_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${DIST_LAGUERRE_RANGES} -fine_setup_in_parts ${in_parts}
+    -output_overwrite -output_dir dist_laguerre_${setup}_np2 LABELS fine mpi SETUP dist_laguerre_${setup}_np2)
+endforeach()
+turgor_add_test(dist_laguerre_parts_identical COMMAND ${CHECK} identical dist_laguerre_parts_np2 dist_laguerre_whole_np2 final_state_hash
+  halo_particles_max particles_per_rank_max LABELS fine mpi REQUIRES "dist_laguerre_parts_np2;dist_laguerre_whole_np2")
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s).
@@ -150,6 +182,9 @@ turgor_ranks_agree(empty_grid TOL 1e-9 OPTIONS -mode fine -tissue_cells_x 2 -tis
 # its part of the grid too (GeneratePart of no cells), and on 3 ranks two ranks hold nothing
 turgor_ranks_agree(empty_parts TOL 1e-9 OPTIONS -mode fine -tissue_cells_x 1 -tissue_cells_y 1 -ts_max_time 0.2 -fine_snapshots 0
   -fine_progress_interval 0 -fine_partitioner ranges)
+# ... and one Voronoi cell in parts: PrepareParts' ranges of seeds and the parts empty on all ranks but one
+turgor_ranks_agree(empty_voronoi_parts TOL 1e-9 OPTIONS -mode fine -tissue_type voronoi -tissue_voronoi_cells 1 -tissue_box 0,0,40,40
+  -physics bars,hinges,pressure -ts_max_time 0.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges)
 turgor_ranks_agree(empty_glue TOL 1e-9 OPTIONS -mode fine -tissue_type voronoi -tissue_voronoi_cells 2 -tissue_box 0,0,100,100
   -physics bars,hinges,contact,pressure,glue -ts_type verlet -ts_max_time 0.5 -fine_snapshots 0 -fine_progress_interval 0 -fine_clamp none
   COMPARE samekey:dt_stable:1e-14)

@@ -270,6 +270,12 @@ endfunction()
 set(XR_POLY ${RESTART_POLY} -ts_max_time 6 -bar_damping 0.002)
 turgor_restart_other_ranks(polygon 3000 TOL 1e-10 OPTIONS ${XR_POLY}
   COMPARE csvrel:groups.csv:1e-9 csvrel:energy.csv:1e-9)
+# A glued Voronoi tissue generated in parts (-fine_partitioner ranges: the Hilbert order of its seeds)
+# stopped on 2 ranks after 900 of 1789 steps, continued on 1 (and 3, long) rank(s): the bonds, hinge
+# angles and contact histories read by the tissue's numbers, the tip to 1e-8 of the uninterrupted run.
+set(XR_VORONOI -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_voronoi_cells 48 -tissue_box 0,0,300,100 -ts_max_time 2
+  -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges)
+turgor_restart_other_ranks(voronoi_parts 900 TOL 1e-8 OPTIONS ${XR_VORONOI} COMPARE samekey:bonds_intact:0)
 # ... continued on 1 rank reading the checkpoint 7 rows at a time (-restart_read_rows: chunk
 # boundaries in every table, between the rows of a key that two ranks wrote): the same continuation,
 # bit for bit, as the one that read 65 536 rows at a time.

@@ -43,11 +43,11 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "FineRunSpec", distribute, &distribute, NULL));
   PetscCall(PetscOptionsString("-partitioner",
                                "Distributed runs: how the cells are dealt to the ranks: metis (a partition of the cell graph on the first rank; every "
-                               "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells' numbering, square grids only; the grid "
-                               "is then generated in parts, no rank holding the whole tissue)",
+                               "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells in space order: a square grid's rows, "
+                               "the Hilbert curve through a Voronoi tissue's seeds; the tissue is then generated in parts, no rank holding all of it)",
                                "FineRunSpec", partitioner_name, partitioner_name, sizeof partitioner_name, NULL));
   PetscCall(PetscOptionsBool("-setup_in_parts",
-                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid); "
+                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid, voronoi); "
                              "false: every rank generates the whole tissue first (the same run, more memory at set-up)",
                              "FineRunSpec", setup_in_parts, &setup_in_parts, NULL));
   PetscCall(PetscOptionsReal("-halo_margin",
@@ -123,8 +123,10 @@ PetscErrorCode FineRun::SetUpModel()
   /* ranges of a numbering in no spatial order (a Voronoi tissue's seeds) would be scattered parts,
      every rank's halo most of the tissue */
   PetscCheck(!placing.ranges || (!have_tissue_ && tissues_.Generator()->NumCellsOfParts() >= 0), comm_, PETSC_ERR_ARG_INCOMP,
-             "Option -fine_partitioner ranges: %s numbers its cells in no spatial order (a range of them is no compact part); use -fine_partitioner metis",
-             have_tissue_ ? "a tissue given through the API" : ("-tissue_type " + std::string(tissues_.Generator()->Name())).c_str());
+             "Option -fine_partitioner ranges: %s; use -fine_partitioner metis",
+             have_tissue_ ? "a tissue given through the API numbers its cells in no known spatial order"
+                          : ("-tissue_type " + std::string(tissues_.Generator()->Name()) + " " + tissues_.Generator()->PartsRefused()).c_str());
+  if (distributed && placing.ranges) PetscCall(tissues_.Generator()->PrepareParts(comm_)); /* the space order (a Voronoi tissue's seeds) */
   if (!have_tissue_) {
     PetscReal particles, springs;
     PetscCall(tissues_.Generator()->Estimate(&particles, &springs));
@@ -170,7 +172,7 @@ PetscErrorCode FineRun::SetUpModel()
     PetscReal             reach = 0;
     std::vector<PetscInt> local_of;
     if (distributed) PetscCall(reach_of(&reach));
-    PetscCall(placement_.Place(comm_, placing, reach, &tissue_, &local_of));
+    PetscCall(placement_.Place(comm_, placing, reach, &tissue_, &local_of, have_tissue_ ? nullptr : tissues_.Generator()));
     if (placement_.Distributed()) controls_.Localize(local_of, tissue_.particles);
   }
   PetscCall(TissueReferenceHash(comm_, tissue_, &reference_hash_));

@@ -54,7 +54,7 @@ PetscErrorCode TissuePlacement::Distribute(MPI_Comm comm, Tissue *tissue, std::v
   std::vector<PetscInt> cell_rank(ncells, 0);
   PetscErrorCode        failed = PETSC_SUCCESS;
   if (options_.ranges)
-    for (PetscInt c = 0; c < ncells; c++) cell_rank[c] = RangeRank(c, ncells, size);
+    for (PetscInt c = 0; c < ncells; c++) cell_rank[c] = RangeRank(order_ ? order_->CellPlace(c) : c, ncells, size);
   else if (rank == 0 && ncells < size) /* fewer cells than ranks: one cell a rank, the last ranks hold none (an empty rank is a valid rank) */
     for (PetscInt c = 0; c < ncells; c++) cell_rank[c] = c;
   else if (rank == 0) {
@@ -80,13 +80,15 @@ PetscErrorCode TissuePlacement::Distribute(MPI_Comm comm, Tissue *tissue, std::v
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TissuePlacement::Place(MPI_Comm comm, const Options &options, PetscReal reach, Tissue *tissue, std::vector<PetscInt> *local_of)
+PetscErrorCode TissuePlacement::Place(MPI_Comm comm, const Options &options, PetscReal reach, Tissue *tissue, std::vector<PetscInt> *local_of,
+                                      const TissueGenerator *order)
 {
   PetscMPIInt size, rank;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   options_     = options;
+  order_       = order;
   distributed_ = size > 1 && options.distribute;
   reach_       = distributed_ ? reach : 0;
   margin_      = !distributed_ ? 0 : options.halo_margin >= 0 ? options.halo_margin : reach;
@@ -128,7 +130,7 @@ PetscErrorCode TissuePlacement::PlaceParts(MPI_Comm comm, const Options &options
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
   PetscCheck(!failed, comm, PETSC_ERR_LIB, "Option -fine_partitioner ranges: generating a part of the tissue failed on some rank");
   std::vector<PetscInt> cell_rank(part.NumCells()), local_of;
-  for (PetscInt c = 0; c < part.NumCells(); c++) cell_rank[c] = RangeRank(part.CellGid(c), C, size);
+  for (PetscInt c = 0; c < part.NumCells(); c++) cell_rank[c] = RangeRank(generator.CellPlace(part.CellGid(c)), C, size);
   PetscCall(dist_.SetUp(comm, part, cell_rank, reach_, margin_, tissue, &local_of));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

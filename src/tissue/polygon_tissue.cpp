@@ -72,6 +72,22 @@ PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h)
   return c;
 }
 
+void AddRingCell(const PolygonRing &R, PetscReal node_mass, PetscReal h, Tissue *tissue)
+{
+  Tissue      &T = *tissue;
+  ParticleSet &P = T.particles;
+  PolygonCell  C;
+  C.open = R.open;
+  ForEachRingNode(R, h, [&](PetscReal x, PetscReal y) { C.nodes.push_back(T.AddParticle(x, y, node_mass, KIND_WALL)); });
+  const size_t nn = C.nodes.size(), nbar = R.open ? nn - 1 : nn;
+  for (size_t k = 0; k < nbar; k++) {
+    C.bars.push_back((PetscInt)P.springs.size());
+    T.AddSpring(C.nodes[k], C.nodes[(k + 1) % nn]);
+  }
+  T.cell_walls.push_back(C.nodes);
+  P.polygons.push_back(std::move(C));
+}
+
 PetscErrorCode BuildPolygonTissue(MPI_Comm comm, const std::vector<PolygonRing> &cells, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
 {
   std::vector<PolygonRing> rings;
@@ -99,29 +115,7 @@ PetscErrorCode BuildPolygonTissue(MPI_Comm comm, const std::vector<PolygonRing> 
   T.named_cells  = names;
   ParticleSet &P = T.particles;
   P.bar_radius   = spec.bar_radius;
-  P.polygons.resize(rings.size());
-  for (size_t c = 0; c < rings.size(); c++) {
-    const PolygonRing &R = rings[c];
-    PolygonCell       &C = P.polygons[c];
-    C.open               = R.open;
-    const size_t    n = R.points.size(), m = R.open ? n - 1 : n;
-    const PetscReal h = subdivide && !R.whole ? spec.bar_length : 0;
-    for (size_t k = 0; k < m; k++) {
-      const Point2  &a = R.points[k], &b = R.points[(k + 1) % n];
-      const PetscInt nb = (PetscInt)BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]), h);
-      for (PetscInt t = 0; t < nb; t++) {
-        const PetscReal s = (PetscReal)t / (PetscReal)nb;
-        C.nodes.push_back(T.AddParticle(a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), spec.node_mass, KIND_WALL));
-      }
-    }
-    if (R.open) C.nodes.push_back(T.AddParticle(R.points[n - 1][0], R.points[n - 1][1], spec.node_mass, KIND_WALL));
-    const size_t nn = C.nodes.size(), nbar = R.open ? nn - 1 : nn;
-    for (size_t k = 0; k < nbar; k++) {
-      C.bars.push_back((PetscInt)P.springs.size());
-      T.AddSpring(C.nodes[k], C.nodes[(k + 1) % nn]);
-    }
-    T.cell_walls.push_back(C.nodes);
-  }
+  for (const PolygonRing &R : rings) AddRingCell(R, spec.node_mass, subdivide && !R.whole ? spec.bar_length : 0, &T);
   P.node_polygon.assign(P.n, -1);
   for (size_t c = 0; c < P.polygons.size(); c++)
     for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;

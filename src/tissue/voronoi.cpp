@@ -10,8 +10,10 @@
 #include <turgor/core/errors.h>
 #include <turgor/core/options.h>
 #include <turgor/core/uniform_random.h>
+#include <turgor/parallel/rank_reductions.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 namespace turgor {
@@ -84,77 +86,91 @@ PetscReal Radius(const PowerCell &c) /* farthest vertex from the origin (the see
 
 } // namespace
 
+PowerCells::PowerCells(const PetscReal box[4], std::vector<Point2> seeds, std::vector<PetscReal> weights) :
+    seeds_(std::move(seeds)), weights_(std::move(weights))
+{
+  const size_t    N = seeds_.size();
+  const PetscReal W = box[2] - box[0], H = box[3] - box[1], hg = std::sqrt(W * H / (PetscReal)std::max(N, (size_t)1));
+  for (int d = 0; d < 4; d++) box_[d] = box[d];
+  gx_   = std::max((PetscInt)1, (PetscInt)(W / hg));
+  gy_   = std::max((PetscInt)1, (PetscInt)(H / hg));
+  cw_   = W / (PetscReal)gx_;
+  ch_   = H / (PetscReal)gy_;
+  hmin_ = std::min(cw_, ch_);
+  wmax_ = weights_.empty() ? 0 : *std::max_element(weights_.begin(), weights_.end());
+  start_.assign((size_t)(gx_ * gy_ + 1), 0);
+  bin_.resize(N);
+  for (size_t i = 0; i < N; i++) {
+    PetscInt ix, iy;
+    BinOf(seeds_[i], &ix, &iy);
+    start_[(size_t)(iy * gx_ + ix) + 1]++;
+  }
+  for (size_t b = 0; b < (size_t)(gx_ * gy_); b++) start_[b + 1] += start_[b];
+  std::vector<PetscInt> fill(start_.begin(), start_.end() - 1);
+  for (size_t i = 0; i < N; i++) {
+    PetscInt ix, iy;
+    BinOf(seeds_[i], &ix, &iy);
+    bin_[(size_t)fill[(size_t)(iy * gx_ + ix)]++] = (PetscInt)i;
+  }
+}
+
+void PowerCells::BinOf(const Point2 &p, PetscInt *ix, PetscInt *iy) const
+{
+  *ix = std::min(gx_ - 1, std::max((PetscInt)0, (PetscInt)((p[0] - box_[0]) / cw_)));
+  *iy = std::min(gy_ - 1, std::max((PetscInt)0, (PetscInt)((p[1] - box_[1]) / ch_)));
+}
+
+PetscErrorCode PowerCells::Cell(size_t i, PowerCell *cell, PowerCell *scratch) const
+{
+  PowerCell   &c = *cell;
+  const Point2 s = seeds_[i];
+  PetscFunctionBeginUser;
+  c.v = {
+    {box_[0] - s[0], box_[1] - s[1]},
+    {box_[2] - s[0], box_[1] - s[1]},
+    {box_[2] - s[0], box_[3] - s[1]},
+    {box_[0] - s[0], box_[3] - s[1]}
+  };
+  c.label = {-1, -2, -3, -4};
+  PetscInt ix, iy;
+  BinOf(s, &ix, &iy);
+  for (PetscInt k = 0; !c.v.empty(); k++) {
+    for (PetscInt jy = iy - k; jy <= iy + k; jy++) {
+      if (jy < 0 || jy >= gy_) continue;
+      const bool edge_row = (jy == iy - k || jy == iy + k);
+      for (PetscInt jx = ix - k; jx <= ix + k; jx += (edge_row || k == 0) ? 1 : 2 * k) {
+        if (jx < 0 || jx >= gx_) continue;
+        for (PetscInt t = start_[(size_t)(jy * gx_ + jx)]; t < start_[(size_t)(jy * gx_ + jx) + 1] && !c.v.empty(); t++) {
+          const size_t j = (size_t)bin_[(size_t)t];
+          if (j == i) continue;
+          const PetscReal dx = seeds_[j][0] - s[0], dy = seeds_[j][1] - s[1], d2 = dx * dx + dy * dy;
+          PetscCheck(d2 > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Voronoi seeds %zu and %zu coincide at (%g, %g)", i, j, (double)s[0], (double)s[1]);
+          /* power bisector in coordinates relative to seed i: 2 y . d <= |d|^2 + w_i - w_j */
+          Clip(c, dx, dy, 0.5 * (d2 + Weight(i) - Weight(j)), (PetscInt)j, *scratch);
+        }
+      }
+    }
+    /* every seed not yet visited is at least D = k hmin away; it can cut the cell only if its
+       bisector, at distance (D^2 + w_i - w_j) / (2 D) >= (D^2 + w_i - wmax) / (2 D), is nearer than
+       the cell's farthest vertex R (the bound grows with D, so the first D that passes ends it) */
+    const PetscReal D = (PetscReal)k * hmin_, R = Radius(c);
+    if ((D > 0 && D * D + Weight(i) - wmax_ >= 2 * R * D) || (k > gx_ && k > gy_)) break;
+  }
+  for (Point2 &p : c.v) {
+    p[0] += s[0];
+    p[1] += s[1];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode ComputePowerDiagram(const PetscReal box[4], const std::vector<Point2> &seeds, const std::vector<PetscReal> &weights,
                                    std::vector<PowerCell> *cells)
 {
-  const size_t    N = seeds.size();
-  const PetscReal W = box[2] - box[0], H = box[3] - box[1], hg = std::sqrt(W * H / (PetscReal)N);
-  const PetscInt  gx = std::max((PetscInt)1, (PetscInt)(W / hg)), gy = std::max((PetscInt)1, (PetscInt)(H / hg));
-  const PetscReal cw = W / (PetscReal)gx, ch = H / (PetscReal)gy, hmin = std::min(cw, ch);
-  const PetscReal wmax    = weights.empty() ? 0 : *std::max_element(weights.begin(), weights.end());
-  auto            w       = [&](size_t i) { return weights.empty() ? (PetscReal)0 : weights[i]; };
-  auto            cell_of = [&](const Point2 &p, PetscInt *ix, PetscInt *iy) {
-    *ix = std::min(gx - 1, std::max((PetscInt)0, (PetscInt)((p[0] - box[0]) / cw)));
-    *iy = std::min(gy - 1, std::max((PetscInt)0, (PetscInt)((p[1] - box[1]) / ch)));
-  };
+  const PowerCells diagram(box, seeds, weights);
+  PowerCell        scratch;
   PetscFunctionBeginUser;
-  /* seeds binned on the grid (counting sort: a seed's order in its bin is its index order) */
-  std::vector<PetscInt> start((size_t)(gx * gy + 1), 0), bin(N);
-  for (size_t i = 0; i < N; i++) {
-    PetscInt ix, iy;
-    cell_of(seeds[i], &ix, &iy);
-    start[(size_t)(iy * gx + ix) + 1]++;
-  }
-  for (size_t b = 0; b < (size_t)(gx * gy); b++) start[b + 1] += start[b];
-  {
-    std::vector<PetscInt> fill(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < N; i++) {
-      PetscInt ix, iy;
-      cell_of(seeds[i], &ix, &iy);
-      bin[(size_t)fill[(size_t)(iy * gx + ix)]++] = (PetscInt)i;
-    }
-  }
-  cells->assign(N, PowerCell());
-  PowerCell c, scratch;
-  for (size_t i = 0; i < N; i++) {
-    const Point2 s = seeds[i];
-    c.v            = {
-                 {box[0] - s[0], box[1] - s[1]},
-                 {box[2] - s[0], box[1] - s[1]},
-                 {box[2] - s[0], box[3] - s[1]},
-                 {box[0] - s[0], box[3] - s[1]}
-    };
-    c.label = {-1, -2, -3, -4};
-    PetscInt ix, iy;
-    cell_of(s, &ix, &iy);
-    for (PetscInt k = 0; !c.v.empty(); k++) {
-      for (PetscInt jy = iy - k; jy <= iy + k; jy++) {
-        if (jy < 0 || jy >= gy) continue;
-        const bool edge_row = (jy == iy - k || jy == iy + k);
-        for (PetscInt jx = ix - k; jx <= ix + k; jx += (edge_row || k == 0) ? 1 : 2 * k) {
-          if (jx < 0 || jx >= gx) continue;
-          for (PetscInt t = start[(size_t)(jy * gx + jx)]; t < start[(size_t)(jy * gx + jx) + 1] && !c.v.empty(); t++) {
-            const size_t j = (size_t)bin[(size_t)t];
-            if (j == i) continue;
-            const PetscReal dx = seeds[j][0] - s[0], dy = seeds[j][1] - s[1], d2 = dx * dx + dy * dy;
-            PetscCheck(d2 > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Voronoi seeds %zu and %zu coincide at (%g, %g)", i, j, (double)s[0], (double)s[1]);
-            /* power bisector in coordinates relative to seed i: 2 y . d <= |d|^2 + w_i - w_j */
-            Clip(c, dx, dy, 0.5 * (d2 + w(i) - w(j)), (PetscInt)j, scratch);
-          }
-        }
-      }
-      /* every seed not yet visited is at least D = k hmin away; it can cut the cell only if its
-         bisector, at distance (D^2 + w_i - w_j) / (2 D) >= (D^2 + w_i - wmax) / (2 D), is nearer than
-         the cell's farthest vertex R (the bound grows with D, so the first D that passes ends it) */
-      const PetscReal D = (PetscReal)k * hmin, R = Radius(c);
-      if ((D > 0 && D * D + w(i) - wmax >= 2 * R * D) || (k > gx && k > gy)) break;
-    }
-    for (Point2 &p : c.v) {
-      p[0] += s[0];
-      p[1] += s[1];
-    }
-    (*cells)[i] = c;
-  }
+  cells->assign(seeds.size(), PowerCell());
+  for (size_t i = 0; i < seeds.size(); i++) PetscCall(diagram.Cell(i, &(*cells)[i], &scratch));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -283,6 +299,25 @@ static PetscErrorCode AdaptWeights(MPI_Comm comm, const PetscReal box[4], Vorono
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The seeds before any Lloyd step: uniform in the box, x then y from the stream */
+static void DrawSeeds(const VoronoiSpec &spec, UniformRandom &u, std::vector<Point2> *seeds)
+{
+  const PetscReal W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
+  seeds->resize((size_t)spec.cells);
+  for (Point2 &s : *seeds) {
+    const PetscReal x = u(), y = u();
+    s = {spec.box[0] + W * x, spec.box[1] + H * y};
+  }
+}
+
+/* A Lloyd step's new seed: the centroid of its cell (kept inside the box), the old seed for an empty cell */
+static Point2 LloydMove(const VoronoiSpec &spec, const Point2 &seed, const PowerCell &cell)
+{
+  if (cell.v.empty()) return seed;
+  const Point2 c = RingCentroid(cell.v);
+  return {std::min(spec.box[2], std::max(spec.box[0], c[0])), std::min(spec.box[3], std::max(spec.box[1], c[1]))};
+}
+
 PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, VoronoiDiagram *diagram)
 {
   VoronoiDiagram &D = *diagram;
@@ -291,11 +326,7 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
   UniformRandom   u(spec.seed);
   PetscFunctionBeginUser;
   D = VoronoiDiagram();
-  D.seeds.resize(N);
-  for (Point2 &s : D.seeds) {
-    const PetscReal x = u(), y = u();
-    s = {spec.box[0] + W * x, spec.box[1] + H * y};
-  }
+  DrawSeeds(spec, u, &D.seeds);
   D.weights.assign(N, 0);
   if (spec.size_cv > 0) {
     /* areas uniform with the requested cv, stratified so that the sample has that cv (to a factor
@@ -310,11 +341,7 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
     if (spec.size_cv > 0) PetscCall(AdaptWeights(comm, spec.box, D));
     else PetscCall(ComputePowerDiagram(spec.box, D.seeds, D.weights, &D.cells));
     if (step == spec.lloyd_steps) break;
-    for (size_t i = 0; i < N; i++)
-      if (!D.cells[i].v.empty()) {
-        const Point2 c = RingCentroid(D.cells[i].v);
-        D.seeds[i]     = {std::min(spec.box[2], std::max(spec.box[0], c[0])), std::min(spec.box[3], std::max(spec.box[1], c[1]))};
-      }
+    for (size_t i = 0; i < N; i++) D.seeds[i] = LloydMove(spec, D.seeds[i], D.cells[i]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -357,6 +384,27 @@ void ShrinkPowerCell(const PowerCell &cell, PetscReal r, PetscReal min_edge, std
   for (Point2 &q : v) out->push_back({q[0] + c[0], q[1] + c[1]});
 }
 
+/* A cell's ring: its power cell shrunk by the bar radius and half the gap, edges shorter than the
+   bar radius merged (and at least 1e-9 of the mean cell size) */
+static void ShrinkVoronoiCell(const VoronoiSpec &spec, const PolygonTissueSpec &poly, const PowerCell &cell, PolygonRing *ring)
+{
+  const PetscReal W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
+  const PetscReal min_edge = std::max(poly.bar_radius, 1e-9 * std::sqrt(W * H / (PetscReal)spec.cells));
+  *ring                    = PolygonRing();
+  ShrinkPowerCell(cell, poly.bar_radius + 0.5 * spec.gap, min_edge, &ring->points);
+}
+
+/* The error for cell i that vanished when shrunk (area: its power cell's) */
+static PetscErrorCode VanishedCell(MPI_Comm comm, const VoronoiSpec &spec, const PolygonTissueSpec &poly, size_t i, const PowerCell &cell)
+{
+  const PetscReal W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
+  return PetscError(comm, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_ARG_OUTOFRANGE, PETSC_ERROR_INITIAL,
+                    "Options -tissue_bar_radius = %g, -tissue_gap = %g: Voronoi cell %zu (area %g µm^2) vanishes when shrunk by the bar radius and half "
+                    "the gap (-tissue_voronoi_cells %" PetscInt_FMT " in a %g x %g box: cells of about %g µm); use a smaller radius or gap, or fewer cells",
+                    (double)poly.bar_radius, (double)spec.gap, i, cell.v.empty() ? 0.0 : (double)RingSignedArea(cell.v), spec.cells, (double)W, (double)H,
+                    (double)std::sqrt(W * H / (PetscReal)spec.cells));
+}
+
 PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue, VoronoiDiagram *diagram)
 {
   VoronoiDiagram local, &D = diagram ? *diagram : local;
@@ -365,16 +413,10 @@ PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, con
   PetscCall(PetscLogEventRegister("TgVoronoi", PETSC_OBJECT_CLASSID, &ev));
   PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
   PetscCall(BuildVoronoiDiagram(comm, spec, &D));
-  const PetscReal          W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
-  const PetscReal          min_edge = std::max(poly.bar_radius, 1e-9 * std::sqrt(W * H / (PetscReal)spec.cells));
   std::vector<PolygonRing> rings(D.cells.size());
   for (size_t i = 0; i < D.cells.size(); i++) {
-    ShrinkPowerCell(D.cells[i], poly.bar_radius + 0.5 * spec.gap, min_edge, &rings[i].points);
-    PetscCheck(rings[i].points.size() >= 3, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "Options -tissue_bar_radius = %g, -tissue_gap = %g: Voronoi cell %zu (area %g µm^2) vanishes when shrunk by the bar radius and half the gap "
-               "(-tissue_voronoi_cells %" PetscInt_FMT " in a %g x %g box: cells of about %g µm); use a smaller radius or gap, or fewer cells",
-               (double)poly.bar_radius, (double)spec.gap, i, D.cells[i].v.empty() ? 0.0 : (double)RingSignedArea(D.cells[i].v), spec.cells, (double)W,
-               (double)H, (double)std::sqrt(W * H / (PetscReal)spec.cells));
+    ShrinkVoronoiCell(spec, poly, D.cells[i], &rings[i]);
+    if (rings[i].points.size() < 3) PetscCall(VanishedCell(comm, spec, poly, i, D.cells[i]));
   }
   PetscCall(BuildPolygonTissue(comm, rings, poly, true, tissue));
   PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
@@ -405,6 +447,186 @@ PetscErrorCode VoronoiGenerator::View(PetscViewer viewer) const
                                    " Lloyd steps, size cv %g, gap %g µm, %s\n",
                                    spec.cells, (double)spec.box[0], (double)spec.box[2], (double)spec.box[1], (double)spec.box[3], spec.seed, spec.lloyd_steps,
                                    (double)spec.size_cv, (double)spec.gap, PolygonDescription().c_str()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt VoronoiGenerator::NumCellsOfParts() const
+{
+  return poly.plates.Any() || poly.has_cut_box ? -1 : spec.cells;
+}
+
+std::string VoronoiGenerator::PartsRefused() const
+{
+  return "with -tissue_plates or -tissue_cut_box numbers its cells only once the whole tissue is built";
+}
+
+PetscErrorCode VoronoiGenerator::Ring(size_t i, PolygonRing *ring, PowerCell *cell, PowerCell *scratch) const
+{
+  PetscFunctionBeginUser;
+  PetscCall(cells_.Cell(i, cell, scratch));
+  ShrinkVoronoiCell(spec, poly, *cell, ring);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The index of (x, y) in [0, n)^2 along the Hilbert curve of order log2 n: quadrant by quadrant from
+   the coarsest, each quadrant's sub-square turned so that the curve runs on without a jump. */
+static std::uint64_t HilbertIndex(std::uint64_t n, std::uint64_t x, std::uint64_t y)
+{
+  std::uint64_t d = 0;
+  for (std::uint64_t s = n / 2; s > 0; s /= 2) {
+    const std::uint64_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += s * s * ((3 * rx) ^ ry);
+    if (ry == 0) {
+      if (rx == 1) {
+        x = n - 1 - x;
+        y = n - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+PetscErrorCode VoronoiGenerator::PrepareParts(MPI_Comm comm)
+{
+  PetscMPIInt   rank, size;
+  const size_t  N = (size_t)spec.cells;
+  PetscLogEvent ev;
+  PowerCell     cell, scratch;
+  PolygonRing   ring;
+  PetscFunctionBeginUser;
+  PetscCheck(NumCellsOfParts() >= 0, comm, PETSC_ERR_ARG_INCOMP, "-tissue_type voronoi %s", PartsRefused().c_str());
+  PetscCall(PetscLogEventRegister("TgVoronoiParts", PETSC_OBJECT_CLASSID, &ev));
+  PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  /* each rank's range of seeds (by index: any range will do, every rank has every seed) */
+  std::vector<PetscMPIInt> count(size), displ(size);
+  for (PetscMPIInt r = 0; r < size; r++) {
+    displ[r] = (PetscMPIInt)(N * (size_t)r / (size_t)size);
+    count[r] = (PetscMPIInt)(N * (size_t)(r + 1) / (size_t)size) - displ[r];
+  }
+  const size_t i0 = (size_t)displ[rank], i1 = i0 + (size_t)count[rank];
+  if (spec.size_cv > 0) {
+    VoronoiDiagram D; /* the weights: a Newton solve over the whole diagram, on every rank alike */
+    PetscCall(BuildVoronoiDiagram(comm, spec, &D));
+    cells_ = PowerCells(spec.box, std::move(D.seeds), std::move(D.weights));
+  } else {
+    UniformRandom            u(spec.seed);
+    std::vector<Point2>      seeds, moved(i1 - i0);
+    std::vector<PetscMPIInt> count2(size), displ2(size); /* in reals */
+    for (PetscMPIInt r = 0; r < size; r++) count2[r] = 2 * count[r], displ2[r] = 2 * displ[r];
+    DrawSeeds(spec, u, &seeds);
+    for (PetscInt step = 0; step < spec.lloyd_steps; step++) {
+      PetscCall(StopIfInterrupted(comm, "set-up: the Voronoi tissue (-tissue_voronoi_cells, -tissue_lloyd_steps)"));
+      const PowerCells diagram(spec.box, seeds, {});
+      for (size_t i = i0; i < i1; i++) {
+        PetscCall(diagram.Cell(i, &cell, &scratch));
+        moved[i - i0] = LloydMove(spec, seeds[i], cell);
+      }
+      PetscCallMPI(MPI_Allgatherv(moved.data(), count2[rank], MPIU_REAL, seeds.data(), count2.data(), displ2.data(), MPIU_REAL, comm));
+    }
+    cells_ = PowerCells(spec.box, std::move(seeds), {});
+  }
+  PetscCall(StopIfInterrupted(comm, "set-up: the Voronoi tissue's cells (-tissue_voronoi_cells)"));
+  /* the range's cells: their nodes, the whole tissue's box, the farthest corner from a seed */
+  std::vector<PetscInt> nodes(i1 - i0);
+  PetscReal             ext[5]   = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL, 0}; /* -lo, hi, radius */
+  PetscInt              vanished = (PetscInt)N;
+  for (size_t i = i0; i < i1; i++) {
+    PetscCall(Ring(i, &ring, &cell, &scratch));
+    const Point2 &s = cells_.Seeds()[i];
+    for (const Point2 &p : cell.v) ext[4] = std::max(ext[4], std::hypot(p[0] - s[0], p[1] - s[1]));
+    if (ring.points.size() < 3) {
+      vanished = std::min(vanished, (PetscInt)i);
+      continue;
+    }
+    ForEachRingNode(ring, poly.bar_length, [&](PetscReal x, PetscReal y) {
+      nodes[i - i0]++;
+      ext[0] = std::max(ext[0], -x), ext[1] = std::max(ext[1], -y), ext[2] = std::max(ext[2], x), ext[3] = std::max(ext[3], y);
+    });
+  }
+  PetscCall(MinOverRanks(comm, &vanished));
+  if (vanished < (PetscInt)N) { /* the first cell that vanished, named alike on every rank */
+    PetscCall(cells_.Cell((size_t)vanished, &cell, &scratch));
+    PetscCall(VanishedCell(comm, spec, poly, (size_t)vanished, cell));
+  }
+  PetscCall(MaxOverRanks(comm, ext, 5));
+  lo_[0] = -ext[0], lo_[1] = -ext[1], hi_[0] = ext[2], hi_[1] = ext[3];
+  radius_ = ext[4];
+  node_start_.assign(N + 1, 0);
+  PetscCallMPI(MPI_Allgatherv(nodes.data(), count[rank], MPIU_INT, node_start_.data() + 1, count.data(), displ.data(), MPIU_INT, comm));
+  for (size_t i = 0; i < N; i++) node_start_[i + 1] += node_start_[i];
+  /* the space order: the Hilbert curve through the seeds (on a 2^16 x 2^16 grid of the box), ties by index */
+  {
+    const std::uint64_t        n = 1 << 16;
+    const PetscReal            W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
+    std::vector<std::uint64_t> key(N);
+    std::vector<PetscInt>      order(N);
+    auto                       grid = [&](PetscReal t) { return (std::uint64_t)std::min((PetscReal)(n - 1), std::max((PetscReal)0, t * (PetscReal)n)); };
+    for (size_t i = 0; i < N; i++) {
+      const Point2 &p = cells_.Seeds()[i];
+      key[i]          = HilbertIndex(n, grid((p[0] - spec.box[0]) / W), grid((p[1] - spec.box[1]) / H));
+      order[i]        = (PetscInt)i;
+    }
+    std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+    place_.resize(N);
+    for (size_t k = 0; k < N; k++) place_[(size_t)order[k]] = (PetscInt)k;
+  }
+  PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode VoronoiGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part) const
+{
+  const size_t N = cells_.Size();
+  PowerCell    cell, scratch;
+  PolygonRing  ring;
+  PetscFunctionBeginUser;
+  PetscCheck(N == (size_t)spec.cells && node_start_.size() == N + 1 && place_.size() == N, comm, PETSC_ERR_ORDER,
+             "VoronoiGenerator::PrepareParts() must come before GeneratePart()");
+  PetscCheck(0 <= c0 && c0 <= c1 && c1 <= (PetscInt)N, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "places [%" PetscInt_FMT ", %" PetscInt_FMT ") of a Voronoi tissue of %zu cells", c0, c1, N);
+  PetscCheck(distance >= 0 && std::isfinite(distance), comm, PETSC_ERR_ARG_OUTOFRANGE, "a part's distance must be finite and >= 0 (got %g)", (double)distance);
+  *part                  = Tissue();
+  Tissue &T              = *part;
+  T.particles.bar_radius = poly.bar_radius;
+  if (c0 < c1) {
+    /* the box of the part's own rings, grown by the distance and the farthest corner of any power
+       cell from its seed: a cell whose ring's box comes within the distance of it has its seed inside
+       (the ring lies in its power cell), so the seeds inside are every cell the part needs (and some
+       more: the halo takes those within the distance of one of the rank's cells) */
+    PetscReal box[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
+    for (size_t i = 0; i < N; i++) {
+      if (place_[i] < c0 || place_[i] >= c1) continue;
+      PetscCall(Ring(i, &ring, &cell, &scratch));
+      for (const Point2 &p : ring.points)
+        box[0] = std::min(box[0], p[0]), box[1] = std::min(box[1], p[1]), box[2] = std::max(box[2], p[0]), box[3] = std::max(box[3], p[1]);
+    }
+    const PetscReal       grow = distance + radius_ + 1e-9 * (hi_[0] - lo_[0] + hi_[1] - lo_[1]); /* and the rounding of the nodes between corners */
+    std::vector<PetscInt> gid, sgid;
+    for (size_t i = 0; i < N; i++) {
+      const Point2 &s = cells_.Seeds()[i];
+      if (!(place_[i] >= c0 && place_[i] < c1) && !(s[0] >= box[0] - grow && s[0] <= box[2] + grow && s[1] >= box[1] - grow && s[1] <= box[3] + grow)) continue;
+      PetscCall(Ring(i, &ring, &cell, &scratch));
+      const PetscInt first = T.particles.n;
+      AddRingCell(ring, poly.node_mass, poly.bar_length, &T);
+      PetscCheck(T.particles.n - first == node_start_[i + 1] - node_start_[i], PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                 "Voronoi cell %zu: %" PetscInt_FMT " nodes, counted %" PetscInt_FMT, i, T.particles.n - first, node_start_[i + 1] - node_start_[i]);
+      for (PetscInt k = 0; k < T.particles.n - first; k++)
+        gid.push_back(node_start_[i] + k), sgid.push_back(node_start_[i] + k); /* closed rings: a bar a node */
+      T.cell_gid.push_back((PetscInt)i);
+    }
+    ParticleSet &P = T.particles;
+    P.node_polygon.assign(P.n, -1);
+    for (size_t c = 0; c < P.polygons.size(); c++)
+      for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;
+    P.polygon_gid = T.cell_gid;
+    T.Finalize();
+    P.gid.swap(gid);
+    P.spring_gid.swap(sgid);
+  }
+  for (int d = 0; d < 2; d++) T.lo[d] = lo_[d], T.hi[d] = hi_[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

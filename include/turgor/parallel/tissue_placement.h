@@ -6,11 +6,13 @@
    (tissue_distribution.h). -fine_partitioner picks how the cells are dealt:
    - metis (the default): a METIS partition of the cell graph, made on the first rank, which needs
      the whole tissue on every rank at set-up;
-   - ranges: each rank the cells of one range of the tissue's numbering, as many as the next rank
-     (cell c on rank floor((c P + P - 1) / C)). A generator that can build a part of its tissue
-     (TissueGenerator::GeneratePart: the square grid) then builds on each rank only its cells and
-     those within the halo's width (PlaceParts): no rank holds the whole tissue at any time. Ranges
-     of a row-major grid are strips: their halo is wider than METIS's blocks' on many ranks.
+   - ranges: each rank the cells of one range of the generator's space order, as many as the next
+     rank (the cell at place c on rank floor((c P + P - 1) / C); TissueGenerator::CellPlace: the
+     square grid's row-major numbering, the Hilbert curve through a Voronoi tissue's seeds). A
+     generator that can build a part of its tissue (TissueGenerator::GeneratePart: square grid,
+     Voronoi) then builds on each rank only its cells and those within the halo's width
+     (PlaceParts): no rank holds the whole tissue at any time. Ranges of a row-major grid are strips:
+     their halo is wider than METIS's blocks' on many ranks.
    -fine_partition_report N partitions the cells into N parts as a report only (summary.json, and
    each particle's part in the snapshots). */
 #include <turgor/io/output.h>
@@ -33,13 +35,17 @@ public:
   /* Collective; every rank holds the whole tissue. Keeps this rank's part of it (owned particles
      first, then the halo's), the halo's width `reach` (the interactions' reach with the neighbour
      skin, µm) plus the margin. local_of[g]: the local index of global particle g, -1 where this
-     rank has none (empty where the tissue is not distributed). */
-  PetscErrorCode Place(MPI_Comm comm, const Options &options, PetscReal reach, Tissue *tissue, std::vector<PetscInt> *local_of);
+     rank has none (empty where the tissue is not distributed). `order`: the generator whose space
+     order the ranges follow (TissueGenerator::CellPlace, after PrepareParts; null: the cells'
+     numbers). */
+  PetscErrorCode Place(MPI_Comm comm, const Options &options, PetscReal reach, Tissue *tissue, std::vector<PetscInt> *local_of,
+                       const TissueGenerator *order = nullptr);
   /* Collective; a distributed run with -fine_partitioner ranges of a generator that builds parts
      (NumCellsOfParts() >= 0): each rank generates its cells and those within reach + margin and
      keeps its part as Place does. */
   PetscErrorCode PlaceParts(MPI_Comm comm, const Options &options, PetscReal reach, const TissueGenerator &generator, Tissue *tissue);
-  /* The cells [c0, c1) that this rank owns under the ranges (of the generator's C cells). */
+  /* The places [c0, c1) of the space order (TissueGenerator::CellPlace) whose cells this rank owns
+     under the ranges (of the generator's C cells). */
   static PetscErrorCode OwnedRange(MPI_Comm comm, PetscInt C, PetscInt *c0, PetscInt *c1);
   bool                  Distributed() const { return distributed_; }
   TissueDistribution   *Halo() { return distributed_ ? &dist_ : nullptr; }
@@ -55,6 +61,7 @@ private:
 
   Options                options_;
   bool                   distributed_ = false, parts_ = false;
+  const TissueGenerator *order_ = nullptr; /* Place's: whose space order the ranges follow */
   TissueDistribution     dist_;
   PetscReal              reach_ = 0, margin_ = 0;
   CellPartition          partition_;

@@ -6,6 +6,7 @@
 #include <turgor/tissue/plates.h>
 #include <turgor/tissue/tissue.h>
 #include <turgor/tissue/tissue_generator.h>
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -40,6 +41,27 @@ struct PolygonRing {
 PetscReal BarsPerEdge(PetscReal L, PetscReal h);
 /* Nodes (= bars for a closed ring) after subdivision, in floating point (estimates). */
 PetscReal RingNodeCount(const PolygonRing &ring, PetscReal h);
+
+/* The nodes of a ring in order, each edge cut into BarsPerEdge(L, h) equal bars: f(x, y) for every
+   node (an open ring's last point too). */
+template <class F>
+void ForEachRingNode(const PolygonRing &R, PetscReal h, F &&f)
+{
+  const size_t n = R.points.size(), m = R.open ? n - 1 : n;
+  for (size_t k = 0; k < m; k++) {
+    const Point2  &a = R.points[k], &b = R.points[(k + 1) % n];
+    const PetscInt nb = (PetscInt)BarsPerEdge(std::hypot(b[0] - a[0], b[1] - a[1]), h);
+    for (PetscInt t = 0; t < nb; t++) {
+      const PetscReal s = (PetscReal)t / (PetscReal)nb;
+      f(a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]));
+    }
+  }
+  if (R.open) f(R.points[n - 1][0], R.points[n - 1][1]);
+}
+
+/* Append ring R as a cell of *tissue: its nodes (KIND_WALL, mass node_mass; ForEachRingNode), its
+   bars as springs with the geometric rest length, its PolygonCell and wall ring. */
+void AddRingCell(const PolygonRing &R, PetscReal node_mass, PetscReal h, Tissue *tissue);
 
 /* Fill *tissue from the rings and the plates of spec.plates (plates.h): nodes (KIND_WALL, mass
    spec.node_mass) cell by cell in ring order, each edge cut into BarsPerEdge(L, h) equal bars

@@ -26,14 +26,21 @@ public:
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
 
   /* Distributed set-up without the whole tissue on any rank (-fine_partitioner ranges). A generator
-     whose cells are numbered in space (a range of them is a compact part) and that can build a part
-     of its tissue alone returns its number of cells here (-1: it cannot; ranges are refused). */
-  virtual PetscInt NumCellsOfParts() const { return -1; }
-  /* The cells [c0, c1) of the whole tissue's numbering, every cell within `distance` µm of them and
+     that orders its cells in space (a range of places in the order is a compact part) and can build
+     a part of its tissue alone returns its number of cells here (-1: it cannot; ranges are refused,
+     for the reason PartsRefused() gives). */
+  virtual PetscInt    NumCellsOfParts() const { return -1; }
+  virtual std::string PartsRefused() const { return "numbers its cells in no spatial order (a range of them is no compact part)"; }
+  /* Collective, before CellPlace and GeneratePart: what the parts need that depends on the whole
+     tissue (a Voronoi tissue's seeds after the Lloyd steps, each cell's node count). */
+  virtual PetscErrorCode PrepareParts(MPI_Comm comm) { return PETSC_SUCCESS; }
+  /* The place of cell `gid` in the space order (the square grid: its row-major number). */
+  virtual PetscInt CellPlace(PetscInt gid) const { return gid; }
+  /* The cells at places [c0, c1) of the space order, every cell within `distance` µm of them and
      one layer of cells more, so that each particle of a cell within `distance` has all its springs
      here: their particles, springs and cells as in the whole tissue (in its order, with its numbers
-     in ParticleSet::gid and spring_gid and Tissue::cell_gid, and its bounding box), joints found as
-     Tissue::Finalize finds them. Not collective. */
+     in ParticleSet::gid, spring_gid (polygon_gid) and Tissue::cell_gid, and its bounding box),
+     joints found as Tissue::Finalize finds them. Not collective. */
   virtual PetscErrorCode GeneratePart(MPI_Comm comm, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part) const
   {
     return PetscError(comm, __LINE__, PETSC_FUNCTION_NAME, __FILE__, PETSC_ERR_SUP, PETSC_ERROR_INITIAL, "tissue generator %s cannot build a part", Name());

@@ -36,6 +36,29 @@ struct VoronoiDiagram {
   PetscReal              max_area_error    = 0; /* largest |A - target| / target at the end (cv > 0) */
 };
 
+/* The seeds of a power diagram binned on a grid (a counting sort: a seed's order in its bin is its
+   index order), from which any one cell is built on its own: the box clipped by the power bisectors
+   of the nearby seeds, visited ring by ring of bins until the security radius says no farther seed
+   can cut the cell. The same cell, bit for bit, whichever others are built. */
+class PowerCells {
+public:
+  PowerCells() = default;
+  PowerCells(const PetscReal box[4], std::vector<Point2> seeds, std::vector<PetscReal> weights);
+  size_t                     Size() const { return seeds_.size(); }
+  const std::vector<Point2> &Seeds() const { return seeds_; }
+  PetscReal                  Weight(size_t i) const { return weights_.empty() ? (PetscReal)0 : weights_[i]; }
+  /* cell i (scratch: work space) */
+  PetscErrorCode Cell(size_t i, PowerCell *cell, PowerCell *scratch) const;
+
+private:
+  PetscReal              box_[4] = {0, 0, 0, 0}, cw_ = 1, ch_ = 1, hmin_ = 1, wmax_ = 0;
+  PetscInt               gx_ = 1, gy_ = 1;
+  std::vector<Point2>    seeds_;
+  std::vector<PetscReal> weights_; /* empty: all 0 (Voronoi) */
+  std::vector<PetscInt>  start_, bin_;
+  void                   BinOf(const Point2 &p, PetscInt *ix, PetscInt *iy) const;
+};
+
 /* Power cells of the seeds in the box: each cell is the box clipped by the power bisectors of the
    nearby seeds, found on a grid and stopped by the security radius (a seed farther than the bound
    cannot cut the cell). O(N x neighbours). */
@@ -50,6 +73,15 @@ void ShrinkPowerCell(const PowerCell &cell, PetscReal r, PetscReal min_edge, std
    (optional) receives the diagram before shrinking. */
 PetscErrorCode GenerateVoronoiTissue(MPI_Comm comm, const VoronoiSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue, VoronoiDiagram *diagram = nullptr);
 
+/* The tissue in parts (TissueGenerator::GeneratePart): PrepareParts runs the Lloyd steps with each
+   rank building the cells of one range of seeds (their new seeds gathered to every rank after each
+   step), then counts every cell's nodes the same way; the cells' space order is the Hilbert curve
+   through their seeds. Every rank keeps the seeds, their bins and the node offsets of all cells
+   (about 60 B a cell against some 300 B for each of a cell's nodes); a part's cells are built from
+   them exactly as the whole tissue's are, so a part is the whole tissue's bit for bit. With
+   -tissue_size_cv the Laguerre weights are fitted on the whole diagram on every rank (a Newton
+   solve over all cells), its power cells freed before the parts are built. Plates and a
+   -tissue_cut_box number the cells after the whole tissue: not in parts. */
 class VoronoiGenerator : public PolygonGenerator<VoronoiSpec> {
 public:
   const char    *Name() const override { return "voronoi"; }
@@ -57,6 +89,18 @@ public:
   PetscErrorCode Estimate(PetscReal *particles, PetscReal *springs) const override;
   std::string    SizeOptions() const override;
   PetscErrorCode View(PetscViewer viewer) const override;
+  PetscInt       NumCellsOfParts() const override;
+  std::string    PartsRefused() const override;
+  PetscErrorCode PrepareParts(MPI_Comm comm) override;
+  PetscInt       CellPlace(PetscInt gid) const override { return place_[(size_t)gid]; }
+  PetscErrorCode GeneratePart(MPI_Comm comm, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part) const override;
+
+private:
+  PetscErrorCode        Ring(size_t i, PolygonRing *ring, PowerCell *cell, PowerCell *scratch) const; /* cell i shrunk (empty if it vanished) */
+  PowerCells            cells_;                                                                       /* the final seeds and weights */
+  std::vector<PetscInt> place_, node_start_;              /* each cell's place in the space order; its first node (and bar) [cells + 1] */
+  PetscReal             radius_ = 0;                      /* the largest distance from a seed to a corner of its power cell */
+  PetscReal             lo_[2] = {0, 0}, hi_[2] = {0, 0}; /* the whole tissue's bounding box */
 };
 
 } // namespace turgor
