@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numeric>
+#include <type_traits>
 
 namespace turgor {
 
@@ -244,105 +246,62 @@ PetscErrorCode WriteDataset(MPI_Comm comm, const std::string &file, hid_t loc, c
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Rows sent to the rank of their key's range (keys below kmax + 1 spread evenly over the ranks),
-   received and sorted by (key, holder): each rank then holds a contiguous, ordered slab. */
-PetscErrorCode SortOverRanks(MPI_Comm comm, const std::vector<StateColumn> &cols, Rows &R)
-{
-  PetscMPIInt size;
-  KeyRanges   ranges;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(ranges.SetUp(comm, R.key.data(), R.Count()));
-  const size_t ncol = cols.size();
-  /* Each row as bytes (key, holder, owned, then each column's values, a ragged one after its
-     length) for the rank of its key's range. At most two copies of the table live at once (a
-     checkpoint of 10^7 particles writes tables of hundreds of MB): the rows and their bytes, the
-     bytes sent and received, the bytes received and the rows in order. */
-  auto row_bytes = [&](size_t r) {
-    size_t b = 24;
-    for (size_t c = 0; c < ncol; c++) b += 8 * (cols[c].width > 0 ? (size_t)cols[c].width : 1 + (size_t)R.length[c][r]);
-    return b;
-  };
-  std::vector<std::vector<char>> out((size_t)size);
+/* A table's rows on their way to the rank of their key's range (keys below kmax + 1 spread evenly
+   over the ranks; KeyRanges), where they are sorted by (key, holder): each rank then holds a
+   contiguous, ordered slab. The keys travel first and fix the order; then each column travels on
+   its own through the same order and is written before the next is packed, so that a rank holds
+   one column of the table at a time (three copies of it: sent, received, sorted), not the whole
+   table twice (a checkpoint of 10^7 particles writes tables of hundreds of MB). */
+class RowExchange {
+public:
+  /* Collective: this rank's rows' keys (in the table's order). */
+  PetscErrorCode SetUp(MPI_Comm comm, const std::vector<std::uint64_t> &key)
   {
-    std::vector<size_t> bytes((size_t)size, 0);
-    for (size_t r = 0; r < R.Count(); r++) bytes[ranges.Rank(R.key[r])] += row_bytes(r);
-    for (int q = 0; q < size; q++) out[q].reserve(bytes[q]);
+    KeyRanges ranges;
+    PetscFunctionBeginUser;
+    comm_ = comm;
+    PetscCallMPI(MPI_Comm_size(comm, &size_));
+    PetscCall(ranges.SetUp(comm, key.data(), key.size()));
+    start_.assign((size_t)size_ + 1, 0);
+    for (std::uint64_t k : key) start_[(size_t)ranges.Rank(k) + 1]++;
+    for (int q = 0; q < size_; q++) start_[q + 1] += start_[q];
+    std::vector<size_t> fill(start_.begin(), start_.end() - 1);
+    send_order_.resize(key.size());
+    for (size_t r = 0; r < key.size(); r++) send_order_[fill[(size_t)ranges.Rank(key[r])]++] = r;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
-  std::vector<size_t> first(ncol, 0); /* a ragged column's offset of the current row */
-  for (size_t r = 0; r < R.Count(); r++) {
-    std::vector<char> &o   = out[ranges.Rank(R.key[r])];
-    auto               put = [&o](const void *p, size_t n) { o.insert(o.end(), (const char *)p, (const char *)p + n); };
-    put(&R.key[r], 8);
-    put(&R.holder[r], 8);
-    put(&R.owned[r], 8);
-    for (size_t c = 0; c < ncol; c++) {
-      if (cols[c].width > 0) put(&R.data[c][r * cols[c].width], 8 * (size_t)cols[c].width);
-      else {
-        const std::int64_t n = R.length[c][r];
-        put(&n, 8);
-        put(R.data[c].data() + first[c], 8 * (size_t)n);
-        first[c] += (size_t)n;
-      }
+  /* Collective: pack(r, &bytes) appends row r's bytes, for every row in the order of sending (of
+     row_bytes each, where known: the buffer is then made at its size, not grown to up to twice it);
+     *in receives every rank's rows for this one, in rank order. */
+  template <class Pack>
+  PetscErrorCode Send(Pack &&pack, size_t row_bytes, std::vector<char> *in, const char *what) const
+  {
+    std::vector<char> send;
+    std::vector<int>  count((size_t)size_, 0);
+    PetscFunctionBeginUser;
+    send.reserve(row_bytes * send_order_.size());
+    for (int q = 0; q < size_; q++) {
+      const size_t before = send.size();
+      for (size_t k = start_[q]; k < start_[q + 1]; k++) pack(send_order_[k], &send);
+      PetscCheck(send.size() - before < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s: more than 2 GB for one rank", what);
+      count[q] = (int)(send.size() - before);
     }
+    PetscCall(ExchangePacked(comm_, send, count, *in, NULL, what));
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
-  R = Rows(); /* (its storage freed) */
-  std::vector<char> recv;
-  PetscCall(ExchangeBytes(comm, out, recv, NULL, "Checkpoint: one table"));
-  /* the received rows' keys, holders and places, ordered; then the rows copied in that order */
-  struct Place {
-    std::uint64_t key;
-    std::int64_t  holder;
-    size_t        at;
-  };
-  std::vector<Place>  place;
-  std::vector<size_t> values(ncol, 0); /* each ragged column's values in all */
-  for (size_t p = 0; p < recv.size();) {
-    Place pl;
-    std::memcpy(&pl.key, recv.data() + p, 8);
-    std::memcpy(&pl.holder, recv.data() + p + 8, 8);
-    pl.at = p;
-    place.push_back(pl);
-    p += 24;
-    for (size_t c = 0; c < ncol; c++) {
-      std::int64_t n = cols[c].width;
-      if (cols[c].width == 0) {
-        std::memcpy(&n, recv.data() + p, 8);
-        p += 8;
-        values[c] += (size_t)n;
-      }
-      p += 8 * (size_t)n;
-    }
-  }
-  std::stable_sort(place.begin(), place.end(), [](const Place &a, const Place &b) { return a.key != b.key ? a.key < b.key : a.holder < b.holder; });
-  const size_t nr = place.size();
-  R.data.assign(ncol, {});
-  R.length.assign(ncol, {});
-  R.key.reserve(nr), R.holder.reserve(nr), R.owned.reserve(nr);
-  for (size_t c = 0; c < ncol; c++) {
-    if (cols[c].width > 0) R.data[c].reserve(nr * (size_t)cols[c].width);
-    else R.data[c].reserve(values[c]), R.length[c].reserve(nr);
-  }
-  for (const Place &pl : place) {
-    const char  *p = recv.data() + pl.at;
-    std::int64_t o;
-    std::memcpy(&o, p + 16, 8);
-    R.key.push_back(pl.key), R.holder.push_back(pl.holder), R.owned.push_back(o);
-    p += 24;
-    for (size_t c = 0; c < ncol; c++) {
-      std::int64_t n = cols[c].width;
-      if (cols[c].width == 0) {
-        std::memcpy(&n, p, 8);
-        p += 8;
-        R.length[c].push_back(n);
-      }
-      const size_t s = R.data[c].size();
-      R.data[c].resize(s + (size_t)n);
-      if (n) std::memcpy(R.data[c].data() + s, p, 8 * (size_t)n); /* an empty ragged entry's destination may be null */
-      p += 8 * (size_t)n;
-    }
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
+  size_t Rows() const { return send_order_.size(); }
+
+private:
+  MPI_Comm            comm_ = MPI_COMM_NULL;
+  PetscMPIInt         size_ = 1;
+  std::vector<size_t> start_;      /* [ranks + 1]: the rows for each rank in the order of sending */
+  std::vector<size_t> send_order_; /* the table's rows in the order of sending */
+};
+
+template <class T>
+void Append(std::vector<char> *bytes, const T *p, size_t n)
+{
+  bytes->insert(bytes->end(), (const char *)p, (const char *)(p + n));
 }
 
 } // namespace
@@ -370,81 +329,127 @@ PetscErrorCode CheckpointWriter::WriteTable(const std::string &group, const Stat
   const size_t                    ncol = cols.size(), n = table.Count();
   const StateEntity               e = table.Entity();
   PetscMPIInt                     rank;
-  Rows                            R;
-  std::vector<PetscReal>          buf;
+  RowExchange                     X;
+  std::vector<size_t>             perm; /* the received rows in key order: the k-th row of the slab is received row perm[k] */
+  std::uint64_t                   nl = 0, first = 0, total = 0;
+  PetscErrorCode                  ierr = PETSC_SUCCESS;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm_, &rank));
-  R.data.assign(ncol, {});
-  R.length.assign(ncol, {});
-  R.key.reserve(n), R.holder.reserve(n), R.owned.reserve(n);
-  for (size_t c = 0; c < ncol; c++) {
-    if (cols[c].width > 0) R.data[c].reserve(n * (size_t)cols[c].width);
-    else R.length[c].reserve(n);
-  }
-  const int anchor = table.IsRecords() ? table.AnchorColumn() : -1;
-  for (size_t r = 0; r < n; r++) {
-    std::uint64_t key;
-    bool          owned = true;
-    if (e == StateEntity::Rank) key = (std::uint64_t)rank;
-    else if (table.IsRecords()) {
-      key = table.RecordKey(r);
-      if (anchor >= 0) {
-        PetscReal a;
-        cols[anchor].get(r, &a);
-        owned = numbering.Owned(cols[anchor].ref, (PetscInt)a);
-      }
-    } else {
-      key   = numbering.Id(e, table.Local(r));
-      owned = table.OwnedOverride() ? table.Owned(r) : numbering.Owned(e, table.Local(r));
-    }
-    R.key.push_back(key);
-    R.holder.push_back(rank);
-    R.owned.push_back(owned ? 1 : 0);
-    for (size_t c = 0; c < ncol; c++) {
-      const StateColumn &col = cols[c];
-      if (col.width > 0) {
-        buf.resize((size_t)col.width);
-        col.get(r, buf.data());
-      } else {
-        buf.clear();
-        col.get_ragged(r, buf);
-        R.length[c].push_back((std::int64_t)buf.size());
-      }
-      if (col.is_ref)
-        for (PetscReal &v : buf) v = v < 0 ? -1 : (PetscReal)numbering.Id(col.ref, (PetscInt)v);
-      R.data[c].insert(R.data[c].end(), buf.begin(), buf.end());
-    }
-  }
-  PetscCall(SortOverRanks(comm_, cols, R));
-  /* this rank's slab: its rows' place among all */
-  std::uint64_t nl = R.Count(), first = 0, total = 0;
-  PetscCallMPI(MPI_Exscan(&nl, &first, 1, MPI_UINT64_T, MPI_SUM, comm_));
-  if (rank == 0) first = 0;
-  PetscCallMPI(MPI_Allreduce(&nl, &total, 1, MPI_UINT64_T, MPI_SUM, comm_));
   hid_t g = H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   TG_H5(g, comm_, "Checkpoint %s: cannot create group %s", path_.c_str(), group.c_str());
-  PetscErrorCode                  ierr = WriteDataset(comm_, path_, g, "key", Kind::Key, R.key.data(), nl, first, total, 0);
-  const std::vector<std::int32_t> holder(R.holder.begin(), R.holder.end());
-  const std::vector<std::int8_t>  owned(R.owned.begin(), R.owned.end());
-  if (!ierr) ierr = WriteDataset(comm_, path_, g, "holder", Kind::Rank, holder.data(), nl, first, total, 0);
-  if (!ierr) ierr = WriteDataset(comm_, path_, g, "owned", Kind::Flag, owned.data(), nl, first, total, 0);
-  std::vector<std::int64_t> ints;
-  for (size_t c = 0; c < ncol && !ierr; c++) {
-    const StateColumn &col  = cols[c];
-    const Kind         kind = col.integer ? Kind::Int : Kind::Real;
-    const void        *data = R.data[c].data();
-    if (col.integer) {
-      ints.assign(R.data[c].begin(), R.data[c].end());
-      data = ints.data();
+  { /* the keys, holders and owner flags: they fix the slab's order */
+    std::vector<std::uint64_t> key(n);
+    std::vector<std::int8_t>   owned(n);
+    const int                  anchor = table.IsRecords() ? table.AnchorColumn() : -1;
+    for (size_t r = 0; r < n; r++) {
+      bool own = true;
+      if (e == StateEntity::Rank) key[r] = (std::uint64_t)rank;
+      else if (table.IsRecords()) {
+        key[r] = table.RecordKey(r);
+        if (anchor >= 0) {
+          PetscReal a;
+          cols[anchor].get(r, &a);
+          own = numbering.Owned(cols[anchor].ref, (PetscInt)a);
+        }
+      } else {
+        key[r] = numbering.Id(e, table.Local(r));
+        own    = table.OwnedOverride() ? table.Owned(r) : numbering.Owned(e, table.Local(r));
+      }
+      owned[r] = own ? 1 : 0;
     }
-    if (col.width > 0) ierr = WriteDataset(comm_, path_, g, col.name, kind, data, nl, first, total, col.width);
+    PetscCall(X.SetUp(comm_, key));
+    std::vector<char> in;
+    PetscCall(X.Send(
+      [&](size_t r, std::vector<char> *b) {
+        const std::int32_t holder = (std::int32_t)rank;
+        Append(b, &key[r], 1), Append(b, &holder, 1), Append(b, &owned[r], 1);
+      },
+      13, &in, "Checkpoint: a table's keys"));
+    const size_t row = 13;
+    nl               = in.size() / row;
+    std::vector<std::uint64_t> k(nl);
+    std::vector<std::int32_t>  h(nl);
+    std::vector<std::int8_t>   o(nl);
+    for (size_t i = 0; i < nl; i++) {
+      std::memcpy(&k[i], in.data() + i * row, 8);
+      std::memcpy(&h[i], in.data() + i * row + 8, 4);
+      std::memcpy(&o[i], in.data() + i * row + 12, 1);
+    }
+    std::vector<char>().swap(in);
+    perm.resize(nl);
+    std::iota(perm.begin(), perm.end(), (size_t)0);
+    /* stable: rows of one key and holder (records) keep the order they were sent in */
+    std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) { return k[a] != k[b] ? k[a] < k[b] : h[a] < h[b]; });
+    auto in_order = [&perm](auto &v) {
+      std::remove_reference_t<decltype(v)> sorted(v.size());
+      for (size_t i = 0; i < v.size(); i++) sorted[i] = v[perm[i]];
+      v.swap(sorted);
+    };
+    in_order(k), in_order(h), in_order(o);
+    /* this rank's slab: its rows' place among all */
+    PetscCallMPI(MPI_Exscan(&nl, &first, 1, MPI_UINT64_T, MPI_SUM, comm_));
+    if (rank == 0) first = 0;
+    PetscCallMPI(MPI_Allreduce(&nl, &total, 1, MPI_UINT64_T, MPI_SUM, comm_));
+    ierr = WriteDataset(comm_, path_, g, "key", Kind::Key, k.data(), nl, first, total, 0);
+    if (!ierr) ierr = WriteDataset(comm_, path_, g, "holder", Kind::Rank, h.data(), nl, first, total, 0);
+    if (!ierr) ierr = WriteDataset(comm_, path_, g, "owned", Kind::Flag, o.data(), nl, first, total, 0);
+  }
+  /* the columns, one at a time (references as ids) */
+  std::vector<PetscReal> buf;
+  for (size_t c = 0; c < ncol && !ierr; c++) {
+    const StateColumn &col = cols[c];
+    const size_t       w   = col.width > 0 ? (size_t)col.width : 0;
+    std::vector<char>  in;
+    PetscCall(X.Send(
+      [&](size_t r, std::vector<char> *b) {
+        if (w > 0) {
+          buf.resize(w);
+          col.get(r, buf.data());
+        } else {
+          buf.clear();
+          col.get_ragged(r, buf);
+          const std::int64_t len = (std::int64_t)buf.size();
+          Append(b, &len, 1);
+        }
+        if (col.is_ref)
+          for (PetscReal &v : buf) v = v < 0 ? -1 : (PetscReal)numbering.Id(col.ref, (PetscInt)v);
+        Append(b, buf.data(), buf.size());
+      },
+      8 * w, &in, "Checkpoint: a table's column"));
+    /* a ragged column's received rows: where each one's values start, and how many */
+    std::vector<size_t>       at(w > 0 ? 0 : nl);
+    std::vector<std::int64_t> len(w > 0 ? 0 : nl);
+    size_t                    nv = w * nl;
+    for (size_t i = 0, p = 0; w == 0 && i < nl; i++) {
+      std::memcpy(&len[i], in.data() + p, 8);
+      at[i] = p + 8;
+      p     = at[i] + 8 * (size_t)len[i];
+      nv += (size_t)len[i];
+    }
+    /* the values in the slab's order, as reals or (integer columns) as integers */
+    std::vector<PetscReal>    real(col.integer ? 0 : nv);
+    std::vector<std::int64_t> ints(col.integer ? nv : 0), lengths(w > 0 ? 0 : nl);
+    for (size_t kk = 0, v = 0; kk < nl; kk++) {
+      const size_t i = perm[kk], m = w > 0 ? w : (size_t)len[i], from = w > 0 ? 8 * w * i : at[i];
+      if (w == 0) lengths[kk] = len[i];
+      for (size_t j = 0; j < m; j++, v++) {
+        PetscReal x;
+        std::memcpy(&x, in.data() + from + 8 * j, 8);
+        if (col.integer) ints[v] = (std::int64_t)x;
+        else real[v] = x;
+      }
+    }
+    std::vector<char>().swap(in);
+    const Kind  kind = col.integer ? Kind::Int : Kind::Real;
+    const void *data = col.integer ? (const void *)ints.data() : (const void *)real.data();
+    if (w > 0) ierr = WriteDataset(comm_, path_, g, col.name, kind, data, nl, first, total, col.width);
     else {
-      std::uint64_t nv = R.data[c].size(), vfirst = 0, vtotal = 0;
-      PetscCallMPI(MPI_Exscan(&nv, &vfirst, 1, MPI_UINT64_T, MPI_SUM, comm_));
+      std::uint64_t nvl = nv, vfirst = 0, vtotal = 0;
+      PetscCallMPI(MPI_Exscan(&nvl, &vfirst, 1, MPI_UINT64_T, MPI_SUM, comm_));
       if (rank == 0) vfirst = 0;
-      PetscCallMPI(MPI_Allreduce(&nv, &vtotal, 1, MPI_UINT64_T, MPI_SUM, comm_));
-      ierr = WriteDataset(comm_, path_, g, col.name, kind, data, nv, vfirst, vtotal, 0);
-      if (!ierr) ierr = WriteDataset(comm_, path_, g, col.name + ".length", Kind::Int, R.length[c].data(), nl, first, total, 0);
+      PetscCallMPI(MPI_Allreduce(&nvl, &vtotal, 1, MPI_UINT64_T, MPI_SUM, comm_));
+      ierr = WriteDataset(comm_, path_, g, col.name, kind, data, nvl, vfirst, vtotal, 0);
+      if (!ierr) ierr = WriteDataset(comm_, path_, g, col.name + ".length", Kind::Int, lengths.data(), nl, first, total, 0);
     }
   }
   H5Gclose(g);
@@ -665,7 +670,7 @@ using KeyRows = std::vector<std::pair<std::uint64_t, size_t>>;
    chunk at a time in the file's order. No rank holds more of the table than a chunk:
    - the checksums: each rank streams an equal slab of every dataset's rows in chunks, and the
      slabs' shares are summed over the ranks (collective; the same verdict everywhere);
-   - the rows (in key order, SortOverRanks): the range from the first key >= this rank's smallest
+   - the rows (in key order, RowExchange): the range from the first key >= this rank's smallest
      to the last <= its largest is found by bisection on the keys and streamed in chunks of
      chunk rows (-restart_read_rows: the reader's transient, whatever the table's size), keeping
      the rows of this rank's keys (every row of such a key, whatever its holder). On any rank

@@ -22,12 +22,11 @@ PetscErrorCode ExchangeBytes(MPI_Comm comm, std::vector<std::vector<char>> &out,
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  std::vector<int> scount((size_t)size), rcount((size_t)size), sdisp((size_t)size, 0), rdisp((size_t)size, 0);
+  std::vector<int> count((size_t)size);
   for (int q = 0; q < size; q++) {
     PetscCheck(out[q].size() < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s: more than 2 GB for one rank", what);
-    scount[q] = (int)out[q].size();
+    count[q] = (int)out[q].size();
   }
-  PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm));
   std::vector<char> send;
   {
     size_t bytes = 0;
@@ -35,10 +34,22 @@ PetscErrorCode ExchangeBytes(MPI_Comm comm, std::vector<std::vector<char>> &out,
     send.reserve(bytes); /* its exact size: grown piece by piece it would hold up to twice the rows, the checkpoint's peak */
   }
   for (int q = 0; q < size; q++) {
-    sdisp[q] = (int)send.size();
     send.insert(send.end(), out[q].begin(), out[q].end());
     std::vector<char>().swap(out[q]);
   }
+  PetscCall(ExchangePacked(comm, send, count, in, from, what));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ExchangePacked(MPI_Comm comm, std::vector<char> &send, const std::vector<int> &count, std::vector<char> &in, std::vector<int> *from,
+                              const char *what)
+{
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<int> rcount((size_t)size), sdisp((size_t)size, 0), rdisp((size_t)size, 0);
+  PetscCallMPI(MPI_Alltoall(count.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, comm));
+  for (int q = 1; q < size; q++) sdisp[q] = sdisp[q - 1] + count[q - 1];
   size_t total = 0;
   for (int q = 0; q < size; q++) {
     rdisp[q] = (int)total;
@@ -46,7 +57,8 @@ PetscErrorCode ExchangeBytes(MPI_Comm comm, std::vector<std::vector<char>> &out,
   }
   PetscCheck(total < (size_t)INT32_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s: more than 2 GB on one rank", what);
   in.resize(total);
-  PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdisp.data(), MPI_CHAR, in.data(), rcount.data(), rdisp.data(), MPI_CHAR, comm));
+  PetscCallMPI(MPI_Alltoallv(send.data(), count.data(), sdisp.data(), MPI_CHAR, in.data(), rcount.data(), rdisp.data(), MPI_CHAR, comm));
+  std::vector<char>().swap(send);
   if (from) *from = rcount;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -38,6 +38,10 @@ private:
    `in`, with the bytes from each rank in `from` (may be NULL). `what` names the data in errors
    (MPI counts are ints: 2 GB per rank at most). out is emptied. */
 PetscErrorCode ExchangeBytes(MPI_Comm comm, std::vector<std::vector<char>> &out, std::vector<char> &in, std::vector<int> *from, const char *what);
+/* The same from one buffer: send holds count[0] bytes for rank 0, then count[1] for rank 1, ...;
+   send is emptied. */
+PetscErrorCode ExchangePacked(MPI_Comm comm, std::vector<char> &send, const std::vector<int> &count, std::vector<char> &in, std::vector<int> *from,
+                              const char *what);
 
 class KeyOrder {
 public:
