@@ -127,6 +127,37 @@ foreach(setup parts whole)
 endforeach()
 turgor_add_test(dist_laguerre_parts_identical COMMAND ${CHECK} identical dist_laguerre_parts_np2 dist_laguerre_whole_np2 final_state_hash
   halo_particles_max particles_per_rank_max LABELS fine mpi REQUIRES "dist_laguerre_parts_np2;dist_laguerre_whole_np2")
+# A node file read in parts: each rank reads its byte range of the file (a cell where its first line
+# starts), the ranges' cells checked and indexed on every rank, the cells dealt along the Hilbert
+# curve through their boxes' centres; each rank then reads its cells and those near by seeking to
+# them. The file (48 glued Voronoi cells, comments, clockwise cells, ids from 7, an open cell) is
+# written by test_tissue. The same run to the bit as the whole file dealt by the same ranges, on 2, 3
+# (long) and 5 (long) ranks; the 1-rank run's tip to 1e-8.
+set_tests_properties(test_tissue PROPERTIES FIXTURES_SETUP parts_tissue_nodes)
+set(DIST_NODES_RANGES -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_type node_file -tissue_node_file parts_tissue.nodes
+  -tissue_open_cells 12 -ts_max_time 1 -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges -output_overwrite)
+turgor_add_test(dist_nodes_parts_np1 COMMAND turgor_app ${DIST_NODES_RANGES} -output_dir dist_nodes_parts_np1 LABELS fine mpi
+  REQUIRES parts_tissue_nodes SETUP dist_nodes_parts_np1)
+foreach(np 2 3 5)
+  set(tier "")
+  if(np GREATER 2)
+    set(tier long)
+  endif()
+  foreach(setup parts whole)
+    set(in_parts 1)
+    if(setup STREQUAL whole)
+      set(in_parts 0)
+    endif()
+    turgor_add_test(dist_nodes_${setup}_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${DIST_NODES_RANGES} -fine_setup_in_parts ${in_parts}
+      -output_dir dist_nodes_${setup}_np${np} LABELS fine mpi ${tier} REQUIRES parts_tissue_nodes SETUP dist_nodes_${setup}_np${np})
+  endforeach()
+  turgor_add_test(dist_nodes_parts_np${np}_identical COMMAND ${CHECK} identical dist_nodes_parts_np${np} dist_nodes_whole_np${np} final_state_hash
+    halo_particles_max particles_per_rank_max LABELS fine mpi ${tier} REQUIRES "dist_nodes_parts_np${np};dist_nodes_whole_np${np}")
+  turgor_add_test(dist_nodes_parts_np${np}_built COMMAND ${CHECK} equals dist_nodes_parts_np${np} setup_in_parts True LABELS fine mpi ${tier}
+    REQUIRES dist_nodes_parts_np${np})
+  turgor_add_test(dist_nodes_parts_np${np}_tip COMMAND ${CHECK} tiprel dist_nodes_parts_np${np} dist_nodes_parts_np1 1e-8 LABELS fine mpi ${tier}
+    REQUIRES "dist_nodes_parts_np1;dist_nodes_parts_np${np}")
+endforeach()
 # A 16-cell polygonal tissue under the lid: contact with friction, plastic hinges, gas-law pressure,
 # velocity controls (groups.csv: the lid's reaction), the energy balance (energy.csv: every rank's
 # share summed), TS verlet, over 4 µs on 2 ranks; 1.5 µs on 3 (the lid from 0.5 µs; long: 5 s).

@@ -1,11 +1,93 @@
 static const char help[] = "Tissue generator: particle and spring counts, cell polygons, clamps.\n";
 #include "test_util.h"
+#include <turgor/tissue/node_file.h>
 #include <turgor/tissue/voronoi.h>
+#include <cstdio>
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 using namespace turgor;
+
+/* The parts of a polygonal tissue G (PrepareParts done) dealt in `parts` ranges of its space order,
+   against the whole tissue W: every node, bar, joint and cell of a part as in W under its numbers,
+   bit for bit; every cell whose ring's box comes within `distance` of a cell of the range; the parts
+   cover W. */
+static PetscErrorCode CheckPolygonParts(const TissueGenerator &G, const Tissue &W, PetscInt parts, PetscReal distance)
+{
+  const ParticleSet &PW = W.particles;
+  const PetscInt     C  = G.NumCellsOfParts();
+  auto               box_of = [](const Tissue &T, const std::vector<PetscInt> &ring, PetscReal b[4]) {
+    b[0] = b[1] = PETSC_MAX_REAL;
+    b[2] = b[3] = -PETSC_MAX_REAL;
+    for (PetscInt i : ring) {
+      b[0] = std::min(b[0], T.X[2 * i]), b[1] = std::min(b[1], T.X[2 * i + 1]);
+      b[2] = std::max(b[2], T.X[2 * i]), b[3] = std::max(b[3], T.X[2 * i + 1]);
+    }
+  };
+  PetscFunctionBeginUser;
+  TG_CHECK(W.NumCells() == C, "parts: %" PetscInt_FMT " cells, the whole tissue %" PetscInt_FMT, C, W.NumCells());
+  std::vector<char> seen(PW.n, 0), seen_spring(PW.springs.size(), 0), placed(C, 0);
+  for (PetscInt c = 0; c < C; c++) {
+    const PetscInt k = G.CellPlace(c);
+    TG_CHECK(k >= 0 && k < C && !placed[k], "parts: cell %" PetscInt_FMT " at place %" PetscInt_FMT, c, k);
+    placed[k] = 1;
+  }
+  std::vector<std::array<PetscReal, 4>> wbox(C);
+  for (PetscInt c = 0; c < C; c++) box_of(W, W.cell_walls[c], wbox[c].data());
+  for (PetscInt r = 0; r < parts; r++) {
+    const PetscInt c0 = r * C / parts, c1 = (r + 1) * C / parts;
+    Tissue         T;
+    PetscCall(G.GeneratePart(PETSC_COMM_SELF, c0, c1, distance, &T));
+    const ParticleSet &P = T.particles;
+    TG_CHECK(T.lo[0] == W.lo[0] && T.lo[1] == W.lo[1] && T.hi[0] == W.hi[0] && T.hi[1] == W.hi[1] && P.bar_radius == PW.bar_radius, "part %" PetscInt_FMT ": bounds",
+             r);
+    for (PetscInt i = 0; i < P.n; i++) {
+      const PetscInt g = P.gid[i];
+      TG_CHECK(g >= 0 && g < PW.n && (i == 0 || g > P.gid[i - 1]), "part %" PetscInt_FMT ": node %" PetscInt_FMT " numbered %" PetscInt_FMT, r, i, g);
+      TG_CHECK(T.X[2 * i] == W.X[2 * g] && T.X[2 * i + 1] == W.X[2 * g + 1] && P.mass[i] == PW.mass[g] && P.kind[i] == PW.kind[g] &&
+                 T.CellGid(P.node_polygon[i]) == PW.node_polygon[g],
+               "part %" PetscInt_FMT ": node %" PetscInt_FMT " differs", r, g);
+      seen[g] = 1;
+    }
+    TG_CHECK(P.polygon_gid == T.cell_gid && P.polygons.size() == T.cell_gid.size(), "part %" PetscInt_FMT ": polygons", r);
+    for (PetscInt c = 0; c < T.NumCells(); c++) {
+      const PetscInt g = T.CellGid(c);
+      TG_CHECK(c == 0 || g > T.CellGid(c - 1), "part %" PetscInt_FMT ": cells not increasing", r);
+      TG_CHECK(T.cell_walls[c].size() == W.cell_walls[g].size() && P.polygons[c].open == PW.polygons[g].open &&
+                 P.polygons[c].bars.size() == PW.polygons[g].bars.size(),
+               "part %" PetscInt_FMT ": cell %" PetscInt_FMT, r, g);
+      for (size_t k = 0; k < T.cell_walls[c].size(); k++) TG_CHECK(P.gid[T.cell_walls[c][k]] == W.cell_walls[g][k], "part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
+      for (size_t k = 0; k < P.polygons[c].bars.size(); k++)
+        TG_CHECK(P.SpringGid((size_t)P.polygons[c].bars[k]) == PW.polygons[g].bars[k], "part %" PetscInt_FMT ": bars of cell %" PetscInt_FMT, r, g);
+    }
+    for (PetscInt c = 0; c < C; c++) { /* every cell near the range's (box gaps) is here */
+      bool near = false;
+      for (PetscInt o = 0; o < C && !near; o++) {
+        if (G.CellPlace(o) < c0 || G.CellPlace(o) >= c1) continue;
+        const PetscReal dx = std::max((PetscReal)0, std::max(wbox[c][0] - wbox[o][2], wbox[o][0] - wbox[c][2]));
+        const PetscReal dy = std::max((PetscReal)0, std::max(wbox[c][1] - wbox[o][3], wbox[o][1] - wbox[c][3]));
+        near               = std::hypot(dx, dy) <= distance;
+      }
+      if (near) TG_CHECK(std::binary_search(T.cell_gid.begin(), T.cell_gid.end(), c), "part %" PetscInt_FMT ": cell %" PetscInt_FMT " missing", r, c);
+    }
+    for (size_t q = 0; q < P.springs.size(); q++) {
+      const Spring  &a = P.springs[q];
+      const PetscInt g = P.spring_gid[q];
+      TG_CHECK(g >= 0 && g < (PetscInt)PW.springs.size() && (q == 0 || g > P.spring_gid[q - 1]), "part %" PetscInt_FMT ": bar numbered %" PetscInt_FMT, r, g);
+      const Spring &b = PW.springs[g];
+      TG_CHECK(P.gid[a.i] == b.i && P.gid[a.j] == b.j && a.rest_length == b.rest_length, "part %" PetscInt_FMT ": bar %" PetscInt_FMT " differs", r, g);
+      for (int e = 0; e < 2; e++) {
+        const PetscInt j = a.joint[e] < 0 ? -1 : 2 * P.spring_gid[a.joint[e] / 2] + a.joint[e] % 2;
+        TG_CHECK(j == b.joint[e], "part %" PetscInt_FMT ": joint %d of bar %" PetscInt_FMT, r, e, g);
+      }
+      seen_spring[g] = 1;
+    }
+  }
+  for (PetscInt g = 0; g < PW.n; g++) TG_CHECK(seen[g], "%" PetscInt_FMT " cells: node %" PetscInt_FMT " in no part", C, g);
+  for (size_t g = 0; g < PW.springs.size(); g++) TG_CHECK(seen_spring[g], "%" PetscInt_FMT " cells: bar %zu in no part", C, g);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 int main(int argc, char **argv)
 {
@@ -148,10 +230,9 @@ int main(int argc, char **argv)
     }
   }
   {
-    /* Parts of a Voronoi tissue (distributed set-up): the Hilbert order of the seeds dealt in ranges;
-       every node, bar, joint and cell of a part as in the whole tissue under its numbers, bit for
-       bit; every cell whose ring's box comes within the distance of a cell of the range; the parts
-       cover the tissue. Lloyd steps, Laguerre weights, a gap, subdivided and whole edges. */
+    /* Parts of a Voronoi tissue (distributed set-up): the Hilbert order of the seeds dealt in ranges,
+       each part as in the whole tissue (CheckPolygonParts). Lloyd steps, Laguerre weights, a gap,
+       subdivided and whole edges. */
     struct Case {
       PetscInt  cells, lloyd, parts;
       PetscReal size_cv, gap, bar_length, distance;
@@ -160,14 +241,6 @@ int main(int argc, char **argv)
       {60, 2, 3, 0.0, 0.05, 3.0, 20.0},
       {40, 0, 5, 0.3, 0.0,  0.0, 0.0 },
       {25, 1, 4, 0.0, 0.0,  5.0, 60.0},
-    };
-    auto box_of = [](const Tissue &T, const std::vector<PetscInt> &ring, PetscReal b[4]) {
-      b[0] = b[1] = PETSC_MAX_REAL;
-      b[2] = b[3] = -PETSC_MAX_REAL;
-      for (PetscInt i : ring) {
-        b[0] = std::min(b[0], T.X[2 * i]), b[1] = std::min(b[1], T.X[2 * i + 1]);
-        b[2] = std::max(b[2], T.X[2 * i]), b[3] = std::max(b[3], T.X[2 * i + 1]);
-      }
     };
     for (const Case &cs : cases) {
       VoronoiGenerator G;
@@ -182,74 +255,48 @@ int main(int argc, char **argv)
       Tissue W;
       PetscCall(GenerateVoronoiTissue(PETSC_COMM_SELF, G.spec, G.poly, &W));
       PetscCall(G.PrepareParts(PETSC_COMM_SELF));
-      const ParticleSet &PW = W.particles;
-      const PetscInt     C  = cs.cells;
-      TG_CHECK(G.NumCellsOfParts() == C && W.NumCells() == C, "Voronoi parts: %" PetscInt_FMT " cells", W.NumCells());
-      std::vector<char> seen(PW.n, 0), seen_spring(PW.springs.size(), 0), placed(C, 0);
-      for (PetscInt c = 0; c < C; c++) {
-        const PetscInt k = G.CellPlace(c);
-        TG_CHECK(k >= 0 && k < C && !placed[k], "Voronoi parts: cell %" PetscInt_FMT " at place %" PetscInt_FMT, c, k);
-        placed[k] = 1;
-      }
-      std::vector<std::array<PetscReal, 4>> wbox(C);
-      for (PetscInt c = 0; c < C; c++) box_of(W, W.cell_walls[c], wbox[c].data());
-      for (PetscInt r = 0; r < cs.parts; r++) {
-        const PetscInt c0 = r * C / cs.parts, c1 = (r + 1) * C / cs.parts;
-        Tissue         T;
-        PetscCall(G.GeneratePart(PETSC_COMM_SELF, c0, c1, cs.distance, &T));
-        const ParticleSet &P = T.particles;
-        TG_CHECK(T.lo[0] == W.lo[0] && T.lo[1] == W.lo[1] && T.hi[0] == W.hi[0] && T.hi[1] == W.hi[1] && P.bar_radius == PW.bar_radius,
-                 "Voronoi part %" PetscInt_FMT ": bounds", r);
-        for (PetscInt i = 0; i < P.n; i++) {
-          const PetscInt g = P.gid[i];
-          TG_CHECK(g >= 0 && g < PW.n && (i == 0 || g > P.gid[i - 1]), "Voronoi part %" PetscInt_FMT ": node %" PetscInt_FMT " numbered %" PetscInt_FMT, r, i,
-                   g);
-          TG_CHECK(T.X[2 * i] == W.X[2 * g] && T.X[2 * i + 1] == W.X[2 * g + 1] && P.mass[i] == PW.mass[g] && P.kind[i] == PW.kind[g] &&
-                     T.CellGid(P.node_polygon[i]) == PW.node_polygon[g],
-                   "Voronoi part %" PetscInt_FMT ": node %" PetscInt_FMT " differs", r, g);
-          seen[g] = 1;
-        }
-        TG_CHECK(P.polygon_gid == T.cell_gid && P.polygons.size() == T.cell_gid.size(), "Voronoi part %" PetscInt_FMT ": polygons", r);
-        for (PetscInt c = 0; c < T.NumCells(); c++) {
-          const PetscInt g = T.CellGid(c);
-          TG_CHECK(c == 0 || g > T.CellGid(c - 1), "Voronoi part %" PetscInt_FMT ": cells not increasing", r);
-          TG_CHECK(T.cell_walls[c].size() == W.cell_walls[g].size(), "Voronoi part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
-          for (size_t k = 0; k < T.cell_walls[c].size(); k++)
-            TG_CHECK(P.gid[T.cell_walls[c][k]] == W.cell_walls[g][k] && P.SpringGid((size_t)P.polygons[c].bars[k]) == PW.polygons[g].bars[k],
-                     "Voronoi part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
-        }
-        for (PetscInt c = 0; c < C; c++) { /* every cell near the range's (box gaps) is here */
-          bool near = false;
-          for (PetscInt o = 0; o < C && !near; o++) {
-            if (G.CellPlace(o) < c0 || G.CellPlace(o) >= c1) continue;
-            const PetscReal dx = std::max((PetscReal)0, std::max(wbox[c][0] - wbox[o][2], wbox[o][0] - wbox[c][2]));
-            const PetscReal dy = std::max((PetscReal)0, std::max(wbox[c][1] - wbox[o][3], wbox[o][1] - wbox[c][3]));
-            near               = std::hypot(dx, dy) <= cs.distance;
-          }
-          if (near)
-            TG_CHECK(std::binary_search(T.cell_gid.begin(), T.cell_gid.end(), c), "Voronoi part %" PetscInt_FMT ": cell %" PetscInt_FMT " missing", r, c);
-        }
-        for (size_t q = 0; q < P.springs.size(); q++) {
-          const Spring  &a = P.springs[q];
-          const PetscInt g = P.spring_gid[q];
-          TG_CHECK(g >= 0 && g < (PetscInt)PW.springs.size() && (q == 0 || g > P.spring_gid[q - 1]),
-                   "Voronoi part %" PetscInt_FMT ": bar numbered %" PetscInt_FMT, r, g);
-          const Spring &b = PW.springs[g];
-          TG_CHECK(P.gid[a.i] == b.i && P.gid[a.j] == b.j && a.rest_length == b.rest_length, "Voronoi part %" PetscInt_FMT ": bar %" PetscInt_FMT " differs", r,
-                   g);
-          for (int e = 0; e < 2; e++) {
-            const PetscInt j = a.joint[e] < 0 ? -1 : 2 * P.spring_gid[a.joint[e] / 2] + a.joint[e] % 2;
-            TG_CHECK(j == b.joint[e], "Voronoi part %" PetscInt_FMT ": joint %d of bar %" PetscInt_FMT, r, e, g);
-          }
-          seen_spring[g] = 1;
-        }
-      }
-      for (PetscInt g = 0; g < PW.n; g++) TG_CHECK(seen[g], "Voronoi %" PetscInt_FMT " cells: node %" PetscInt_FMT " in no part", C, g);
-      for (size_t g = 0; g < PW.springs.size(); g++) TG_CHECK(seen_spring[g], "Voronoi %" PetscInt_FMT " cells: bar %zu in no part", C, g);
-      PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                            "parts of a Voronoi tissue of %" PetscInt_FMT " cells (%" PetscInt_FMT " Lloyd steps, cv %g, %" PetscInt_FMT
-                            " ranges, %g µm): as in the whole tissue\n",
-                            C, cs.lloyd, (double)cs.size_cv, cs.parts, (double)cs.distance));
+      PetscCall(CheckPolygonParts(G, W, cs.parts, cs.distance));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "parts of a Voronoi tissue of %" PetscInt_FMT " cells (%" PetscInt_FMT " Lloyd steps, cv %g, %" PetscInt_FMT
+                                             " ranges, %g µm): as in the whole tissue\n",
+                            cs.cells, cs.lloyd, (double)cs.size_cv, cs.parts, (double)cs.distance));
+    }
+  }
+  {
+    /* Parts of a node file (read by seeking to each cell): a 48-cell Voronoi tissue written with
+       comments, blank lines, clockwise cells (reversed when read), ids from 7 and an open cell; each
+       part as the whole file's tissue (CheckPolygonParts). The file is the fixture of the runs in
+       parts on several ranks (tests/distributed.cmake). */
+    VoronoiSpec       vs;
+    PolygonTissueSpec vp;
+    vs.cells       = 48;
+    vs.box[2]      = 300;
+    vs.box[3]      = 100;
+    vs.lloyd_steps = 2;
+    vs.gap         = 0.05;
+    Tissue V;
+    PetscCall(GenerateVoronoiTissue(PETSC_COMM_SELF, vs, vp, &V));
+    FILE *f = std::fopen("parts_tissue.nodes", "w");
+    TG_CHECK(f, "cannot write parts_tissue.nodes");
+    std::fprintf(f, "# 48 Voronoi cells in 300 x 100 µm (test_tissue): x y cellId\n");
+    for (size_t c = 0; c < V.particles.polygons.size(); c++) {
+      std::vector<PetscInt> ring = V.particles.polygons[c].nodes;
+      if (c % 3 == 1) std::reverse(ring.begin() + 1, ring.end()); /* clockwise, from the same first node */
+      if (c % 5 == 2) std::fprintf(f, "\n# cell %zu\n", c + 7);
+      for (PetscInt i : ring) std::fprintf(f, "%.17g %.17g %zu\n", (double)V.X[2 * i], (double)V.X[2 * i + 1], c + 7);
+    }
+    TG_CHECK(std::fclose(f) == 0, "cannot write parts_tissue.nodes");
+    for (PetscReal h : {0.0, 2.5}) {
+      NodeFileGenerator G;
+      G.spec.path       = "parts_tissue.nodes";
+      G.spec.open_cells = {12};
+      G.poly.bar_length = h;
+      Tissue W;
+      PetscCall(GenerateNodeFileTissue(PETSC_COMM_SELF, G.spec, G.poly, &W));
+      TG_CHECK(G.NumCellsOfParts() == 0, "a node file's cells before PrepareParts");
+      PetscCall(G.PrepareParts(PETSC_COMM_SELF));
+      TG_CHECK(W.particles.polygons[5].open && G.NumCellsOfParts() == 48, "node file parts: 48 cells, cell 12 open");
+      for (PetscInt parts : {2, 5}) PetscCall(CheckPolygonParts(G, W, parts, parts == 2 ? 0.0 : 15.0));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "parts of a node file of 48 cells (bar length %g µm): as in the whole tissue\n", (double)h));
     }
   }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_tissue: all checks passed\n"));

@@ -1,5 +1,6 @@
 /* Plane geometry (geometry.h): what is not small enough to be inline. */
 #include <turgor/core/geometry.h>
+#include <cstdint>
 #include <cmath>
 
 namespace turgor {
@@ -120,6 +121,43 @@ bool PointInRing(const Point2 &q, const std::vector<Point2> &p)
     if ((a[1] > q[1]) != (b[1] > q[1]) && q[0] < (b[0] - a[0]) * (q[1] - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
   }
   return in;
+}
+
+/* The index of (x, y) in [0, n)^2 along the Hilbert curve of order log2 n: quadrant by quadrant from
+   the coarsest, each quadrant's sub-square turned so that the curve runs on without a jump. */
+static std::uint64_t HilbertIndex(std::uint64_t n, std::uint64_t x, std::uint64_t y)
+{
+  std::uint64_t d = 0;
+  for (std::uint64_t s = n / 2; s > 0; s /= 2) {
+    const std::uint64_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += s * s * ((3 * rx) ^ ry);
+    if (ry == 0) {
+      if (rx == 1) {
+        x = n - 1 - x;
+        y = n - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+void HilbertPlaces(const std::vector<Point2> &points, const PetscReal box[4], std::vector<PetscInt> *place)
+{
+  const std::uint64_t        n = 1 << 16;
+  const size_t               N = points.size();
+  const PetscReal            W = box[2] - box[0], H = box[3] - box[1];
+  std::vector<std::uint64_t> key(N);
+  std::vector<PetscInt>      order(N);
+  auto                       grid = [&](PetscReal t) { return (std::uint64_t)std::min((PetscReal)(n - 1), std::max((PetscReal)0, t * (PetscReal)n)); };
+  for (size_t i = 0; i < N; i++) {
+    const Point2 &p = points[i];
+    key[i]          = HilbertIndex(n, grid(W > 0 ? (p[0] - box[0]) / W : 0), grid(H > 0 ? (p[1] - box[1]) / H : 0));
+    order[i]        = (PetscInt)i;
+  }
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  place->resize(N);
+  for (size_t k = 0; k < N; k++) (*place)[(size_t)order[k]] = (PetscInt)k;
 }
 
 } // namespace turgor

@@ -44,10 +44,11 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscCall(PetscOptionsString("-partitioner",
                                "Distributed runs: how the cells are dealt to the ranks: metis (a partition of the cell graph on the first rank; every "
                                "rank generates the whole tissue at set-up) or ranges (equal ranges of the cells in space order: a square grid's rows, "
-                               "the Hilbert curve through a Voronoi tissue's seeds; the tissue is then generated in parts, no rank holding all of it)",
+                               "the Hilbert curve through a Voronoi tissue's seeds or a node file's cells; the tissue is then generated (or read) in "
+                               "parts, no rank holding all of it)",
                                "FineRunSpec", partitioner_name, partitioner_name, sizeof partitioner_name, NULL));
   PetscCall(PetscOptionsBool("-setup_in_parts",
-                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid, voronoi); "
+                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid, voronoi, node_file); "
                              "false: every rank generates the whole tissue first (the same run, more memory at set-up)",
                              "FineRunSpec", setup_in_parts, &setup_in_parts, NULL));
   PetscCall(PetscOptionsReal("-halo_margin",
@@ -152,7 +153,9 @@ PetscErrorCode FineRun::SetUpModel()
        A part of one cell would do and saves 1.2 s of the 10^7 bar's 12.6 s set-up, but the set-up's
        peak then rose by 26 MB a rank (1.531 -> 1.557 GB, glibc's heap laid out otherwise: the first
        part's freed blocks are reused by the second), and the peak is what the set-up in parts is for */
-    PetscCall(tissues_.Generator()->GeneratePart(comm_, c0, c1, 0, &tissue_));
+    PetscErrorCode failed = tissues_.Generator()->GeneratePart(comm_, c0, c1, 0, &tissue_); /* (a node file is read here: any rank may fail) */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm_));
+    PetscCheck(!failed, comm_, PETSC_ERR_LIB, "Option -fine_partitioner ranges: generating a part of the tissue failed on some rank");
     PetscCall(reach_of(&reach));
     tissue_ = Tissue();
     PetscCall(placement_.PlaceParts(comm_, placing, reach, *tissues_.Generator(), &tissue_));

@@ -2,7 +2,9 @@
 #include <turgor/tissue/node_file.h>
 #include <turgor/core/errors.h>
 #include <turgor/core/options.h>
+#include <turgor/parallel/rank_reductions.h>
 #include <algorithm>
+#include <climits>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -134,11 +136,54 @@ static int ParseNodeLine(const std::string &line, PetscReal *x, PetscReal *y, lo
   return std::isfinite(*x) && std::isfinite(*y) ? 1 : -1;
 }
 
+/* The checks of one cell as read (its nodes in file order, R.open set; lines: the file line of each
+   node): enough nodes, no zero-length bar, simple, a closed cell's area not zero; a clockwise closed
+   cell is reversed (the same polygon counter-clockwise, from the same first node). The error's
+   message, or an empty string. */
+static std::string CheckCell(const char *fn, const NodeFileSpec &spec, long long id, const std::vector<long long> &lines, PolygonRing *ring)
+{
+  PolygonRing &R = *ring;
+  const size_t n = R.points.size();
+  char         msg[1024];
+  if (n < (R.open ? 2u : 3u)) {
+    std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: %s cell %lld has %zu node%s (needs at least %d)", fn, lines[0],
+                  R.open ? "open" : "closed", id, n, n == 1 ? "" : "s", R.open ? 2 : 3);
+    return msg;
+  }
+  const size_t m = R.open ? n - 1 : n;
+  for (size_t k = 0; k < m; k++) {
+    const Point2 &a = R.points[k], &b = R.points[(k + 1) % n];
+    if (a[0] == b[0] && a[1] == b[1]) {
+      std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: cell %lld: zero-length bar from the node of line %lld to the node of line %lld (%g, %g)%s",
+                    fn, lines[(k + 1) % n], id, lines[k], lines[(k + 1) % n], (double)a[0], (double)a[1],
+                    k + 1 == n ? ": its first node is repeated at its end; list each node once" : "");
+      return msg;
+    }
+  }
+  size_t e1, e2;
+  if (FindSelfIntersection(R.points, R.open, &e1, &e2)) {
+    std::snprintf(msg, sizeof msg,
+                  "Option -tissue_node_file = %s: line %lld: cell %lld is not simple: its bar from line %lld to line %lld crosses or touches its bar from "
+                  "line %lld to line %lld",
+                  fn, lines[0], id, lines[e1], lines[(e1 + 1) % n], lines[e2], lines[(e2 + 1) % n]);
+    return msg;
+  }
+  if (!R.open) {
+    const PetscReal A = RingSignedArea(R.points);
+    if (A == 0) {
+      std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: closed cell %lld has zero area (-tissue_length_scale %g)", fn, lines[0], id,
+                    (double)spec.length_scale);
+      return msg;
+    }
+    if (A < 0) std::reverse(R.points.begin() + 1, R.points.end());
+  }
+  return "";
+}
+
 PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, const PolygonTissueSpec &poly, Tissue *tissue)
 {
   const char                         *fn = spec.path.c_str();
   std::vector<PolygonRing>            rings;
-  std::vector<long long>              first_line; /* file line of each cell's first node */
   std::vector<std::vector<long long>> lines;      /* file line of each node */
   long long                           id0 = -1, lineno = 0;
   std::string                         line;
@@ -167,7 +212,6 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
                  lineno, id, cur);
       rings.emplace_back();
       lines.emplace_back();
-      first_line.push_back(lineno);
     }
     rings.back().points.push_back({x * spec.length_scale, y * spec.length_scale});
     lines.back().push_back(lineno);
@@ -193,32 +237,8 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
     rings[id - id0].open = true;
   }
   for (size_t c = 0; c < rings.size(); c++) {
-    PolygonRing    &R  = rings[c];
-    const long long id = id0 + (long long)c;
-    const size_t    n  = R.points.size();
-    PetscCheck(n >= (R.open ? 2u : 3u), comm, PETSC_ERR_FILE_UNEXPECTED,
-               "Option -tissue_node_file = %s: line %lld: %s cell %lld has %zu node%s (needs at least %d)", fn, first_line[c], R.open ? "open" : "closed", id,
-               n, n == 1 ? "" : "s", R.open ? 2 : 3);
-    const size_t m = R.open ? n - 1 : n;
-    for (size_t k = 0; k < m; k++) {
-      const Point2 &a = R.points[k], &b = R.points[(k + 1) % n];
-      PetscCheck(a[0] != b[0] || a[1] != b[1], comm, PETSC_ERR_FILE_UNEXPECTED,
-                 "Option -tissue_node_file = %s: line %lld: cell %lld: zero-length bar from the node of line %lld to the node of line %lld (%g, %g)%s", fn,
-                 lines[c][(k + 1) % n], id, lines[c][k], lines[c][(k + 1) % n], (double)a[0], (double)a[1],
-                 k + 1 == n ? ": its first node is repeated at its end; list each node once" : "");
-    }
-    size_t e1, e2;
-    if (FindSelfIntersection(R.points, R.open, &e1, &e2))
-      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED,
-              "Option -tissue_node_file = %s: line %lld: cell %lld is not simple: its bar from line %lld to line %lld crosses or touches its bar from line "
-              "%lld to line %lld",
-              fn, first_line[c], id, lines[c][e1], lines[c][(e1 + 1) % n], lines[c][e2], lines[c][(e2 + 1) % n]);
-    if (!R.open) {
-      const PetscReal A = RingSignedArea(R.points);
-      PetscCheck(A != 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: line %lld: closed cell %lld has zero area (-tissue_length_scale %g)",
-                 fn, first_line[c], id, (double)spec.length_scale);
-      if (A < 0) std::reverse(R.points.begin() + 1, R.points.end()); /* clockwise: the same polygon counter-clockwise, from the same first node */
-    }
+    const std::string error = CheckCell(fn, spec, id0 + (long long)c, lines[c], &rings[c]);
+    PetscCheck(error.empty(), comm, PETSC_ERR_FILE_UNEXPECTED, "%s", error.c_str());
   }
   PetscCall(BuildPolygonTissue(comm, rings, poly, true, tissue));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -291,6 +311,387 @@ PetscErrorCode NodeFileGenerator::View(PetscViewer viewer) const
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "tissue node_file: %s x %g µm, %zu open cells, %s\n", spec.path.c_str(), (double)spec.length_scale,
                                    spec.open_cells.size(), PolygonDescription().c_str()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscInt NodeFileGenerator::NumCellsOfParts() const
+{
+  struct stat st;
+  if (poly.plates.Any() || poly.has_cut_box || stat(spec.path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return -1;
+  return (PetscInt)offset_.size();
+}
+
+std::string NodeFileGenerator::PartsRefused() const
+{
+  if (poly.plates.Any() || poly.has_cut_box) return "with -tissue_plates or -tissue_cut_box numbers its cells only once the whole tissue is built";
+  return "reads " + spec.path + " in parts only from a regular file (a named pipe cannot be read twice)";
+}
+
+namespace {
+
+/* A node file read from a byte offset, line by line, with each line's first byte's offset, within
+   the bounds NodeFileLines keeps (no NUL byte, lines of at most 4096 characters). */
+class OffsetLines {
+public:
+  explicit OffsetLines(const std::string &path) : f_(std::fopen(path.c_str(), "rb")) { }
+  ~OffsetLines()
+  {
+    if (f_) std::fclose(f_);
+  }
+  OffsetLines(const OffsetLines &)            = delete;
+  OffsetLines &operator=(const OffsetLines &) = delete;
+  bool         Opened() const { return f_ != nullptr; }
+  bool         Seek(std::uint64_t pos)
+  {
+    pos_ = pos;
+    return f_ && fseeko(f_, (off_t)pos, SEEK_SET) == 0;
+  }
+  /* The byte at the current position (EOF at the end), consumed. */
+  int Get()
+  {
+    const int c = std::getc(f_);
+    if (c != EOF) pos_++;
+    return c;
+  }
+  /* The next line: its first byte's offset in *start; false at the end of the file or on a failure
+     (Failure() says which). newline(p) is called with the offset of each line break read. */
+  template <class Newline>
+  bool Next(std::string *line, std::uint64_t *start, Newline &&newline)
+  {
+    line->clear();
+    *start = pos_;
+    if (!f_ || failure_) return false;
+    for (int c; (c = Get()) != EOF;) {
+      if (c == '\0') failure_ = "a NUL byte: not a text file";
+      else if (c == '\n') {
+        newline(pos_ - 1);
+        return true;
+      } else if (line->size() == kMaxLineChars) failure_ = "longer than 4096 characters: not a node file's line 'x y cellId'";
+      if (failure_) return false;
+      line->push_back((char)c);
+    }
+    if (std::ferror(f_)) failure_ = "read error";
+    return !failure_ && !line->empty();
+  }
+  std::uint64_t Position() const { return pos_; }
+  const char   *Failure() const { return failure_; }
+
+private:
+  FILE         *f_;
+  std::uint64_t pos_     = 0;
+  const char   *failure_ = nullptr;
+};
+
+/* The id of the last node line that ends before `start` (a line's first byte), -1 if none: read
+   backwards line by line from the line break before it. */
+bool PreviousNodeId(OffsetLines &f, std::uint64_t start, long long *id)
+{
+  std::string line;
+  *id = -1;
+  for (std::uint64_t end = start; end > 0;) { /* the line that ends with the break at end - 1 */
+    std::uint64_t b = end - 1;
+    while (b > 0) { /* its first byte: after the previous break */
+      if (!f.Seek(b - 1)) return false;
+      if (f.Get() == '\n') break;
+      b--;
+    }
+    if (!f.Seek(b)) return false;
+    line.clear();
+    for (std::uint64_t k = b; k + 1 < end; k++) line.push_back((char)f.Get());
+    PetscReal x, y;
+    long long i;
+    if (ParseNodeLine(line, &x, &y, &i) > 0) {
+      *id = i;
+      return true;
+    }
+    end = b;
+  }
+  return true;
+}
+
+/* A cell as read in PrepareParts: its nodes, their lines (counted from the range's start until the
+   ranges' line counts are known), where its first line starts. */
+struct ReadCell {
+  long long              id;
+  std::uint64_t          offset;
+  PolygonRing            ring;
+  std::vector<long long> lines;
+};
+
+/* What PrepareParts gathers of each cell to every rank */
+struct CellEntry {
+  std::uint64_t offset;
+  std::int64_t  nodes, bars;
+  PetscReal     box[4];
+};
+
+} // namespace
+
+PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
+{
+  const char   *fn = spec.path.c_str();
+  PetscMPIInt   rank, size;
+  PetscLogEvent ev;
+  struct stat   st;
+  PetscFunctionBeginUser;
+  PetscCheck(NumCellsOfParts() >= 0, comm, PETSC_ERR_ARG_INCOMP, "-tissue_type node_file %s", PartsRefused().c_str());
+  PetscCall(PetscLogEventRegister("TgNodeFileParts", PETSC_OBJECT_CLASSID, &ev));
+  PetscCall(PetscLogEventBegin(ev, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(StopIfInterrupted(comm, "set-up: reading -tissue_node_file in parts"));
+  PetscCall(CheckNodeFilePath(comm, spec.path));
+  PetscCheck(stat(fn, &st) == 0, comm, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
+  const std::uint64_t bytes = (std::uint64_t)st.st_size, a = bytes * (std::uint64_t)rank / (std::uint64_t)size,
+                      b = bytes * (std::uint64_t)(rank + 1) / (std::uint64_t)size;
+
+  /* this rank's cells: those whose first node line starts in [a, b), each read to its last node */
+  std::vector<ReadCell> cells;
+  long long             newlines = 0, stop_line = -1; /* breaks in [a, b); the first error's line (counted here) */
+  std::string           stop_text, line;
+  int                   stop_kind = 0; /* 1 malformed, 2 negative id, 3 ids out of order, 4 a bound or read error */
+  long long             stop_id = 0, stop_cur = 0;
+  PetscReal             ext[4] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}; /* -lo, hi of the points */
+  {
+    OffsetLines   f(spec.path);
+    std::uint64_t first = a; /* the first line that starts at or after a */
+    long long     prev  = -1, local_line = 0;
+    auto          count = [&](std::uint64_t p) {
+      if (p >= a && p < b) newlines++;
+      local_line++;
+    };
+    PetscCheck(f.Opened(), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
+    bool ok = true;
+    if (a > 0 && a < b) {
+      ok = f.Seek(a - 1);
+      if (ok && f.Get() != '\n')
+        for (int c; (c = f.Get()) != EOF;)
+          if (c == '\n') {
+            count(f.Position() - 1);
+            break;
+          }
+      first = f.Position();
+      ok    = ok && PreviousNodeId(f, first, &prev) && f.Seek(first);
+    } else ok = f.Seek(a);
+    PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cannot read it from byte %llu", fn, (unsigned long long)a);
+    /* the lines of this range; a line's number is the breaks before it plus one (those before a
+       added once every rank has counted its own) */
+    bool          skipping = true; /* the lines of the cell the previous range began */
+    std::uint64_t start;
+    while (a < b && stop_kind == 0) {
+      const long long this_line = local_line + 1;
+      if (!f.Next(&line, &start, count)) {
+        if (f.Failure()) stop_kind = 4, stop_line = this_line, stop_text = f.Failure();
+        break;
+      }
+      PetscReal x, y;
+      long long id;
+      const int kind = ParseNodeLine(line, &x, &y, &id);
+      if (kind == 0) continue;
+      if (kind < 0) {
+        stop_kind = 1, stop_line = this_line, stop_text = line;
+        break;
+      }
+      if (id < 0) {
+        stop_kind = 2, stop_line = this_line, stop_id = id;
+        break;
+      }
+      if (skipping && id == prev) continue;
+      skipping                = false;
+      const long long current = cells.empty() ? prev : cells.back().id;
+      if (cells.empty() || id != current) {
+        if (start >= b) break; /* the next range's cell */
+        if (current >= 0 && id != current + 1) {
+          stop_kind = 3, stop_line = this_line, stop_id = id, stop_cur = current;
+          break;
+        }
+        cells.push_back({id, start, PolygonRing(), {}});
+        cells.back().ring.open = std::find(spec.open_cells.begin(), spec.open_cells.end(), (PetscInt)id) != spec.open_cells.end();
+      }
+      const Point2 p = {x * spec.length_scale, y * spec.length_scale};
+      cells.back().ring.points.push_back(p);
+      cells.back().lines.push_back(this_line);
+      ext[0] = std::max(ext[0], -p[0]), ext[1] = std::max(ext[1], -p[1]), ext[2] = std::max(ext[2], p[0]), ext[3] = std::max(ext[3], p[1]);
+    }
+    /* the breaks of [a, b) not yet read (a range that ended inside one long line) */
+    for (int c; a < b && f.Position() < b && (c = f.Get()) != EOF;)
+      if (c == '\n') count(f.Position() - 1);
+  }
+  /* the lines' numbers: the breaks before this range's start, plus one */
+  long long before = 0;
+  PetscCallMPI(MPI_Exscan(&newlines, &before, 1, MPI_LONG_LONG, MPI_SUM, comm));
+  if (rank == 0) before = 0;
+  /* the first error in the file, named alike on every rank */
+  {
+    long long first_stop = stop_kind ? before + stop_line : LLONG_MAX;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &first_stop, 1, MPI_LONG_LONG, MPI_MIN, comm));
+    if (first_stop < LLONG_MAX) {
+      char msg[4096 + 512] = "";
+      int  mine = stop_kind && before + stop_line == first_stop ? rank : size, from;
+      PetscCallMPI(MPI_Allreduce(&mine, &from, 1, MPI_INT, MPI_MIN, comm));
+      if (rank == from) {
+        const long long L = first_stop;
+        if (stop_kind == 1)
+          std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: expected 'x y cellId' (two finite numbers and an integer), got '%s'", fn, L,
+                        stop_text.c_str());
+        else if (stop_kind == 2) std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: cell id %lld is negative", fn, L, stop_id);
+        else if (stop_kind == 3)
+          std::snprintf(msg, sizeof msg,
+                        "Option -tissue_node_file = %s: line %lld: cell id %lld follows cell %lld: ids must increase by one, each cell's nodes listed together",
+                        fn, L, stop_id, stop_cur);
+        else std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: %s", fn, L, stop_text.c_str());
+      }
+      PetscCallMPI(MPI_Bcast(msg, (PetscMPIInt)sizeof msg, MPI_CHAR, from, comm));
+      SETERRQ(comm, stop_kind == 4 ? PETSC_ERR_FILE_READ : PETSC_ERR_FILE_UNEXPECTED, "%s", msg);
+    }
+  }
+  for (ReadCell &c : cells)
+    for (long long &l : c.lines) l += before;
+  /* the whole file's checks, in the order Generate makes them */
+  long long counts[2] = {(long long)cells.size(), cells.empty() ? LLONG_MAX : cells.front().id}; /* cells; the first id */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &counts[0], 1, MPI_LONG_LONG, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &counts[1], 1, MPI_LONG_LONG, MPI_MIN, comm));
+  PetscCheck(counts[0] > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: no nodes in the file", fn);
+  PetscCall(MaxOverRanks(comm, ext, 4));
+  {
+    const PetscReal extent = std::max(ext[2] + ext[0], ext[3] + ext[1]);
+    PetscCheck(std::isfinite(extent * extent), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -tissue_node_file = %s with -tissue_length_scale %g: the tissue spans (%g, %g) to (%g, %g) µm, beyond double precision (its areas "
+               "are not finite); give coordinates below 1e150 µm",
+               fn, (double)spec.length_scale, (double)-ext[0], (double)-ext[1], (double)ext[2], (double)ext[3]);
+  }
+  id0_ = counts[1];
+  for (PetscInt id : spec.open_cells)
+    PetscCheck(id >= id0_ && id < id0_ + counts[0], comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell %" PetscInt_FMT " is not in %s (its cells are %lld to %lld)",
+               id, fn, id0_, id0_ + counts[0] - 1);
+  /* each cell's checks (the first failing cell in the file named on every rank), nodes and box */
+  std::vector<CellEntry> mine(cells.size());
+  {
+    long long   first_bad = LLONG_MAX;
+    std::string error;
+    for (size_t k = 0; k < cells.size(); k++) {
+      ReadCell         &c = cells[k];
+      const std::string e = CheckCell(fn, spec, c.id, c.lines, &c.ring);
+      if (!e.empty()) {
+        if (c.lines[0] < first_bad) first_bad = c.lines[0], error = e;
+        continue;
+      }
+      CellEntry &E = mine[k];
+      E.offset     = c.offset;
+      E.nodes      = 0;
+      E.box[0] = E.box[1] = PETSC_MAX_REAL;
+      E.box[2] = E.box[3] = -PETSC_MAX_REAL;
+      ForEachRingNode(c.ring, poly.bar_length, [&E](PetscReal x, PetscReal y) {
+        E.nodes++;
+        E.box[0] = std::min(E.box[0], x), E.box[1] = std::min(E.box[1], y), E.box[2] = std::max(E.box[2], x), E.box[3] = std::max(E.box[3], y);
+      });
+      E.bars = c.ring.open ? E.nodes - 1 : E.nodes;
+    }
+    long long bad = first_bad;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_LONG_LONG, MPI_MIN, comm));
+    if (bad < LLONG_MAX) {
+      char msg[2048] = "";
+      int  me = first_bad == bad ? rank : size, from;
+      PetscCallMPI(MPI_Allreduce(&me, &from, 1, MPI_INT, MPI_MIN, comm));
+      if (rank == from) std::snprintf(msg, sizeof msg, "%s", error.c_str());
+      PetscCallMPI(MPI_Bcast(msg, (PetscMPIInt)sizeof msg, MPI_CHAR, from, comm));
+      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "%s", msg);
+    }
+  }
+  std::vector<ReadCell>().swap(cells);
+  /* the index of every cell, on every rank */
+  std::vector<CellEntry> all((size_t)counts[0]);
+  {
+    std::vector<PetscMPIInt> count(size), displ(size, 0);
+    const PetscMPIInt        n = (PetscMPIInt)(mine.size() * sizeof(CellEntry));
+    PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, count.data(), 1, MPI_INT, comm));
+    for (PetscMPIInt r = 1; r < size; r++) displ[r] = displ[r - 1] + count[r - 1];
+    PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), count.data(), displ.data(), MPI_BYTE, comm));
+  }
+  const size_t C = all.size();
+  offset_.resize(C), box_.resize(C), node_start_.assign(C + 1, 0), bar_start_.assign(C + 1, 0);
+  std::vector<Point2> centre(C);
+  lo_[0] = lo_[1] = PETSC_MAX_REAL;
+  hi_[0] = hi_[1] = -PETSC_MAX_REAL;
+  for (size_t c = 0; c < C; c++) {
+    const CellEntry &E = all[c];
+    offset_[c]         = E.offset;
+    for (int d = 0; d < 4; d++) box_[c][d] = E.box[d];
+    node_start_[c + 1] = node_start_[c] + (PetscInt)E.nodes;
+    bar_start_[c + 1]  = bar_start_[c] + (PetscInt)E.bars;
+    centre[c]          = {0.5 * (E.box[0] + E.box[2]), 0.5 * (E.box[1] + E.box[3])};
+    for (int d = 0; d < 2; d++) lo_[d] = std::min(lo_[d], E.box[d]), hi_[d] = std::max(hi_[d], E.box[2 + d]);
+  }
+  const PetscReal box[4] = {lo_[0], lo_[1], hi_[0], hi_[1]};
+  HilbertPlaces(centre, box, &place_); /* the space order: the Hilbert curve through the cells' boxes' centres */
+  PetscCall(StopIfInterrupted(comm, "set-up: reading -tissue_node_file in parts"));
+  PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, PetscInt c1, PetscReal distance, Tissue *part) const
+{
+  const size_t C  = offset_.size();
+  const char  *fn = spec.path.c_str();
+  PetscFunctionBeginUser;
+  PetscCheck(C > 0 && place_.size() == C, comm, PETSC_ERR_ORDER, "NodeFileGenerator::PrepareParts() must come before GeneratePart()");
+  PetscCheck(0 <= c0 && c0 <= c1 && c1 <= (PetscInt)C, comm, PETSC_ERR_ARG_OUTOFRANGE, "places [%" PetscInt_FMT ", %" PetscInt_FMT ") of a tissue of %zu cells", c0,
+             c1, C);
+  PetscCheck(distance >= 0 && std::isfinite(distance), comm, PETSC_ERR_ARG_OUTOFRANGE, "a part's distance must be finite and >= 0 (got %g)", (double)distance);
+  *part                  = Tissue();
+  Tissue &T              = *part;
+  T.particles.bar_radius = poly.bar_radius;
+  if (c0 < c1) {
+    /* the box of the part's own cells; every cell whose box comes within the distance of it */
+    PetscReal U[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
+    for (size_t c = 0; c < C; c++)
+      if (place_[c] >= c0 && place_[c] < c1)
+        U[0] = std::min(U[0], box_[c][0]), U[1] = std::min(U[1], box_[c][1]), U[2] = std::max(U[2], box_[c][2]), U[3] = std::max(U[3], box_[c][3]);
+    const PetscReal reach = distance + 1e-9 * (hi_[0] - lo_[0] + hi_[1] - lo_[1]); /* and the rounding of the halo's own measure */
+    OffsetLines     f(spec.path);
+    std::string     line;
+    std::uint64_t   start;
+    PetscCheck(f.Opened(), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
+    std::vector<PetscInt> gid, sgid;
+    for (size_t c = 0; c < C; c++) {
+      const PetscReal dx = std::max((PetscReal)0, std::max(box_[c][0] - U[2], U[0] - box_[c][2]));
+      const PetscReal dy = std::max((PetscReal)0, std::max(box_[c][1] - U[3], U[1] - box_[c][3]));
+      if (!(place_[c] >= c0 && place_[c] < c1) && !(std::hypot(dx, dy) <= reach)) continue;
+      /* the cell's lines, from its first to the next cell's */
+      const long long id = id0_ + (long long)c;
+      PolygonRing     R;
+      R.open = std::find(spec.open_cells.begin(), spec.open_cells.end(), (PetscInt)id) != spec.open_cells.end();
+      PetscCheck(f.Seek(offset_[c]), PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cannot read it from byte %llu", fn,
+                 (unsigned long long)offset_[c]);
+      while (f.Next(&line, &start, [](std::uint64_t) { })) {
+        PetscReal x, y;
+        long long i;
+        const int kind = ParseNodeLine(line, &x, &y, &i);
+        if (kind == 0) continue;
+        if (kind < 0 || i != id) break;
+        R.points.push_back({x * spec.length_scale, y * spec.length_scale});
+      }
+      PetscCheck(!f.Failure(), PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cell %lld: %s", fn, id, f.Failure());
+      const std::string error = CheckCell(fn, spec, id, std::vector<long long>(R.points.size() + 1, 0), &R); /* reverses a clockwise cell */
+      PetscCheck(error.empty(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn, id);
+      const PetscInt first = T.particles.n, springs = (PetscInt)T.particles.springs.size();
+      AddRingCell(R, poly.node_mass, poly.bar_length, &T);
+      PetscCheck(T.particles.n - first == node_start_[c + 1] - node_start_[c] && (PetscInt)T.particles.springs.size() - springs == bar_start_[c + 1] - bar_start_[c],
+                 PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn, id);
+      for (PetscInt k = 0; k < T.particles.n - first; k++) gid.push_back(node_start_[c] + k);
+      for (PetscInt k = 0; k < bar_start_[c + 1] - bar_start_[c]; k++) sgid.push_back(bar_start_[c] + k);
+      T.cell_gid.push_back((PetscInt)c);
+    }
+    ParticleSet &P = T.particles;
+    P.node_polygon.assign(P.n, -1);
+    for (size_t c = 0; c < P.polygons.size(); c++)
+      for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;
+    P.polygon_gid = T.cell_gid;
+    T.Finalize();
+    P.gid.swap(gid);
+    P.spring_gid.swap(sgid);
+  }
+  for (int d = 0; d < 2; d++) T.lo[d] = lo_[d], T.hi[d] = hi_[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

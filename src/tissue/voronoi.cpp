@@ -13,7 +13,6 @@
 #include <turgor/parallel/rank_reductions.h>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <random>
 
 namespace turgor {
@@ -468,25 +467,6 @@ PetscErrorCode VoronoiGenerator::Ring(size_t i, PolygonRing *ring, PowerCell *ce
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The index of (x, y) in [0, n)^2 along the Hilbert curve of order log2 n: quadrant by quadrant from
-   the coarsest, each quadrant's sub-square turned so that the curve runs on without a jump. */
-static std::uint64_t HilbertIndex(std::uint64_t n, std::uint64_t x, std::uint64_t y)
-{
-  std::uint64_t d = 0;
-  for (std::uint64_t s = n / 2; s > 0; s /= 2) {
-    const std::uint64_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
-    d += s * s * ((3 * rx) ^ ry);
-    if (ry == 0) {
-      if (rx == 1) {
-        x = n - 1 - x;
-        y = n - 1 - y;
-      }
-      std::swap(x, y);
-    }
-  }
-  return d;
-}
-
 PetscErrorCode VoronoiGenerator::PrepareParts(MPI_Comm comm)
 {
   PetscMPIInt   rank, size;
@@ -557,22 +537,7 @@ PetscErrorCode VoronoiGenerator::PrepareParts(MPI_Comm comm)
   node_start_.assign(N + 1, 0);
   PetscCallMPI(MPI_Allgatherv(nodes.data(), count[rank], MPIU_INT, node_start_.data() + 1, count.data(), displ.data(), MPIU_INT, comm));
   for (size_t i = 0; i < N; i++) node_start_[i + 1] += node_start_[i];
-  /* the space order: the Hilbert curve through the seeds (on a 2^16 x 2^16 grid of the box), ties by index */
-  {
-    const std::uint64_t        n = 1 << 16;
-    const PetscReal            W = spec.box[2] - spec.box[0], H = spec.box[3] - spec.box[1];
-    std::vector<std::uint64_t> key(N);
-    std::vector<PetscInt>      order(N);
-    auto                       grid = [&](PetscReal t) { return (std::uint64_t)std::min((PetscReal)(n - 1), std::max((PetscReal)0, t * (PetscReal)n)); };
-    for (size_t i = 0; i < N; i++) {
-      const Point2 &p = cells_.Seeds()[i];
-      key[i]          = HilbertIndex(n, grid((p[0] - spec.box[0]) / W), grid((p[1] - spec.box[1]) / H));
-      order[i]        = (PetscInt)i;
-    }
-    std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
-    place_.resize(N);
-    for (size_t k = 0; k < N; k++) place_[(size_t)order[k]] = (PetscInt)k;
-  }
+  HilbertPlaces(cells_.Seeds(), spec.box, &place_); /* the space order: the Hilbert curve through the seeds */
   PetscCall(PetscLogEventEnd(ev, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

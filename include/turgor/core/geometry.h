@@ -70,4 +70,10 @@ inline bool InBox(const PetscReal box[4], PetscReal x, PetscReal y)
   return x >= box[0] && x <= box[2] && y >= box[1] && y <= box[3];
 }
 
+/* The space order of a tissue's cells for dealing them in ranges (-fine_partitioner ranges): each
+   cell's point (a seed, a box's centre) on a 2^16 x 2^16 grid over `box` (xmin, ymin, xmax, ymax),
+   ordered along the Hilbert curve through the grid, ties by index; place[i] is cell i's place in
+   that order. Integer arithmetic after the grid: the same order on every machine. */
+void HilbertPlaces(const std::vector<Point2> &points, const PetscReal box[4], std::vector<PetscInt> *place);
+
 } // namespace turgor
