@@ -15,8 +15,8 @@ using namespace turgor;
    cover W. */
 static PetscErrorCode CheckPolygonParts(const TissueGenerator &G, const Tissue &W, PetscInt parts, PetscReal distance)
 {
-  const ParticleSet &PW = W.particles;
-  const PetscInt     C  = G.NumCellsOfParts();
+  const ParticleSet &PW     = W.particles;
+  const PetscInt     C      = G.NumCellsOfParts();
   auto               box_of = [](const Tissue &T, const std::vector<PetscInt> &ring, PetscReal b[4]) {
     b[0] = b[1] = PETSC_MAX_REAL;
     b[2] = b[3] = -PETSC_MAX_REAL;
@@ -40,8 +40,8 @@ static PetscErrorCode CheckPolygonParts(const TissueGenerator &G, const Tissue &
     Tissue         T;
     PetscCall(G.GeneratePart(PETSC_COMM_SELF, c0, c1, distance, &T));
     const ParticleSet &P = T.particles;
-    TG_CHECK(T.lo[0] == W.lo[0] && T.lo[1] == W.lo[1] && T.hi[0] == W.hi[0] && T.hi[1] == W.hi[1] && P.bar_radius == PW.bar_radius, "part %" PetscInt_FMT ": bounds",
-             r);
+    TG_CHECK(T.lo[0] == W.lo[0] && T.lo[1] == W.lo[1] && T.hi[0] == W.hi[0] && T.hi[1] == W.hi[1] && P.bar_radius == PW.bar_radius,
+             "part %" PetscInt_FMT ": bounds", r);
     for (PetscInt i = 0; i < P.n; i++) {
       const PetscInt g = P.gid[i];
       TG_CHECK(g >= 0 && g < PW.n && (i == 0 || g > P.gid[i - 1]), "part %" PetscInt_FMT ": node %" PetscInt_FMT " numbered %" PetscInt_FMT, r, i, g);
@@ -57,7 +57,8 @@ static PetscErrorCode CheckPolygonParts(const TissueGenerator &G, const Tissue &
       TG_CHECK(T.cell_walls[c].size() == W.cell_walls[g].size() && P.polygons[c].open == PW.polygons[g].open &&
                  P.polygons[c].bars.size() == PW.polygons[g].bars.size(),
                "part %" PetscInt_FMT ": cell %" PetscInt_FMT, r, g);
-      for (size_t k = 0; k < T.cell_walls[c].size(); k++) TG_CHECK(P.gid[T.cell_walls[c][k]] == W.cell_walls[g][k], "part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
+      for (size_t k = 0; k < T.cell_walls[c].size(); k++)
+        TG_CHECK(P.gid[T.cell_walls[c][k]] == W.cell_walls[g][k], "part %" PetscInt_FMT ": ring of cell %" PetscInt_FMT, r, g);
       for (size_t k = 0; k < P.polygons[c].bars.size(); k++)
         TG_CHECK(P.SpringGid((size_t)P.polygons[c].bars[k]) == PW.polygons[g].bars[k], "part %" PetscInt_FMT ": bars of cell %" PetscInt_FMT, r, g);
     }
@@ -256,8 +257,9 @@ int main(int argc, char **argv)
       PetscCall(GenerateVoronoiTissue(PETSC_COMM_SELF, G.spec, G.poly, &W));
       PetscCall(G.PrepareParts(PETSC_COMM_SELF));
       PetscCall(CheckPolygonParts(G, W, cs.parts, cs.distance));
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "parts of a Voronoi tissue of %" PetscInt_FMT " cells (%" PetscInt_FMT " Lloyd steps, cv %g, %" PetscInt_FMT
-                                             " ranges, %g µm): as in the whole tissue\n",
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "parts of a Voronoi tissue of %" PetscInt_FMT " cells (%" PetscInt_FMT " Lloyd steps, cv %g, %" PetscInt_FMT
+                            " ranges, %g µm): as in the whole tissue\n",
                             cs.cells, cs.lloyd, (double)cs.size_cv, cs.parts, (double)cs.distance));
     }
   }

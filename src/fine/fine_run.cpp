@@ -48,7 +48,8 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                                "parts, no rank holding all of it)",
                                "FineRunSpec", partitioner_name, partitioner_name, sizeof partitioner_name, NULL));
   PetscCall(PetscOptionsBool("-setup_in_parts",
-                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid, voronoi, node_file); "
+                             "With -fine_partitioner ranges: each rank generates only its cells and their halo where the generator can (square_grid, voronoi, "
+                             "node_file); "
                              "false: every rank generates the whole tissue first (the same run, more memory at set-up)",
                              "FineRunSpec", setup_in_parts, &setup_in_parts, NULL));
   PetscCall(PetscOptionsReal("-halo_margin",

@@ -41,10 +41,11 @@ static PetscErrorCode CheckNodeFilePath(MPI_Comm comm, const std::string &path)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Reads a node file line by line within the bounds above. */
+/* Reads a node file line by line within the bounds above, from its start (a named pipe too) or from
+   a byte offset (Seek), with each line's first byte's offset. */
 class NodeFileLines {
 public:
-  explicit NodeFileLines(const std::string &path) : f_(std::fopen(path.c_str(), "r")) { }
+  explicit NodeFileLines(const std::string &path) : f_(std::fopen(path.c_str(), "rb")) { }
   ~NodeFileLines()
   {
     if (f_) std::fclose(f_);
@@ -52,29 +53,54 @@ public:
   NodeFileLines(const NodeFileLines &)            = delete;
   NodeFileLines &operator=(const NodeFileLines &) = delete;
   bool           Opened() const { return f_ != nullptr; }
-  /* The next line (without its line break) in *line: true, or false at the end, on a read error,
-     or at a bound (then Failure() says which). */
-  bool Next(std::string *line)
+  /* A regular file: go to byte pos. */
+  bool Seek(std::uint64_t pos)
+  {
+    pos_ = pos;
+    return f_ && fseeko(f_, (off_t)pos, SEEK_SET) == 0;
+  }
+  /* The byte at the current position (EOF at the end), consumed. */
+  int Get()
+  {
+    const int c = std::getc(f_);
+    if (c != EOF) pos_++;
+    return c;
+  }
+  /* The next line (without its line break) in *line, its first byte's offset in *start: true, or
+     false at the end, on a read error, or at a bound (then Failure() says which). newline(p) is
+     called with the offset of each line break read. */
+  template <class Newline>
+  bool Next(std::string *line, std::uint64_t *start, Newline &&newline)
   {
     line->clear();
+    *start = pos_;
     if (!f_ || failure_) return false;
-    for (int c; (c = std::getc(f_)) != EOF;) {
+    for (int c; (c = Get()) != EOF;) {
       if (++bytes_ > kMaxFileBytes) failure_ = "more than 1 GiB (about 20 million nodes) read: a node file may not be larger";
       else if (c == '\0') failure_ = "a NUL byte: not a text file";
-      else if (c == '\n') return true;
-      else if (line->size() == kMaxLineChars) failure_ = "longer than 4096 characters: not a node file's line 'x y cellId'";
+      else if (c == '\n') {
+        newline(pos_ - 1);
+        return true;
+      } else if (line->size() == kMaxLineChars) failure_ = "longer than 4096 characters: not a node file's line 'x y cellId'";
       if (failure_) return false;
       line->push_back((char)c);
     }
     if (std::ferror(f_)) failure_ = "read error";
     return !failure_ && !line->empty();
   }
-  const char *Failure() const { return failure_; }
+  bool Next(std::string *line)
+  {
+    std::uint64_t start;
+    return Next(line, &start, [](std::uint64_t) {});
+  }
+  std::uint64_t Position() const { return pos_; }
+  const char   *Failure() const { return failure_; }
 
 private:
-  FILE       *f_;
-  long long   bytes_   = 0;
-  const char *failure_ = nullptr;
+  FILE         *f_;
+  std::uint64_t pos_     = 0;
+  long long     bytes_   = 0; /* read by Next */
+  const char   *failure_ = nullptr;
 };
 
 PetscErrorCode NodeFileSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
@@ -154,8 +180,9 @@ static std::string CheckCell(const char *fn, const NodeFileSpec &spec, long long
   for (size_t k = 0; k < m; k++) {
     const Point2 &a = R.points[k], &b = R.points[(k + 1) % n];
     if (a[0] == b[0] && a[1] == b[1]) {
-      std::snprintf(msg, sizeof msg, "Option -tissue_node_file = %s: line %lld: cell %lld: zero-length bar from the node of line %lld to the node of line %lld (%g, %g)%s",
-                    fn, lines[(k + 1) % n], id, lines[k], lines[(k + 1) % n], (double)a[0], (double)a[1],
+      std::snprintf(msg, sizeof msg,
+                    "Option -tissue_node_file = %s: line %lld: cell %lld: zero-length bar from the node of line %lld to the node of line %lld (%g, %g)%s", fn,
+                    lines[(k + 1) % n], id, lines[k], lines[(k + 1) % n], (double)a[0], (double)a[1],
                     k + 1 == n ? ": its first node is repeated at its end; list each node once" : "");
       return msg;
     }
@@ -184,7 +211,7 @@ PetscErrorCode GenerateNodeFileTissue(MPI_Comm comm, const NodeFileSpec &spec, c
 {
   const char                         *fn = spec.path.c_str();
   std::vector<PolygonRing>            rings;
-  std::vector<std::vector<long long>> lines;      /* file line of each node */
+  std::vector<std::vector<long long>> lines; /* file line of each node */
   long long                           id0 = -1, lineno = 0;
   std::string                         line;
   PetscFunctionBeginUser;
@@ -329,62 +356,9 @@ std::string NodeFileGenerator::PartsRefused() const
 
 namespace {
 
-/* A node file read from a byte offset, line by line, with each line's first byte's offset, within
-   the bounds NodeFileLines keeps (no NUL byte, lines of at most 4096 characters). */
-class OffsetLines {
-public:
-  explicit OffsetLines(const std::string &path) : f_(std::fopen(path.c_str(), "rb")) { }
-  ~OffsetLines()
-  {
-    if (f_) std::fclose(f_);
-  }
-  OffsetLines(const OffsetLines &)            = delete;
-  OffsetLines &operator=(const OffsetLines &) = delete;
-  bool         Opened() const { return f_ != nullptr; }
-  bool         Seek(std::uint64_t pos)
-  {
-    pos_ = pos;
-    return f_ && fseeko(f_, (off_t)pos, SEEK_SET) == 0;
-  }
-  /* The byte at the current position (EOF at the end), consumed. */
-  int Get()
-  {
-    const int c = std::getc(f_);
-    if (c != EOF) pos_++;
-    return c;
-  }
-  /* The next line: its first byte's offset in *start; false at the end of the file or on a failure
-     (Failure() says which). newline(p) is called with the offset of each line break read. */
-  template <class Newline>
-  bool Next(std::string *line, std::uint64_t *start, Newline &&newline)
-  {
-    line->clear();
-    *start = pos_;
-    if (!f_ || failure_) return false;
-    for (int c; (c = Get()) != EOF;) {
-      if (c == '\0') failure_ = "a NUL byte: not a text file";
-      else if (c == '\n') {
-        newline(pos_ - 1);
-        return true;
-      } else if (line->size() == kMaxLineChars) failure_ = "longer than 4096 characters: not a node file's line 'x y cellId'";
-      if (failure_) return false;
-      line->push_back((char)c);
-    }
-    if (std::ferror(f_)) failure_ = "read error";
-    return !failure_ && !line->empty();
-  }
-  std::uint64_t Position() const { return pos_; }
-  const char   *Failure() const { return failure_; }
-
-private:
-  FILE         *f_;
-  std::uint64_t pos_     = 0;
-  const char   *failure_ = nullptr;
-};
-
 /* The id of the last node line that ends before `start` (a line's first byte), -1 if none: read
    backwards line by line from the line break before it. */
-bool PreviousNodeId(OffsetLines &f, std::uint64_t start, long long *id)
+bool PreviousNodeId(NodeFileLines &f, std::uint64_t start, long long *id)
 {
   std::string line;
   *id = -1;
@@ -453,9 +427,9 @@ PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
   long long             stop_id = 0, stop_cur = 0;
   PetscReal             ext[4] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}; /* -lo, hi of the points */
   {
-    OffsetLines   f(spec.path);
+    NodeFileLines f(spec.path);
     std::uint64_t first = a; /* the first line that starts at or after a */
-    long long     prev  = -1, local_line = 0;
+    long long     prev = -1, local_line = 0;
     auto          count = [&](std::uint64_t p) {
       if (p >= a && p < b) newlines++;
       local_line++;
@@ -527,7 +501,7 @@ PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &first_stop, 1, MPI_LONG_LONG, MPI_MIN, comm));
     if (first_stop < LLONG_MAX) {
       char msg[4096 + 512] = "";
-      int  mine = stop_kind && before + stop_line == first_stop ? rank : size, from;
+      int  mine            = stop_kind && before + stop_line == first_stop ? rank : size, from;
       PetscCallMPI(MPI_Allreduce(&mine, &from, 1, MPI_INT, MPI_MIN, comm));
       if (rank == from) {
         const long long L = first_stop;
@@ -562,8 +536,8 @@ PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
   }
   id0_ = counts[1];
   for (PetscInt id : spec.open_cells)
-    PetscCheck(id >= id0_ && id < id0_ + counts[0], comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -tissue_open_cells: cell %" PetscInt_FMT " is not in %s (its cells are %lld to %lld)",
-               id, fn, id0_, id0_ + counts[0] - 1);
+    PetscCheck(id >= id0_ && id < id0_ + counts[0], comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -tissue_open_cells: cell %" PetscInt_FMT " is not in %s (its cells are %lld to %lld)", id, fn, id0_, id0_ + counts[0] - 1);
   /* each cell's checks (the first failing cell in the file named on every rank), nodes and box */
   std::vector<CellEntry> mine(cells.size());
   {
@@ -591,7 +565,7 @@ PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_LONG_LONG, MPI_MIN, comm));
     if (bad < LLONG_MAX) {
       char msg[2048] = "";
-      int  me = first_bad == bad ? rank : size, from;
+      int  me        = first_bad == bad ? rank : size, from;
       PetscCallMPI(MPI_Allreduce(&me, &from, 1, MPI_INT, MPI_MIN, comm));
       if (rank == from) std::snprintf(msg, sizeof msg, "%s", error.c_str());
       PetscCallMPI(MPI_Bcast(msg, (PetscMPIInt)sizeof msg, MPI_CHAR, from, comm));
@@ -635,8 +609,8 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
   const char  *fn = spec.path.c_str();
   PetscFunctionBeginUser;
   PetscCheck(C > 0 && place_.size() == C, comm, PETSC_ERR_ORDER, "NodeFileGenerator::PrepareParts() must come before GeneratePart()");
-  PetscCheck(0 <= c0 && c0 <= c1 && c1 <= (PetscInt)C, comm, PETSC_ERR_ARG_OUTOFRANGE, "places [%" PetscInt_FMT ", %" PetscInt_FMT ") of a tissue of %zu cells", c0,
-             c1, C);
+  PetscCheck(0 <= c0 && c0 <= c1 && c1 <= (PetscInt)C, comm, PETSC_ERR_ARG_OUTOFRANGE, "places [%" PetscInt_FMT ", %" PetscInt_FMT ") of a tissue of %zu cells",
+             c0, c1, C);
   PetscCheck(distance >= 0 && std::isfinite(distance), comm, PETSC_ERR_ARG_OUTOFRANGE, "a part's distance must be finite and >= 0 (got %g)", (double)distance);
   *part                  = Tissue();
   Tissue &T              = *part;
@@ -648,7 +622,7 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
       if (place_[c] >= c0 && place_[c] < c1)
         U[0] = std::min(U[0], box_[c][0]), U[1] = std::min(U[1], box_[c][1]), U[2] = std::max(U[2], box_[c][2]), U[3] = std::max(U[3], box_[c][3]);
     const PetscReal reach = distance + 1e-9 * (hi_[0] - lo_[0] + hi_[1] - lo_[1]); /* and the rounding of the halo's own measure */
-    OffsetLines     f(spec.path);
+    NodeFileLines   f(spec.path);
     std::string     line;
     std::uint64_t   start;
     PetscCheck(f.Opened(), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
@@ -663,7 +637,7 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
       R.open = std::find(spec.open_cells.begin(), spec.open_cells.end(), (PetscInt)id) != spec.open_cells.end();
       PetscCheck(f.Seek(offset_[c]), PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cannot read it from byte %llu", fn,
                  (unsigned long long)offset_[c]);
-      while (f.Next(&line, &start, [](std::uint64_t) { })) {
+      while (f.Next(&line, &start, [](std::uint64_t) {})) {
         PetscReal x, y;
         long long i;
         const int kind = ParseNodeLine(line, &x, &y, &i);
@@ -673,10 +647,12 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
       }
       PetscCheck(!f.Failure(), PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cell %lld: %s", fn, id, f.Failure());
       const std::string error = CheckCell(fn, spec, id, std::vector<long long>(R.points.size() + 1, 0), &R); /* reverses a clockwise cell */
-      PetscCheck(error.empty(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn, id);
+      PetscCheck(error.empty(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn,
+                 id);
       const PetscInt first = T.particles.n, springs = (PetscInt)T.particles.springs.size();
       AddRingCell(R, poly.node_mass, poly.bar_length, &T);
-      PetscCheck(T.particles.n - first == node_start_[c + 1] - node_start_[c] && (PetscInt)T.particles.springs.size() - springs == bar_start_[c + 1] - bar_start_[c],
+      PetscCheck(T.particles.n - first == node_start_[c + 1] - node_start_[c] &&
+                   (PetscInt)T.particles.springs.size() - springs == bar_start_[c + 1] - bar_start_[c],
                  PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn, id);
       for (PetscInt k = 0; k < T.particles.n - first; k++) gid.push_back(node_start_[c] + k);
       for (PetscInt k = 0; k < bar_start_[c + 1] - bar_start_[c]; k++) sgid.push_back(bar_start_[c] + k);
