@@ -60,31 +60,32 @@ PetscErrorCode FineRecords::Open(const OpenSeries &open, PetscReal t_final, Pets
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A distributed run: every rank's log rows (file, cells) to rank 0, which writes the files. */
-static PetscErrorCode GatherRecords(MPI_Comm comm, std::vector<std::pair<std::string, std::vector<std::string>>> &rows)
-{
-  TextRows mine, all;
-  PetscFunctionBeginUser;
-  for (auto &r : rows) {
-    mine.push_back({r.first});
-    mine.back().insert(mine.back().end(), r.second.begin(), r.second.end());
-  }
-  PetscCall(GatherRows(comm, false, mine, &all));
-  rows.clear();
-  for (auto &row : all) rows.push_back({row.front(), std::vector<std::string>(row.begin() + 1, row.end())});
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode FineRecords::AfterStep(PetscReal t, const PetscReal *x, const PetscReal *v, PetscReal t_final)
 {
   PetscFunctionBeginUser;
   if (!record_csv_.empty()) {
     std::vector<std::pair<std::string, std::vector<std::string>>> rows;
     model_->TakeRecords(rows);
-    if (distributed_) PetscCall(GatherRecords(comm_, rows));
-    for (auto &r : rows)
+    auto write = [this](const std::string &file, const std::vector<std::string> &cells) {
+      PetscFunctionBeginUser;
       for (size_t k = 0; k < record_names_.size(); k++)
-        if (record_names_[k] == r.first && record_csv_[k]->IsOpen()) PetscCall(record_csv_[k]->RowText(r.second));
+        if (record_names_[k] == file && record_csv_[k]->IsOpen()) PetscCall(record_csv_[k]->RowText(cells));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    };
+    if (distributed_) { /* every rank's rows (file, cells...) to rank 0, which writes them, one rank's at a time */
+      TextRows mine;
+      for (auto &r : rows) {
+        mine.push_back({std::move(r.first)});
+        for (std::string &c : r.second) mine.back().push_back(std::move(c));
+      }
+      rows.clear();
+      PetscCall(ForEachRowOnFirstRank(comm_, mine, [&write](std::vector<std::string> &row) {
+        const std::string file = row.front();
+        row.erase(row.begin());
+        return write(file, row);
+      }));
+    } else
+      for (auto &r : rows) PetscCall(write(r.first, r.second));
   }
   if (energy_on_) {
     PetscCall(energy_.Step(t, x, v));

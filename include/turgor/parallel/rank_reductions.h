@@ -3,6 +3,7 @@
    collective call each (every rank must make it). */
 #include <turgor/core/petsc_compat.h>
 #include <petscsys.h>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,5 +49,10 @@ inline PetscErrorCode RankAndSize(MPI_Comm comm, PetscMPIInt *rank, PetscMPIInt 
    the others get none) or on every rank. */
 using TextRows = std::vector<std::vector<std::string>>;
 PetscErrorCode GatherRows(MPI_Comm comm, bool to_all, const TextRows &mine, TextRows *all);
+/* Collective: every rank's rows handed to take() on the first rank, in rank order, received one
+   rank at a time (the first rank holds its own rows and one other rank's, never all of them: a
+   step that breaks a whole tissue's bonds); `mine` is emptied. A failure of take() is returned
+   on the first rank after every rank's rows have been received. */
+PetscErrorCode ForEachRowOnFirstRank(MPI_Comm comm, TextRows &mine, const std::function<PetscErrorCode(std::vector<std::string> &)> &take);
 
 } // namespace turgor
