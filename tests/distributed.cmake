@@ -133,6 +133,18 @@ turgor_add_test(dist_laguerre_parts_identical COMMAND ${CHECK} identical dist_la
 # them. The file (48 glued Voronoi cells, comments, clockwise cells, ids from 7, an open cell) is
 # written by test_tissue. The same run to the bit as the whole file dealt by the same ranges, on 2, 3
 # (long) and 5 (long) ranks; the 1-rank run's tip to 1e-8.
+# ... and read in parts on 2, 3 and 6 ranks by test_node_file_parts: files whose byte ranges end in
+# awkward places (CRLF, no final line break, comments between cells, a comment longer than a range,
+# one cell on six ranks), each rank's part against the whole file's tissue, and errors at lines spread
+# over the file named as the whole reader names them.
+turgor_test_program(test_node_file_parts)
+foreach(np 2 3 6)
+  set(tier "")
+  if(np GREATER 2)
+    set(tier long)
+  endif()
+  turgor_add_test(test_node_file_parts_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:test_node_file_parts> LABELS unit fine mpi ${tier})
+endforeach()
 set_tests_properties(test_tissue PROPERTIES FIXTURES_SETUP parts_tissue_nodes)
 set(DIST_NODES_RANGES -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_type node_file -tissue_node_file parts_tissue.nodes
   -tissue_open_cells 12 -ts_max_time 1 -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges -output_overwrite)
