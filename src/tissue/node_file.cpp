@@ -612,9 +612,7 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
   PetscCheck(0 <= c0 && c0 <= c1 && c1 <= (PetscInt)C, comm, PETSC_ERR_ARG_OUTOFRANGE, "places [%" PetscInt_FMT ", %" PetscInt_FMT ") of a tissue of %zu cells",
              c0, c1, C);
   PetscCheck(distance >= 0 && std::isfinite(distance), comm, PETSC_ERR_ARG_OUTOFRANGE, "a part's distance must be finite and >= 0 (got %g)", (double)distance);
-  *part                  = Tissue();
-  Tissue &T              = *part;
-  T.particles.bar_radius = poly.bar_radius;
+  PolygonPart T(part, poly.bar_radius);
   if (c0 < c1) {
     /* the box of the part's own cells; every cell whose box comes within the distance of it */
     PetscReal U[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
@@ -624,9 +622,7 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
     const PetscReal reach = distance + 1e-9 * (hi_[0] - lo_[0] + hi_[1] - lo_[1]); /* and the rounding of the halo's own measure */
     NodeFileLines   f(spec.path);
     std::string     line;
-    std::uint64_t   start;
     PetscCheck(f.Opened(), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
-    std::vector<PetscInt> gid, sgid;
     for (size_t c = 0; c < C; c++) {
       const PetscReal dx = std::max((PetscReal)0, std::max(box_[c][0] - U[2], U[0] - box_[c][2]));
       const PetscReal dy = std::max((PetscReal)0, std::max(box_[c][1] - U[3], U[1] - box_[c][3]));
@@ -637,7 +633,7 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
       R.open = std::find(spec.open_cells.begin(), spec.open_cells.end(), (PetscInt)id) != spec.open_cells.end();
       PetscCheck(f.Seek(offset_[c]), PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cannot read it from byte %llu", fn,
                  (unsigned long long)offset_[c]);
-      while (f.Next(&line, &start, [](std::uint64_t) {})) {
+      while (f.Next(&line)) {
         PetscReal x, y;
         long long i;
         const int kind = ParseNodeLine(line, &x, &y, &i);
@@ -649,25 +645,12 @@ PetscErrorCode NodeFileGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, Petsc
       const std::string error = CheckCell(fn, spec, id, std::vector<long long>(R.points.size() + 1, 0), &R); /* reverses a clockwise cell */
       PetscCheck(error.empty(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn,
                  id);
-      const PetscInt first = T.particles.n, springs = (PetscInt)T.particles.springs.size();
-      AddRingCell(R, poly.node_mass, poly.bar_length, &T);
-      PetscCheck(T.particles.n - first == node_start_[c + 1] - node_start_[c] &&
-                   (PetscInt)T.particles.springs.size() - springs == bar_start_[c + 1] - bar_start_[c],
+      PetscCheck(T.Add(R, poly.node_mass, poly.bar_length, (PetscInt)c, node_start_[c], node_start_[c + 1] - node_start_[c], bar_start_[c],
+                       bar_start_[c + 1] - bar_start_[c]),
                  PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Option -tissue_node_file = %s: cell %lld changed since the set-up read it", fn, id);
-      for (PetscInt k = 0; k < T.particles.n - first; k++) gid.push_back(node_start_[c] + k);
-      for (PetscInt k = 0; k < bar_start_[c + 1] - bar_start_[c]; k++) sgid.push_back(bar_start_[c] + k);
-      T.cell_gid.push_back((PetscInt)c);
     }
-    ParticleSet &P = T.particles;
-    P.node_polygon.assign(P.n, -1);
-    for (size_t c = 0; c < P.polygons.size(); c++)
-      for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;
-    P.polygon_gid = T.cell_gid;
-    T.Finalize();
-    P.gid.swap(gid);
-    P.spring_gid.swap(sgid);
   }
-  for (int d = 0; d < 2; d++) T.lo[d] = lo_[d], T.hi[d] = hi_[d];
+  T.Finish(lo_, hi_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

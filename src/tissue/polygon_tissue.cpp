@@ -88,6 +88,38 @@ void AddRingCell(const PolygonRing &R, PetscReal node_mass, PetscReal h, Tissue 
   P.polygons.push_back(std::move(C));
 }
 
+PolygonPart::PolygonPart(Tissue *part, PetscReal bar_radius) : T_(*part)
+{
+  T_                      = Tissue();
+  T_.particles.bar_radius = bar_radius;
+}
+
+bool PolygonPart::Add(const PolygonRing &R, PetscReal node_mass, PetscReal h, PetscInt cell, PetscInt node0, PetscInt nodes, PetscInt bar0, PetscInt bars)
+{
+  const PetscInt first = T_.particles.n, first_bar = (PetscInt)T_.particles.springs.size();
+  AddRingCell(R, node_mass, h, &T_);
+  if (T_.particles.n - first != nodes || (PetscInt)T_.particles.springs.size() - first_bar != bars) return false;
+  for (PetscInt k = 0; k < nodes; k++) gid_.push_back(node0 + k);
+  for (PetscInt k = 0; k < bars; k++) spring_gid_.push_back(bar0 + k);
+  T_.cell_gid.push_back(cell);
+  return true;
+}
+
+void PolygonPart::Finish(const PetscReal lo[2], const PetscReal hi[2])
+{
+  ParticleSet &P = T_.particles;
+  if (P.n > 0) {
+    P.node_polygon.assign(P.n, -1);
+    for (size_t c = 0; c < P.polygons.size(); c++)
+      for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;
+    P.polygon_gid = T_.cell_gid;
+    T_.Finalize();
+    P.gid.swap(gid_);
+    P.spring_gid.swap(spring_gid_);
+  }
+  for (int d = 0; d < 2; d++) T_.lo[d] = lo[d], T_.hi[d] = hi[d];
+}
+
 PetscErrorCode BuildPolygonTissue(MPI_Comm comm, const std::vector<PolygonRing> &cells, const PolygonTissueSpec &spec, bool subdivide, Tissue *tissue)
 {
   std::vector<PolygonRing> rings;

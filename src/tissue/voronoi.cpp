@@ -553,9 +553,7 @@ PetscErrorCode VoronoiGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, PetscI
   PetscCheck(0 <= c0 && c0 <= c1 && c1 <= (PetscInt)N, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "places [%" PetscInt_FMT ", %" PetscInt_FMT ") of a Voronoi tissue of %zu cells", c0, c1, N);
   PetscCheck(distance >= 0 && std::isfinite(distance), comm, PETSC_ERR_ARG_OUTOFRANGE, "a part's distance must be finite and >= 0 (got %g)", (double)distance);
-  *part                  = Tissue();
-  Tissue &T              = *part;
-  T.particles.bar_radius = poly.bar_radius;
+  PolygonPart T(part, poly.bar_radius);
   if (c0 < c1) {
     /* the box of the part's own rings, grown by the distance and the farthest corner of any power
        cell from its seed: a cell whose ring's box comes within the distance of it has its seed inside
@@ -568,30 +566,17 @@ PetscErrorCode VoronoiGenerator::GeneratePart(MPI_Comm comm, PetscInt c0, PetscI
       for (const Point2 &p : ring.points)
         box[0] = std::min(box[0], p[0]), box[1] = std::min(box[1], p[1]), box[2] = std::max(box[2], p[0]), box[3] = std::max(box[3], p[1]);
     }
-    const PetscReal       grow = distance + radius_ + 1e-9 * (hi_[0] - lo_[0] + hi_[1] - lo_[1]); /* and the rounding of the nodes between corners */
-    std::vector<PetscInt> gid, sgid;
+    const PetscReal grow = distance + radius_ + 1e-9 * (hi_[0] - lo_[0] + hi_[1] - lo_[1]); /* and the rounding of the nodes between corners */
     for (size_t i = 0; i < N; i++) {
       const Point2 &s = cells_.Seeds()[i];
       if (!(place_[i] >= c0 && place_[i] < c1) && !(s[0] >= box[0] - grow && s[0] <= box[2] + grow && s[1] >= box[1] - grow && s[1] <= box[3] + grow)) continue;
       PetscCall(Ring(i, &ring, &cell, &scratch));
-      const PetscInt first = T.particles.n;
-      AddRingCell(ring, poly.node_mass, poly.bar_length, &T);
-      PetscCheck(T.particles.n - first == node_start_[i + 1] - node_start_[i], PETSC_COMM_SELF, PETSC_ERR_PLIB,
-                 "Voronoi cell %zu: %" PetscInt_FMT " nodes, counted %" PetscInt_FMT, i, T.particles.n - first, node_start_[i + 1] - node_start_[i]);
-      for (PetscInt k = 0; k < T.particles.n - first; k++)
-        gid.push_back(node_start_[i] + k), sgid.push_back(node_start_[i] + k); /* closed rings: a bar a node */
-      T.cell_gid.push_back((PetscInt)i);
+      const PetscInt nodes = node_start_[i + 1] - node_start_[i]; /* closed rings: a bar a node */
+      PetscCheck(T.Add(ring, poly.node_mass, poly.bar_length, (PetscInt)i, node_start_[i], nodes, node_start_[i], nodes), PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                 "Voronoi cell %zu: not the %" PetscInt_FMT " nodes counted", i, nodes);
     }
-    ParticleSet &P = T.particles;
-    P.node_polygon.assign(P.n, -1);
-    for (size_t c = 0; c < P.polygons.size(); c++)
-      for (PetscInt i : P.polygons[c].nodes) P.node_polygon[i] = (PetscInt)c;
-    P.polygon_gid = T.cell_gid;
-    T.Finalize();
-    P.gid.swap(gid);
-    P.spring_gid.swap(sgid);
   }
-  for (int d = 0; d < 2; d++) T.lo[d] = lo_[d], T.hi[d] = hi_[d];
+  T.Finish(lo_, hi_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

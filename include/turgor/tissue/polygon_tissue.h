@@ -63,6 +63,24 @@ void ForEachRingNode(const PolygonRing &R, PetscReal h, F &&f)
    bars as springs with the geometric rest length, its PolygonCell and wall ring. */
 void AddRingCell(const PolygonRing &R, PetscReal node_mass, PetscReal h, Tissue *tissue);
 
+/* A part of a polygonal tissue being built (TissueGenerator::GeneratePart): cells added in increasing
+   number of the whole tissue, each with its first node and bar there; Finish() gives the part its
+   numbers (ParticleSet::gid, spring_gid, polygon_gid, Tissue::cell_gid), joints and the whole
+   tissue's bounds. */
+class PolygonPart {
+public:
+  PolygonPart(Tissue *part, PetscReal bar_radius);
+  /* ring R as cell `cell` of the whole tissue (AddRingCell), its nodes numbered from node0 and its
+     bars from bar0 there; false if it has other than `nodes` nodes and `bars` bars (the whole
+     tissue's count) */
+  bool Add(const PolygonRing &R, PetscReal node_mass, PetscReal h, PetscInt cell, PetscInt node0, PetscInt nodes, PetscInt bar0, PetscInt bars);
+  void Finish(const PetscReal lo[2], const PetscReal hi[2]);
+
+private:
+  Tissue               &T_;
+  std::vector<PetscInt> gid_, spring_gid_;
+};
+
 /* Fill *tissue from the rings and the plates of spec.plates (plates.h): nodes (KIND_WALL, mass
    spec.node_mass) cell by cell in ring order, each edge cut into BarsPerEdge(L, h) equal bars
    (h = spec.bar_length if `subdivide`, else none), bars as springs with the geometric rest length,
