@@ -290,9 +290,14 @@ PetscErrorCode WriteNodeFile(MPI_Comm comm, const std::string &path, const Tissu
 }
 
 /* A streaming pass over the file (nothing stored): nodes after subdivision and bars. Malformed lines
-   are skipped here; Generate reports them. */
+   are skipped here; Generate reports them. After PrepareParts, its exact counts. */
 PetscErrorCode NodeFileGenerator::Estimate(PetscReal *particles, PetscReal *springs) const
 {
+  if (!offset_.empty()) { /* read in parts (PrepareParts): the counts are known; no rank reads the whole file again */
+    *particles = (PetscReal)node_start_.back();
+    *springs   = (PetscReal)bar_start_.back();
+    return PETSC_SUCCESS;
+  }
   PetscCheck(!InterruptRequested(), PETSC_COMM_SELF, PETSC_ERR_SIG, "Interrupted (SIGINT/SIGTERM) during set-up: before reading -tissue_node_file %s",
              spec.path.c_str());
   InterruptibleCalls interruptible;
