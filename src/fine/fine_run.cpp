@@ -154,9 +154,8 @@ PetscErrorCode FineRun::SetUpModel()
        A part of one cell would do and saves 1.2 s of the 10^7 bar's 12.6 s set-up, but the set-up's
        peak then rose by 26 MB a rank (1.531 -> 1.557 GB, glibc's heap laid out otherwise: the first
        part's freed blocks are reused by the second), and the peak is what the set-up in parts is for */
-    PetscErrorCode failed = tissues_.Generator()->GeneratePart(comm_, c0, c1, 0, &tissue_); /* (a node file is read here: any rank may fail) */
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm_));
-    PetscCheck(!failed, comm_, PETSC_ERR_LIB, "Option -fine_partitioner ranges: generating a part of the tissue failed on some rank");
+    /* (a node file is read here: any rank may fail) */
+    PetscCall(AgreeOnError(comm_, tissues_.Generator()->GeneratePart(comm_, c0, c1, 0, &tissue_), "generating a part of the tissue"));
     PetscCall(reach_of(&reach));
     tissue_ = Tissue();
     PetscCall(placement_.PlaceParts(comm_, placing, reach, *tissues_.Generator(), &tissue_));

@@ -1,5 +1,6 @@
 #include <turgor/io/checkpoint_file.h>
 #include <turgor/io/key_order.h>
+#include <turgor/parallel/rank_reductions.h>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -651,18 +652,6 @@ PetscErrorCode ReadDataset(hid_t loc, const std::string &path, Kind kind, std::v
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Collective: an error on every rank where some rank's `e` is one (the others' says so; the first
-   rank's message is the one the reader reports, TimeRun::ReadCheckpoint). */
-PetscErrorCode AgreeOnError(MPI_Comm comm, PetscErrorCode e)
-{
-  int bad = e ? 1 : 0;
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm));
-  if (e) PetscFunctionReturn(e);
-  PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "read error on another rank");
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /* This rank's entities of a table: (id, row), sorted by id, ids unique. */
 using KeyRows = std::vector<std::pair<std::uint64_t, size_t>>;
 
@@ -714,7 +703,7 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   };
-  PetscCall(AgreeOnError(comm, open()));
+  PetscCall(AgreeOnError(comm, open(), "reading the checkpoint"));
 
   /* the checksums, from the ranks' slabs */
   std::vector<std::uint64_t> shares(all.size(), 0);
@@ -735,7 +724,7 @@ PetscErrorCode ReadRowsOfKeys(MPI_Comm comm, hid_t file, const std::string &grou
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   };
-  PetscCall(AgreeOnError(comm, hash_slabs()));
+  PetscCall(AgreeOnError(comm, hash_slabs(), "reading the checkpoint"));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, shares.data(), (PetscMPIInt)shares.size(), MPI_UINT64_T, MPI_SUM, comm));
   for (size_t k = 0; k < all.size(); k++) PetscCall(CheckChecksum(all[k]->Path(), shares[k], all[k]->Stored()));
 
@@ -1133,7 +1122,7 @@ PetscErrorCode CheckpointReader::State(const std::vector<StateDeclaration *> &de
   PetscCall(CheckSameDeclarations(comm_, decls));
   /* a rank's error is every rank's: the next table is read collectively */
   for (StateDeclaration *d : decls)
-    for (StateTable &t : d->Tables()) PetscCall(AgreeOnError(comm_, ReadTable("/state/" + d->Name() + "/" + t.Name(), t, numbering)));
+    for (StateTable &t : d->Tables()) PetscCall(AgreeOnError(comm_, ReadTable("/state/" + d->Name() + "/" + t.Name(), t, numbering), "reading the checkpoint"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -125,10 +125,8 @@ PetscErrorCode TissuePlacement::PlaceParts(MPI_Comm comm, const Options &options
   reach_       = reach;
   margin_      = options.halo_margin >= 0 ? options.halo_margin : reach;
   PetscCall(OwnedRange(comm, C, &c0, &c1));
-  Tissue         part;
-  PetscErrorCode failed = generator.GeneratePart(comm, c0, c1, reach_ + margin_, &part);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm));
-  PetscCheck(!failed, comm, PETSC_ERR_LIB, "Option -fine_partitioner ranges: generating a part of the tissue failed on some rank");
+  Tissue part;
+  PetscCall(AgreeOnError(comm, generator.GeneratePart(comm, c0, c1, reach_ + margin_, &part), "generating a part of the tissue"));
   std::vector<PetscInt> cell_rank(part.NumCells()), local_of;
   for (PetscInt c = 0; c < part.NumCells(); c++) cell_rank[c] = RangeRank(generator.CellPlace(part.CellGid(c)), C, size);
   PetscCall(dist_.SetUp(comm, part, cell_rank, reach_, margin_, tissue, &local_of));

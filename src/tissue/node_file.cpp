@@ -439,9 +439,8 @@ PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
       if (p >= a && p < b) newlines++;
       local_line++;
     };
-    PetscCheck(f.Opened(), PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Option -tissue_node_file = %s: cannot open the file (%s)", fn, std::strerror(errno));
-    bool ok = true;
-    if (a > 0 && a < b) {
+    bool ok = f.Opened();
+    if (ok && a > 0 && a < b) {
       ok = f.Seek(a - 1);
       if (ok && f.Get() != '\n')
         for (int c; (c = f.Get()) != EOF;)
@@ -451,8 +450,14 @@ PetscErrorCode NodeFileGenerator::PrepareParts(MPI_Comm comm)
           }
       first = f.Position();
       ok    = ok && PreviousNodeId(f, first, &prev) && f.Seek(first);
-    } else ok = f.Seek(a);
-    PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cannot read it from byte %llu", fn, (unsigned long long)a);
+    } else ok = ok && f.Seek(a);
+    auto started = [&]() { /* this rank's error, every rank's failure */
+                           PetscFunctionBeginUser;
+                           PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Option -tissue_node_file = %s: cannot read it from byte %llu (%s)", fn,
+                                      (unsigned long long)a, std::strerror(errno));
+                           PetscFunctionReturn(PETSC_SUCCESS);
+    };
+    PetscCall(AgreeOnError(comm, started(), "reading -tissue_node_file"));
     /* the lines of this range; a line's number is the breaks before it plus one (those before a
        added once every rank has counted its own) */
     bool          skipping = true; /* the lines of the cell the previous range began */

@@ -500,10 +500,12 @@ PetscErrorCode VoronoiGenerator::PrepareParts(MPI_Comm comm)
     for (PetscInt step = 0; step < spec.lloyd_steps; step++) {
       PetscCall(StopIfInterrupted(comm, "set-up: the Voronoi tissue (-tissue_voronoi_cells, -tissue_lloyd_steps)"));
       const PowerCells diagram(spec.box, seeds, {});
-      for (size_t i = i0; i < i1; i++) {
-        PetscCall(diagram.Cell(i, &cell, &scratch));
+      PetscErrorCode   e = PETSC_SUCCESS; /* (two seeds at one point: this rank's error, every rank's failure) */
+      for (size_t i = i0; i < i1 && !e; i++) {
+        e             = diagram.Cell(i, &cell, &scratch);
         moved[i - i0] = LloydMove(spec, seeds[i], cell);
       }
+      PetscCall(AgreeOnError(comm, e, "a Lloyd step of the Voronoi tissue"));
       PetscCallMPI(MPI_Allgatherv(moved.data(), count2[rank], MPIU_REAL, seeds.data(), count2.data(), displ2.data(), MPIU_REAL, comm));
     }
     cells_ = PowerCells(spec.box, std::move(seeds), {});
@@ -513,8 +515,9 @@ PetscErrorCode VoronoiGenerator::PrepareParts(MPI_Comm comm)
   std::vector<PetscInt> nodes(i1 - i0);
   PetscReal             ext[5]   = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL, 0}; /* -lo, hi, radius */
   PetscInt              vanished = (PetscInt)N;
-  for (size_t i = i0; i < i1; i++) {
-    PetscCall(Ring(i, &ring, &cell, &scratch));
+  PetscErrorCode        e        = PETSC_SUCCESS;
+  for (size_t i = i0; i < i1 && !e; i++) {
+    if ((e = Ring(i, &ring, &cell, &scratch))) break;
     const Point2 &s = cells_.Seeds()[i];
     for (const Point2 &p : cell.v) ext[4] = std::max(ext[4], std::hypot(p[0] - s[0], p[1] - s[1]));
     if (ring.points.size() < 3) {
@@ -526,6 +529,7 @@ PetscErrorCode VoronoiGenerator::PrepareParts(MPI_Comm comm)
       ext[0] = std::max(ext[0], -x), ext[1] = std::max(ext[1], -y), ext[2] = std::max(ext[2], x), ext[3] = std::max(ext[3], y);
     });
   }
+  PetscCall(AgreeOnError(comm, e, "building the Voronoi tissue's cells"));
   PetscCall(MinOverRanks(comm, &vanished));
   if (vanished < (PetscInt)N) { /* the first cell that vanished, named alike on every rank */
     PetscCall(cells_.Cell((size_t)vanished, &cell, &scratch));

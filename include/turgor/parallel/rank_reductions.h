@@ -45,6 +45,19 @@ inline PetscErrorCode RankAndSize(MPI_Comm comm, PetscMPIInt *rank, PetscMPIInt 
   return size && MPI_Comm_size(comm, size) != MPI_SUCCESS ? PETSC_ERR_MPI : PETSC_SUCCESS;
 }
 
+/* Collective: a failure on some rank becomes one on every rank (a rank that goes on alone would wait
+   in the next collective call for ever). Returns e where this rank failed, elsewhere an error
+   saying that `what` failed on another rank (its own message is the failing rank's). */
+inline PetscErrorCode AgreeOnError(MPI_Comm comm, PetscErrorCode e, const char *what)
+{
+  int bad = e ? 1 : 0;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm));
+  if (e) PetscFunctionReturn(e);
+  PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_LIB, "%s failed on another rank", what);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Rows of text cells gathered from every rank, in rank order: on the first rank only (to_all false;
    the others get none) or on every rank. */
 using TextRows = std::vector<std::vector<std::string>>;
