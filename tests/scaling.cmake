@@ -11,3 +11,11 @@ turgor_add_test(scaling_slurm COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_scaling.
 turgor_add_test(scaling_local COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/check_scaling.py local ${SCALING} scaling_local
   $<TARGET_FILE:turgor_app> ${MPIEXEC_EXECUTABLE} ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml
   LABELS study fine mpi long TIMEOUT 60)
+
+# bench/setup_memory.py (docs/scaling.md, "Generated in parts"): a node file and a Voronoi tissue of
+# 400 cells on 1 rank, 2 ranks by METIS and 2 in parts; both 2-rank runs own every particle of the
+# 1-rank run exactly once, with a halo (the figures themselves are the benchmark's, not the test's).
+foreach(tissue node_file voronoi)
+  turgor_add_test(setup_memory_${tissue} COMMAND ${PROJECT_SOURCE_DIR}/bench/setup_memory.py --tissue ${tissue} --sizes 400 --check
+    --binary $<TARGET_FILE:turgor_app> --out setup_memory_${tissue} LABELS study mpi long)
+endforeach()
