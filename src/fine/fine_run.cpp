@@ -597,7 +597,6 @@ bool FineRun::KeepStateVector(std::vector<PetscReal> &values, PetscInt global_si
 PetscErrorCode FineRun::DeclareState(std::deque<StateDeclaration> &decls)
 {
   PetscFunctionBeginUser;
-  numbering_                = std::make_unique<LocalNumbering>(tissue_.particles);
   std::vector<PetscReal> &u = SolutionView();
   PetscCheck(u.size() == (size_t)(4 * n_local_), PETSC_COMM_SELF, PETSC_ERR_PLIB, "The state's view has %zu values for %" PetscInt_FMT " particles", u.size(),
              n_local_);
@@ -648,7 +647,9 @@ std::uint64_t FineRun::EntityId(StateEntity e, PetscInt l) const
 
 PetscInt FineRun::EntityLocal(StateEntity e, std::uint64_t id) const
 {
-  if (!numbering_) return -1;
+  /* made when a checkpoint's rows are first read by id (a write needs none: about 100 B a particle
+     of hash maps, kept until AfterStateRead) */
+  if (!numbering_) numbering_ = std::make_unique<LocalNumbering>(tissue_.particles);
   switch (e) {
   case StateEntity::Particle:
     return numbering_->Particle((PetscInt)id);

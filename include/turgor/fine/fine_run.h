@@ -177,9 +177,9 @@ private:
   std::vector<PetscReal> rank_of_; /* the snapshots' rank field (a distributed run) */
 
   /* checkpoints: the fingerprint's hash of the reference positions; the tissue's numbers translated
-     while a checkpoint is read */
-  std::string                     reference_hash_;
-  std::unique_ptr<LocalNumbering> numbering_;
+     while a checkpoint is read (made by the first EntityLocal, released by AfterStateRead) */
+  std::string                             reference_hash_;
+  mutable std::unique_ptr<LocalNumbering> numbering_;
 };
 
 } // namespace turgor
