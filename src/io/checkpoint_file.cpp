@@ -290,7 +290,6 @@ public:
     PetscCall(ExchangePacked(comm_, send, count, *in, NULL, what));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  size_t Rows() const { return send_order_.size(); }
 
 private:
   MPI_Comm            comm_ = MPI_COMM_NULL;
