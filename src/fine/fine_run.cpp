@@ -597,10 +597,10 @@ bool FineRun::KeepStateVector(std::vector<PetscReal> &values, PetscInt global_si
 PetscErrorCode FineRun::DeclareState(std::deque<StateDeclaration> &decls)
 {
   PetscFunctionBeginUser;
-  std::vector<PetscReal> &u = SolutionView();
-  PetscCheck(u.size() == (size_t)(4 * n_local_), PETSC_COMM_SELF, PETSC_ERR_PLIB, "The state's view has %zu values for %" PetscInt_FMT " particles", u.size(),
+  const SolutionSpan u = SolutionView();
+  PetscCheck(u.size == (size_t)(4 * n_local_), PETSC_COMM_SELF, PETSC_ERR_PLIB, "The state's view has %zu values for %" PetscInt_FMT " particles", u.size,
              n_local_);
-  equations_.Present(u.data(), u.data() + 2 * n_local_);
+  equations_.Present(u.data, u.data + 2 * n_local_);
   decls.emplace_back("fine");
   StateTable &t = decls.back().Table("particles", StateEntity::Particle).Rows([this] { return (size_t)n_local_; });
   for (const ParticleField *f : fields_.With(kCheckpoint)) {

@@ -77,7 +77,12 @@ PetscErrorCode TimeRun::DeclareAll(std::deque<StateDeclaration> &decls)
   r.Scalar("schedule_snapshots", &record_.snapshots, Combine::Owner);
   if (!DeclaresSolution()) {
     decls.emplace_back("solution");
-    decls.back().Table("entries", StateEntity::StateEntry).Rows([this] { return solution_.size(); }).Column("value", solution_);
+    decls.back()
+      .Table("entries", StateEntity::StateEntry)
+      .Rows([this] { return solution_view_.size; })
+      .Column(
+        "value", 1, [this](size_t r, PetscReal *out) { *out = solution_view_.data[r]; },
+        [this](size_t r, const PetscReal *in) { solution_view_.data[r] = *in; });
   }
   decls.emplace_back("integrator");
   PetscCall(integrator_.Declare(ts_, decls.back(), [this](std::vector<PetscReal> &v, PetscInt n) { return KeepStateVector(v, n); }));
@@ -161,13 +166,23 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   record_.first_step = dt_start_;
   PetscCall(TSGetTimeStep(ts_, &record_.dt));
   sampler_.Position(&record_.sample, &record_.snapshot);
+  /* the declarations read U's own array while the file is written (no copy: 32 B a particle at
+     the checkpoint's peak), given back on every path out of here */
+  struct ReadArray {
+    Vec                    v;
+    const PetscScalar     *a = nullptr;
+    TimeRun::SolutionSpan *view;
+    ~ReadArray()
+    {
+      *view = TimeRun::SolutionSpan();
+      if (a) (void)VecRestoreArrayRead(v, &a);
+    }
+  } held{U_, nullptr, &solution_view_};
   {
-    const PetscScalar *u;
-    PetscInt           n;
+    PetscInt n;
     PetscCall(VecGetLocalSize(U_, &n));
-    PetscCall(VecGetArrayRead(U_, &u));
-    solution_.assign(u, u + n);
-    PetscCall(VecRestoreArrayRead(U_, &u));
+    PetscCall(VecGetArrayRead(U_, &held.a));
+    solution_view_ = {const_cast<PetscReal *>(held.a), (size_t)n}; /* read only: a write declares, the getters read */
   }
   std::vector<PetscInt> ids;
   {
@@ -224,7 +239,6 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   }
   PetscCall(w.State(all, numbering));
   PetscCall(w.Close());
-  std::vector<PetscReal>().swap(solution_);
   PetscReal bytes  = 0;
   int       failed = 0;
   if (rank == 0) {
@@ -392,6 +406,7 @@ PetscErrorCode TimeRun::ReadCheckpointFile(CheckpointReader &file, std::string *
     PetscInt n;
     PetscCall(VecGetLocalSize(U_, &n));
     solution_.assign((size_t)n, 0.0);
+    solution_view_ = {solution_.data(), solution_.size()};
   }
   std::deque<StateDeclaration> decls;
   PetscCall(DeclareAll(decls));
@@ -422,6 +437,7 @@ PetscErrorCode TimeRun::ReadCheckpointFile(CheckpointReader &file, std::string *
     std::copy(solution_.begin(), solution_.end(), u);
     PetscCall(VecRestoreArray(U_, &u));
     std::vector<PetscReal>().swap(solution_);
+    solution_view_ = SolutionSpan();
   }
   PetscCall(TSSetTime(ts_, r.time));
   PetscCall(TSSetStepNumber(ts_, r.step));

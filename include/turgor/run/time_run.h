@@ -124,14 +124,20 @@ protected:
   virtual bool DeclaresSolution() const { return false; }
   /* ... and may keep a vector in its state's layout (the integrator's history: `values`, of
      `global_size` entries in all) with its own entities' state (true), declared in DeclareState. */
-  virtual bool            KeepStateVector(std::vector<PetscReal> &values, PetscInt global_size) { return false; }
-  std::vector<PetscReal> &SolutionView() { return solution_; }
-  virtual PetscErrorCode  CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
-  virtual PetscErrorCode  DeclareState(std::deque<StateDeclaration> &decls) { return PETSC_SUCCESS; }
-  virtual std::uint64_t   EntityId(StateEntity e, PetscInt local) const { return (std::uint64_t)local; }
-  virtual PetscInt        EntityLocal(StateEntity e, std::uint64_t id) const { return -1; }
-  virtual bool            EntityOwned(StateEntity e, PetscInt local) const { return true; }
-  virtual std::uint64_t   LayoutHash() const;
+  virtual bool KeepStateVector(std::vector<PetscReal> &values, PetscInt global_size) { return false; }
+  /* U's local values while a checkpoint is written (U's own array, read only) or read (a buffer,
+     copied into U once the record is checked) */
+  struct SolutionSpan {
+    PetscReal *data = nullptr;
+    size_t     size = 0;
+  };
+  SolutionSpan           SolutionView() const { return solution_view_; }
+  virtual PetscErrorCode CheckpointFingerprint(std::vector<std::pair<std::string, std::string>> &fp) { return PETSC_SUCCESS; }
+  virtual PetscErrorCode DeclareState(std::deque<StateDeclaration> &decls) { return PETSC_SUCCESS; }
+  virtual std::uint64_t  EntityId(StateEntity e, PetscInt local) const { return (std::uint64_t)local; }
+  virtual PetscInt       EntityLocal(StateEntity e, std::uint64_t id) const { return -1; }
+  virtual bool           EntityOwned(StateEntity e, PetscInt local) const { return true; }
+  virtual std::uint64_t  LayoutHash() const;
   /* A restart: before the checkpoint's state is read into the declarations (references the model
      takes lazily), and after (what the mode derives from its state), at the restored state U of
      time t; `own_layout`: this rank holds what the rank that wrote its rows held. */
@@ -246,9 +252,10 @@ private:
     PetscReal time = 0, dt = 0, t_final = 0, first_step = 0;            /* first_step: the run's first (or fixed) step, from its options */
     PetscInt  step = 0, sample = 0, snapshot = 0, samples = 0, snapshots = 0;
   } record_;
-  std::vector<PetscReal>                           solution_;     /* the declarations' view of U (while a checkpoint is written or read) */
-  std::vector<std::pair<std::string, CsvWriter *>> series_;       /* every CSV time series (rank 0), in the order opened */
-  std::vector<std::pair<std::string, std::string>> restart_text_; /* a restart: each series' text at the checkpoint */
+  std::vector<PetscReal>                           solution_;      /* a checkpoint's values of U, read before they are checked */
+  SolutionSpan                                     solution_view_; /* the declarations' view of U (SolutionView) */
+  std::vector<std::pair<std::string, CsvWriter *>> series_;        /* every CSV time series (rank 0), in the order opened */
+  std::vector<std::pair<std::string, std::string>> restart_text_;  /* a restart: each series' text at the checkpoint */
 };
 
 } // namespace turgor
