@@ -172,11 +172,14 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
     Vec                    v;
     const PetscScalar     *a = nullptr;
     TimeRun::SolutionSpan *view;
-    ~ReadArray()
+    PetscErrorCode         Release()
     {
-      *view = TimeRun::SolutionSpan();
-      if (a) (void)VecRestoreArrayRead(v, &a);
+      *view                  = TimeRun::SolutionSpan();
+      const PetscErrorCode e = a ? VecRestoreArrayRead(v, &a) : PETSC_SUCCESS;
+      a                      = nullptr;
+      return e;
     }
+    ~ReadArray() { (void)Release(); }
   } held{U_, nullptr, &solution_view_};
   {
     PetscInt n;
@@ -239,6 +242,7 @@ PetscErrorCode TimeRun::WriteCheckpoint(PetscReal t, PetscInt step)
   }
   PetscCall(w.State(all, numbering));
   PetscCall(w.Close());
+  PetscCall(held.Release());
   PetscReal bytes  = 0;
   int       failed = 0;
   if (rank == 0) {
