@@ -7,6 +7,7 @@ static const char help[] = "Node files read in parts on several ranks: each rank
    (CheckPolygonPart). Then files with an error near each range's start: the parts' error names the
    same line and cell as the whole reader's. */
 #include "tissue_parts_util.h"
+#include <turgor/parallel/rank_reductions.h>
 #include <turgor/parallel/tissue_placement.h>
 #include <turgor/tissue/node_file.h>
 #include <cstdio>
@@ -41,9 +42,11 @@ struct Variant {
   bool        open_last;
 };
 
-static void Write(const Variant &v, const std::string &path, int bad_line = -1, int bad_kind = 0)
+static PetscErrorCode Write(const Variant &v, const std::string &path, int bad_line = -1, int bad_kind = 0)
 {
-  FILE       *f     = std::fopen(path.c_str(), "wb");
+  PetscFunctionBeginUser;
+  FILE *f = std::fopen(path.c_str(), "wb");
+  TG_CHECK(f, "cannot write %s", path.c_str());
   const auto  cells = Squares(v.cells, v.nodes);
   int         line  = 0;
   std::string text;
@@ -64,8 +67,9 @@ static void Write(const Variant &v, const std::string &path, int bad_line = -1, 
     if (c == 0 && v.long_comment) put("#" + std::string(v.long_comment, 'x'));
   }
   if (!v.final_break) text.resize(text.size() - std::strlen(v.eol));
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fclose(f);
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  TG_CHECK(std::fclose(f) == 0 && written, "cannot write %s", path.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 int main(int argc, char **argv)
@@ -85,7 +89,7 @@ int main(int argc, char **argv)
   };
   const std::string path = "node_file_parts_" + std::to_string(size) + ".nodes";
   for (const Variant &v : variants) {
-    if (rank == 0) Write(v, path);
+    PetscCall(AgreeOnError(PETSC_COMM_WORLD, rank == 0 ? Write(v, path) : PETSC_SUCCESS, "writing the node file"));
     PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
     for (PetscReal h : {0.0, 3.0}) {
       NodeFileGenerator G;
@@ -114,7 +118,7 @@ int main(int argc, char **argv)
   int            failed[3] = {0, 0, 0};                                               /* files refused, of each kind */
   for (int kind = 1; kind <= 2; kind++)
     for (int bad = 2; bad < lines; bad += lines / 7) {
-      if (rank == 0) Write(v, path, bad, kind);
+      PetscCall(AgreeOnError(PETSC_COMM_WORLD, rank == 0 ? Write(v, path, bad, kind) : PETSC_SUCCESS, "writing the node file"));
       PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
       NodeFileGenerator G;
       G.spec.path = path;

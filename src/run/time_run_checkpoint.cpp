@@ -2,6 +2,7 @@
    objects declare (io/declared_state.h), by the one writer and reader of io/checkpoint_file.h. */
 #include <turgor/core/log.h>
 #include <turgor/io/checkpoint_file.h>
+#include <turgor/parallel/rank_reductions.h>
 #include <turgor/run/time_run.h>
 #include <cmath>
 #include <cstring>
@@ -298,7 +299,7 @@ static PetscErrorCode KeepFirstError(MPI_Comm comm, int line, const char *fun, c
 {
   std::string *first = (std::string *)ctx;
   if (!first->empty()) return n;
-  if (mess && std::strstr(mess, "failed on another rank")) return n; /* AgreeOnError's: the failing rank's message is the one to report */
+  if (mess && std::strstr(mess, kFailedOnAnotherRank)) return n; /* AgreeOnError's: the failing rank's message is the one to report */
   /* a state that does not fit this run or a damaged dataset (FILE_UNEXPECTED), or a file that cannot be read */
   *first = std::string(n == PETSC_ERR_FILE_UNEXPECTED ? "U:" : "R:") + (mess && mess[0] ? mess : std::string("error in ") + (fun ? fun : "?"));
   return n;

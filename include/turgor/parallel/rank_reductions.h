@@ -45,6 +45,10 @@ inline PetscErrorCode RankAndSize(MPI_Comm comm, PetscMPIInt *rank, PetscMPIInt 
   return size && MPI_Comm_size(comm, size) != MPI_SUCCESS ? PETSC_ERR_MPI : PETSC_SUCCESS;
 }
 
+/* The end of AgreeOnError's message on the ranks that did not fail (an error handler that keeps the
+   first message skips it, the failing rank's being the one to report). */
+inline constexpr const char *kFailedOnAnotherRank = "failed on another rank";
+
 /* Collective: a failure on some rank becomes one on every rank (a rank that goes on alone would wait
    in the next collective call for ever). Returns e where this rank failed, elsewhere an error
    saying that `what` failed on another rank (its own message is the failing rank's). */
@@ -54,7 +58,7 @@ inline PetscErrorCode AgreeOnError(MPI_Comm comm, PetscErrorCode e, const char *
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm));
   if (e) PetscFunctionReturn(e);
-  PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_LIB, "%s failed on another rank", what);
+  PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_LIB, "%s %s", what, kFailedOnAnotherRank);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
