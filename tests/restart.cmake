@@ -255,8 +255,12 @@ function(turgor_restart_other_ranks name leg1)
       string(REPLACE ":" ";" parts ${c})
       list(GET parts 0 mode)
       list(GET parts 1 what)
-      list(GET parts 2 rest)
-      string(REPLACE "," ";" rest "${rest}")
+      list(LENGTH parts nparts)
+      set(rest "")
+      if(nparts GREATER 2)
+        list(GET parts 2 rest)
+        string(REPLACE "," ";" rest "${rest}")
+      endif()
       string(MAKE_C_IDENTIFIER ${what} id)
       turgor_add_test(${dir}_${id} COMMAND ${CHECK} ${mode} ${dir} ${base}_full ${what} ${rest} LABELS ${labels}
         REQUIRES "${base}_full;${dir}")
@@ -276,6 +280,35 @@ turgor_restart_other_ranks(polygon 3000 TOL 1e-10 OPTIONS ${XR_POLY}
 set(XR_VORONOI -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_voronoi_cells 48 -tissue_box 0,0,300,100 -ts_max_time 2
   -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges)
 turgor_restart_other_ranks(voronoi_parts 900 TOL 1e-8 OPTIONS ${XR_VORONOI} COMPARE samekey:bonds_intact:0)
+# ... with -fine_reproducible_sums (every force share rounded to a grain chosen from the state: the
+# sums are exact, so their order does not matter): the continuations on 1 (and 3, long) rank(s) end
+# with the uninterrupted 1-rank run's state to the last bit (glue, contact with friction, plastic
+# hinges, pressure, dashpots), and tip.csv byte for byte (its kinetic energy summed exactly too).
+turgor_restart_other_ranks(voronoi_exact 900 TOL 0 OPTIONS ${XR_VORONOI} -fine_reproducible_sums COMPARE identical:final_state_hash)
+# ... and the other way on the square grid's bending bar (springs, repulsion, SPH, gravity; TS
+# verlet): stopped on 1 rank, continued on 2 (METIS) and 3 (ranges of rows, long), against the
+# uninterrupted run on 2 ranks.
+set(XR_EXACT_BAR -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_type verlet -ts_max_time 2 -fine_snapshots 0
+  -fine_progress_interval 0 -fine_reproducible_sums)
+turgor_add_test(restart_exact_bar_full COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${XR_EXACT_BAR} -output_overwrite
+  -output_dir restart_exact_bar_full LABELS fine restart mpi SETUP restart_exact_bar_full)
+turgor_add_test(restart_exact_bar_leg1 COMMAND turgor_app ${XR_EXACT_BAR} -output_overwrite -ts_max_steps 1200 -checkpoint_interval 1e6
+  -output_dir restart_exact_bar_leg1 LABELS fine restart mpi SETUP restart_exact_bar_leg1)
+foreach(np 2 3)
+  set(labels fine restart mpi)
+  set(extra "")
+  if(np GREATER 2)
+    set(labels fine restart mpi long)
+    set(extra -fine_partitioner ranges)
+  endif()
+  turgor_add_test(restart_exact_bar_to${np}_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_exact_bar_leg1 restart_exact_bar_to${np}
+    LABELS ${labels} REQUIRES restart_exact_bar_leg1 SETUP restart_exact_bar_to${np}_copy)
+  turgor_add_test(restart_exact_bar_to${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${XR_EXACT_BAR} ${extra}
+    -restart restart_exact_bar_to${np}/checkpoint.h5 -output_dir restart_exact_bar_to${np} LABELS ${labels} REQUIRES restart_exact_bar_to${np}_copy
+    SETUP restart_exact_bar_to${np})
+  turgor_add_test(restart_exact_bar_to${np}_same COMMAND ${CHECK} identical restart_exact_bar_to${np} restart_exact_bar_full final_state_hash
+    LABELS ${labels} REQUIRES "restart_exact_bar_full;restart_exact_bar_to${np}")
+endforeach()
 # ... continued on 1 rank reading the checkpoint 7 rows at a time (-restart_read_rows: chunk
 # boundaries in every table, between the rows of a key that two ranks wrote): the same continuation,
 # bit for bit, as the one that read 65 536 rows at a time.

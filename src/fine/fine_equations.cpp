@@ -121,11 +121,32 @@ PetscErrorCode FineEquations::LocalState(PetscReal t, const PetscScalar *x, cons
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void FineEquations::SetReproducibleSums(bool on)
+{
+  reproducible_ = on;
+  if (on) model_->Grain().SetFor(1.0); /* any grain: the first evaluation finds its own */
+  else model_->Grain().Clear();
+}
+
+/* With reproducible sums, the evaluation is repeated when its largest share asks for another grain
+   than the one it was made with (force_grain.h); the shares do not depend on the grain, so the
+   second pass agrees with itself. Every rank takes the same decision (the largest share over all). */
 PetscErrorCode FineEquations::TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f)
 {
+  ForceGrain &grain = model_->Grain();
   PetscFunctionBeginUser;
-  PetscCall(model_->ComputeForces(x, v, f, NULL));
-  if (halo_) PetscCall(halo_->Return(f));
+  for (int pass = 0;; pass++) {
+    PetscCall(model_->ComputeForces(x, v, f, NULL));
+    if (halo_) PetscCall(halo_->Return(f));
+    if (!reproducible_) break;
+    PetscReal largest = std::isfinite(grain.Largest()) ? grain.Largest() : PETSC_INFINITY;
+    if (halo_) PetscCall(MaxOverRanks(halo_->Comm(), &largest));
+    if (!std::isfinite(largest) || grain.Fits(largest)) break; /* a non-finite force: the state is rejected by its checks */
+    PetscCheck(pass == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "reproducible sums: the largest share %g changed between two evaluations of one state",
+               (double)largest);
+    grain.SetFor(largest);
+    regrains_++;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -133,7 +154,10 @@ PetscErrorCode FineEquations::Accelerations(const PetscReal *x, const PetscReal 
 {
   PetscFunctionBeginUser;
   if (!halo_) { /* the state's array holds every particle: no copy */
-    PetscCall(model_->ComputeAcceleration(x, v, a));
+    if (reproducible_) {
+      PetscCall(TotalForces(x, v, a));
+      model_->DivideByMass(a, a, n_owned_);
+    } else PetscCall(model_->ComputeAcceleration(x, v, a));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (a_has_halo_room) { /* the halo's forces in a's spare tail, returned from there */

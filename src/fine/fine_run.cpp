@@ -5,6 +5,7 @@
 #include <turgor/fine/fine_run.h>
 #include <turgor/io/checkpoint_file.h>
 #include <turgor/fine/particle_output.h>
+#include <turgor/parallel/exact_sum.h>
 #include <turgor/parallel/rank_reductions.h>
 #include <turgor/ts/velocity_verlet.h>
 #include <algorithm>
@@ -52,6 +53,11 @@ PetscErrorCode FineRunSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "node_file); "
                              "false: every rank generates the whole tissue first (the same run, more memory at set-up)",
                              "FineRunSpec", setup_in_parts, &setup_in_parts, NULL));
+  PetscCall(TurgorOptionsBool(params, "-reproducible_sums",
+                              "Round every force share to a grain chosen from the state (2.3e-13 of the largest share) so that the forces' sums are "
+                              "exact: a run, and a restart, give the same bits on any number of ranks (fixed-step integrators, or adaptive ones with "
+                              "-ts_adapt_wnormtype infinity)",
+                              "FineRunSpec", reproducible_sums, &reproducible_sums, NULL));
   PetscCall(PetscOptionsReal("-halo_margin",
                              "Distributed runs: width [µm] of the halo beyond the interactions' reach (cutoffs + neighbour skin); cells may move this "
                              "far relative to each other before the run stops (default: the reach)",
@@ -193,6 +199,7 @@ PetscErrorCode FineRun::SetUpModel()
   PetscCall(CreateSwarm());
   PetscCall(model_.SetUp(physics_, tissue_.particles));
   equations_.SetUp(model_, controls_, placement_.Halo(), tissue_.particles, fields_);
+  equations_.SetReproducibleSums(spec_.reproducible_sums == PETSC_TRUE);
   /* the snapshots' further particle fields */
   fields_.Declare("force", "µN", 2, kSnapshot, [this] { return force_.data(); });
   if (spec_.partition > 0) /* -fine_partition_report: the part of the particle's cell */
@@ -288,6 +295,23 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
   }
   if (equations_.Split()) PetscCall(FitFixedSteps(0, 0)); /* a fixed step is not clipped at the final time */
   PetscCall(LimitControlSteps());
+  if (spec_.reproducible_sums) { /* an adaptive step's 2-norm of the error sums over the ranks in their order: its step sizes, and so the
+                                    run, would differ in their last bits; the largest error does not */
+    TSAdapt     adapt;
+    TSAdaptType type;
+    PetscBool   none, set;
+    PetscEnum   norm = (PetscEnum)NORM_2;
+    const char *prefix;
+    PetscCall(TSGetAdapt(ts_, &adapt));
+    PetscCall(TSAdaptGetType(adapt, &type));
+    PetscCall(PetscStrcmp(type, TSADAPTNONE, &none));
+    PetscCall(TSGetOptionsPrefix(ts_, &prefix));
+    PetscCall(PetscOptionsGetEnum(NULL, prefix, "-ts_adapt_wnormtype", NormTypes, &norm, &set));
+    PetscCheck(none || norm == (PetscEnum)NORM_INFINITY, comm_, PETSC_ERR_ARG_INCOMP,
+               "Option -fine_reproducible_sums: the adaptive step (-ts_adapt_type %s) measures its error in the 2-norm, a sum over the ranks in their "
+               "order, so its steps would differ in their last bits between rank counts; add -ts_adapt_wnormtype infinity",
+               type);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -443,14 +467,18 @@ PetscErrorCode FineRun::Observe(PetscReal t, Vec U, std::vector<PetscReal> &row)
   const PetscInt n2 = 2 * n_local_;
   x = u, v = u + n2; /* the owned particles': the state's own, unless controls impose components */
   if (controls_.Active()) PetscCall(equations_.LocalState(t, u, &x, &v));
-  for (PetscInt i = 0; i < n_local_; i++) ke += 0.5 * tissue_.particles.mass[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
+  const PetscReal *m       = tissue_.particles.mass.data();
+  const auto       kinetic = [m, v](PetscInt i) { return 0.5 * m[i] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]); };
+  if (spec_.reproducible_sums) PetscCall(ExactSumOverRanks(comm_, n_local_, kinetic, &ke)); /* the same bits on any number of ranks */
+  else
+    for (PetscInt i = 0; i < n_local_; i++) ke += kinetic(i);
   if (tip_ >= 0) vals[0] = x[2 * tip_ + 1] - tip_y0_;
-  vals[1] = ke;
+  vals[1] = spec_.reproducible_sums ? 0 : ke;
   vals[2] = (PetscReal)CountCellsInverted(x);
   PetscCall(SumOverRanks(comm_, vals, 3));
   if (vals[2] > 0) PetscCall(CheckCellsInverted(t, x, (PetscInt)vals[2]));
   PetscCall(VecRestoreArrayRead(U, &u));
-  row = {vals[0], vals[1]};
+  row = {vals[0], spec_.reproducible_sums ? ke : vals[1]};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -531,6 +559,7 @@ PetscErrorCode FineRun::AddSummary(JsonObject &js)
   js.Set("dt_stable", dt_stable_);
   js.Set("dt_initial", dt_initial_);
   js.Set("neighbour_rebuilds", rebuilds);
+  if (spec_.reproducible_sums) js.Set("force_regrains", equations_.Regrains()); /* the same on every rank */
   js.Set("n_nodes", nw);
   js.Set("n_cells", n[3]);
   if (!P.polygons.empty()) js.Set("n_closed_cells", n[4]);

@@ -15,9 +15,13 @@ PetscErrorCode BodyForce::AddForces(const ForceInput &in, PetscReal *f, PetscRea
   const ParticleSet &P = *in.P;
   const PetscReal    s = load.BodyScale(in.t), gx = s * load.body_acceleration[0], gy = s * load.body_acceleration[1];
   PetscFunctionBeginUser;
+  const ForceGrain &grain   = in.Grain();
+  const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
   for (PetscInt i = 0; i < P.NumOwned(); i++) {
-    f[2 * i] += P.mass[i] * gx;
-    f[2 * i + 1] += P.mass[i] * gy;
+    PetscReal fx = P.mass[i] * gx, fy = P.mass[i] * gy;
+    if (rounded) grain(fx, fy);
+    f[2 * i] += fx;
+    f[2 * i + 1] += fy;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -63,8 +63,10 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
 {
   PetscFunctionBeginUser;
   if (!have_ref_) SetReference(in.x);
-  const PetscReal *x    = in.x;
-  PetscReal        w[4] = {0, 0, 0, 0};
+  const PetscReal  *x       = in.x;
+  const ForceGrain &grain   = in.Grain();
+  const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
+  PetscReal         w[4]    = {0, 0, 0, 0};
   for (PetscInt c : closed_) {
     const PolygonCell &C = in.P->polygons[c];
     const PetscReal    A = PolygonArea(C.nodes, x);
@@ -73,8 +75,9 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
     const PetscReal hp = 0.5 * Scale(in.t) * Pressure(A, A0_[c]);
     const size_t    N  = C.nodes.size();
     for (size_t k = 0; k < N; k++) { /* bar i -> j, CCW: outward normal x length = (dy, -dx) */
-      const PetscInt  i = C.nodes[k], j = C.nodes[(k + 1) % N];
-      const PetscReal fx = hp * (x[2 * j + 1] - x[2 * i + 1]), fy = -hp * (x[2 * j] - x[2 * i]);
+      const PetscInt i = C.nodes[k], j = C.nodes[(k + 1) % N];
+      PetscReal      fx = hp * (x[2 * j + 1] - x[2 * i + 1]), fy = -hp * (x[2 * j] - x[2 * i]);
+      if (rounded) grain(fx, fy);
       f[2 * i] += fx;
       f[2 * i + 1] += fy;
       f[2 * j] += fx;

@@ -217,6 +217,8 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   const PetscReal   *x = in.x, *v = in.v;
   const PetscReal    R = 2 * r_, R2 = R * R, kn = stiffness, cn = damping, mu = friction, kt = kt_;
   const bool         tangential = Tangential();
+  const ForceGrain  &grain      = in.Grain();
+  const bool         rounded    = grain.On(); /* once: f's stores could alias the grain */
   PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
   PetscInt           active = 0;
   /* pass 1, branch-free (most near pairs do not touch, and a branch per pair mispredicts): the
@@ -278,12 +280,14 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
        tau = d x (ft t) is balanced by a couple -tau on the bar, alpha = -tau / |e| along perp(e)/|e| */
     const PetscReal tau = ft * (dx * ty - dy * tx), al = -tau * iL2; /* force alpha (-e_y, e_x)/|e| = al (-e_y, e_x) */
     const PetscReal qx = -al * ey, qy = al * ex;
-    f[2 * p] += Fx;
-    f[2 * p + 1] += Fy;
-    f[2 * a] -= l * Fx + qx;
-    f[2 * a + 1] -= l * Fy + qy;
-    f[2 * b] += qx - lam * Fx;
-    f[2 * b + 1] += qy - lam * Fy;
+    PetscReal       gpx = Fx, gpy = Fy, gax = l * Fx + qx, gay = l * Fy + qy, gbx = qx - lam * Fx, gby = qy - lam * Fy;
+    if (rounded) grain(gpx, gpy), grain(gax, gay), grain(gbx, gby);
+    f[2 * p] += gpx;
+    f[2 * p + 1] += gpy;
+    f[2 * a] -= gax;
+    f[2 * a + 1] -= gay;
+    f[2 * b] += gbx;
+    f[2 * b + 1] += gby;
     if (MODE == 1) { /* -sum f (x) x = -(F (x) d + q (x) e) */
       w[0] -= Fx * dx + qx * ex;
       w[1] -= Fx * dy + qx * ey;

@@ -163,6 +163,8 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   }
   ForceInput in = {P_, x, v, &nb_, &images_};
   in.t          = t_;
+  in.grain      = &grain_;
+  grain_.ResetLargest();
   if (keep_term_forces_) term_f_.resize(terms_.size()), term_fd_.resize(terms_.size());
   for (size_t t = 0; t < terms_.size(); t++) {
     PetscCall(PetscLogEventBegin(events_[t], 0, 0, 0, 0));

@@ -333,12 +333,15 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     push_[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
   }
   if (MODE >= 2) return E;
+  const ForceGrain &grain   = in.Grain();
+  const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
   /* Scatter apart from the evaluation: consecutive bonds share bar nodes, and adding into f inside the
      loop above chains every bond's square root and division behind the previous bond's stores. */
   for (size_t k = 0; k < bonds_.size(); k++) {
     const Bond &B = bonds_[k];
     if (!B.intact) continue;
-    const Push     &P  = push_[k];
+    Push P = push_[k];
+    if (rounded) grain(P.Fx, P.Fy), grain(P.ax, P.ay);
     const PetscReal bx = P.Fx - P.ax, by = P.Fy - P.ay; /* lambda F - q n = F - (1 - lambda) F - q n */
     f[2 * B.p] -= P.Fx;
     f[2 * B.p + 1] -= P.Fy;

@@ -96,8 +96,8 @@ PetscReal Hinges::Angle(size_t h, const PetscReal *x) const
    Hinges are visited along each polygon, so that a bar's vector and 1/|bar|^2 serve the two hinges
    at its ends: u of hinge k is minus the w of hinge k - 1. One division per hinge gives both 1/|w|^2
    and the tangent of the angle deviation (q = 1 / (X |w|^2)). */
-template <bool VIRIAL, bool CACHE>
-void Hinges::Kernel(const PetscReal *x, PetscReal *f, PetscReal *virial)
+template <bool VIRIAL, bool CACHE, bool ROUND>
+void Hinges::Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial)
 {
   const PetscReal k = stiffness, Mmax = max_moment > 0 ? max_moment : PETSC_MAX_REAL;
   PetscReal       w4[4] = {0, 0, 0, 0};
@@ -129,8 +129,9 @@ void Hinges::Kernel(const PetscReal *x, PetscReal *f, PetscReal *virial)
       if (CACHE) d_[h] = d;
       const PetscReal M  = std::clamp(k * (d - theta_p_[h]), -Mmax, Mmax);
       const PetscReal iu = M * iu2, iw = M * iw2;
-      const PetscReal fax = -uy * iu, fay = ux * iu; /* -M dtheta/dx_a */
-      const PetscReal fcx = wy * iw, fcy = -wx * iw; /* -M dtheta/dx_c */
+      PetscReal       fax = -uy * iu, fay = ux * iu; /* -M dtheta/dx_a */
+      PetscReal       fcx = wy * iw, fcy = -wx * iw; /* -M dtheta/dx_c */
+      if (ROUND) grain(fax, fay), grain(fcx, fcy);   /* a template argument: no test per hinge without */
       if (h == R.first) {
         if (R.closed) fa0x = fax, fa0y = fay;
         else f[2 * H.a] += fax, f[2 * H.a + 1] += fay;
@@ -164,8 +165,13 @@ PetscErrorCode Hinges::AddForces(const ForceInput &in, PetscReal *f, PetscReal *
   if (!have_ref_) SetReference(in.x);
   const bool cache = max_moment > 0; /* AcceptStep at the state of the last evaluation reuses its angles */
   if (cache) d_.resize(hinge_.size());
-  if (virial) cache ? Kernel<true, true>(in.x, f, virial) : Kernel<true, false>(in.x, f, virial);
-  else cache ? Kernel<false, true>(in.x, f, NULL) : Kernel<false, false>(in.x, f, NULL);
+  using KernelOf                            = void (Hinges::*)(const PetscReal *, const ForceGrain &, PetscReal *, PetscReal *);
+  static constexpr KernelOf kernel[2][2][2] = {
+  /* [virial][cache][rounded] */
+    {{&Hinges::Kernel<false, false, false>, &Hinges::Kernel<false, false, true>}, {&Hinges::Kernel<false, true, false>, &Hinges::Kernel<false, true, true>}},
+    {{&Hinges::Kernel<true, false, false>, &Hinges::Kernel<true, false, true>},   {&Hinges::Kernel<true, true, false>, &Hinges::Kernel<true, true, true>}  }
+  };
+  (this->*kernel[virial != nullptr][cache][in.Grain().On()])(in.x, in.Grain(), f, virial);
   have_angles_ = cache;
   PetscCall(PetscLogFlops(45.0 * hinge_.size()));
   PetscFunctionReturn(PETSC_SUCCESS);

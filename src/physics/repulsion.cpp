@@ -192,14 +192,17 @@ void Repulsion::BlendForces(const ForceInput &in, PetscInt p, PetscInt s, int e,
     fbx = -coef * b.inv_L * (Gx - vG * vx);
     fby = -coef * b.inv_L * (Gy - vG * vy);
   }
-  f[2 * p] += fpx;
-  f[2 * p + 1] += fpy;
-  f[2 * A] += fax;
-  f[2 * A + 1] += fay;
-  f[2 * A2] += fbx;
-  f[2 * A2 + 1] += fby;
-  f[2 * J] -= fpx + fax + fbx;
-  f[2 * J + 1] -= fpy + fay + fby;
+  const ForceGrain &grain = in.Grain();
+  PetscReal         gpx = fpx, gpy = fpy, gax = fax, gay = fay, gbx = fbx, gby = fby;
+  grain(gpx, gpy), grain(gax, gay), grain(gbx, gby);
+  f[2 * p] += gpx;
+  f[2 * p + 1] += gpy;
+  f[2 * A] += gax;
+  f[2 * A + 1] += gay;
+  f[2 * A2] += gbx;
+  f[2 * A2 + 1] += gby;
+  f[2 * J] -= gpx + gax + gbx;
+  f[2 * J + 1] -= gpy + gay + gby;
   if (virial) { /* -sum_k f_k (x) (x_k - x_joint) */
     virial[0] -= fpx * q[0] + fax * lax + fbx * lbx;
     virial[1] -= fpx * q[1] + fax * lay + fbx * lby;
@@ -216,10 +219,13 @@ void Repulsion::TipReaction(const ForceInput &in, PetscInt s, int e, PetscReal f
   const Segment  &sg = seg_[s];
   const PetscInt  J = e ? in.P->springs[s].j : in.P->springs[s].i, A = e ? in.P->springs[s].i : in.P->springs[s].j;
   const PetscReal ux = (e ? -sg.tx : sg.tx) * sg.inv_L, uy = (e ? -sg.ty : sg.ty) * sg.inv_L, uF = ux * fx + uy * fy, k = derived_.extension * sg.inv_L;
-  f[2 * J] -= fx + k * (fx - uF * ux);
-  f[2 * J + 1] -= fy + k * (fy - uF * uy);
-  f[2 * A] += k * (fx - uF * ux);
-  f[2 * A + 1] += k * (fy - uF * uy);
+  /* fx, fy: the caller's share, already rounded to the grain */
+  PetscReal px = k * (fx - uF * ux), py = k * (fy - uF * uy);
+  in.Grain()(px, py);
+  f[2 * J] -= fx + px;
+  f[2 * J + 1] -= fy + py;
+  f[2 * A] += px;
+  f[2 * A + 1] += py;
   if (virial) {
     virial[0] += derived_.extension * uF * ux * ux;
     virial[1] += derived_.extension * uF * ux * uy;
@@ -244,13 +250,14 @@ PetscInt Repulsion::WeightGradientForces(const ForceInput &in, PetscInt p, Petsc
   return n;
 }
 
-template <bool VIRIAL>
+template <bool VIRIAL, bool ROUND>
 PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const PetscReal        *v   = in.v;
   const ParticleSet      &P   = *in.P;
   const PointSegmentList &L   = in.nb->ParticleSpringPairs();
   const PetscReal         x02 = cutoff * cutoff, ix06 = 1.0 / (x02 * x02 * x02);
+  const ForceGrain       &grain  = in.Grain();
   PetscReal               w[4]   = {0, 0, 0, 0};
   PetscInt                active = 0, blended = 0;
 
@@ -280,14 +287,17 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
       mag -= taper * damping_coefficient_[p] * ir2 * ir * std::sqrt(ir) * /* r^-3.5 */ ((v[2 * p] - vhx) * ex + (v[2 * p + 1] - vhy) * ey);
     }
     mag *= g.weight;
-    const PetscReal fx = mag * ex, fy = mag * ey;
+    PetscReal fx = mag * ex, fy = mag * ey;
+    if (ROUND) grain(fx, fy); /* a template argument: no test per pair without */
     f[2 * p] += fx;
     f[2 * p + 1] += fy;
     if (PetscLikely(g.clamp <= 0)) {
-      f[2 * i1] -= (1 - t) * fx;
-      f[2 * i1 + 1] -= (1 - t) * fy;
-      f[2 * i2] -= t * fx;
-      f[2 * i2 + 1] -= t * fy;
+      PetscReal f1x = (1 - t) * fx, f1y = (1 - t) * fy, f2x = t * fx, f2y = t * fy;
+      if (ROUND) grain(f1x, f1y), grain(f2x, f2y);
+      f[2 * i1] -= f1x;
+      f[2 * i1 + 1] -= f1y;
+      f[2 * i2] -= f2x;
+      f[2 * i2 + 1] -= f2y;
     } else TipReaction(in, s, t < 0.5 ? 0 : 1, fx, fy, f, VIRIAL ? w : NULL);
     if (VIRIAL) { /* -(F x_p - (1-t) F x1 - t F x2) = -F (x) d */
       w[0] -= fx * dx;
@@ -306,8 +316,9 @@ PetscErrorCode Repulsion::Kernel(const ForceInput &in, PetscReal *f, PetscReal *
 PetscErrorCode Repulsion::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  if (virial) PetscCall(Kernel<true>(in, f, virial));
-  else PetscCall(Kernel<false>(in, f, NULL));
+  const bool rounded = in.Grain().On();
+  if (virial) PetscCall(rounded ? Kernel<true, true>(in, f, virial) : Kernel<true, false>(in, f, virial));
+  else PetscCall(rounded ? Kernel<false, true>(in, f, NULL) : Kernel<false, false>(in, f, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -242,12 +242,13 @@ PetscErrorCode SPHFluid::GradientPass(const ForceInput &in, PetscInt s0, PetscIn
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-template <bool VIRIAL>
+template <bool VIRIAL, bool ROUND>
 PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *f, PetscReal w[4])
 {
-  const PetscReal *x = in.x, *m = in.P->mass.data(), *A = GA_.data() /* by slot - s0 */, *Pp = P_.data(), *vol = vol_.data(), *pF = pair_F_.data();
-  const PetscInt  *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
-  const bool       visc = viscosity > 0;
+  const PetscReal  *x = in.x, *m = in.P->mass.data(), *A = GA_.data() /* by slot - s0 */, *Pp = P_.data(), *vol = vol_.data(), *pF = pair_F_.data();
+  const PetscInt   *fl = fluid_.data(), *start = pair_start_.data(), *pj = pair_j_.data();
+  const bool        visc  = viscosity > 0;
+  const ForceGrain &grain = in.Grain();
 
   PetscFunctionBeginUser;
   for (PetscInt si = s0; si < s1; si++) {
@@ -267,6 +268,7 @@ PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscInt s0, PetscInt s
         fx += vv * ((A0 + A[4 * (sj - s0)]) * gx + (A1 + A[4 * (sj - s0) + 1]) * gy);
         fy += vv * ((A2 + A[4 * (sj - s0) + 2]) * gx + (A3 + A[4 * (sj - s0) + 3]) * gy);
       }
+      if (ROUND) grain(fx, fy); /* a template argument: no test per pair without */
       fxi += fx;
       fyi += fy;
       f[2 * j] -= fx;
@@ -286,7 +288,7 @@ PetscErrorCode SPHFluid::ForcePass(const ForceInput &in, PetscInt s0, PetscInt s
 
 PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
-  const bool visc = viscosity > 0;
+  const bool visc = viscosity > 0, rounded = in.Grain().On();
   PetscReal  w[4] = {0, 0, 0, 0};
   PetscFunctionBeginUser;
   if (fluid_.empty()) PetscFunctionReturn(PETSC_SUCCESS);
@@ -296,8 +298,8 @@ PetscErrorCode SPHFluid::AddForces(const ForceInput &in, PetscReal *f, PetscReal
   for (size_t k = 0; k + 1 < group_start_.size(); k++) {
     const PetscInt s0 = group_start_[k], s1 = group_start_[k + 1];
     if (visc) PetscCall(GradientPass(in, s0, s1, NULL));
-    if (virial) PetscCall(ForcePass<true>(in, s0, s1, f, w));
-    else PetscCall(ForcePass<false>(in, s0, s1, f, w));
+    if (virial) PetscCall(rounded ? ForcePass<true, true>(in, s0, s1, f, w) : ForcePass<true, false>(in, s0, s1, f, w));
+    else PetscCall(rounded ? ForcePass<false, true>(in, s0, s1, f, w) : ForcePass<false, false>(in, s0, s1, f, w));
   }
   if (virial)
     for (int k = 0; k < 4; k++) virial[k] += w[k];

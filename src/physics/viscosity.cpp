@@ -18,13 +18,20 @@ PetscErrorCode Viscosity::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 PetscErrorCode Viscosity::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  PetscReal       p  = 0;
-  const PetscInt  n  = 2 * in.P->NumOwned();
-  const PetscReal nu = coefficient;
-  for (PetscInt k = 0; k < n; k++) {
-    f[k] -= nu * in.v[k];
-    p += in.v[k] * in.v[k];
-  }
+  PetscReal         p     = 0;
+  const PetscInt    n     = 2 * in.P->NumOwned();
+  const PetscReal   nu    = coefficient;
+  const ForceGrain &grain = in.Grain();
+  if (grain.On())
+    for (PetscInt k = 0; k < n; k++) {
+      f[k] -= grain(nu * in.v[k]);
+      p += in.v[k] * in.v[k];
+    }
+  else /* apart: this loop vectorises */
+    for (PetscInt k = 0; k < n; k++) {
+      f[k] -= nu * in.v[k];
+      p += in.v[k] * in.v[k];
+    }
   power_ = nu * p;
   PetscCall(PetscLogFlops(4.0 * n));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -37,13 +37,16 @@ PetscErrorCode WallSprings::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 /* Force on i: [k (r - l0) + gamma (e . v_ij)] e with e = (x_j - x_i)/r, v_ij = v_j - v_i. The seed's
    eq 16 prints the opposite overall sign (it pushes a stretched spring apart); see docs/model.md. */
 namespace {
-/* PERIODIC: end j at an image (RVEs); DAMPED: some dashpot (the velocity pass is skipped otherwise) */
-template <bool VIRIAL, bool PERIODIC, bool DAMPED>
+/* PERIODIC: end j at an image (RVEs); DAMPED: some dashpot (the velocity pass is skipped otherwise);
+   ROUND: the shares rounded to the input's grain (a run with reproducible sums: no test per share
+   in the others, this loop being most of a chain's step) */
+template <bool VIRIAL, bool PERIODIC, bool DAMPED, bool ROUND>
 void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscReal *f, PetscReal *virial)
 {
-  const PetscReal *x = in.x, *v = in.v;
-  const auto      &S    = in.P->springs;
-  PetscReal        w[4] = {0, 0, 0, 0};
+  const PetscReal  *x = in.x, *v = in.v;
+  const auto       &S     = in.P->springs;
+  const ForceGrain &grain = in.Grain();
+  PetscReal         w[4]  = {0, 0, 0, 0};
   for (size_t s = 0, ns = in.P->OwnedSprings(); s < ns; s++) { /* this rank's springs (particles.h) */
     const PetscInt i = S[s].i, j = S[s].j;
     PetscReal      dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
@@ -68,7 +71,8 @@ void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscRea
         g[2 * j] -= md * ex, g[2 * j + 1] -= md * ey;
       }
     }
-    const PetscReal fx = mag * ex, fy = mag * ey;
+    PetscReal fx = mag * ex, fy = mag * ey;
+    if (ROUND) grain(fx, fy);
     f[2 * i] += fx;
     f[2 * i + 1] += fy;
     f[2 * j] -= fx;
@@ -84,11 +88,19 @@ void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscRea
     for (int c = 0; c < 4; c++) virial[c] += w[c];
 }
 
+template <bool VIRIAL, bool PERIODIC, bool DAMPED>
+void KernelRounded(const ForceInput &in, PetscReal k, const PetscReal *gamma, PetscReal *f, PetscReal *virial)
+{
+  if (in.Grain().On()) Kernel<VIRIAL, PERIODIC, DAMPED, true>(in, k, gamma, f, virial);
+  else Kernel<VIRIAL, PERIODIC, DAMPED, false>(in, k, gamma, f, virial);
+}
+
 template <bool VIRIAL>
 void KernelFor(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial)
 {
-  if (in.images->periodic) damped ? Kernel<VIRIAL, true, true>(in, k, gamma.data(), f, virial) : Kernel<VIRIAL, true, false>(in, k, gamma.data(), f, virial);
-  else damped ? Kernel<VIRIAL, false, true>(in, k, gamma.data(), f, virial) : Kernel<VIRIAL, false, false>(in, k, gamma.data(), f, virial);
+  if (in.images->periodic)
+    damped ? KernelRounded<VIRIAL, true, true>(in, k, gamma.data(), f, virial) : KernelRounded<VIRIAL, true, false>(in, k, gamma.data(), f, virial);
+  else damped ? KernelRounded<VIRIAL, false, true>(in, k, gamma.data(), f, virial) : KernelRounded<VIRIAL, false, false>(in, k, gamma.data(), f, virial);
 }
 } // namespace
 

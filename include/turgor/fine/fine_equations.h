@@ -47,6 +47,11 @@ public:
   /* f[2 n_all] = the forces at the local state (x, v); on the owned particles whole (the halo's
      shares returned by the other ranks). */
   PetscErrorCode TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f);
+  /* Every share of the forces rounded to a grain chosen from the state, so that the sums are exact
+     and the same bits on any number of ranks (force_grain.h); Regrains(): evaluations repeated
+     because the grain changed. */
+  void     SetReproducibleSums(bool on);
+  PetscInt Regrains() const { return regrains_; }
   /* The stability limits at the initial state U (every rank's, the smallest of each kind), sorted,
      and the smallest (1e-3 µs where no term has one). */
   PetscErrorCode StabilityLimits(Vec U, std::vector<TimeStepLimit> &limits, PetscReal *dt);
@@ -85,10 +90,12 @@ private:
   PetscReal                         *x_local_ = nullptr, *v_local_ = nullptr; /* the local state being made (the halo fields' values) */
   std::vector<const ParticleField *> halo_fields_;
   std::vector<PetscReal *>           halo_arrays_;
-  std::vector<PetscReal>             fw_;                        /* forces of the local particles */
-  std::vector<PetscReal>             v_stale_;                   /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
-  bool                               split_   = false;           /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
-  bool                               predict_ = false;           /* ConfigureIntegrator's predict_velocity */
+  std::vector<PetscReal>             fw_;                   /* forces of the local particles */
+  std::vector<PetscReal>             v_stale_;              /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
+  bool                               split_        = false; /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
+  bool                               predict_      = false; /* ConfigureIntegrator's predict_velocity */
+  bool                               reproducible_ = false; /* SetReproducibleSums */
+  PetscInt                           regrains_     = 0;
   std::vector<PetscReal>             a_last_;                    /* with predict_: the owned particles' last accelerations */
   bool                               acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
   bool                               rate_room_         = false; /* TSLSRK's rates have room for them after their accelerations */

@@ -35,10 +35,11 @@ struct FineRunSpec {
   PetscBool                predict_velocity = PETSC_FALSE; /* -fine_predict_velocity: TS verlet's forces see v_n + h a_n (FineEquations::ConfigureIntegrator) */
   PetscReal                energy_tolerance = 1e-2;        /* -fine_energy_tolerance: a larger relative residual fails the run; 0: no check */
   PetscInt                 partition        = 0;           /* -fine_partition_report N: METIS partition of the cells into N parts, reported only; 0: none */
-  PetscBool                distribute     = PETSC_TRUE; /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
-  PetscReal                halo_margin    = -1;         /* -fine_halo_margin [µm]: the halo's width beyond the interactions' reach; < 0: the reach */
-  PetscInt                 partitioner    = 0;          /* -fine_partitioner: 0 metis, 1 ranges (TissuePlacement) */
-  PetscBool                setup_in_parts = PETSC_TRUE; /* -fine_setup_in_parts: with ranges, each rank builds only its part where the generator can */
+  PetscBool                distribute  = PETSC_TRUE; /* -fine_distribute: on several ranks, every particle on the rank of its cell (false: all on rank 0) */
+  PetscReal                halo_margin = -1;         /* -fine_halo_margin [µm]: the halo's width beyond the interactions' reach; < 0: the reach */
+  PetscInt                 partitioner = 0;          /* -fine_partitioner: 0 metis, 1 ranges (TissuePlacement) */
+  PetscBool                reproducible_sums = PETSC_FALSE; /* -fine_reproducible_sums: the forces' sums the same bits on any number of ranks */
+  PetscBool                setup_in_parts    = PETSC_TRUE;  /* -fine_setup_in_parts: with ranges, each rank builds only its part where the generator can */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
 };

@@ -44,6 +44,7 @@ public:
      not kept, a rank holding N entries would not scale). A periodic tissue is refused. */
   PetscErrorCode SetUp(MPI_Comm comm, const Tissue &global, const std::vector<PetscInt> &cell_rank, PetscReal reach, PetscReal margin, Tissue *local,
                        std::vector<PetscInt> *local_of);
+  MPI_Comm       Comm() const { return comm_; }
 
   /* Each array a[2n] (n local particles: a field of two components per particle): fill the halo
      part a[2 n_owned ...] from the owners' owned parts (all in flight at once: one latency). */

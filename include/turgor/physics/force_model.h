@@ -71,7 +71,9 @@ public:
   PetscErrorCode ExplicitTimePower(const PetscReal *x, std::vector<PetscReal> &P);
   /* Keep each term's own force of every ComputeForces (TermForce(t), [2n]), for the energy balance;
      it costs a zeroing and a sum per term and evaluation. */
-  void                          KeepTermForces(bool keep) { keep_term_forces_ = keep; }
+  void KeepTermForces(bool keep) { keep_term_forces_ = keep; }
+  /* the grain every share is rounded to before it is added (force_grain.h; off unless set) */
+  ForceGrain                   &Grain() { return grain_; }
   const std::vector<PetscReal> &TermForce(size_t t) const { return term_f_[t]; }
   /* ... and the dashpot part of it, for a term with one (ForceTerm::HasDashpotForce) */
   const std::vector<PetscReal> &TermDashpotForce(size_t t) const { return term_fd_[t]; }
@@ -115,6 +117,7 @@ private:
   std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
   PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
   bool                                    has_state_ = false, keep_term_forces_ = false;
+  ForceGrain                              grain_;
   std::vector<std::vector<PetscReal>>     term_f_, term_fd_; /* per term, with KeepTermForces: force, dashpot part */
   PetscInt                                evaluations_ = 0;
   PetscReal                               t_           = 0;

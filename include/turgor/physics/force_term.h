@@ -6,6 +6,7 @@
    src/app/register_all.cpp: ForceTermRegister("name", CreateInstance<ForceTerm, Term>). */
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/particles/particles.h>
+#include <turgor/physics/force_grain.h>
 #include <turgor/physics/load_spec.h>
 #include <turgor/core/parameters.h>
 #include <turgor/io/declared_state.h>
@@ -40,6 +41,9 @@ struct ForceInput {
      per-particle array [2 n] to their owners' (collective: every rank's term calls it), so that a
      bound summed over interactions that another rank computes (a Gershgorin row) is complete. */
   std::function<PetscErrorCode(PetscReal *)> sum_halo_shares = nullptr;
+  /* AddForces: every share a term adds to f passes through Grain() first (force_grain.h) */
+  const ForceGrain *grain = nullptr;
+  const ForceGrain &Grain() const { return grain ? *grain : ForceGrain::Off(); }
 };
 
 /* A stable-time-step bound for explicit integrators, with its reason (for the start-up report). */

@@ -52,8 +52,8 @@ private:
     PetscInt first, count; /* the hinges of one polygon, in order: hinge h's next bar is hinge h+1's previous one */
     bool     closed;       /* closed ring: the last hinge's next node is the first hinge's node */
   };
-  template <bool VIRIAL, bool CACHE>
-  void                   Kernel(const PetscReal *x, PetscReal *f, PetscReal *virial);
+  template <bool VIRIAL, bool CACHE, bool ROUND>
+  void                   Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial);
   std::vector<Hinge>     hinge_;
   std::vector<Run>       runs_;
   std::vector<PetscReal> cos0_, sin0_, theta_p_;

@@ -60,7 +60,7 @@ private:
   void        TipReaction(const ForceInput &in, PetscInt s, int e, PetscReal fx, PetscReal fy, PetscReal *f, PetscReal *virial) const PETSC_ATTRIBUTE_COLD;
   PetscInt    WeightGradientForces(const ForceInput &in, PetscInt p, PetscInt s, const PairGeometry &g, PetscReal *f,
                                    PetscReal *virial) const PETSC_ATTRIBUTE_COLD;
-  template <bool VIRIAL>
+  template <bool VIRIAL, bool ROUND>
   PetscErrorCode             Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   std::vector<Segment>       seg_;                 /* per spring, refreshed each evaluation */
   std::vector<PetscInt>      joint_;               /* [2 s + e] the joined spring end (Spring::joint), fixed */

@@ -48,7 +48,7 @@ private:
   PetscErrorCode DensityPass(const ForceInput &in, Each each);
   /* slots [s0, s1): a group (below) */
   PetscErrorCode GradientPass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *gradv);
-  template <bool VIRIAL>
+  template <bool VIRIAL, bool ROUND>
   PetscErrorCode ForcePass(const ForceInput &in, PetscInt s0, PetscInt s1, PetscReal *f, PetscReal w[4]);
 
   /* Memory: the per-particle arrays are over the fluid only, indexed by slot s
