@@ -285,6 +285,12 @@ turgor_restart_other_ranks(voronoi_parts 900 TOL 1e-8 OPTIONS ${XR_VORONOI} COMP
 # with the uninterrupted 1-rank run's state to the last bit (glue, contact with friction, plastic
 # hinges, pressure, dashpots), and tip.csv byte for byte (its kinetic energy summed exactly too).
 turgor_restart_other_ranks(voronoi_exact 900 TOL 0 OPTIONS ${XR_VORONOI} -fine_reproducible_sums COMPARE identical:final_state_hash)
+# ... and an adaptive integrator (lsrk, its error measured in the maximum norm): the square grid's
+# bar stopped on 2 ranks after 300 of 564 steps, continued on 1 (and 3, long): the same steps, the
+# same bits.
+set(XR_EXACT_LSRK -options_file_yaml ${PROJECT_SOURCE_DIR}/config/bending_bar_fine.yaml -ts_type lsrk -ts_adapt_wnormtype infinity -ts_max_time 3
+  -fine_snapshots 0 -fine_progress_interval 0 -fine_reproducible_sums)
+turgor_restart_other_ranks(lsrk_exact 300 TOL 0 OPTIONS ${XR_EXACT_LSRK} COMPARE identical:final_state_hash)
 # ... and the other way on the square grid's bending bar (springs, repulsion, SPH, gravity; TS
 # verlet): stopped on 1 rank, continued on 2 (METIS) and 3 (ranges of rows, long), against the
 # uninterrupted run on 2 ranks.
