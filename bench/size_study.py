@@ -43,7 +43,7 @@ from study import write_rows  # noqa: E402 (bench/study.py's CSV writer)
 COLUMNS = ["size", "run", "element", "mesh", "t_final", "ok", "wall_s", "cpu_s", "steps", "rhs_evals", "jacobian_evals", "rve_solves",
            "n_material_points", "n_particles", "speedup_wall", "speedup_cpu", "max_error", "period_error", "phase_error", "amplitude_error",
            "offset_error", "bending_error", "higher_modes_error", "period", "amplitude", "decay", "time_material_points_s", "time_tangents_s",
-           "time_coarse_assembly_s", "time_other_s", "load"]
+           "time_coarse_assembly_s", "time_other_s", "load", "integrator"]
 
 
 def read_tip(d):
@@ -178,7 +178,8 @@ class SizeStudy:
             fine = within(*read_tip(df), window)
             nf = sf["n_wall_particles"] + sf["n_fluid_particles"]
             self.rows.append(dict(size=n, run="fine", element="", mesh="", t_final=sf["t_final"], ok=1, wall_s=sf["wall_time_s"], cpu_s=cf,
-                                  steps=sf["steps"], rhs_evals=sf["rhs_evals"], n_particles=nf, load=lf, **compare(fine, fine)))
+                                  steps=sf["steps"], rhs_evals=sf["rhs_evals"], n_particles=nf, load=lf, integrator=sf.get("ts_type", "rk"),
+                                  **compare(fine, fine)))
             wall_f = sf["wall_time_s"] * window / sf["t_final"]  # the fine run's cost over the window (it may run longer)
             cpu_f = cf * window / sf["t_final"]
             scene = os.path.join(a.config, "bending_bar_fe2.yaml" if n == 16 else f"bending_bar_{n}_fe2.yaml")
@@ -208,7 +209,7 @@ class SizeStudy:
         num = lambda v: float(v) if v not in ("", None) else None
         with open(os.path.join(self.a.out, "size_study.csv")) as f:
             for r in csv.DictReader(f):
-                self.rows.append({k: (v if k in ("run", "element") else num(v)) for k, v in r.items()})
+                self.rows.append({k: (v if k in ("run", "element", "integrator") else num(v)) for k, v in r.items()})
         for r in self.rows:
             r["size"] = int(r["size"])
             if r["mesh"] is not None:
@@ -246,7 +247,8 @@ class SizeStudy:
         times = lambda v: f(v, "{:.0f}×" if v is not None and v >= 9.5 else "{:.2g}×")  # below 10: two digits (0.26×, not 0×)
         for r in self.rows:
             pct = lambda k, fmt: f(None if r.get(k) is None else 100 * r[k], fmt)
-            label = "fine (DOPRI, 1 rank)" if r["run"] == "fine" else f"FE² {r['element'].upper()} {r['mesh']}×{r['mesh']}"
+            ts = {"rk": "DOPRI", "": "DOPRI", None: "DOPRI"}.get(r.get("integrator"), r.get("integrator"))  # older CSVs: DOPRI
+            label = f"fine ({ts}, 1 rank)" if r["run"] == "fine" else f"FE² {r['element'].upper()} {r['mesh']}×{r['mesh']}"
             print(f"| {r['size']}² | {label} | {f(r.get('wall_s'), '{:.1f}')} | {f(r.get('cpu_s'), '{:.1f}')} | "
                   f"{'—' if r['run'] == 'fine' else times(r.get('speedup_wall')) + ' / ' + times(r.get('speedup_cpu'))} | "
                   f"{f(r.get('steps'), '{:.0f}')} | {f(r.get('rhs_evals'), '{:.0f}')} | {f(r.get('rve_solves'), '{:.0f}')} | "
