@@ -61,18 +61,14 @@ PetscErrorCode EnergyBalance::Forces(const PetscReal *x, const PetscReal *v, std
 {
   const PetscInt n2 = 2 * P_->n;
   PetscFunctionBeginUser;
-  if (!model_->EvaluatedAt(x)) {
+  if (!model_->EvaluatedAt(x) || model_->TermForcesTaken()) {
     F_work_total_.resize(n2);
     PetscCall(model_->ComputeForces(x, v, F_work_total_.data(), NULL));
   }
-  F.resize(model_->NumTerms());
+  model_->TakeTermForces(F, D); /* no copy: the buffers change places */
   std::vector<PetscReal> total(n2, 0.0);
-  for (size_t t = 0; t < model_->NumTerms(); t++) {
-    F[t] = model_->TermForce(t);
+  for (size_t t = 0; t < model_->NumTerms(); t++)
     for (PetscInt k = 0; k < n2; k++) total[k] += F[t][k];
-  }
-  D.resize(dashpots_.size());
-  for (size_t q = 0; q < dashpots_.size(); q++) D[q] = model_->TermDashpotForce(dashpots_[q]);
   reaction.resize(n2);
   controls_->ControlForces(t_, total.data(), reaction.data(), P_->n);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -113,7 +109,7 @@ PetscErrorCode EnergyBalance::Step(PetscReal t, const PetscReal *x, const PetscR
     return 0.25 * h * w;
   };
   for (size_t q = 0; q < F_work_.size(); q++) W_[q] += work(F_prev_[q], F_work_[q]);
-  for (size_t q = 0; q < D_work_.size(); q++) W_dashpot_[q] += work(D_prev_[q], D_work_[q]);
+  for (size_t q = 0; q < dashpots_.size(); q++) W_dashpot_[q] += work(D_prev_[dashpots_[q]], D_work_[dashpots_[q]]);
   W_controls_ += work(R_prev_, R_work_);
   if (!timed_.empty()) { /* the work of the explicit time dependence, trapezoidal */
     std::vector<PetscReal> P;
@@ -188,8 +184,8 @@ void EnergyBalance::DeclareState(StateDeclaration &d)
   StateTable &t = d.Table("particles", StateEntity::Particle);
   t.Rows([this] { return (size_t)P_->n; }).Column("velocity", v_prev_, 2, Combine::Copy).Column("control_force", R_prev_, 2, Combine::Sum);
   for (size_t q = 0; q < F_prev_.size(); q++) t.Column(std::string("force_") + model_->TermAt(q).Name(), F_prev_[q], 2, Combine::Sum);
-  D_prev_.resize(dashpots_.size());
-  for (size_t q = 0; q < dashpots_.size(); q++) t.Column(std::string("dashpot_force_") + model_->TermAt(dashpots_[q]).Name(), D_prev_[q], 2, Combine::Sum);
+  D_prev_.resize(model_->NumTerms());
+  for (size_t term : dashpots_) t.Column(std::string("dashpot_force_") + model_->TermAt(term).Name(), D_prev_[term], 2, Combine::Sum);
 }
 
 } // namespace turgor

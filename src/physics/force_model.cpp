@@ -181,6 +181,7 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
     } else PetscCall(terms_[t]->AddForces(in, f, virial));
     PetscCall(PetscLogEventEnd(events_[t], 0, 0, 0, 0));
   }
+  taken_ = false;
   PetscCall(PetscLogEventEnd(ev_forces_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -61,7 +61,7 @@ private:
   std::vector<std::vector<PetscReal>> F_prev_;
   std::vector<PetscReal>              v_prev_, R_prev_, F_work_total_, R_work_;
   std::vector<std::vector<PetscReal>> F_work_;
-  std::vector<std::vector<PetscReal>> D_prev_, D_work_; /* the dashpot parts, per term in dashpots_ */
+  std::vector<std::vector<PetscReal>> D_prev_, D_work_; /* the dashpot parts, per term (those in dashpots_ filled) */
 };
 
 } // namespace turgor

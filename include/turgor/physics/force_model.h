@@ -73,10 +73,17 @@ public:
      it costs a zeroing and a sum per term and evaluation. */
   void KeepTermForces(bool keep) { keep_term_forces_ = keep; }
   /* the grain every share is rounded to before it is added (force_grain.h; off unless set) */
-  ForceGrain                   &Grain() { return grain_; }
-  const std::vector<PetscReal> &TermForce(size_t t) const { return term_f_[t]; }
-  /* ... and the dashpot part of it, for a term with one (ForceTerm::HasDashpotForce) */
-  const std::vector<PetscReal> &TermDashpotForce(size_t t) const { return term_fd_[t]; }
+  ForceGrain &Grain() { return grain_; }
+  /* Hand over the last evaluation's term forces, and their dashpot parts (for a term with one,
+     ForceTerm::HasDashpotForce), by swapping buffers: F[t] and Fd[t] get them, no copy; the model
+     keeps the caller's old buffers for its next evaluation, and until then TermForcesTaken(). */
+  void TakeTermForces(std::vector<std::vector<PetscReal>> &F, std::vector<std::vector<PetscReal>> &Fd)
+  {
+    std::swap(F, term_f_);
+    std::swap(Fd, term_fd_);
+    taken_ = true;
+  }
+  bool TermForcesTaken() const { return taken_; }
   /* Was the last ComputeForces at these positions (bit for bit)? Known when a term has internal
      state or the term forces are kept; false otherwise. */
   bool             EvaluatedAt(const PetscReal *x) const { return !last_x_.empty() && std::equal(last_x_.begin(), last_x_.end(), x); }
@@ -116,7 +123,7 @@ private:
   PeriodicImages                          images_;
   std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
   PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
-  bool                                    has_state_ = false, keep_term_forces_ = false;
+  bool                                    has_state_ = false, keep_term_forces_ = false, taken_ = false;
   ForceGrain                              grain_;
   std::vector<std::vector<PetscReal>>     term_f_, term_fd_; /* per term, with KeepTermForces: force, dashpot part */
   PetscInt                                evaluations_ = 0;
