@@ -300,14 +300,14 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
     TSAdapt     adapt;
     TSAdaptType type;
     PetscBool   none, set;
-    PetscEnum   norm = (PetscEnum)NORM_2;
+    NormType    norm = NORM_2;
     const char *prefix;
     PetscCall(TSGetAdapt(ts_, &adapt));
     PetscCall(TSAdaptGetType(adapt, &type));
     PetscCall(PetscStrcmp(type, TSADAPTNONE, &none));
     PetscCall(TSGetOptionsPrefix(ts_, &prefix));
-    PetscCall(PetscOptionsGetEnum(NULL, prefix, "-ts_adapt_wnormtype", NormTypes, &norm, &set));
-    PetscCheck(none || norm == (PetscEnum)NORM_INFINITY, comm_, PETSC_ERR_ARG_INCOMP,
+    PetscCall(PetscOptionsGetEnum(NULL, prefix, "-ts_adapt_wnormtype", NormTypes, (PetscEnum *)&norm, &set)); /* as PETSc reads its enums */
+    PetscCheck(none || norm == NORM_INFINITY, comm_, PETSC_ERR_ARG_INCOMP,
                "Option -fine_reproducible_sums: the adaptive step (-ts_adapt_type %s) measures its error in the 2-norm, a sum over the ranks in their "
                "order, so its steps would differ in their last bits between rank counts; add -ts_adapt_wnormtype infinity",
                type);
