@@ -297,16 +297,11 @@ PetscErrorCode FineRun::AfterTSSetFromOptions()
   PetscCall(LimitControlSteps());
   if (spec_.reproducible_sums) { /* an adaptive step's 2-norm of the error sums over the ranks in their order: its step sizes, and so the
                                     run, would differ in their last bits; the largest error does not */
-    TSAdapt     adapt;
     TSAdaptType type;
-    PetscBool   none, set;
-    NormType    norm = NORM_2;
-    const char *prefix;
-    PetscCall(TSGetAdapt(ts_, &adapt));
-    PetscCall(TSAdaptGetType(adapt, &type));
+    NormType    norm;
+    PetscBool   none;
+    PetscCall(TSAdaptGetTypeAndNorm(ts_, &type, &norm));
     PetscCall(PetscStrcmp(type, TSADAPTNONE, &none));
-    PetscCall(TSGetOptionsPrefix(ts_, &prefix));
-    PetscCall(PetscOptionsGetEnum(NULL, prefix, "-ts_adapt_wnormtype", NormTypes, (PetscEnum *)&norm, &set)); /* as PETSc reads its enums */
     PetscCheck(none || norm == NORM_INFINITY, comm_, PETSC_ERR_ARG_INCOMP,
                "Option -fine_reproducible_sums: the adaptive step (-ts_adapt_type %s) measures its error in the 2-norm, a sum over the ranks in their "
                "order, so its steps would differ in their last bits between rank counts; add -ts_adapt_wnormtype infinity",

@@ -16,6 +16,16 @@ PetscErrorCode TSIsExplicit(TS ts, PetscBool *is)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode TSAdaptGetTypeAndNorm(TS ts, TSAdaptType *type, NormType *norm)
+{
+  TSAdapt adapt;
+  PetscFunctionBeginUser;
+  PetscCall(TSGetAdapt(ts, &adapt));
+  PetscCall(TSAdaptGetType(adapt, type));
+  *norm = adapt->wnormtype;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TSCheckpointSupported(TS ts, PetscBool *supported, const char **why)
 {
   PetscBool ok, is;

@@ -31,6 +31,10 @@ PetscErrorCode TSIsExplicit(TS ts, PetscBool *is);
    not. */
 PetscErrorCode TSCheckpointSupported(TS ts, PetscBool *supported, const char **why);
 
+/* The step-size controller's type and the norm it measures the error in (after TSSetFromOptions):
+   the controller's own value, however it was set (PETSc has no getter for the norm). */
+PetscErrorCode TSAdaptGetTypeAndNorm(TS ts, TSAdaptType *type, NormType *norm);
+
 class IntegratorState {
 public:
   ~IntegratorState();
