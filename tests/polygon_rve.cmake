@@ -39,3 +39,12 @@ turgor_add_test(polygon_fe2_np2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgo
   -fe2_snapshots 0 -fe2_progress_interval 0 -output_dir polygon_fe2_np2 LABELS fe2 mpi long SETUP polygon_fe2_np2)
 turgor_add_test(polygon_fe2_np2_agree COMMAND ${CHECK} tip restart_fe2_polygon_full polygon_fe2_np2 1e-11 LABELS fe2 mpi long
   REQUIRES "restart_fe2_polygon_full;polygon_fe2_np2")
+
+# -path_stop_after_failures: seed 4's four cells in tension collapse at 0.825 % (the 331st evaluation
+# of the bench's path, bench/prve_ensemble.py --tension), after which every relaxation fails; with 3
+# the path ends at the 333rd instead of relaxing the 68 after it (each a full, failing relaxation)
+turgor_add_test(polygon_rve_path_stop COMMAND turgor_app ${PRVE_SCENE} -prve_seed 4 -path_t_final 10 -path_steps 400 -path_tangents 0
+  -path_allow_failures -path_stop_after_failures 3 -output_dir polygon_rve_path_stop LABELS rve SETUP polygon_rve_path_stop)
+turgor_add_test(polygon_rve_path_stop_evaluations COMMAND ${CHECK} between polygon_rve_path_stop evaluations 333 333 LABELS rve
+  REQUIRES polygon_rve_path_stop)
+turgor_add_test(polygon_rve_path_stop_failures COMMAND ${CHECK} between polygon_rve_path_stop failures 3 3 LABELS rve REQUIRES polygon_rve_path_stop)

@@ -29,7 +29,12 @@ PetscErrorCode StrainPathRun::SetFromOptions()
     PetscOptionsBool("-allow_failures",
                      "A failed evaluation is recorded and the path goes on, and the run still ends 'completed' (default: it ends 'failed', exit status 1)",
                      "StrainPathRun", allow_failures_, &allow_failures_, NULL));
+  PetscCall(PetscOptionsInt("-stop_after_failures",
+                            "The path ends after this many failed evaluations in a row (past a material point's collapse every later one fails, each "
+                            "at the cost of a full relaxation; a stall at a kink of a force law is one failure); 0: never",
+                            "StrainPathRun", stop_after_, &stop_after_, NULL));
   PetscOptionsEnd();
+  PetscCheck(stop_after_ >= 0, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_stop_after_failures = %" PetscInt_FMT ": must be >= 0 (0: never)", stop_after_);
   PetscCheck(steps_ >= 1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_steps = %" PetscInt_FMT ": must be >= 1", steps_);
   PetscCheck(t_final_ > 0 && std::isfinite(t_final_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_t_final = %g: must be > 0 and finite", (double)t_final_);
   PetscCheck(std::isfinite(rate_), comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -path_rate = %g: must be finite", (double)rate_);
@@ -101,9 +106,15 @@ PetscErrorCode StrainPathRun::Solve()
     PetscCall(pool_.Evaluate(&F, &Fd, &r, tangents_, &D));
     ok = rank == 0 ? (r.ok ? 1 : 0) : 0; /* rank 0 owns the point; every rank commits with it */
     PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, comm_));
+    evaluations_++;
     if (ok) PetscCall(pool_.Commit());
     else failures_++;
-    if (rank != 0) continue;
+    failed_in_a_row_ = ok ? 0 : failed_in_a_row_ + 1;
+    const bool last  = stop_after_ > 0 && failed_in_a_row_ >= stop_after_; /* every rank knows ok: they leave the path together */
+    if (rank != 0) {
+      if (last) break;
+      continue;
+    }
     if (r.ok) {
       last_   = r;
       t_last_ = t;
@@ -133,6 +144,11 @@ PetscErrorCode StrainPathRun::Solve()
     if (r.ok)
       PetscCall(PetscPrintf(PETSC_COMM_SELF, "  t = %7.3g µs  sigma = [%10.4g %10.4g; %10.4g %10.4g] N/m  rho = %.5g  %2" PetscInt_FMT " Psi-tc iterations\n",
                             (double)t, (double)s(0, 0), (double)s(0, 1), (double)s(1, 0), (double)s(1, 1), (double)r.rho, r.iterations));
+    if (last) {
+      PetscCall(
+        PetscPrintf(PETSC_COMM_SELF, "  the path ends after %" PetscInt_FMT " failed evaluations in a row (-path_stop_after_failures)\n", failed_in_a_row_));
+      break;
+    }
   }
   PetscCall(PetscTime(&t1));
   wall_ = t1 - t0;
@@ -149,6 +165,7 @@ PetscErrorCode StrainPathRun::AddSummary(JsonObject &js)
   js.Set("t_final", t_final_);
   js.Set("steps", steps_);
   js.Set("tangents", (bool)tangents_);
+  js.Set("evaluations", evaluations_); /* fewer than steps + 1 where -path_stop_after_failures ended the path */
   js.Set("failures", failures_);
   js.Set("wall_time_s", wall_);
   js.Set("max_stress_asymmetry", max_asymmetry_);
@@ -174,7 +191,7 @@ PetscErrorCode StrainPathRun::WriteSummary()
   if (failures_ > 0) {
     std::string first = first_failure_;
     PetscCall(BroadcastString(comm_, &first));
-    js.Set("reason", std::to_string(failures_) + " of " + std::to_string(steps_ + 1) + " evaluations failed (first " + first + ")" +
+    js.Set("reason", std::to_string(failures_) + " of " + std::to_string(evaluations_) + " evaluations failed (first " + first + ")" +
                        (allow_failures_ ? ", allowed by -path_allow_failures" : ""));
   }
   js.Set("rve_solves", c.solves);
@@ -189,10 +206,10 @@ PetscErrorCode StrainPathRun::WriteSummary()
   PetscCall(PetscPrintf(comm_,
                         "%s: %" PetscInt_FMT " evaluations (%" PetscInt_FMT " failed), %" PetscInt_FMT " RVE solves, %" PetscInt_FMT
                         " Psi-tc iterations, %.3f s; outputs in %s: %s\n",
-                        failed ? "Failed" : "Done", steps_ + 1, failures_, c.solves, c.iterations, wall_, OutputDir().c_str(), OutputFiles().c_str()));
+                        failed ? "Failed" : "Done", evaluations_, failures_, c.solves, c.iterations, wall_, OutputDir().c_str(), OutputFiles().c_str()));
   PetscCheck(!failed, comm_, PETSC_ERR_NOT_CONVERGED,
              "%" PetscInt_FMT " of %" PetscInt_FMT " material-point evaluations failed along the path (-path_allow_failures to accept that)", failures_,
-             steps_ + 1);
+             evaluations_);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

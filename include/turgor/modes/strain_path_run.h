@@ -25,9 +25,10 @@ private:
   PetscReal         rate_ = 1e-3, t_final_ = 50.0; /* [1/µs], [µs] */
   PetscBool         tangents_       = PETSC_TRUE;
   PetscBool         allow_failures_ = PETSC_FALSE;
+  PetscInt          stop_after_     = 0; /* the path ends after this many failed evaluations in a row; 0: never */
   /* results */
   CsvWriter        csv_;
-  PetscInt         failures_ = 0;
+  PetscInt         failures_ = 0, evaluations_ = 0, failed_in_a_row_ = 0;
   MaterialResponse last_; /* the last evaluation that succeeded */
   PetscReal        t_last_ = 0, max_asymmetry_ = 0, wall_ = 0;
   PetscReal        ellipticity_lost_ = -1; /* the first t whose tangent lost ellipticity; -1: none */
