@@ -41,7 +41,7 @@ def peak(rows):
     ok = [int(r["ok"]) for r in rows]
     run3 = next((float(rows[i]["F11"]) - 1 for i in range(len(rows) - 2) if not any(ok[i:i + 3])), float("inf"))
     gives = min(fall, run3)
-    return {"peak": s_peak, "peak_strain": e_peak, "snap_strain": gives if gives < float("inf") else float("nan"), "failures": ok.count(0)}
+    return {"peak": s_peak, "peak_strain": e_peak, "gives_way_strain": gives if gives < float("inf") else float("nan"), "failures": ok.count(0)}
 
 
 def run(a, cells, seed, workdir):
@@ -86,7 +86,7 @@ def main():
     Ks = [int(k) for k in a.cells.split(",")]
     with tempfile.TemporaryDirectory() as work, concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         rows = list(pool.map(lambda ks: run(a, ks[0], ks[1], work), [(K, s) for K in Ks for s in range(1, a.seeds + 1)]))
-    names = ["peak", "peak_strain", "snap_strain"] if a.tension else [n for n, _ in QUANTITIES] + ["prestress"]
+    names = ["peak", "peak_strain", "gives_way_strain"] if a.tension else [n for n, _ in QUANTITIES] + ["prestress"]
     keys = ["cells", "seed", "ok", "wall_s"] + names + (["failures"] if a.tension else [])
     with open(a.csv, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
