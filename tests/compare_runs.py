@@ -33,6 +33,12 @@
   compare_runs.py pathtangent DIR RELTOL      rve.csv: the stress change from row 0 to row 1 is the row-0
                                              tangent's prediction, D^e [d11, d22, 2 d12] + l s + s l^T - tr(l) s
                                              (its Truesdell rate; l = dF F^-1), within RELTOL of |change|
+  compare_runs.py stresspath FE2_DIR RVE_DIR H11 RELTOL
+                                             a homogeneous -mode fe2_static stretch (-coarse_boundary_gradient
+                                             H11,0,0,0) against -mode rve on the same uniaxial path: tip.csv's
+                                             mean stress equals rve.csv's at every common strain below the
+                                             localisation (within RELTOL of the largest |stress|), and the
+                                             localisation's increment holds the path's first fall of s11
   compare_runs.py column CSV NAME ROW EXPECTED RELTOL [BASE_ROW]
                                              CSV[ROW][NAME] (minus CSV[BASE_ROW][NAME]) is EXPECTED
                                              within RELTOL (relative); ROW -1 is the last row
@@ -226,6 +232,34 @@ def main(argv):
               f"({where}), {worst / scale:.3e} of the row's largest value {scale:.6g}")
         if not worst <= tol * scale:
             sys.exit(f"FAIL: above {tol}")
+    elif mode == "stresspath":
+        fe2 = list(csv.DictReader(open(f"{argv[2]}/tip.csv")))
+        path = list(csv.DictReader(open(f"{argv[3]}/rve.csv")))
+        h11, tol = float(argv[4]), float(argv[5])
+        loc = json.load(open(f"{argv[2]}/summary.json"))["localisation_load_factor"]
+        by_strain = {round((float(r["F11"]) - 1) * 1e9): r for r in path if int(r["ok"])}
+        worst, scale, common = 0.0, 0.0, 0
+        for r in fe2:
+            lam = float(r["load_factor"])
+            q = by_strain.get(round(lam * h11 * 1e9))
+            if q is None or (loc >= 0 and lam >= loc - 1e-12):
+                continue
+            common += 1
+            for c in ("11", "22", "12"):
+                worst = max(worst, abs(float(r[f"mean_s{c}"]) - float(q[f"s{c}"])))
+                scale = max(scale, abs(float(q[f"s{c}"])))
+        s11 = [(float(r["F11"]) - 1, float(r["s11"])) for r in path if int(r["ok"])]
+        fall = next((e1 for (e0, a), (e1, b) in zip(s11, s11[1:]) if b < a), None)
+        levels = [float(r["load_factor"]) * h11 for r in fe2]
+        print(f"{common} common strains below the localisation: largest stress difference {worst:.3e}, {worst / max(scale, 1e-300):.2e} of "
+              f"{scale:.4g}; the path's stress first falls at strain {fall}, fe2_static localised at {loc * h11 if loc >= 0 else None}")
+        if common < 2 or not worst <= tol * scale:
+            sys.exit(f"FAIL: fewer than 2 common strains, or a difference above {tol}")
+        if fall is None or loc < 0:
+            sys.exit("FAIL: no fall on the path, or no localisation in fe2_static")
+        before = max(e for e in levels if e < loc * h11 - 1e-12)
+        if not before < fall <= loc * h11 + 1e-12:
+            sys.exit(f"FAIL: the path falls at {fall}, outside the localised increment ({before}, {loc * h11}]")
     elif mode == "pathtangent":
         r0, r1 = list(csv.DictReader(open(f"{argv[2]}/rve.csv")))[:2]
         g = lambda r, k: float(r[k])

@@ -15,3 +15,61 @@ turgor_add_test(fe2_localisation_time COMMAND ${CHECK} between fe2_localisation_
 turgor_add_test(fe2_localisation_stopped_there COMMAND ${CHECK} between fe2_localisation_stop t_final 0.75 1 LABELS fe2 REQUIRES fe2_localisation_stop)
 turgor_add_test(fe2_no_localisation COMMAND turgor_app ${LOC_BLOCK} -body_force -20,0 -output_dir fe2_no_localisation LABELS fe2 SETUP fe2_no_localisation)
 turgor_add_test(fe2_no_localisation_found COMMAND ${CHECK} between fe2_no_localisation localisation_time -1 -1 LABELS fe2 REQUIRES fe2_no_localisation)
+
+# Localisation in -mode fe2_static: a material point whose stress falls along its strain increment
+# (Hill's second-order work in (S, E), material/second_order_work.h) at a converged load level.
+# A block clamped on every side and moved by -coarse_boundary_gradient H = [e 0; 0 0] is in
+# homogeneous uniaxial strain: every point is at F = I + lambda H.
+set(STRETCH -mode fe2_static -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_upper 100,100 -coarse_dirichlet_values 1,2,3,4 -body_force 0,0
+  -output_overwrite)
+# neo-Hookean (mu = 100, lambda = 200 N/m) to e = 1 %: the mean stress is the closed form's,
+# sigma = mu/J (B - I) + lambda ln J / J I at J = 1.01 (s11 = 3.96046155508279, s22 = 1.9703625451818
+# N/m), and nothing softens (its cosine stays (lambda + 2 mu) / |(lambda + 2 mu, lambda)| = 0.89)
+turgor_add_test(fe2_static_stretch_nh COMMAND turgor_app ${STRETCH} -coarse_dm_plex_box_faces 2,2 -material neo_hookean -nh_mu 100 -nh_lambda 200
+  -nh_viscosity 0 -coarse_boundary_gradient 0.01,0,0,0 -fe2_static_load_steps 4 -output_dir fe2_static_stretch_nh LABELS fe2 static
+  SETUP fe2_static_stretch_nh)
+turgor_add_test(fe2_static_stretch_nh_s11 COMMAND ${CHECK} column fe2_static_stretch_nh/tip.csv mean_s11 -1 3.96046155508279 1e-12 LABELS fe2 static
+  REQUIRES fe2_static_stretch_nh)
+turgor_add_test(fe2_static_stretch_nh_s22 COMMAND ${CHECK} column fe2_static_stretch_nh/tip.csv mean_s22 -1 1.9703625451818 1e-12 LABELS fe2 static
+  REQUIRES fe2_static_stretch_nh)
+turgor_add_test(fe2_static_stretch_nh_moved COMMAND ${CHECK} column fe2_static_stretch_nh/tip.csv tip_displacement_x -1 1 1e-12 LABELS fe2 static
+  REQUIRES fe2_static_stretch_nh)
+turgor_add_test(fe2_static_stretch_nh_no_localisation COMMAND ${CHECK} between fe2_static_stretch_nh localisation_element -1 -1 LABELS fe2 static
+  REQUIRES fe2_static_stretch_nh)
+turgor_add_test(fe2_static_stretch_nh_cosine COMMAND ${CHECK} between fe2_static_stretch_nh softening_min_cosine 0.889 0.8945 LABELS fe2 static
+  REQUIRES fe2_static_stretch_nh)
+# The glued tissue of config/polygon_rve.yaml (16 cells, seed 1) to 0.8 % in 40 increments, on 1 and
+# 2 ranks (the second holds no element), against -mode rve along the same path in steps of 2.5e-5 (to 0.665 %):
+# the mean stress is the path's to 1e-10 at every common strain up to 0.64 % (another increment, the
+# same relaxed states), the path's stress first falls at 0.6525 % (6.05 -> 3.40 N/m: a crack across
+# the period) and fe2_static reports localisation at 0.66 %, the increment that holds it (cos(dS, dE)
+# = -0.84), and stops there (status localised).
+set(STRETCH_PRVE -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml ${STRETCH} -coarse_dm_plex_box_faces 1,1 -coarse_quadrature full
+  -coarse_boundary_gradient 0.008,0,0,0 -fe2_static_load_steps 40 -fe2_static_stop_at_localisation)
+turgor_add_test(fe2_static_tension_path COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -path_t_final 6.65
+  -path_steps 266 -path_tangents 0 -path_allow_failures -path_stop_after_failures 3 -output_dir fe2_static_tension_path -output_overwrite
+  LABELS rve static SETUP fe2_static_tension_path)
+foreach(np 1 2)
+  turgor_add_test(fe2_static_tension_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${STRETCH_PRVE} -output_dir fe2_static_tension_np${np}
+    LABELS fe2 static rve mpi SETUP fe2_static_tension_np${np})
+  turgor_add_test(fe2_static_tension_np${np}_status COMMAND ${CHECK} equals fe2_static_tension_np${np} status localised LABELS fe2 static rve mpi
+    REQUIRES fe2_static_tension_np${np})
+  turgor_add_test(fe2_static_tension_np${np}_criterion COMMAND ${CHECK} equals fe2_static_tension_np${np} localisation_criterion softening
+    LABELS fe2 static rve mpi REQUIRES fe2_static_tension_np${np})
+  turgor_add_test(fe2_static_tension_np${np}_path COMMAND ${CHECK} stresspath fe2_static_tension_np${np} fe2_static_tension_path 0.008 1e-8
+    LABELS fe2 static rve mpi REQUIRES "fe2_static_tension_np${np};fe2_static_tension_path")
+endforeach()
+# Seed 5's sixteen cells give way with no equilibrium near the last one: from 0.48 % (load factor
+# 12/13 of 0.52 %) every relaxation fails, down to the smallest increment (-fe2_static_min_increment
+# 0.05, -rve_max_it 25 to keep the failures cheap): localisation by the criterion no_equilibrium,
+# status localised (long: about 12 s of failing relaxations)
+turgor_add_test(fe2_static_no_equilibrium COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml ${STRETCH}
+  -coarse_dm_plex_box_faces 1,1 -coarse_quadrature full -prve_seed 5 -coarse_boundary_gradient 0.0052,0,0,0 -fe2_static_load_steps 13
+  -fe2_static_min_increment 0.05 -rve_max_it 25 -fe2_static_stop_at_localisation -output_dir fe2_static_no_equilibrium LABELS fe2 static rve long
+  SETUP fe2_static_no_equilibrium)
+turgor_add_test(fe2_static_no_equilibrium_criterion COMMAND ${CHECK} equals fe2_static_no_equilibrium localisation_criterion no_equilibrium
+  LABELS fe2 static rve long REQUIRES fe2_static_no_equilibrium)
+turgor_add_test(fe2_static_no_equilibrium_status COMMAND ${CHECK} equals fe2_static_no_equilibrium status localised LABELS fe2 static rve long
+  REQUIRES fe2_static_no_equilibrium)
+turgor_add_test(fe2_static_no_equilibrium_where COMMAND ${CHECK} between fe2_static_no_equilibrium localisation_load_factor 0.92 0.93
+  LABELS fe2 static rve long REQUIRES fe2_static_no_equilibrium)

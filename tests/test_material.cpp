@@ -3,9 +3,13 @@ static const char help[] = "Tangent machinery (TW 562 eqs 46-53) on the closed-f
                            "ones of -material_tangent implicit (1e-13),\n"
                            "for several deformations including shear and rotation; inverted F is a failed evaluation;\n"
                            "the skipping point's first-order expansion about a solved state (-material_skip_tolerance): its error falls 4x\n"
-                           "when the step halves, with stretch, shear, spin and rate; and a skipped evaluation within the tolerance.\n";
+                           "when the step halves, with stretch, shear, spin and rate; and a skipped evaluation within the tolerance;\n"
+                           "Hill's second-order work (material/second_order_work.h): the closed-form cosine of a neo-Hookean point in\n"
+                           "uniaxial strain, blind to a rigid rotation (where dP:dF of a pressurised point is negative), -1 for a stress\n"
+                           "that falls, no decision below the floors.\n";
 #include "test_util.h"
 #include <turgor/material/neo_hookean.h>
+#include <turgor/material/second_order_work.h>
 #include <turgor/material/skipping_point.h>
 
 using namespace turgor;
@@ -122,6 +126,46 @@ int main(int argc, char **argv)
     sp.AddCounters(c);
     TG_CHECK(c.skipped_solves == 1, "a trial 1e-4 from the base was solved (%" PetscInt_FMT " skipped)", c.skipped_solves);
     PetscCall(PetscOptionsClearValue(NULL, "-nh_viscosity"));
+  }
+  {
+    /* second-order work: a neo-Hookean point stretched along x in plane strain has dS = [lambda +
+       2 mu, lambda] dE11 at F = I, so cos(dS, dE) = (lambda + 2 mu) / sqrt((lambda + 2 mu)^2 +
+       lambda^2) (the closed form; O(strain) off it at 1e-4) */
+    NeoHookeanSpec   p;
+    NeoHookean       nhs(p);
+    MaterialResponse ra, rb;
+    const Tensor2    Fa =
+                    {
+                      {{1 + 1e-4, 0}, {0, 1}}
+    },
+                  Fb = {{{1 + 2e-4, 0}, {0, 1}}};
+    PetscCall(nhs.Evaluate(Fa, Tensor2::Zero(), EvaluationKind::Trial, &ra));
+    PetscCall(nhs.Evaluate(Fb, Tensor2::Zero(), EvaluationKind::Trial, &rb));
+    const StrainStress a = GreenLagrangeAndPiola(Fa, ra.sigma), b = GreenLagrangeAndPiola(Fb, rb.sigma);
+    const PetscReal    c = SecondOrderWorkCosine(a, b, 1e-12, 1e-6), l2m = p.lambda + 2 * p.mu;
+    const PetscReal    closed = l2m / std::sqrt(l2m * l2m + p.lambda * p.lambda);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "second-order work: uniaxial strain cos(dS, dE) = %.6f, closed form %.6f\n", (double)c, (double)closed));
+    TG_CHECK(std::fabs(c - closed) < 1e-3, "the second-order work's cosine %g is not the closed form's %g", (double)c, (double)closed);
+    /* a rigid rotation of a stressed state leaves E and S as they are: no increment to judge; the
+       first Piola pair would call a turning, pressurised point unstable (dP : dF < 0) */
+    const Tensor2      R = Tensor2::Rotation(0.3), Fr = R * Fb, sr = R * rb.sigma * R.T();
+    const StrainStress br = GreenLagrangeAndPiola(Fr, sr);
+    TG_CHECK((br.E - b.E).Norm() < 1e-14 && (br.S - b.S).Norm() < 1e-12 * b.S.Norm(), "E or S changed under a rigid rotation");
+    TG_CHECK(SecondOrderWorkCosine(b, br, 1e-12, 1e-6) == 1, "a rigid rotation was judged");
+    const Tensor2 pI = -5.0 * Tensor2::Identity(), F0 = Tensor2::Identity(), F1 = Tensor2::Rotation(0.05);
+    auto          piola = [](const Tensor2 &F, const Tensor2 &sg) { return F.Det() * (sg * F.Inverse().T()); };
+    const Tensor2 dP = piola(F1, pI) - piola(F0, pI), dF = F1 - F0;
+    PetscReal     pf = 0;
+    for (int i = 0; i < 2; i++)
+      for (int j = 0; j < 2; j++) pf += dP(i, j) * dF(i, j);
+    TG_CHECK(pf < 0 && SecondOrderWorkCosine(GreenLagrangeAndPiola(F0, pI), GreenLagrangeAndPiola(F1, pI), 1e-12, 1e-6) == 1,
+             "a pressurised point turning by 0.05 rad: dP:dF = %g (negative expected), and (S, E) must not judge it", (double)pf);
+    /* a stress that falls along a stretch (an RVE that gave way): cos near -1 */
+    Tensor2 fallen = 0.5 * rb.sigma;
+    TG_CHECK(SecondOrderWorkCosine(a, GreenLagrangeAndPiola(Fb, fallen), 1e-12, 1e-6) < -0.5, "a falling stress was not judged softening");
+    /* below the floors: no decision */
+    TG_CHECK(SecondOrderWorkCosine(a, GreenLagrangeAndPiola(Fa, fallen), 1e-12, 1e-6) == 1, "no strain increment, yet judged");
+    TG_CHECK(SecondOrderWorkCosine(a, a, 1e-12, 1e-6) == 1, "no increment at all, yet judged");
   }
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "test_material: all checks passed\n"));
   PetscCall(PetscFinalize());

@@ -72,6 +72,25 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "material points (loss of ellipticity where <= 0); needs the material tangents at every snapshot (3 more material "
                              "evaluations per point, counted as output solves)",
                              "CoarseSpec", acoustic, &acoustic, NULL));
+  {
+    PetscReal h[4] = {boundary_gradient(0, 0), boundary_gradient(0, 1), boundary_gradient(1, 0), boundary_gradient(1, 1)};
+    PetscInt  nh   = 4;
+    PetscBool hset;
+    PetscCall(PetscOptionsRealArray("-boundary_gradient",
+                                    "H11,H12,H21,H22: the clamped vertices are moved to u = lambda H X, X their reference position and lambda the load "
+                                    "factor of -mode fe2_static (default 0: clamped in place); e.g. the left and right sides clamped "
+                                    "(-coarse_dirichlet_values 2,4) with H = e,0,0,0 stretch the block by e along x, every side clamped "
+                                    "(1,2,3,4) deforms it homogeneously",
+                                    "CoarseSpec", h, &nh, &hset));
+    PetscCheck(!hset || nh == 4, comm, PETSC_ERR_ARG_SIZ, "Option -coarse_boundary_gradient: %" PetscInt_FMT " values given, 4 needed (H11,H12,H21,H22)", nh);
+    for (int k = 0; k < 4; k++)
+      PetscCheck(std::isfinite(h[k]) && std::fabs(h[k]) < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "Option -coarse_boundary_gradient: entry %d = %g; each must be finite and of magnitude below 0.5 (a displacement gradient)", k + 1,
+                 (double)h[k]);
+    boundary_gradient = Tensor2{
+      {{h[0], h[1]}, {h[2], h[3]}}
+    };
+  }
   PetscCall(PetscOptionsString("-partitioner",
                                "How the coarse mesh is distributed over the ranks: petsc (DMSetFromOptions with PETSc's partitioner, "
                                "-coarse_petscpartitioner_type) or metis (the serial mesh's cell dual graph partitioned by METIS_PartGraphKway and "
@@ -104,6 +123,17 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   lumped_mass    = lumped;
   acoustic_field = acoustic;
   PetscCheck(!dirichlet_values.empty(), comm, PETSC_ERR_ARG_WRONG, "Option -coarse_dirichlet_values: no value given");
+  if (params && HasBoundaryGradient()) params->Set("-coarse_boundary_gradient", ParameterValue(&boundary_gradient.a[0][0], 4));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseSpec::RequireNoBoundaryGradient(MPI_Comm comm, const char *mode) const
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!HasBoundaryGradient(), comm, PETSC_ERR_ARG_INCOMP,
+             "Option -coarse_boundary_gradient: -mode %s has no load factor to apply it with; it moves the clamped vertices in -mode fe2_static "
+             "(and -mode eigen at the relaxed state)",
+             mode);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -292,6 +322,11 @@ PetscErrorCode CoarseModel::BoundaryValues(PetscInt dim, PetscReal time, const P
     const CoarseModel *model = (const CoarseModel *)ctx;
     PetscReal          g[2]  = {0, 0};
     if (model->boundary_) model->boundary_(X, g);
+    if (model->spec_.HasBoundaryGradient()) {
+      PetscReal hx[2];
+      model->spec_.boundary_gradient.Apply(X, hx);
+      for (int d = 0; d < 2; d++) g[d] += model->load_factor_ * hx[d];
+    }
     u[0] = g[0];
     u[1] = g[1];
     u[2] = u[3] = 0;
@@ -361,6 +396,17 @@ PetscErrorCode CoarseModel::SetBoundaryDisplacement(std::function<void(const Pet
   boundary_ = std::move(g);
   if (Uloc_) PetscCall(InsertBoundaryValues(Uloc_));
   cached_valid_ = false;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::SetLoadFactor(PetscReal factor)
+{
+  PetscFunctionBeginUser;
+  load_factor_ = factor;
+  if (spec_.HasBoundaryGradient() && Uloc_) { /* the clamped vertices move with it */
+    PetscCall(InsertBoundaryValues(Uloc_));
+    cached_valid_ = false;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -797,19 +843,21 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   counters_.material_evals++;
   if (tangents) counters_.tangent_evals++;
   int         local_ok = 1, global_ok;
-  PetscInt    nfailed  = 0;
+  PetscInt    nfailed = 0, lowest = PETSC_MAX_INT;
   std::string first;
   for (size_t k = 0; k < response_.size(); k++)
     if (!response_[k].ok) {
       if (!nfailed) PetscCall(DescribePoint((PetscInt)k, F_, Fdot_, response_, &first));
       nfailed++;
       local_ok = 0;
+      lowest   = PetscMin(lowest, cell_gid_[k / npts_]);
     }
   PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
   if (why) *why = local_ok ? (global_ok ? "" : "on another rank") : first;
   if (!global_ok) {
     /* every failure is reported where it happened, without -info: the cause of a rejected step */
     counters_.failures++;
+    PetscCallMPI(MPI_Allreduce(&lowest, &failed_element_, 1, MPIU_INT, MPI_MIN, comm_));
     if (nfailed) {
       char when[128];
       if (eval_where_.empty()) PetscCall(PetscSNPrintf(when, sizeof when, "at t = %g µs", (double)eval_time_));
@@ -1201,19 +1249,69 @@ PetscErrorCode CoarseModel::EvaluateForOutput(Vec Uloc, bool viscous, PetscBool 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseModel::LowestAcoustic(PetscReal *det, PetscInt *element) const
+PetscErrorCode CoarseModel::LowestOverCells(const std::vector<PetscReal> &per_cell, PetscReal *value, PetscInt *element) const
 {
   struct {
     double v;
     int    gid;
   } mine = {PETSC_MAX_REAL, -1}, all;
   PetscFunctionBeginUser;
-  for (size_t k = 0; k < cell_acoustic_.size(); k++)
-    if (std::isfinite(cell_acoustic_[k]) && (cell_acoustic_[k] < mine.v || (cell_acoustic_[k] == mine.v && (int)cell_gid_[k] < mine.gid)))
-      mine = {(double)cell_acoustic_[k], (int)cell_gid_[k]};
+  for (size_t k = 0; k < per_cell.size(); k++)
+    if (std::isfinite(per_cell[k]) && (per_cell[k] < mine.v || (per_cell[k] == mine.v && (int)cell_gid_[k] < mine.gid)))
+      mine = {(double)per_cell[k], (int)cell_gid_[k]};
   PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm_));
-  *det     = all.v;
+  *value   = all.v;
   *element = all.gid;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::LowestAcoustic(PetscReal *det, PetscInt *element) const
+{
+  return LowestOverCells(cell_acoustic_, det, element);
+}
+
+PetscErrorCode CoarseModel::SofteningSinceLast(PetscReal stress_floor, PetscReal *cosine, PetscInt *element)
+{
+  const PetscInt         nc    = c_end_ - c_start_;
+  const bool             first = softening_last_.empty();
+  std::vector<PetscReal> per_cell(nc, 1.0);
+  PetscFunctionBeginUser;
+  PetscCheck(cached_valid_ && cached_ok_, PETSC_COMM_SELF, PETSC_ERR_ORDER, "SofteningSinceLast needs a successful evaluation of the material points");
+  if (first) softening_last_.resize((size_t)(nc * npts_));
+  for (PetscInt k = 0; k < nc; k++)
+    for (PetscInt q = 0; q < npts_; q++) {
+      const PetscInt     p   = k * npts_ + q;
+      const StrainStress now = GreenLagrangeAndPiola(F_[p], response_[p].sigma);
+      /* 1e-12: a strain increment at round-off of the deformation is not judged */
+      if (!first) per_cell[k] = PetscMin(per_cell[k], SecondOrderWorkCosine(softening_last_[p], now, 1e-12, stress_floor));
+      softening_last_[p] = now;
+    }
+  PetscCall(LowestOverCells(per_cell, cosine, element));
+  if (*element < 0 || *cosine >= 1) { /* nothing judged (the first call, or an empty mesh) */
+    *cosine  = 1;
+    *element = -1;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::MeanStress(PetscReal s[3]) const
+{
+  PetscReal      sum[4] = {0, 0, 0, 0}, all[4];
+  const PetscInt nc     = c_end_ - c_start_;
+  PetscFunctionBeginUser;
+  PetscCheck(cached_valid_ && cached_ok_, PETSC_COMM_SELF, PETSC_ERR_ORDER, "MeanStress needs a successful evaluation of the material points");
+  for (PetscInt k = 0; k < nc; k++)
+    for (PetscInt q = 0; q < npts_; q++) {
+      const PetscInt  p = k * npts_ + q;
+      const PetscReal w = wdet_[p];
+      const Tensor2  &t = response_[p].sigma;
+      sum[0] += w * t(0, 0);
+      sum[1] += w * t(1, 1);
+      sum[2] += w * 0.5 * (t(0, 1) + t(1, 0));
+      sum[3] += w;
+    }
+  PetscCallMPI(MPI_Allreduce(sum, all, 4, MPIU_REAL, MPIU_SUM, comm_));
+  for (int c = 0; c < 3; c++) s[c] = all[3] > 0 ? all[c] / all[3] : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -57,6 +57,7 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
   PetscCall(load_.RequireUnscheduled(comm_, "fe2"));
   model_.SetLoad(load_);
   PetscCall(model_.SetFromOptions(&params));
+  PetscCall(model_.Spec().RequireNoBoundaryGradient(comm_, "fe2"));
   PetscOptionsBegin(comm_, "fe2_", "Coarse FE^2 run (-mode fe2)", "turgor");
   PetscCall(TurgorOptionsInt(&params, "-jacobian_max_age",
                              "Reuse the material tangents (K, C) for this many accepted steps; 0: fresh at every Jacobian request; -1: 0 for radauiia (which "

@@ -92,6 +92,7 @@ PetscErrorCode EigenRun::SetFromOptions()
     PetscCall(load_.RequireUnscheduled(comm_, "eigen"));
     model_->SetLoad(load_);
     PetscCall(model_->SetFromOptions());
+    PetscCall(model_->Spec().RequireNoBoundaryGradient(comm_, "eigen at -eigen_state reference or snapshot"));
   }
   /* D^v only for the damped modes */
   model_->Pool().Tangent().viscosity = spec_.damping;

@@ -7,7 +7,7 @@ namespace turgor {
 
 PetscErrorCode StaticLoadSpec::SetFromOptions(MPI_Comm comm)
 {
-  PetscBool snap = snapshot ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool snap = snapshot ? PETSC_TRUE : PETSC_FALSE, stop = stop_at_localisation ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fe2_static_", "Static FE^2 solve with load stepping (-mode fe2_static); its SNES: -fe2_static_snes_*, -fe2_static_ksp_*", "turgor");
   PetscCall(PetscOptionsInt("-load_steps", "Initial number of load increments: the body force is applied in increments of the load factor of 1/load_steps",
@@ -18,7 +18,17 @@ PetscErrorCode StaticLoadSpec::SetFromOptions(MPI_Comm comm)
                              "StaticLoadSpec", min_increment, &min_increment, NULL));
   PetscCall(PetscOptionsBool("-snapshots", "Write coarse.h5/coarse.xmf with the final state (on failure: the last converged one)", "StaticLoadSpec", snap,
                              &snap, NULL));
+  PetscCall(PetscOptionsReal("-softening_cosine",
+                             "Localisation: a material point softened at a converged load level when the cosine of the angle between its increments of "
+                             "the second Piola-Kirchhoff stress and the Green-Lagrange strain since the last level is below this (Hill's second-order "
+                             "work dS:dE < 0 at 0), in [-1, 0]",
+                             "StaticLoadSpec", softening_cosine, &softening_cosine, NULL));
+  PetscCall(PetscOptionsBool("-stop_at_localisation", "End the run (status localised) at the first converged load level at which a material point softened",
+                             "StaticLoadSpec", stop, &stop, NULL));
   PetscOptionsEnd();
+  PetscCheck(softening_cosine >= -1 && softening_cosine <= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_softening_cosine = %g: must be in [-1, 0]",
+             (double)softening_cosine);
+  stop_at_localisation = stop;
   PetscCheck(load_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_load_steps = %" PetscInt_FMT ": must be >= 1", load_steps);
   PetscCheck(min_increment > 0 && min_increment <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_min_increment = %g: must be in (0, 1]",
              (double)min_increment);
@@ -33,7 +43,7 @@ FE2StaticRun::~FE2StaticRun()
   PetscCallVoid(MatDestroy(&J_));
   PetscCallVoid(ISDestroy(&is_u_));
   PetscCallVoid(ISDestroy(&is_v_));
-  for (Vec *v : {&U_, &Udot_, &Ffull_, &x_, &x_conv_}) PetscCallVoid(VecDestroy(v));
+  for (Vec *v : {&U_, &Udot_, &Ffull_, &x_, &x_conv_, &x_affine_}) PetscCallVoid(VecDestroy(v));
 }
 
 PetscErrorCode FE2StaticRun::SetFromOptions()
@@ -99,6 +109,7 @@ PetscErrorCode FE2StaticRun::SetUp()
   PetscCall(PetscLogEventRegister("TgLoadIncrement", PETSC_OBJECT_CLASSID, &ev_increment_));
   PetscCall(PetscLogEventRegister("TgOutput", PETSC_OBJECT_CLASSID, &ev_output_));
   PetscCall(PetscLogStagePush(stage_setup_));
+  PetscCall(model_.SetLoadFactor(0)); /* unloaded: the clamped vertices where they are (-coarse_boundary_gradient) */
   PetscCall(model_.SetUp());
   PetscCall(model_.CreateGlobalVector(&U_));
   PetscCall(PetscObjectSetName((PetscObject)U_, "state"));
@@ -114,6 +125,21 @@ PetscErrorCode FE2StaticRun::SetUp()
   PetscCall(VecDuplicate(x_, &x_conv_));
   PetscCall(VecZeroEntries(x_conv_));
   PetscCall(MatCreateSubMatrix(J_, is_v_, is_u_, MAT_INITIAL_MATRIX, &K_));
+  if (model_.Spec().HasBoundaryGradient()) { /* the increments' predictor: H X on the free nodes */
+    const Tensor2 H = model_.Spec().boundary_gradient;
+    std::string   missing;
+    PetscCall(VecDuplicate(x_, &x_affine_));
+    PetscCall(model_.NodeState(
+      U_,
+      [&H](const PetscReal X[2], PetscReal state[4]) {
+        H.Apply(X, state);
+        state[2] = state[3] = 0;
+        return true;
+      },
+      &missing));
+    PetscCall(VecISCopy(U_, is_u_, SCATTER_REVERSE, x_affine_));
+    PetscCall(VecZeroEntries(U_));
+  }
   {
     Vec r;
     PetscCall(VecDuplicate(x_, &r));
@@ -123,18 +149,25 @@ PetscErrorCode FE2StaticRun::SetUp()
   PetscCall(SNESSetJacobian(snes_, K_, K_, Jacobian, this));
   /* the force scale of the problem, |f_ext| or, without a load, the material's own |f_int(0)|
      (an RVE's stress at rest): the absolute tolerance is 1e-10 of it, a floor under the relative
-     one (1e-8 of each increment's initial residual) that tiny increments and round-off reach */
+     one (1e-8 of each increment's initial residual) that tiny increments and round-off reach.
+     With prescribed displacements the load's residual is found at a small load factor and scaled
+     up: the whole boundary motion at once, the free nodes at rest, would strain the boundary
+     elements far beyond what any increment does (an RVE may fail there). */
   {
-    Vec r0, r1;
+    const bool      moved = model_.Spec().HasBoundaryGradient();
+    const PetscReal probe = moved ? 1e-3 / (PetscReal)spec_.load_steps : 1;
+    Vec             r0, r1;
     PetscCall(VecDuplicate(x_, &r0));
     PetscCall(VecDuplicate(x_, &r1));
-    model_.SetLoadFactor(0);
+    PetscCall(model_.SetLoadFactor(0));
     PetscCall(Residual(snes_, x_, r0, this));
-    model_.SetLoadFactor(1);
+    PetscCall(model_.SetLoadFactor(probe));
     PetscCall(Residual(snes_, x_, r1, this));
+    if (moved) PetscCall(model_.RevertMaterials()); /* the probe's trial states left behind */
     PetscCall(VecNorm(r0, NORM_2, &scale[0]));
     PetscCall(VecAXPY(r1, -1.0, r0));
     PetscCall(VecNorm(r1, NORM_2, &scale[1]));
+    scale[1] /= probe;
     PetscCall(VecDestroy(&r0));
     PetscCall(VecDestroy(&r1));
     PetscCheck(std::isfinite(scale[0]), comm_, PETSC_ERR_NOT_CONVERGED, "The material fails at rest (F = I)");
@@ -172,8 +205,16 @@ PetscErrorCode FE2StaticRun::SetUp()
                   "lambda in increments of 1/%" PetscInt_FMT " (at least %g); SNES %s, rtol = %g, atol = %g\n",
                   (double)load_.body_acceleration[0], (double)load_.body_acceleration[1], (double)model_.ReferenceDensity(), (double)scale[1], (double)scale[0],
                   spec_.load_steps, (double)spec_.min_increment, type, (double)rtol, (double)atol));
+    if (model_.Spec().HasBoundaryGradient()) {
+      const Tensor2 &H = model_.Spec().boundary_gradient;
+      PetscCall(PetscPrintf(comm_,
+                            "  and the clamped vertices at lambda H X, H = [%g %g; %g %g] (-coarse_boundary_gradient): |f_ext| is the residual of the "
+                            "whole load with the free nodes at rest\n",
+                            (double)H(0, 0), (double)H(0, 1), (double)H(1, 0), (double)H(1, 1)));
+    }
     if (rank == 0 && HasOutputDirectory())
-      PetscCall(tip_csv_.Open(PETSC_COMM_SELF, OutputPath("tip.csv"), {"load_factor", "tip_displacement_y", "snes_its", "tip_displacement_x"}));
+      PetscCall(tip_csv_.Open(PETSC_COMM_SELF, OutputPath("tip.csv"),
+                              {"load_factor", "tip_displacement_y", "snes_its", "tip_displacement_x", "mean_s11", "mean_s22", "mean_s12", "softening_cosine"}));
   }
   if (spec_.snapshot && HasOutputDirectory()) PetscCall(fields_.Open(model_, OutputDir(), "coarse"));
   PetscCall(monitor_.SetUp(model_, HasOutputDirectory() ? OutputDir() : std::string()));
@@ -237,9 +278,10 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
   PetscCall(PetscLogEventBegin(ev_increment_, 0, 0, 0, 0));
   PetscCall(PetscSNPrintf(where, sizeof where, "at load factor %.6g", (double)lambda));
   model_.SetEvaluationWhere(where);
-  model_.SetLoadFactor(lambda);
+  PetscCall(model_.SetLoadFactor(lambda));
   const PetscInt failures = model_.Counters().failures;
   PetscCall(VecCopy(x_conv_, x_));
+  if (x_affine_) PetscCall(VecAXPY(x_, lambda - lambda_, x_affine_)); /* the clamped vertices' motion, carried through */
   PetscCall(SNESSolve(snes_, NULL, x_));
   PetscCall(SNESGetConvergedReason(snes_, &reason));
   PetscCall(SNESGetIterationNumber(snes_, &its));
@@ -288,8 +330,13 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
     PetscCall(SNESGetFunction(snes_, &F, NULL, NULL));
     PetscCall(VecNorm(F, NORM_2, &residual_conv_));
     PetscCall(model_.CommitMaterials());
+    /* at the converged state, evaluated last: 1e-6 of |S| is well above the materials' accuracy
+       (an RVE relaxed to 1e-9) and well below a softening point's stress drop */
+    PetscCall(model_.SofteningSinceLast(1e-6, &softening_cosine_, &softening_element_));
+    PetscCall(model_.MeanStress(mean_stress_));
   } else {
     failed_solves_++;
+    failed_in_material_ = model_.Counters().failures > failures;
     PetscCall(model_.RevertMaterials());
   }
   PetscCall(PetscLogEventEnd(ev_increment_, 0, 0, 0, 0));
@@ -304,10 +351,22 @@ PetscErrorCode FE2StaticRun::Record(PetscReal lambda, PetscInt its)
   PetscCall(VecCopy(x_, x_conv_));
   lambda_ = lambda;
   PetscCall(model_.TipDisplacement(U_, &tip_, &tip_x_));
-  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its, tip_x_}));
+  if (tip_csv_.IsOpen()) PetscCall(tip_csv_.Row({lambda, tip_, (PetscReal)its, tip_x_, mean_stress_[0], mean_stress_[1], mean_stress_[2], softening_cosine_}));
   PetscCall(CheckOutputError(comm_, tip_csv_.Error())); /* rank 0 writes it */
   PetscCall(PetscPrintf(comm_, "  load factor %-10.6g (increment %.4g): %2" PetscInt_FMT " Newton iterations, tip displacement %.8g µm\n", (double)lambda,
                         (double)increment_, its, (double)tip_));
+  softening_min_ = PetscMin(softening_min_, softening_cosine_);
+  if (localisation_load_factor_ < 0 && softening_cosine_ < spec_.softening_cosine) {
+    localisation_load_factor_ = lambda;
+    localisation_element_     = softening_element_;
+    localisation_cosine_      = softening_cosine_;
+    localisation_criterion_   = "softening";
+    PetscCall(PetscPrintf(comm_,
+                          "  load factor %g: localisation: a material point of element %" PetscInt_FMT
+                          " softened (its stress fell along its strain increment: cos(dS, dE) = %.3g < %g)%s\n",
+                          (double)lambda, softening_element_, (double)softening_cosine_, (double)spec_.softening_cosine,
+                          spec_.stop_at_localisation ? "; stopping (-fe2_static_stop_at_localisation)" : ""));
+  }
   PetscCall(monitor_.Check(levels_++, lambda, U_)); /* level 0: the load factor 0 */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -349,6 +408,10 @@ PetscErrorCode FE2StaticRun::Solve()
   PetscInt        streak        = 0;
   while (lambda_ < 1) {
     PetscBool stop;
+    if (spec_.stop_at_localisation && localisation_load_factor_ >= 0) {
+      localised_ = true;
+      break;
+    }
     PetscCall(InterruptRequestedAll(comm_, &stop));
     if (stop) {
       interrupted_ = true;
@@ -373,6 +436,22 @@ PetscErrorCode FE2StaticRun::Solve()
     dl            = 0.5 * (target - lambda_);
     PetscCall(PetscPrintf(comm_, "  load factor %-10.6g failed (%s): back to %g, increment halved to %.4g\n", (double)target, why.c_str(), (double)lambda_,
                           (double)dl));
+    if (dl < spec_.min_increment && failed_in_material_ && localisation_load_factor_ < 0) {
+      /* a material point finds no equilibrium near its last one however small the step: a limit
+         point of its response (an RVE that gives way with no state near the last: the stress
+         branch it followed ends) -- localisation too, at the last converged level */
+      localisation_load_factor_ = lambda_;
+      localisation_element_     = model_.LastFailedElement();
+      localisation_criterion_   = "no_equilibrium";
+      PetscCall(PetscPrintf(comm_,
+                            "  load factor %g: localisation: a material point of element %" PetscInt_FMT
+                            " finds no equilibrium beyond it (its evaluation fails at every increment down to -fe2_static_min_increment)%s\n",
+                            (double)lambda_, localisation_element_, spec_.stop_at_localisation ? "; stopping (-fe2_static_stop_at_localisation)" : ""));
+      if (spec_.stop_at_localisation) {
+        localised_ = true;
+        break;
+      }
+    }
     if (dl < spec_.min_increment) {
       PetscCall(PetscTime(&wall_));
       wall_ -= t0_;
@@ -446,6 +525,13 @@ PetscErrorCode FE2StaticRun::AddSummary(JsonObject &js)
   js.Set("tip_displacement_x_final", tip_x_);
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("snapshots", fields_.Count());
+  js.Set("mean_stress_final", std::vector<PetscReal>{mean_stress_[0], mean_stress_[1], mean_stress_[2]});
+  js.Set("softening_cosine", spec_.softening_cosine);
+  js.Set("softening_min_cosine", softening_min_);
+  js.Set("localisation_load_factor", localisation_load_factor_);
+  js.Set("localisation_element", localisation_element_);
+  js.Set("localisation_cosine", localisation_cosine_);
+  js.Set("localisation_criterion", localisation_criterion_);
   if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -455,8 +541,22 @@ PetscErrorCode FE2StaticRun::WriteSummary()
   JsonObject       js;
   MaterialCounters rc;
   PetscFunctionBeginUser;
-  PetscCall(Summary(js, interrupted_ ? "interrupted" : "completed"));
+  PetscCall(Summary(js, interrupted_ ? "interrupted" : localised_ ? "localised" : "completed"));
   if (interrupted_) js.Set("reason", "interrupted (SIGINT/SIGTERM): load_factor_final is below 1");
+  else if (localised_) {
+    char why[256];
+    if (localisation_criterion_ == "softening")
+      PetscCall(PetscSNPrintf(why, sizeof why,
+                              "localisation (-fe2_static_stop_at_localisation): a material point of element %" PetscInt_FMT
+                              " softened at load factor %g (cos(dS, dE) = %.3g)",
+                              localisation_element_, (double)localisation_load_factor_, (double)localisation_cosine_));
+    else
+      PetscCall(PetscSNPrintf(why, sizeof why,
+                              "localisation (-fe2_static_stop_at_localisation): a material point of element %" PetscInt_FMT
+                              " finds no equilibrium beyond load factor %g",
+                              localisation_element_, (double)localisation_load_factor_));
+    js.Set("reason", why);
+  }
   PetscCall(model_.Pool().GlobalCounters(&rc));
   PetscCall(model_.Pool().DescribePoints(js, model_.NumMaterialPoints()));
   js.Set("rve_solves", rc.solves);
@@ -473,8 +573,11 @@ PetscErrorCode FE2StaticRun::WriteSummary()
                         "%s: load factor %g in %" PetscInt_FMT " increments (%" PetscInt_FMT " cut back), %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT
                         " function and %" PetscInt_FMT " Jacobian evaluations, %" PetscInt_FMT " RVE solves, %.3f s wall; final tip displacement %.8g µm\n"
                         "Outputs in %s: %s\n",
-                        interrupted_ ? "Interrupted" : "Done", (double)lambda_, increments_, cutbacks_, snes_its_, model_.Counters().residuals,
-                        model_.Counters().tangent_evals, rc.solves, (double)wall_, (double)tip_, OutputDir().c_str(), OutputFiles().c_str()));
+                        interrupted_ ? "Interrupted"
+                        : localised_ ? "Localised"
+                                     : "Done",
+                        (double)lambda_, increments_, cutbacks_, snes_its_, model_.Counters().residuals, model_.Counters().tangent_evals, rc.solves,
+                        (double)wall_, (double)tip_, OutputDir().c_str(), OutputFiles().c_str()));
   if (monitor_.Active()) PetscCall(PetscPrintf(comm_, "Stability monitor: %s\n", monitor_.Report().c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

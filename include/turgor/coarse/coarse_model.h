@@ -21,6 +21,7 @@
 #include <turgor/coarse/surface_membrane.h>
 #include <turgor/core/parameters.h>
 #include <turgor/material/material_pool.h>
+#include <turgor/material/second_order_work.h>
 #include <turgor/physics/load_spec.h>
 #include <petscdmplex.h>
 #include <petscksp.h>
@@ -59,6 +60,13 @@ struct CoarseSpec {
   CoarseQuadrature      quadrature       = CoarseQuadrature::SRI;
   bool                  acoustic_field   = true;  /* snapshots carry the acoustic-tensor field (material tangents at output) */
   bool                  metis            = false; /* -coarse_partitioner metis: the serial mesh distributed by METIS (a PETSCPARTITIONERSHELL) */
+  /* -coarse_boundary_gradient: the clamped vertices at u = lambda H X (-mode fe2_static's load factor
+     lambda; H = 0: clamped in place) */
+  Tensor2 boundary_gradient;
+
+  bool HasBoundaryGradient() const { return boundary_gradient.Norm() > 0; }
+  /* modes without a load factor refuse a boundary gradient, naming themselves */
+  PetscErrorCode RequireNoBoundaryGradient(MPI_Comm comm, const char *mode) const;
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr); /* params: where the physics parameters are recorded */
 };
@@ -126,6 +134,9 @@ public:
   /* The pool's global index of this rank's first point (the coarse model's points are this rank's
      cells' points in turn). */
   PetscInt FirstPoint() const { return first_point_; }
+  /* The lowest global element number with a failed material point in the last failed evaluation
+     (-1: none failed yet); the same on every rank. */
+  PetscInt LastFailedElement() const { return failed_element_; }
   /* Back to the material points' last committed states (a rejected load increment); the cache is
      dropped. */
   PetscErrorCode RevertMaterials();
@@ -137,9 +148,10 @@ public:
   }
   /* Failure reports say this instead of a time (a static solve: "at load factor 0.5"). */
   void SetEvaluationWhere(const std::string &where) { eval_where_ = where; }
-  /* f_ext = factor x the body force (load stepping; default 1). */
-  void      SetLoadFactor(PetscReal factor) { load_factor_ = factor; }
-  PetscReal LoadFactor() const { return load_factor_; }
+  /* f_ext = factor x the body force and the clamped vertices at factor x H X (load stepping;
+     default 1). */
+  PetscErrorCode SetLoadFactor(PetscReal factor);
+  PetscReal      LoadFactor() const { return load_factor_; }
   /* The global rows of the displacement dofs (ux, uy) and of the velocity dofs (vx, vy; there
      f_int - f_ext) of the owned, unclamped vertices, vertex by vertex in the same order. */
   PetscErrorCode CreateFreeIS(IS *displacement, IS *velocity) const;
@@ -178,6 +190,16 @@ public:
   /* The smallest CellAcoustic() over all elements and its element's global number (collective;
      PETSC_MAX_REAL and -1 where no element has one). */
   PetscErrorCode LowestAcoustic(PetscReal *det, PetscInt *element) const;
+  /* Hill's second-order work (material/second_order_work.h) of every material point from the
+     state of the previous call to this one, both the cached evaluation when called (a quasi-static
+     solve calls it at each converged load level): the lowest cosine of dS : dE over all points and
+     its element's global number (collective; 1 and -1 at the first call, which only records the
+     state). A cosine below zero is a point whose stress fell along its strain increment. Stress
+     increments below stress_floor x |S| are not judged (the materials' own accuracy). */
+  PetscErrorCode SofteningSinceLast(PetscReal stress_floor, PetscReal *cosine, PetscInt *element);
+  /* The mean Cauchy stress [s11, s22, s12] of the cached evaluation over the mesh, the material
+     points weighted by their quadrature weights (reference area); collective. */
+  PetscErrorCode MeanStress(PetscReal s[3]) const;
   PetscErrorCode CreateGlobalVector(Vec *U) const { return DMCreateGlobalVector(dm_, U); }
   /* U (global) from a function of the reference position: f(X, state) gives [ux, uy, vx, vy] of the
      node at X, or false when it has none; the clamped nodes are left out. The nodes are the
@@ -211,8 +233,11 @@ private:
   /* F and Fdot at the material points of this rank's cells, from the local state */
   PetscErrorCode DeformationAt(Vec Uloc, std::vector<Tensor2> &F, std::vector<Tensor2> &Fdot);
   /* true when the cached evaluation is of this local state (collective) */
-  PetscErrorCode        CacheHolds(Vec Uloc, bool tangents, bool *holds);
-  PetscErrorCode        FillNaN(Vec F);
+  PetscErrorCode CacheHolds(Vec Uloc, bool tangents, bool *holds);
+  PetscErrorCode FillNaN(Vec F);
+  /* the smallest finite per-cell value and its element's global number (collective; PETSC_MAX_REAL
+     and -1 where no cell has one; ties: the lowest number) */
+  PetscErrorCode        LowestOverCells(const std::vector<PetscReal> &per_cell, PetscReal *value, PetscInt *element) const;
   PetscErrorCode        ComputeRankFreeStateOrder(IS *order);
   IS                    rank_free_order_ = nullptr; /* RankFreeStateOrder's, made at the first call */
   std::vector<PetscInt> rank_free_ids_;             /* RankFreePointIds', likewise */
@@ -253,9 +278,10 @@ private:
   PetscReal             rho0_       = 0;
   PetscInt              n_elements_ = 0;
   std::vector<PetscInt> cell_gid_; /* global element number of each local cell */
-  PetscMPIInt           rank_      = 0;
-  PetscReal             eval_time_ = 0; /* time of the state being evaluated (for reports) */
-  std::string           eval_where_;    /* or where, when not a time */
+  PetscMPIInt           rank_           = 0;
+  PetscReal             eval_time_      = 0;  /* time of the state being evaluated (for reports) */
+  PetscInt              failed_element_ = -1; /* LastFailedElement() */
+  std::string           eval_where_;          /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;
@@ -270,6 +296,7 @@ private:
   std::vector<MaterialResponse> out_response_;
   std::vector<Tangents>         out_tangent_;
   std::vector<PetscReal>        cell_acoustic_;
+  std::vector<StrainStress>     softening_last_; /* SofteningSinceLast's previous state, per local point */
   CoarseCounters                counters_;
   PetscLogDouble                coarse_time_ = 0; /* CoarseAssemblyTime() */
   PetscLogEvent                 ev_residual_ = 0, ev_jacobian_ = 0, ev_tangent_at_ = 0;

@@ -10,7 +10,19 @@
    final state). Any -material, any -coarse_quadrature, any number of ranks. With
    -fe2_static_eigen_monitor N the lowest eigenvalues of K are computed every N converged load levels
    (analysis/stability_monitor.h): the first zero crossing along the load path is a loss of
-   stability (buckling), reported by its load factor. */
+   stability (buckling), reported by its load factor.
+
+   Prescribed displacements (-coarse_boundary_gradient H: the clamped vertices at lambda H X) are
+   load too: each increment starts from the last converged state moved by the increment's affine
+   field on the free nodes as well (a homogeneous deformation is then solved at once). At every
+   converged level each material point's second-order work since the last level is checked
+   (CoarseModel::SofteningSinceLast): the first level at which a point's stress falls along its
+   strain increment (cos(dS, dE) below -fe2_static_softening_cosine) is reported as localisation --
+   the point's material gave way (a periodic RVE that cracks across its period), and beyond it
+   first-order homogenisation no longer describes the tissue. A point whose evaluation fails at every
+   increment down to -fe2_static_min_increment has no equilibrium near its last one (a limit point
+   of its response: the RVE gives way with no nearby state to go to) and is reported so at the last
+   converged level. -fe2_static_stop_at_localisation ends the run at either with status localised. */
 #include <turgor/analysis/stability_monitor.h>
 #include <turgor/coarse/coarse_fields.h>
 #include <turgor/coarse/coarse_model.h>
@@ -25,6 +37,9 @@ struct StaticLoadSpec {
   PetscInt  load_steps    = 1;    /* initial increments of lambda: the first is 1/load_steps */
   PetscReal min_increment = 1e-4; /* the smallest increment of lambda tried before giving up */
   bool      snapshot      = true; /* coarse.h5/.xmf with the final (or last converged) state */
+  /* localisation: a point softened when cos(dS, dE) of its increment is below this */
+  PetscReal softening_cosine     = 0;
+  bool      stop_at_localisation = false; /* end the run (status localised) at the first */
 
   PetscErrorCode SetFromOptions(MPI_Comm comm);
 };
@@ -70,6 +85,7 @@ private:
   IS                 is_u_ = nullptr, is_v_ = nullptr;
   Vec                U_ = nullptr, Udot_ = nullptr, Ffull_ = nullptr; /* full states [u; v] */
   Vec                x_ = nullptr, x_conv_ = nullptr;                 /* displacements */
+  Vec                x_affine_ = nullptr;                             /* H X on the free nodes (-coarse_boundary_gradient; null without one) */
   bool               solving_ = false, interrupted_ = false;
   CsvWriter          tip_csv_;
   CoarseFieldsWriter fields_;
@@ -81,6 +97,16 @@ private:
   PetscInt       levels_ = 0, increments_ = 0, cutbacks_ = 0, snes_its_ = 0, ksp_its_ = 0, solves_ = 0, failed_solves_ = 0;
   PetscLogDouble t0_ = 0, wall_ = 0;
   std::string    last_failure_;
+  /* the last level's mean stress and lowest softening cosine (CoarseModel::SofteningSinceLast), the
+     lowest seen, and where localisation was first found (load factor -1: nowhere) */
+  PetscReal mean_stress_[3] = {0, 0, 0}, softening_cosine_ = 1, softening_min_ = 1;
+  PetscReal localisation_load_factor_ = -1, localisation_cosine_ = 1;
+  PetscInt  softening_element_ = -1, localisation_element_ = -1;
+  bool      localised_          = false; /* stopped there (-fe2_static_stop_at_localisation) */
+  bool      failed_in_material_ = false; /* the last failed increment had a material point fail */
+  /* "softening" (a point's stress fell along its strain increment) or "no_equilibrium" (a point's
+     evaluation failed at every increment down to the smallest); "" before either */
+  std::string localisation_criterion_;
 };
 
 } // namespace turgor
