@@ -73,3 +73,21 @@ turgor_add_test(fe2_static_no_equilibrium_status COMMAND ${CHECK} equals fe2_sta
   REQUIRES fe2_static_no_equilibrium)
 turgor_add_test(fe2_static_no_equilibrium_where COMMAND ${CHECK} between fe2_static_no_equilibrium localisation_load_factor 0.92 0.93
   LABELS fe2 static rve long REQUIRES fe2_static_no_equilibrium)
+# A heterogeneous field: a 4 x 1 bar of the same tissue held at its left and right sides, top and
+# bottom free (its turgor prestress released first), stretched to 3 % in 120 increments: a material
+# point of element 3, next to the moving grip, softens first, at load factor 0.291667 (0.875 %), with
+# the bar's mean stress still rising (1.60 N/m). On 1 and 2 ranks: the same element and level, the
+# same stresses (long: 23 s of RVE solves).
+set(GRIPS -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -mode fe2_static -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 4,1
+  -coarse_dm_plex_box_upper 400,100 -coarse_dirichlet_values 2,4 -coarse_boundary_gradient 0.03,0,0,0 -body_force 0,0 -fe2_static_load_steps 120
+  -fe2_static_stop_at_localisation -output_overwrite)
+foreach(np 1 2)
+  turgor_add_test(fe2_static_grips_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${GRIPS} -output_dir fe2_static_grips_np${np}
+    LABELS fe2 static rve mpi long SETUP fe2_static_grips_np${np})
+  turgor_add_test(fe2_static_grips_np${np}_element COMMAND ${CHECK} equals fe2_static_grips_np${np} localisation_element 3 LABELS fe2 static rve mpi long
+    REQUIRES fe2_static_grips_np${np})
+  turgor_add_test(fe2_static_grips_np${np}_level COMMAND ${CHECK} between fe2_static_grips_np${np} localisation_load_factor 0.2916 0.2917
+    LABELS fe2 static rve mpi long REQUIRES fe2_static_grips_np${np})
+endforeach()
+turgor_add_test(fe2_static_grips_ranks_agree COMMAND ${CHECK} csvrel fe2_static_grips_np1 fe2_static_grips_np2 tip.csv 1e-8 LABELS fe2 static rve mpi long
+  REQUIRES "fe2_static_grips_np1;fe2_static_grips_np2")

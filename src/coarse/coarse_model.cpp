@@ -476,6 +476,7 @@ PetscErrorCode CoarseModel::PrecomputeElements()
   std::string msg;
   PetscCall(FirstMessage(comm_, bad, &msg));
   PetscCheck(msg.empty(), comm_, PETSC_ERR_ARG_WRONG, "Coarse mesh: %s", msg.c_str());
+  PetscCall(ComputeRankFreeCellIds()); /* reports name elements by them from here on */
   /* the tip: the middle of the right side of the mesh's bounding box (the fine run's tip particle),
      on the mesh edge nearest to it. The displacement there is the element's interpolation along
      that edge (linear for Q1, quadratic through the edge's middle node for Q2), so that an odd
@@ -708,7 +709,7 @@ PetscErrorCode CoarseModel::DescribePoint(PetscInt m, const std::vector<Tensor2>
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(buf, sizeof buf,
                           "element %" PetscInt_FMT " (%s), F = [%.6g %.6g; %.6g %.6g] (det %.4g), Fdot = [%.4g %.4g; %.4g %.4g] /µs, residual %.3g: %s",
-                          cell_gid_[m / npts_], ref_->where[m % npts_].c_str(), (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1),
+                          cell_id_[m / npts_], ref_->where[m % npts_].c_str(), (double)F(0, 0), (double)F(0, 1), (double)F(1, 0), (double)F(1, 1),
                           (double)F.Det(), (double)Fd(0, 0), (double)Fd(0, 1), (double)Fd(1, 0), (double)Fd(1, 1), (double)r[m].residual, r[m].reason.c_str()));
   *text = buf;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -850,7 +851,7 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
       if (!nfailed) PetscCall(DescribePoint((PetscInt)k, F_, Fdot_, response_, &first));
       nfailed++;
       local_ok = 0;
-      lowest   = PetscMin(lowest, cell_gid_[k / npts_]);
+      lowest   = PetscMin(lowest, cell_id_[k / npts_]);
     }
   PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
   if (why) *why = local_ok ? (global_ok ? "" : "on another rank") : first;
@@ -1257,8 +1258,8 @@ PetscErrorCode CoarseModel::LowestOverCells(const std::vector<PetscReal> &per_ce
   } mine = {PETSC_MAX_REAL, -1}, all;
   PetscFunctionBeginUser;
   for (size_t k = 0; k < per_cell.size(); k++)
-    if (std::isfinite(per_cell[k]) && (per_cell[k] < mine.v || (per_cell[k] == mine.v && (int)cell_gid_[k] < mine.gid)))
-      mine = {(double)per_cell[k], (int)cell_gid_[k]};
+    if (std::isfinite(per_cell[k]) && (per_cell[k] < mine.v || (per_cell[k] == mine.v && (int)cell_id_[k] < mine.gid)))
+      mine = {(double)per_cell[k], (int)cell_id_[k]};
   PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm_));
   *value   = all.v;
   *element = all.gid;

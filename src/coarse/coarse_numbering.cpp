@@ -99,22 +99,44 @@ PetscErrorCode CoarseModel::ComputeRankFreeStateOrder(IS *order)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CoarseModel::RankFreePointIds(std::vector<PetscInt> &global)
+PetscErrorCode CoarseModel::ComputeRankFreeCellIds()
 {
   PetscReal                             extent;
-  std::vector<std::array<PetscReal, 3>> keys((size_t)(c_end_ - c_start_));
-  std::vector<PetscInt>                 cells;
+  const PetscInt                        nc = c_end_ - c_start_;
+  std::vector<std::array<PetscReal, 3>> keys((size_t)nc);
+  std::vector<PetscInt>                 all;
+  PetscInt                              offset = 0;
+  PetscFunctionBeginUser;
+  PetscCall(Extent(comm_, Xref_, &extent));
+  for (PetscInt k = 0; k < nc; k++) {
+    const PetscReal *X = &Xref_[8 * k];
+    keys[k]            = {0.25 * (X[1] + X[3] + X[5] + X[7]), 0.25 * (X[0] + X[2] + X[4] + X[6]), 0};
+  }
+  PetscCall(GeometricOrder(comm_, keys, 1e-9 * extent, "coarse elements", all));
+  PetscCallMPI(MPI_Exscan(&nc, &offset, 1, MPIU_INT, MPI_SUM, comm_));
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(comm_, &rank));
+  if (rank == 0) offset = 0; /* MPI_Exscan leaves rank 0's undefined */
+  cell_id_.assign(all.begin() + offset, all.begin() + offset + nc);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CoarseModel::RankFreePointIds(std::vector<PetscInt> &global)
+{
+  PetscMPIInt size;
   PetscFunctionBeginUser;
   if (!rank_free_ids_.empty()) { /* once: the mesh does not change */
     global = rank_free_ids_;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(Extent(comm_, Xref_, &extent));
-  for (size_t k = 0; k < keys.size(); k++) {
-    const PetscReal *X = &Xref_[8 * k];
-    keys[k]            = {0.25 * (X[1] + X[3] + X[5] + X[7]), 0.25 * (X[0] + X[2] + X[4] + X[6]), 0};
-  }
-  PetscCall(GeometricOrder(comm_, keys, 1e-9 * extent, "coarse elements", cells));
+  /* every rank's cells' numbers, in rank order (the pool's order of the points) */
+  PetscCallMPI(MPI_Comm_size(comm_, &size));
+  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
+  const PetscMPIInt        n = (PetscMPIInt)cell_id_.size();
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  std::vector<PetscInt> cells(displs[size]);
+  PetscCallMPI(MPI_Allgatherv(cell_id_.data(), n, MPIU_INT, cells.data(), counts.data(), displs.data(), MPIU_INT, comm_));
   /* the points in the pool's global order: the ranks' cells in turn, each cell's points in turn */
   global.resize(cells.size() * npts_);
   for (size_t c = 0; c < cells.size(); c++)

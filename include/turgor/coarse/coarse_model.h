@@ -239,6 +239,7 @@ private:
      and -1 where no cell has one; ties: the lowest number) */
   PetscErrorCode        LowestOverCells(const std::vector<PetscReal> &per_cell, PetscReal *value, PetscInt *element) const;
   PetscErrorCode        ComputeRankFreeStateOrder(IS *order);
+  PetscErrorCode        ComputeRankFreeCellIds(); /* cell_id_ */
   IS                    rank_free_order_ = nullptr; /* RankFreeStateOrder's, made at the first call */
   std::vector<PetscInt> rank_free_ids_;             /* RankFreePointIds', likewise */
 
@@ -277,7 +278,10 @@ private:
   } tip_;
   PetscReal             rho0_       = 0;
   PetscInt              n_elements_ = 0;
-  std::vector<PetscInt> cell_gid_; /* global element number of each local cell */
+  std::vector<PetscInt> cell_gid_; /* global element number of each local cell (PETSc's: it depends on the partition) */
+  /* each local cell's element number in the order of the elements' centres (row by row: y, then x;
+     a box's serial numbering), the same on any number of ranks: the number reports give */
+  std::vector<PetscInt> cell_id_;
   PetscMPIInt           rank_           = 0;
   PetscReal             eval_time_      = 0;  /* time of the state being evaluated (for reports) */
   PetscInt              failed_element_ = -1; /* LastFailedElement() */
