@@ -35,7 +35,9 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
   PetscInt          element    = (PetscInt)this->element;
   char              label[64], rule[64], partitioner[64];
   PetscInt          values[8], n = 8;
-  PetscBool         set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE, acoustic = acoustic_field ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool         set, lumped = lumped_mass ? PETSC_TRUE : PETSC_FALSE, acoustic = acoustic_field ? PETSC_TRUE : PETSC_FALSE, hset;
+  PetscReal         h[4] = {boundary_gradient(0, 0), boundary_gradient(0, 1), boundary_gradient(1, 0), boundary_gradient(1, 1)};
+  PetscInt          nh   = 4;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(label, dirichlet_label.c_str(), sizeof label));
   PetscCall(PetscStrncpy(rule, quadrature == CoarseQuadrature::SRI ? "sri" : "full", sizeof rule));
@@ -72,25 +74,12 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                              "material points (loss of ellipticity where <= 0); needs the material tangents at every snapshot (3 more material "
                              "evaluations per point, counted as output solves)",
                              "CoarseSpec", acoustic, &acoustic, NULL));
-  {
-    PetscReal h[4] = {boundary_gradient(0, 0), boundary_gradient(0, 1), boundary_gradient(1, 0), boundary_gradient(1, 1)};
-    PetscInt  nh   = 4;
-    PetscBool hset;
-    PetscCall(PetscOptionsRealArray("-boundary_gradient",
-                                    "H11,H12,H21,H22: the clamped vertices are moved to u = lambda H X, X their reference position and lambda the load "
-                                    "factor of -mode fe2_static (default 0: clamped in place); e.g. the left and right sides clamped "
-                                    "(-coarse_dirichlet_values 2,4) with H = e,0,0,0 stretch the block by e along x, every side clamped "
-                                    "(1,2,3,4) deforms it homogeneously",
-                                    "CoarseSpec", h, &nh, &hset));
-    PetscCheck(!hset || nh == 4, comm, PETSC_ERR_ARG_SIZ, "Option -coarse_boundary_gradient: %" PetscInt_FMT " values given, 4 needed (H11,H12,H21,H22)", nh);
-    for (int k = 0; k < 4; k++)
-      PetscCheck(std::isfinite(h[k]) && std::fabs(h[k]) < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "Option -coarse_boundary_gradient: entry %d = %g; each must be finite and of magnitude below 0.5 (a displacement gradient)", k + 1,
-                 (double)h[k]);
-    boundary_gradient = Tensor2{
-      {{h[0], h[1]}, {h[2], h[3]}}
-    };
-  }
+  PetscCall(PetscOptionsRealArray("-boundary_gradient",
+                                  "H11,H12,H21,H22: the clamped vertices are moved to u = lambda H X, X their reference position and lambda the load "
+                                  "factor of -mode fe2_static (default 0: clamped in place); e.g. the left and right sides clamped "
+                                  "(-coarse_dirichlet_values 2,4) with H = e,0,0,0 stretch the block by e along x, every side clamped "
+                                  "(1,2,3,4) deforms it homogeneously",
+                                  "CoarseSpec", h, &nh, &hset));
   PetscCall(PetscOptionsString("-partitioner",
                                "How the coarse mesh is distributed over the ranks: petsc (DMSetFromOptions with PETSc's partitioner, "
                                "-coarse_petscpartitioner_type) or metis (the serial mesh's cell dual graph partitioned by METIS_PartGraphKway and "
@@ -98,6 +87,15 @@ PetscErrorCode CoarseSpec::SetFromOptions(MPI_Comm comm, ParameterList *params)
                                "and -coarse_dm_refine refines before the distribution)",
                                "CoarseSpec", partitioner, partitioner, sizeof partitioner, NULL));
   PetscOptionsEnd();
+  /* (checked after PetscOptionsEnd: a return from inside the block leaks its options object) */
+  PetscCheck(!hset || nh == 4, comm, PETSC_ERR_ARG_SIZ, "Option -coarse_boundary_gradient: %" PetscInt_FMT " values given, 4 needed (H11,H12,H21,H22)", nh);
+  for (int k = 0; k < 4; k++)
+    PetscCheck(std::isfinite(h[k]) && std::fabs(h[k]) < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "Option -coarse_boundary_gradient: entry %d = %g; each must be finite and of magnitude below 0.5 (a displacement gradient)", k + 1,
+               (double)h[k]);
+  boundary_gradient = Tensor2{
+    {{h[0], h[1]}, {h[2], h[3]}}
+  };
   this->element = (CoarseElement)element;
   PetscCall(CheckNotEmpty(comm, "-coarse_partitioner", "petsc or metis"));
   PetscCheck(!std::strcmp(partitioner, "petsc") || !std::strcmp(partitioner, "metis"), comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
