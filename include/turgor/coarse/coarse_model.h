@@ -239,7 +239,7 @@ private:
      and -1 where no cell has one; ties: the lowest number) */
   PetscErrorCode        LowestOverCells(const std::vector<PetscReal> &per_cell, PetscReal *value, PetscInt *element) const;
   PetscErrorCode        ComputeRankFreeStateOrder(IS *order);
-  PetscErrorCode        ComputeRankFreeCellIds(); /* cell_id_ */
+  PetscErrorCode        ComputeRankFreeCellIds();   /* cell_id_ */
   IS                    rank_free_order_ = nullptr; /* RankFreeStateOrder's, made at the first call */
   std::vector<PetscInt> rank_free_ids_;             /* RankFreePointIds', likewise */
 
