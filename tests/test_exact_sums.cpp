@@ -4,7 +4,10 @@ static const char help[] = "Sums whose bits do not depend on their order or the 
                            "    agrees, and the grain of a largest share just below and at a power of two;\n"
                            "  ExactSumOverRanks: terms spread over the ranks (one rank empty) in shuffled orders, against the same\n"
                            "    terms on one rank and a sum in long double, within its bound 2^(e+3k-105) and half an ulp.\n"
+                           "  AllFinite (the branch-free finiteness scan): a NaN, +inf or -inf at every place of arrays of 0 to 40\n"
+                           "    values (the eight sums and the remainder) is found, and finite values of any size pass.\n"
                            "Run on 1, 2 and 3 ranks: every rank count must print the same sum, bit for bit.\n";
+#include <turgor/core/finite_scan.h>
 #include <turgor/parallel/exact_sum.h>
 #include <turgor/physics/force_grain.h>
 #include <algorithm>
@@ -116,10 +119,32 @@ static PetscErrorCode CheckExactSum(MPI_Comm comm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode CheckAllFinite()
+{
+  const PetscReal bad[3] = {NAN, INFINITY, -INFINITY};
+  PetscFunctionBeginUser;
+  for (PetscInt n = 0; n <= 40; n++) {
+    std::vector<PetscReal> u((size_t)n);
+    for (PetscInt k = 0; k < n; k++) u[k] = (k % 3 ? -1 : 1) * std::ldexp(1.0 + 0.1 * k, (int)(k * 97 % 2000) - 1000); /* 2^-1000 .. 2^999 */
+    PetscCheck(AllFinite(u.data(), n), PETSC_COMM_SELF, PETSC_ERR_PLIB, "AllFinite: %" PetscInt_FMT " finite values were refused", n);
+    for (PetscInt k = 0; k < n; k++)
+      for (PetscReal b : bad) {
+        const PetscReal keep = u[k];
+        u[k]                 = b;
+        PetscCheck(!AllFinite(u.data(), n), PETSC_COMM_SELF, PETSC_ERR_PLIB, "AllFinite: %g at place %" PetscInt_FMT " of %" PetscInt_FMT " not found",
+                   (double)b, k, n);
+        u[k] = keep;
+      }
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "AllFinite: every non-finite value found in arrays of 0 to 40 values\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(CheckGrain());
+  PetscCall(CheckAllFinite());
   PetscCall(CheckExactSum(PETSC_COMM_WORLD));
   PetscCall(PetscFinalize());
   return 0;

@@ -1,4 +1,5 @@
 #include <turgor/core/errors.h>
+#include <turgor/core/finite_scan.h>
 #include <turgor/fine/fine_equations.h>
 #include <turgor/parallel/rank_reductions.h>
 #include <turgor/ts/low_storage_rk.h>
@@ -287,9 +288,8 @@ PetscErrorCode FineEquations::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, v
     PetscCall(eq->Accelerations(xc, vc, a, eq->acceleration_room_));
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, a);
     if (eq->predict_) std::copy(a, a + 2 * eq->n_owned_, eq->a_last_.begin());
-    PetscReal zero = 0; /* a branch-free scan first (0 x a value is NaN for an infinite or NaN one) */
-    for (PetscInt k = 0; k < 2 * eq->n_owned_; k++) zero += 0 * a[k];
-    for (PetscInt k = 0; k < 2 * eq->n_owned_ && !(zero == 0); k++) {
+    const bool finite = AllFinite(a, 2 * eq->n_owned_); /* a branch-free scan first */
+    for (PetscInt k = 0; k < 2 * eq->n_owned_ && !finite; k++) {
       /* before any step the step cannot be the cause: the scene itself leaves double precision */
       PetscCheck(std::isfinite(a[k]) || eq->rhs_evals_ > 0, PETSC_COMM_SELF, PETSC_ERR_FP,
                  "Non-finite acceleration of particle %" PetscInt_FMT " at (%g, %g) µm in the starting state (t = %g µs, before any step): the scene's "
@@ -313,15 +313,13 @@ PetscErrorCode FineEquations::CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *
   return TURGOR_GUARDED({
     const PetscScalar *u;
     PetscInt           n;
-    PetscReal          zero = 0;
     PetscFunctionBeginUser;
-    /* a scan without branches (0 x a value is NaN for an infinite or NaN one, and a NaN stays) and
-       one flag over the ranks: VecNorm's logging costs more than the scan on a small tissue */
+    /* a scan without branches (core/finite_scan.h) and one flag over the ranks: VecNorm's logging
+       costs more than the scan on a small tissue */
     PetscCall(VecGetLocalSize(U, &n));
     PetscCall(VecGetArrayRead(U, &u));
-    for (PetscInt k = 0; k < n; k++) zero += 0 * u[k];
+    PetscMPIInt finite = AllFinite(u, n);
     PetscCall(VecRestoreArrayRead(U, &u));
-    PetscMPIInt finite = zero == 0;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_LAND, PetscObjectComm((PetscObject)U)));
     *accept = finite ? PETSC_TRUE : PETSC_FALSE;
     PetscFunctionReturn(PETSC_SUCCESS);
