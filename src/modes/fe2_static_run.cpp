@@ -526,7 +526,7 @@ PetscErrorCode FE2StaticRun::AddSummary(JsonObject &js)
   js.Set("wall_time_s", (PetscReal)wall_);
   js.Set("snapshots", fields_.Count());
   js.Set("mean_stress_final", std::vector<PetscReal>{mean_stress_[0], mean_stress_[1], mean_stress_[2]});
-  js.Set("softening_cosine", spec_.softening_cosine);
+  js.Set("softening_cosine_threshold", spec_.softening_cosine);
   js.Set("softening_min_cosine", softening_min_);
   js.Set("localisation_load_factor", localisation_load_factor_);
   js.Set("localisation_element", localisation_element_);
