@@ -468,6 +468,8 @@ PetscErrorCode FE2StaticRun::Solve()
               (double)lambda_, (double)tip_, (double)target, why.c_str(), (double)spec_.min_increment);
     }
   }
+  /* found at the last level (load factor 1): the run ends there either way, localised */
+  if (spec_.stop_at_localisation && localisation_load_factor_ >= 0 && !interrupted_) localised_ = true;
   PetscCall(PetscTime(&wall_));
   wall_ -= t0_;
   if (spec_.snapshot) {
