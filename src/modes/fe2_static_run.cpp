@@ -10,7 +10,9 @@ PetscErrorCode StaticLoadSpec::SetFromOptions(MPI_Comm comm)
   PetscBool snap = snapshot ? PETSC_TRUE : PETSC_FALSE, stop = stop_at_localisation ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "fe2_static_", "Static FE^2 solve with load stepping (-mode fe2_static); its SNES: -fe2_static_snes_*, -fe2_static_ksp_*", "turgor");
-  PetscCall(PetscOptionsInt("-load_steps", "Initial number of load increments: the body force is applied in increments of the load factor of 1/load_steps",
+  PetscCall(PetscOptionsInt("-load_steps",
+                            "Initial number of load increments: the loads (the body force, -coarse_boundary_gradient) are applied in increments of the load "
+                            "factor of 1/load_steps",
                             "StaticLoadSpec", load_steps, &load_steps, NULL));
   PetscCall(PetscOptionsReal("-min_increment",
                              "Smallest increment of the load factor: a failed increment is halved and retried, and the run fails when it would fall below "
@@ -23,7 +25,9 @@ PetscErrorCode StaticLoadSpec::SetFromOptions(MPI_Comm comm)
                              "the second Piola-Kirchhoff stress and the Green-Lagrange strain since the last level is below this (Hill's second-order "
                              "work dS:dE < 0 at 0), in [-1, 0]",
                              "StaticLoadSpec", softening_cosine, &softening_cosine, NULL));
-  PetscCall(PetscOptionsBool("-stop_at_localisation", "End the run (status localised) at the first converged load level at which a material point softened",
+  PetscCall(PetscOptionsBool("-stop_at_localisation",
+                             "End the run (status localised) at the first converged load level at which a material point softened, or beyond which one "
+                             "finds no equilibrium (its evaluation fails down to -fe2_static_min_increment)",
                              "StaticLoadSpec", stop, &stop, NULL));
   PetscOptionsEnd();
   PetscCheck(softening_cosine >= -1 && softening_cosine <= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_static_softening_cosine = %g: must be in [-1, 0]",
