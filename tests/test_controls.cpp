@@ -5,12 +5,15 @@ static const char help[] = "Load controls of the fine run against closed forms, 
                            "   a delayed group starts at its delay; a group with a duration stops after it and holds;\n"
                            "3. a force-controlled node with no other force moves as F t^2 / (2 m), and groups.csv reports F;\n"
                            "4. the reaction of a node pulling a spring chain equals the last spring's tension k (l - l0);\n"
-                           "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy, _mz and one row per sample.\n";
+                           "5. groups.csv has the columns time, <name>_ux, _uy, _fx, _fy, _mz and one row per sample;\n"
+                           "6. TS verlet holds the controlled components in its own state (TSVerletSetConstraints): the state's\n"
+                           "   velocities are the imposed ones exactly at the end.\n";
 #include "test_util.h"
 #include "fine_run_util.h"
 #include <string>
 #include <turgor/physics/body_force.h>
 #include <turgor/physics/wall_springs.h>
+#include <turgor/ts/velocity_verlet.h>
 #include <fstream>
 #include <sstream>
 
@@ -18,6 +21,7 @@ using namespace turgor;
 
 struct Result {
   std::vector<PetscReal>              x;      /* final state positions [2n] */
+  std::vector<PetscReal>              v;      /* final state velocities [2n] (the integrator's, as it holds them) */
   std::vector<std::string>            header; /* groups.csv */
   std::vector<std::vector<PetscReal>> rows;
 };
@@ -67,6 +71,7 @@ static PetscErrorCode Run(const Tissue &tissue, std::vector<std::unique_ptr<Forc
   const PetscInt     n = tissue.particles.n;
   PetscCall(VecGetArrayRead(run.GetState(), &u));
   r->x.assign(u, u + 2 * n);
+  r->v.assign(u + 2 * n, u + 4 * n);
   PetscCall(VecRestoreArrayRead(run.GetState(), &u));
   r->header.clear();
   r->rows.clear();
@@ -96,7 +101,8 @@ int main(int argc, char **argv)
   for (int i = 0; i < 3; i++) free3.AddParticle(10.0 * i, 1.0 * i, m, KIND_WALL);
   free3.Finalize();
 
-  for (TSType type : {TSRK, TSBASICSYMPLECTIC}) {
+  for (TSType type : {TSRK, TSBASICSYMPLECTIC, TSVERLET}) {
+    const bool      held = std::string(type) == TSVERLET; /* the integrator's state holds the controls */
     const PetscReal T = 7.0, dt = 0.01;
     Result          r;
     { /* 1. constant velocity on particles 0, 2; particle 1: vx imposed, y free under gravity */
@@ -114,6 +120,9 @@ int main(int argc, char **argv)
       }
       TG_CHECK_CLOSE(r.x[2], free3.X[2] + 0.5 * T, 1e-12, 1, "controlled x of the half-free particle");
       TG_CHECK_CLOSE(r.x[3], free3.X[3] - 0.5 * g * T * T, 1e-9, 1, "free y of the half-free particle (free fall)");
+      TG_CHECK(!held || (r.v[0] == 0.25 && r.v[1] == -0.125 && r.v[4] == 0.25 && r.v[5] == -0.125 && r.v[2] == 0.5),
+               "TS verlet's state does not hold the imposed velocities: (%g, %g), (%g, %g), %g", (double)r.v[0], (double)r.v[1], (double)r.v[4], (double)r.v[5],
+               (double)r.v[2]);
       TG_CHECK_CLOSE(r.rows.back()[1], 0.25 * T, 1e-13, 1, "groups.csv a_ux");
       TG_CHECK_CLOSE(r.rows.back()[7], -0.5 * g * T * T, 1e-9, 1, "groups.csv b_uy (free)");
       /* the gravity the controlled components resist: reaction = -(m g) per node, in y only for a */
@@ -135,6 +144,7 @@ int main(int argc, char **argv)
       TG_CHECK_CLOSE(r.rows.back()[1], ramp, 1e-13, 1, "ramp displacement (groups.csv)");
       TG_CHECK_CLOSE(r.x[0] - free3.X[0], ramp, std::string(type) == TSRK ? 1e-7 : 1e-12, 1, "ramp displacement (state)");
       TG_CHECK_CLOSE(r.rows[4][1], 0.4 * 1.0 / (2 * 2.5), 1e-13, 1, "ramp displacement at t = 1 < T (v t^2 / 2T)");
+      TG_CHECK(!held || r.v[0] == 0.4, "TS verlet's state: the ramp's velocity %g, not 0.4", (double)r.v[0]);
       TG_CHECK_CLOSE(r.rows[7][7], 0.3 * 1.75, 1e-13, 1, "cyclic displacement after a half period");
       TG_CHECK(std::fabs(r.rows[14][7]) < 1e-13 && std::fabs(r.rows.back()[7]) < 1e-13, "cyclic: not back at the start after full periods");
       TG_CHECK(std::fabs(r.x[5] - free3.X[5]) < (std::string(type) == TSRK ? 1e-7 : 1e-12), "cyclic (state): %g", (double)(r.x[5] - free3.X[5]));

@@ -51,6 +51,9 @@ PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields,
   PetscCheck(!predict_velocity || kdk, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_INCOMP,
              "Option -fine_predict_velocity: only -ts_type verlet predicts the velocity its forces see (this run's integrator is another)");
   predict_ = predict_velocity;
+  held_    = false;
+  kdk_     = kdk;
+  model_->SetCallerKnowsAcceptedState(kdk);
   PetscBool lsrk;
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSLSRK, &lsrk));
   if (lsrk && halo_) { /* the rates carry room for the halo's forces after their accelerations (Accelerations) */
@@ -69,7 +72,11 @@ PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields,
   }
   if (kdk) {
     drift_fraction_ = 1.0; /* one drift of h per step */
-    if (halo_) {           /* its accelerations carry room for the halo's forces (Accelerations) */
+    if (controls_->Active()) {
+      PetscCall(TSVerletSetConstraints(ts, ImposeControls, this));
+      held_ = true;
+    }
+    if (halo_) { /* its accelerations carry room for the halo's forces (Accelerations) */
       PetscCall(TSVerletSetAccelerationRoom(ts, 2 * (n_all_ - n_owned_)));
       acceleration_room_ = true;
       if (v_stale_.size() == (size_t)(2 * n_all_)) std::vector<PetscReal>().swap(vw_); /* the set-up's copy: the force evaluations gather into v_stale_ */
@@ -119,6 +126,46 @@ PetscErrorCode FineEquations::LocalState(PetscReal t, const PetscScalar *x, cons
   controls_->Impose(t, x_local_, v_local_);
   if (halo_) PetscCall(halo_->Check(x_local_));
   *xc = x_local_, *vc = v_local_;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::IntegratorState(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc)
+{
+  PetscFunctionBeginUser;
+  if (!held_ || halo_) PetscCall(LocalState(t, x, v, xc, vc));
+  else {
+    x_local_ = const_cast<PetscReal *>(x), v_local_ = const_cast<PetscReal *>(v);
+    *xc = x, *vc = v;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FineEquations::AcceptStep(PetscReal t, const PetscReal *x, const PetscReal *v)
+{
+  PetscFunctionBeginUser;
+  if (!kdk_) { /* the model compares the positions with its last evaluation's */
+    PetscCall(model_->AcceptStep(x, v, t));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  Vec       A1;
+  PetscBool have;
+  PetscCall(TSVerletGetLastAcceleration(ts_, &A1, &have)); /* the step ended with an evaluation at its positions */
+  const bool here = have && model_->EvaluationStamp() == step_end_stamp_;
+  PetscCall(model_->AcceptStep(x, v, t, &here));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* TS verlet's constraints: the controlled components of the owned particles at t, in the state */
+PetscErrorCode FineEquations::ImposeControls(TS ts, PetscReal t, Vec X, Vec V, void *ctx)
+{
+  FineEquations *eq = (FineEquations *)ctx;
+  PetscScalar   *x, *v;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(X, &x));
+  PetscCall(VecGetArray(V, &v));
+  eq->controls_->Impose(t, x, v, eq->n_owned_);
+  PetscCall(VecRestoreArray(V, &v));
+  PetscCall(VecRestoreArray(X, &x));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -284,8 +331,10 @@ PetscErrorCode FineEquations::RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, v
     PetscCall(VecGetArray(Vdot, &a));
     eq->model_->SetTime(t);
     const PetscReal *xc, *vc;
-    PetscCall(eq->LocalState(t, x, eq->v_stale_.data(), &xc, &vc));
+    if (eq->held_) eq->controls_->Impose(t, nullptr, eq->v_stale_.data(), eq->n_owned_); /* the drift's velocities: the controlled ones in place */
+    PetscCall(eq->IntegratorState(t, x, eq->v_stale_.data(), &xc, &vc));
     PetscCall(eq->Accelerations(xc, vc, a, eq->acceleration_room_));
+    eq->step_end_stamp_ = eq->model_->EvaluationStamp();
     if (eq->controls_->Active()) eq->controls_->AdjustAccelerations(t, a);
     if (eq->predict_) std::copy(a, a + 2 * eq->n_owned_, eq->a_last_.begin());
     const bool finite = AllFinite(a, 2 * eq->n_owned_); /* a branch-free scan first */

@@ -431,8 +431,8 @@ PetscErrorCode FineRun::AfterStep(PetscReal t, Vec U)
   PetscFunctionBeginUser;
   if (!model_.HasInternalState() && !records_.Active() && !spec_.energy) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(equations_.LocalState(t, u, &x, &v));
-  if (model_.HasInternalState()) PetscCall(model_.AcceptStep(x, v, t));
+  PetscCall(equations_.IntegratorState(t, u, &x, &v));
+  if (model_.HasInternalState()) PetscCall(equations_.AcceptStep(t, x, v));
   PetscCall(records_.AfterStep(t, x, v, t_final_));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -151,19 +151,19 @@ PetscErrorCode ForceModel::ComputeForces(const PetscReal *x, const PetscReal *v,
   PetscCheck(P_, PETSC_COMM_SELF, PETSC_ERR_ORDER, "ForceModel::SetUp() must be called first");
   PetscCall(PetscLogEventBegin(ev_forces_, 0, 0, 0, 0));
   evaluations_++;
+  stamp_++;
   PetscCall(PetscLogEventBegin(ev_neighbours_, 0, 0, 0, 0));
   PetscCall(nb_.Update(*P_, x, images_));
   PetscCall(PetscLogEventEnd(ev_neighbours_, 0, 0, 0, 0));
   for (PetscInt k = 0; k < 2 * P_->n; k++) f[k] = 0;
   if (virial)
     for (int k = 0; k < 4; k++) virial[k] = 0;
-  if (has_state_ || keep_term_forces_) { /* AcceptStep tells its terms whether it is called at these positions */
-    last_x_.assign(x, x + 2 * P_->n);
-    last_rebuilds_ = nb_.Rebuilds();
-  }
-  ForceInput in = {P_, x, v, &nb_, &images_};
-  in.t          = t_;
-  in.grain      = &grain_;
+  if ((has_state_ && !caller_knows_) || keep_term_forces_)
+    last_x_.assign(x, x + 2 * P_->n); /* AcceptStep tells its terms whether it is called at these positions */
+  last_rebuilds_ = nb_.Rebuilds();
+  ForceInput in  = {P_, x, v, &nb_, &images_};
+  in.t           = t_;
+  in.grain       = &grain_;
   grain_.ResetLargest();
   if (keep_term_forces_) term_f_.resize(terms_.size()), term_fd_.resize(terms_.size());
   for (size_t t = 0; t < terms_.size(); t++) {
@@ -207,7 +207,7 @@ void ForceModel::DivideByMass(const PetscReal *f, PetscReal *a, PetscInt n) cons
   }
 }
 
-PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t)
+PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t, const bool *evaluated_here)
 {
   PetscFunctionBeginUser;
   t_              = t;
@@ -217,7 +217,7 @@ PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, Pe
   /* velocity Verlet and DOPRI accept the positions they last evaluated (Verlet's velocities differ:
      the dashpots saw the half-step ones); then, unless a call in between rebuilt them, the neighbour
      lists are those of that evaluation */
-  in.same_x = last_x_.size() == n2 && std::equal(last_x_.begin(), last_x_.end(), x);
+  in.same_x = evaluated_here ? *evaluated_here : last_x_.size() == n2 && std::equal(last_x_.begin(), last_x_.end(), x);
   if (!in.same_x || nb_.Rebuilds() != last_rebuilds_) PetscCall(nb_.Update(*P_, x, images_));
   for (auto &t : terms_) PetscCall(t->AcceptStep(in));
   PetscFunctionReturn(PETSC_SUCCESS);

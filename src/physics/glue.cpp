@@ -306,6 +306,12 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
   if (MODE <= 1) trial_.resize(bonds_.size());
   if (MODE <= 1) push_.resize(bonds_.size());
+  /* the law's parameters in locals: the stores below could alias the members, which would be
+     loaded again for every bond */
+  const bool      softening = law == SOFTENING, closing = compression;
+  const PetscReal l0 = l0_, l02 = l02_, beta2 = beta2_;
+  Trial          *trial = trial_.data();
+  Push           *push  = push_.data();
   for (size_t k = 0; k < bonds_.size(); k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
@@ -317,20 +323,21 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
     const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = std::max(dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
-    const PetscReal l2 = Opening2(dnp, dt), D = law == SOFTENING && !BeforePeak(B, l2) ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
-    if (MODE <= 1) trial_[k] = {dnp, dt}; /* AcceptStep at this state commits from these */
+    const PetscReal l2 = dnp * dnp + beta2 * dt * dt; /* Opening2, BeforePeak */
+    const PetscReal D  = softening && !(B.lmax <= l0 && l2 <= l02) ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
+    if (MODE <= 1) trial[k] = {dnp, dt}; /* AcceptStep at this state commits from these */
     if (MODE == 2) {
       Commit(in, k, dnp, dt);
       continue;
     }
-    const PetscReal dnf = compression ? dn : dnp; /* the normal force's opening: closing too with -glue_compression */
+    const PetscReal dnf = closing ? dn : dnp; /* the normal force's opening: closing too with -glue_compression */
     if (MODE == 3) {
       E += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
       continue;
     }
     const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnf, Ft = s * kt * dt;
     const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-    push_[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
+    push[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
   }
   if (MODE >= 2) return E;
   const ForceGrain &grain   = in.Grain();

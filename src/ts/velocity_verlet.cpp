@@ -22,7 +22,9 @@ struct Verlet {
      102-node chain. */
   Vec          view_q = NULL, view_p = NULL;
   PetscInt     off_q = 0, off_p = 0;
-  PetscScalar *sol_array = NULL;
+  PetscScalar *sol_array                                    = NULL;
+  PetscErrorCode (*impose)(TS, PetscReal, Vec, Vec, void *) = NULL; /* TSVerletSetConstraints */
+  void *impose_ctx                                          = NULL;
 };
 
 /* The solution's parts q, p for a step: the views placed on its array, or sub-vectors. */
@@ -181,14 +183,18 @@ PetscErrorCode TSStep_Verlet(TS ts)
     std::swap(vv->A0, vv->A1);
     std::swap(vv->array[0], vv->array[1]);
     vv->reused++;
-  } else PetscCall(Accelerate(ts, vv, t0, q, vv->A0));
+  } else {
+    if (vv->impose) PetscCall(vv->impose(ts, t0, q, p, vv->impose_ctx));
+    PetscCall(Accelerate(ts, vv, t0, q, vv->A0));
+  }
   PetscCall(VecAXPY(p, 0.5 * h, vv->A0)); /* kick */
   /* drift: dx/dt = v+, into A1, free until a(x_{n+1}) (one work vector fewer: 16 B a particle) */
   vv->have_a1 = PETSC_FALSE;
   PetscCall(TSComputeRHSFunction(vv->subts_q, t0, p, vv->A1));
   PetscCall(VecAXPY(q, h, vv->A1));
-  PetscCall(Accelerate(ts, vv, t0 + h, q, vv->A1)); /* a(x_{n+1}), reused by the next step */
-  PetscCall(VecAXPY(p, 0.5 * h, vv->A1));           /* kick */
+  if (vv->impose) PetscCall(vv->impose(ts, t0 + h, q, p, vv->impose_ctx)); /* the second kick leaves them: their accelerations are 0 */
+  PetscCall(Accelerate(ts, vv, t0 + h, q, vv->A1));                        /* a(x_{n+1}), reused by the next step */
+  PetscCall(VecAXPY(p, 0.5 * h, vv->A1));                                  /* kick */
   PetscCall(RestoreParts(ts, vv, &q, &p));
   ts->ptime = t0 + h;
   PetscCall(TSPostStage(ts, ts->ptime, 0, &ts->vec_sol));
@@ -322,6 +328,18 @@ PetscErrorCode TSVerletSetLastAcceleration(TS ts, Vec A1)
   PetscCall(PetscObjectStateGet((PetscObject)ts->vec_sol, &vv->state_a1));
   vv->t_a1    = ts->ptime;
   vv->have_a1 = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TSVerletSetConstraints(TS ts, PetscErrorCode (*impose)(TS, PetscReal, Vec, Vec, void *), void *ctx)
+{
+  PetscBool is;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSVERLET, &is));
+  PetscCheck(is, PetscObjectComm((PetscObject)ts), PETSC_ERR_ARG_WRONG, "TSVerletSetConstraints: the TS is not of type verlet");
+  Verlet *vv     = (Verlet *)ts->data;
+  vv->impose     = impose;
+  vv->impose_ctx = ctx;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

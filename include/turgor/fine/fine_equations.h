@@ -44,6 +44,17 @@ public:
   {
     return LocalState(t, u, u + 2 * n_owned_, xc, vc);
   }
+  /* The same, of the integrator's own state at a force evaluation or a step's end: where the
+     integrator holds the controlled components itself (TS verlet, TSVerletSetConstraints), a serial
+     run reads the state's arrays as they are (no copies); otherwise LocalState. */
+  PetscErrorCode IntegratorState(PetscReal t, const PetscScalar *x, const PetscScalar *v, const PetscReal **xc, const PetscReal **vc);
+  PetscErrorCode IntegratorState(PetscReal t, const PetscScalar *u, const PetscReal **xc, const PetscReal **vc)
+  {
+    return IntegratorState(t, u, u + 2 * n_owned_, xc, vc);
+  }
+  /* The terms' internal state at the state (x, v) a step accepted at t (IntegratorState's): TS
+     verlet's last force evaluation is known to be at its positions when no other came after it. */
+  PetscErrorCode AcceptStep(PetscReal t, const PetscReal *x, const PetscReal *v);
   /* f[2 n_all] = the forces at the local state (x, v); on the owned particles whole (the halo's
      shares returned by the other ranks). */
   PetscErrorCode TotalForces(const PetscReal *x, const PetscReal *v, PetscReal *f);
@@ -74,6 +85,7 @@ private:
   static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec V, Vec Xdot, void *ctx);
   static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec X, Vec Vdot, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
+  static PetscErrorCode ImposeControls(TS ts, PetscReal t, Vec X, Vec V, void *ctx);
   /* a[2 n] of the owned particles at the local state (x, v); a_has_halo_room: a has 2 n_all entries
      (TSVerletSetAccelerationRoom), the halo's forces pass through its tail instead of fw_ */
   PetscErrorCode Accelerations(const PetscReal *x, const PetscReal *v, PetscScalar *a, bool a_has_halo_room = false);
@@ -90,12 +102,15 @@ private:
   PetscReal                         *x_local_ = nullptr, *v_local_ = nullptr; /* the local state being made (the halo fields' values) */
   std::vector<const ParticleField *> halo_fields_;
   std::vector<PetscReal *>           halo_arrays_;
-  std::vector<PetscReal>             fw_;                   /* forces of the local particles */
-  std::vector<PetscReal>             v_stale_;              /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
-  bool                               split_        = false; /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
-  bool                               predict_      = false; /* ConfigureIntegrator's predict_velocity */
-  bool                               reproducible_ = false; /* SetReproducibleSums */
-  PetscInt                           regrains_     = 0;
+  std::vector<PetscReal>             fw_;                     /* forces of the local particles */
+  std::vector<PetscReal>             v_stale_;                /* velocities seen by the last position update (Verlet; room for the halo's: LocalState) */
+  bool                               split_          = false; /* a splitting integrator (v_stale_ is used; on every rank, empty or not) */
+  bool                               predict_        = false; /* ConfigureIntegrator's predict_velocity */
+  bool                               held_           = false; /* the integrator's state holds the controls (ImposeControls) */
+  bool                               kdk_            = false; /* TS verlet */
+  std::uint64_t                      step_end_stamp_ = 0;     /* TS verlet: the model's EvaluationStamp after its last momentum evaluation */
+  bool                               reproducible_   = false; /* SetReproducibleSums */
+  PetscInt                           regrains_       = 0;
   std::vector<PetscReal>             a_last_;                    /* with predict_: the owned particles' last accelerations */
   bool                               acceleration_room_ = false; /* TSVERLET's accelerations have room for the halo's forces */
   bool                               rate_room_         = false; /* TSLSRK's rates have room for them after their accelerations */

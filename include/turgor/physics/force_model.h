@@ -6,6 +6,7 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/physics/force_term.h>
 #include <algorithm>
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <string>
@@ -55,9 +56,17 @@ public:
   void DivideByMass(const PetscReal *f, PetscReal *a, PetscInt n) const;
   /* Sum of the conservative terms' energies; *complete = PETSC_FALSE if some active term has none. */
   PetscErrorCode PotentialEnergy(const PetscReal *x, PetscReal *E, PetscBool *complete);
-  /* Every term's AcceptStep at the accepted state (x, v) of time t (integrators call it after each step). */
-  PetscErrorCode AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t = 0);
-  bool           HasInternalState() const; /* some term has: the integrator must call AcceptStep */
+  /* Every term's AcceptStep at the accepted state (x, v) of time t (integrators call it after each step).
+     evaluated_here: whether the last ComputeForces was at these positions, where the caller knows
+     it (SetCallerKnowsAcceptedState); otherwise the positions are compared with that evaluation's. */
+  PetscErrorCode AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t = 0, const bool *evaluated_here = nullptr);
+  /* The integrator tells AcceptStep whether its last evaluation was at the accepted positions: no
+     copy of the positions is kept per evaluation for the comparison (unless the term forces are kept,
+     for EvaluatedAt). */
+  void SetCallerKnowsAcceptedState(bool on) { caller_knows_ = on; }
+  /* ComputeForces calls so far, every one counted (Evaluations() leaves out the stability limits') */
+  std::uint64_t EvaluationStamp() const { return stamp_; }
+  bool          HasInternalState() const; /* some term has: the integrator must call AcceptStep */
   /* Stability bounds of an explicit step at state (x, v), every term's. */
   PetscErrorCode TimeStepLimits(const PetscReal *x, const PetscReal *v, std::vector<TimeStepLimit> &limits,
                                 const std::function<PetscErrorCode(PetscReal *)> &sum_halo_shares = nullptr);
@@ -123,7 +132,8 @@ private:
   PeriodicImages                          images_;
   std::vector<PetscReal>                  last_x_;             /* the last ComputeForces' positions, when a term has internal state */
   PetscInt                                last_rebuilds_ = -1; /* the neighbour lists' rebuilds at that evaluation */
-  bool                                    has_state_ = false, keep_term_forces_ = false, taken_ = false;
+  bool                                    has_state_ = false, keep_term_forces_ = false, taken_ = false, caller_knows_ = false;
+  std::uint64_t                           stamp_ = 0;
   ForceGrain                              grain_;
   std::vector<std::vector<PetscReal>>     term_f_, term_fd_; /* per term, with KeepTermForces: force, dashpot part */
   PetscInt                                evaluations_ = 0;

@@ -37,3 +37,11 @@ PETSC_EXTERN PetscErrorCode TSVerletSetLastAcceleration(TS ts, Vec A1);
    particle code computes its halo particles' forces there before sending them to their owners: no
    separate force array, 16 B a particle). 0 (the default): none. */
 PETSC_EXTERN PetscErrorCode TSVerletSetAccelerationRoom(TS ts, PetscInt extra);
+
+/* Components held to prescribed values (a velocity control: x(t) and v(t) given): before each force
+   evaluation the step calls impose(ts, t, q, p, ctx) on the solution's own parts at the evaluation's
+   time (q: positions, p: velocities), which overwrites the prescribed components in place; the
+   momentum right-hand side keeps their accelerations at 0, so that the state the integrator holds
+   satisfies them at every step's end and the right-hand sides may read it as it is (no copy with the
+   prescribed values put in). NULL: none (the default). */
+PETSC_EXTERN PetscErrorCode TSVerletSetConstraints(TS ts, PetscErrorCode (*impose)(TS, PetscReal, Vec, Vec, void *), void *ctx);
