@@ -11,6 +11,8 @@ turgor_add_test(fe2_localisation_stop COMMAND turgor_app ${LOC_BLOCK} -body_forc
   LABELS fe2 SETUP fe2_localisation_stop)
 turgor_add_test(fe2_localisation_status COMMAND ${CHECK} equals fe2_localisation_stop status localised LABELS fe2 REQUIRES fe2_localisation_stop)
 turgor_add_test(fe2_localisation_element COMMAND ${CHECK} equals fe2_localisation_stop localisation_element 0 LABELS fe2 REQUIRES fe2_localisation_stop)
+turgor_add_test(fe2_localisation_criterion COMMAND ${CHECK} equals fe2_localisation_stop localisation_criterion acoustic LABELS fe2
+  REQUIRES fe2_localisation_stop)
 turgor_add_test(fe2_localisation_time COMMAND ${CHECK} between fe2_localisation_stop localisation_time 0.5 1 LABELS fe2 REQUIRES fe2_localisation_stop)
 turgor_add_test(fe2_localisation_stopped_there COMMAND ${CHECK} between fe2_localisation_stop t_final 0.75 1 LABELS fe2 REQUIRES fe2_localisation_stop)
 turgor_add_test(fe2_no_localisation COMMAND turgor_app ${LOC_BLOCK} -body_force -20,0 -output_dir fe2_no_localisation LABELS fe2 SETUP fe2_no_localisation)
@@ -91,3 +93,24 @@ foreach(np 1 2)
 endforeach()
 turgor_add_test(fe2_static_grips_ranks_agree COMMAND ${CHECK} csvrel fe2_static_grips_np1 fe2_static_grips_np2 tip.csv 1e-8 LABELS fe2 static rve mpi long
   REQUIRES "fe2_static_grips_np1;fe2_static_grips_np2")
+# The same tissue in -mode fe2 (dynamic): a 1 x 1 block clamped on its left side under a body force
+# of 10 µm/µs^2; a material point of its element finds no equilibrium beyond t = 0.0779 µs (with
+# -rve_max_it 25, as above, to keep the failures cheap; 0.1044 µs with the default 50): every try of
+# DOPRI's, however short, fails in it, and -fe2_stop_at_localisation ends the run there, localised
+# by the criterion no_equilibrium, instead of failing. On 1 and 2 ranks (the second holds no element;
+# long: about 20 s of failing relaxations each).
+set(DYNAMIC_GIVE_WAY -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -mode fe2 -prve_seed 5 -coarse_dm_plex_simplex 0
+  -coarse_dm_plex_box_faces 1,1 -coarse_dm_plex_box_upper 100,100 -coarse_dirichlet_values 4 -body_force 0,-10 -ts_max_time 0.2 -ts_type rk
+  -ts_rk_type 5dp -ts_max_reject 4 -rve_max_it 25 -fe2_stop_at_localisation -output_overwrite)
+foreach(np 1 2)
+  turgor_add_test(fe2_no_equilibrium_np${np} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${DYNAMIC_GIVE_WAY} -output_dir fe2_no_equilibrium_np${np}
+    LABELS fe2 rve mpi long SETUP fe2_no_equilibrium_np${np})
+  turgor_add_test(fe2_no_equilibrium_np${np}_status COMMAND ${CHECK} equals fe2_no_equilibrium_np${np} status localised LABELS fe2 rve mpi long
+    REQUIRES fe2_no_equilibrium_np${np})
+  turgor_add_test(fe2_no_equilibrium_np${np}_criterion COMMAND ${CHECK} equals fe2_no_equilibrium_np${np} localisation_criterion no_equilibrium
+    LABELS fe2 rve mpi long REQUIRES fe2_no_equilibrium_np${np})
+  turgor_add_test(fe2_no_equilibrium_np${np}_where COMMAND ${CHECK} between fe2_no_equilibrium_np${np} localisation_time 0.0779 0.0780
+    LABELS fe2 rve mpi long REQUIRES fe2_no_equilibrium_np${np})
+  turgor_add_test(fe2_no_equilibrium_np${np}_element COMMAND ${CHECK} equals fe2_no_equilibrium_np${np} localisation_element 0
+    LABELS fe2 rve mpi long REQUIRES fe2_no_equilibrium_np${np})
+endforeach()

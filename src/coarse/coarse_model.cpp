@@ -825,7 +825,8 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscCall(GlobalToLocal(U, Uloc_));
   PetscCall(CacheHolds(Uloc_, tangents, &holds));
   if (holds) {
-    *ok = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
+    *ok          = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
+    last_failed_ = !cached_ok_;
     if (why) *why = cached_ok_ ? "" : "cached failure";
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -867,6 +868,7 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
     PetscCall(PetscSynchronizedFlush(comm_, PETSC_STDOUT));
   }
   *ok              = global_ok ? PETSC_TRUE : PETSC_FALSE;
+  last_failed_     = !global_ok;
   cached_valid_    = true;
   cached_ok_       = global_ok;
   cached_tangents_ = tangents;

@@ -65,7 +65,8 @@ PetscErrorCode FE2Run::ModeSetFromOptions()
                              "FE2Run", jacobian_max_age_, &jacobian_max_age_, NULL));
   PetscCall(PetscOptionsBool("-stop_at_localisation",
                              "End the run (status localised) after the step whose snapshot first shows an element that lost ellipticity "
-                             "(min det of the acoustic tensor <= 0; needs -coarse_acoustic_field and snapshots)",
+                             "(min det of the acoustic tensor <= 0; needs -coarse_acoustic_field and snapshots), or at the last accepted time "
+                             "beyond which a material point finds no equilibrium (the integrator cannot pass it)",
                              "FE2Run", stop_at_localisation_, &stop_at_localisation_, NULL));
   PetscOptionsEnd();
   PetscCheck(jacobian_max_age_ >= -1, comm_, PETSC_ERR_ARG_OUTOFRANGE, "Option -fe2_jacobian_max_age = %" PetscInt_FMT ": must be >= -1", jacobian_max_age_);
@@ -224,12 +225,40 @@ PetscErrorCode FE2Run::AfterStep(PetscReal t, Vec U)
   PetscFunctionBeginUser;
   PetscCall(model_.CommitMaterials());
   steps_since_refresh_++;
+  failures_before_step_ = failures_at_step_;
+  failures_at_step_     = model_.Counters().failures;
   if (stop_at_localisation_ && localisation_time_ >= 0) { /* found by the last snapshot (the monitor runs after this hook) */
     char why[256];
     PetscCall(PetscSNPrintf(why, sizeof why, "localisation: element %" PetscInt_FMT " lost ellipticity (min det Q = %g (N/m)^2) at the snapshot at t = %g µs",
                             localisation_element_, (double)localisation_det_, (double)localisation_time_));
     PetscCall(StopAfterThisStep("localised", why));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The integrator cannot pass t, its last try failed in a material point (or, where it crawled on with
+   a step below -ts_adapt_dt_min, the tries before that step did): the point finds no equilibrium near
+   its last one however short the step (an RVE that gives way: the stress branch it followed ends),
+   the dynamic counterpart of -mode fe2_static's no_equilibrium; localisation at the last accepted
+   time. With -fe2_stop_at_localisation the run ends there, localised; otherwise it fails as before,
+   the localisation printed. */
+PetscErrorCode FE2Run::EndWhereStuck(PetscReal t, std::string *status, std::string *reason)
+{
+  PetscFunctionBeginUser;
+  const bool material = model_.LastEvaluationFailed() || model_.Counters().failures > failures_before_step_;
+  if (!material || localisation_time_ >= 0) PetscFunctionReturn(PETSC_SUCCESS); /* not the material's doing, or found before */
+  localisation_time_    = t;
+  localisation_element_ = model_.LastFailedElement();
+  no_equilibrium_       = true;
+  char why[256];
+  PetscCall(PetscSNPrintf(why, sizeof why,
+                          "localisation: a material point of element %" PetscInt_FMT
+                          " finds no equilibrium beyond t = %g µs (its evaluation fails in the integrator's every try, however short, until it gives up)",
+                          localisation_element_, (double)t));
+  PetscCall(PetscPrintf(comm_, "  t = %g µs: %s%s\n", (double)t, why, stop_at_localisation_ ? "; stopping (-fe2_stop_at_localisation)" : ""));
+  if (!stop_at_localisation_) PetscFunctionReturn(PETSC_SUCCESS);
+  *status = "localised";
+  *reason = why;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -458,6 +487,7 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   if (model_.Spec().acoustic_field) { /* -1: no snapshot showed an element that lost ellipticity */
     js.Set("localisation_time", localisation_time_);
     js.Set("localisation_element", localisation_element_);
+    js.Set("localisation_criterion", localisation_time_ < 0 ? "" : no_equilibrium_ ? "no_equilibrium" : "acoustic");
   }
   if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);

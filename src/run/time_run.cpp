@@ -382,6 +382,16 @@ PetscErrorCode TimeRun::Solve()
   wall_ = sampler_.Elapsed();
   PetscCall(TSGetConvergedReason(ts_, &reason));
   PetscCall(TSGetSolveTime(ts_, &t));
+  if (stalled_ >= 0 || reason < 0) { /* stuck at t: the mode may know why and end the run there */
+    std::string status, why;
+    PetscCall(EndWhereStuck(t, &status, &why));
+    if (!status.empty()) {
+      stop_status_ = status;
+      stop_reason_ = why;
+      stalled_     = -1;
+      reason       = TS_CONVERGED_USER;
+    }
+  }
   PetscCheck(stalled_ < 0, comm_, PETSC_ERR_NOT_CONVERGED,
              "The %s run failed at t = %g µs: the time step fell to %g µs, below -ts_adapt_dt_min = %g µs (default 1e-10 of -ts_max_time): the "
              "integrator cannot pass this state with any step: %s",

@@ -137,6 +137,8 @@ public:
   /* The lowest global element number with a failed material point in the last failed evaluation
      (-1: none failed yet); the same on every rank. */
   PetscInt LastFailedElement() const { return failed_element_; }
+  /* Did the last EvaluateMaterials fail (a material point somewhere)? */
+  bool LastEvaluationFailed() const { return last_failed_; }
   /* Back to the material points' last committed states (a rejected load increment); the cache is
      dropped. */
   PetscErrorCode RevertMaterials();
@@ -283,9 +285,10 @@ private:
      a box's serial numbering), the same on any number of ranks: the number reports give */
   std::vector<PetscInt> cell_id_;
   PetscMPIInt           rank_           = 0;
-  PetscReal             eval_time_      = 0;  /* time of the state being evaluated (for reports) */
-  PetscInt              failed_element_ = -1; /* LastFailedElement() */
-  std::string           eval_where_;          /* or where, when not a time */
+  PetscReal             eval_time_      = 0;     /* time of the state being evaluated (for reports) */
+  PetscInt              failed_element_ = -1;    /* LastFailedElement() */
+  bool                  last_failed_    = false; /* LastEvaluationFailed() */
+  std::string           eval_where_;             /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;

@@ -58,7 +58,11 @@ protected:
   PetscInt       EntityLocal(StateEntity e, std::uint64_t id) const override;
   bool           EntityOwned(StateEntity e, PetscInt local) const override;
   std::uint64_t  LayoutHash() const override;
-  PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override { return model_.AfterStateRead(U, own_layout); }
+  PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override
+  {
+    failures_before_step_ = model_.Counters().failures;
+    return model_.AfterStateRead(U, own_layout);
+  }
   PetscErrorCode StateOrder(IS *order) override { return model_.RankFreeStateOrder(order); }
   bool           RestartsOnOtherRanks(std::string *why) const override;
 
@@ -68,6 +72,7 @@ private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   PetscErrorCode        AfterStep(PetscReal t, Vec U) override;
+  PetscErrorCode        EndWhereStuck(PetscReal t, std::string *status, std::string *reason) override;
   static PetscErrorCode EigenMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
 
   LoadSpec    load_;
@@ -77,9 +82,13 @@ private:
      after a step rejection; 0: at every Jacobian request (each Newton iteration) */
   PetscInt jacobian_max_age_ = -1, steps_since_refresh_ = 0, rejections_at_refresh_ = -1;
   /* localisation: the first snapshot whose acoustic field (-coarse_acoustic_field) has an element with
-     min det Q <= 0, that element, and whether the run stops there (-fe2_stop_at_localisation) */
+     min det Q <= 0, or the last accepted time beyond which a material point finds no equilibrium
+     (the integrator cannot pass it: EndWhereStuck; no_equilibrium_), that element, and whether the
+     run stops there (-fe2_stop_at_localisation) */
   PetscReal          localisation_time_ = -1, localisation_det_ = 0;
   PetscInt           localisation_element_ = -1;
+  bool               no_equilibrium_       = false;
+  PetscInt           failures_at_step_ = 0, failures_before_step_ = 0; /* the material failures by the last accepted step, and by the one before */
   PetscBool          stop_at_localisation_ = PETSC_FALSE;
   bool               explicit_             = false;
   CoarseFieldsWriter fields_;

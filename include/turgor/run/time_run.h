@@ -102,6 +102,10 @@ protected:
   PetscErrorCode StopAfterThisStep(const std::string &status, const std::string &reason);
   /* After a successful TSSolve (e.g. the particle record brought up to date). */
   virtual PetscErrorCode AfterSolve() { return PETSC_SUCCESS; }
+  /* The integrator cannot pass the state at t (its steps were rejected repeatedly, or one fell below
+     -ts_adapt_dt_min): a mode may end the run there with a status of its own (*status, *reason)
+     instead of failing; an empty status (the default) fails the run. Collective. */
+  virtual PetscErrorCode EndWhereStuck(PetscReal t, std::string *status, std::string *reason) { return PETSC_SUCCESS; }
   /* The mode's summary keys (collective), and the details of the final report line. */
   virtual PetscErrorCode AddSummary(JsonObject &js)        = 0;
   virtual PetscErrorCode DoneDetails(std::string *details) = 0; /* collective */
