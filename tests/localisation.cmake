@@ -114,3 +114,11 @@ foreach(np 1 2)
   turgor_add_test(fe2_no_equilibrium_np${np}_element COMMAND ${CHECK} equals fe2_no_equilibrium_np${np} localisation_element 0
     LABELS fe2 rve mpi long REQUIRES fe2_no_equilibrium_np${np})
 endforeach()
+# A tangent that fails at a found equilibrium is not a missing equilibrium: the same tissue as a
+# block clamped on its left side only, under a body force of 40 µm/µs^2; at the released state one
+# RVE's linearised relaxation does not converge (-rve_tangent_ksp_*) at every increment down to the
+# smallest, so the run fails, naming it, status failed, instead of reporting localisation (5 s).
+turgor_add_test(fe2_static_tangent_failure COMMAND ${BAD} "halving it would go below -fe2_static_min_increment" $<TARGET_FILE:turgor_app>
+  -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -mode fe2_static -prve_seed 5 -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 1,1
+  -coarse_dm_plex_box_upper 100,100 -coarse_dirichlet_values 4 -body_force 0,-40 -fe2_static_load_steps 80 -fe2_static_stop_at_localisation
+  -rve_max_it 25 -fe2_static_min_increment 1e-3 -output_dir fe2_static_tangent_failure -output_overwrite LABELS fe2 static rve hard)

@@ -825,8 +825,8 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscCall(GlobalToLocal(U, Uloc_));
   PetscCall(CacheHolds(Uloc_, tangents, &holds));
   if (holds) {
-    *ok          = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
-    last_failed_ = !cached_ok_;
+    *ok                 = cached_ok_ ? PETSC_TRUE : PETSC_FALSE;
+    last_stress_failed_ = !cached_stress_ok_;
     if (why) *why = cached_ok_ ? "" : "cached failure";
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -842,17 +842,22 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
   PetscCall(pool_.Evaluate(F_.data(), Fdot_.data(), response_.data(), tangents, tangent_.data()));
   counters_.material_evals++;
   if (tangents) counters_.tangent_evals++;
-  int         local_ok = 1, global_ok;
+  int         local[2] = {1, 1}, global[2]; /* every point ok; every point's stress found */
   PetscInt    nfailed = 0, lowest = PETSC_MAX_INT;
   std::string first;
   for (size_t k = 0; k < response_.size(); k++)
     if (!response_[k].ok) {
       if (!nfailed) PetscCall(DescribePoint((PetscInt)k, F_, Fdot_, response_, &first));
       nfailed++;
-      local_ok = 0;
-      lowest   = PetscMin(lowest, cell_id_[k / npts_]);
+      local[0] = 0;
+      if (!response_[k].tangent_failed) local[1] = 0;
+      lowest = PetscMin(lowest, cell_id_[k / npts_]);
     }
-  PetscCallMPI(MPI_Allreduce(&local_ok, &global_ok, 1, MPI_INT, MPI_MIN, comm_));
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPI_INT, MPI_MIN, comm_));
+  const int local_ok = local[0], global_ok = global[0];
+  last_stress_failed_ = !global[1];
+  cached_stress_ok_   = global[1];
+  stress_failures_ += !global[1];
   if (why) *why = local_ok ? (global_ok ? "" : "on another rank") : first;
   if (!global_ok) {
     /* every failure is reported where it happened, without -info: the cause of a rejected step */
@@ -868,7 +873,6 @@ PetscErrorCode CoarseModel::EvaluateMaterials(Vec U, bool tangents, PetscBool *o
     PetscCall(PetscSynchronizedFlush(comm_, PETSC_STDOUT));
   }
   *ok              = global_ok ? PETSC_TRUE : PETSC_FALSE;
-  last_failed_     = !global_ok;
   cached_valid_    = true;
   cached_ok_       = global_ok;
   cached_tangents_ = tangents;

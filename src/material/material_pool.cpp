@@ -358,8 +358,9 @@ PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 
       time_tangents_ += t2 - t1;
       cost_[k] += t2 - t1;
       if (!status.ok) {
-        r.ok     = false;
-        r.reason = "tangent: " + status.reason;
+        r.ok             = false;
+        r.tangent_failed = true;
+        r.reason         = "tangent: " + status.reason;
       } else if (kind == EvaluationKind::Trial) mp.KeepTangents(Fg, Fdg, r, T);
       r.iterations += status.iterations;
     }
@@ -370,7 +371,7 @@ PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 
     for (int c = 0; c < 4; c++) s.sigma[c] = r.sigma.a[c / 2][c % 2];
     s.rho        = r.rho;
     s.residual   = r.residual;
-    s.ok         = r.ok ? 1 : 0;
+    s.ok         = r.ok ? 1 : r.tangent_failed ? 2 : 0; /* 2: the stress found, its tangents not */
     s.iterations = r.iterations;
     s.snes_its   = r.snes_its;
     s.ksp_its    = r.ksp_its;
@@ -398,12 +399,13 @@ PetscErrorCode MaterialPointPool::EvaluateBlock(const Tensor2 *F, const Tensor2 
     out[k].sigma         = {
               {{s.sigma[0], s.sigma[1]}, {s.sigma[2], s.sigma[3]}}
     };
-    out[k].rho        = s.rho;
-    out[k].ok         = s.ok != 0;
-    out[k].iterations = (PetscInt)s.iterations;
-    out[k].snes_its   = (PetscInt)s.snes_its;
-    out[k].ksp_its    = (PetscInt)s.ksp_its;
-    out[k].residual   = s.residual;
+    out[k].rho            = s.rho;
+    out[k].ok             = s.ok == 1;
+    out[k].tangent_failed = s.ok == 2;
+    out[k].iterations     = (PetscInt)s.iterations;
+    out[k].snes_its       = (PetscInt)s.snes_its;
+    out[k].ksp_its        = (PetscInt)s.ksp_its;
+    out[k].residual       = s.residual;
     if (!out[k].ok) out[k].reason = why[k].text;
     if (tangents)
       for (int i = 0; i < 9; i++) {

@@ -283,7 +283,7 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
   PetscCall(PetscSNPrintf(where, sizeof where, "at load factor %.6g", (double)lambda));
   model_.SetEvaluationWhere(where);
   PetscCall(model_.SetLoadFactor(lambda));
-  const PetscInt failures = model_.Counters().failures;
+  const PetscInt failures = model_.Counters().failures, stress_failures = model_.StressFailures();
   PetscCall(VecCopy(x_conv_, x_));
   if (x_affine_) PetscCall(VecAXPY(x_, lambda - lambda_, x_affine_)); /* the clamped vertices' motion, carried through */
   PetscCall(SNESSolve(snes_, NULL, x_));
@@ -340,7 +340,7 @@ PetscErrorCode FE2StaticRun::SolveAt(PetscReal lambda, bool *converged, std::str
     PetscCall(model_.MeanStress(mean_stress_));
   } else {
     failed_solves_++;
-    failed_in_material_ = model_.Counters().failures > failures;
+    failed_in_material_ = model_.StressFailures() > stress_failures; /* a relaxation failed (a tangent failing at a found equilibrium does not count) */
     PetscCall(model_.RevertMaterials());
   }
   PetscCall(PetscLogEventEnd(ev_increment_, 0, 0, 0, 0));

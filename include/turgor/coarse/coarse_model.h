@@ -137,8 +137,11 @@ public:
   /* The lowest global element number with a failed material point in the last failed evaluation
      (-1: none failed yet); the same on every rank. */
   PetscInt LastFailedElement() const { return failed_element_; }
-  /* Did the last EvaluateMaterials fail (a material point somewhere)? */
-  bool LastEvaluationFailed() const { return last_failed_; }
+  /* Did the last EvaluateMaterials find no stress at some material point (its relaxation failed;
+     not only its tangents' linear solve)? And how many evaluations did so, since the set-up (not
+     checkpointed)? A tangent that fails at a found equilibrium is not a missing equilibrium. */
+  bool     LastStressFailed() const { return last_stress_failed_; }
+  PetscInt StressFailures() const { return stress_failures_; }
   /* Back to the material points' last committed states (a rejected load increment); the cache is
      dropped. */
   PetscErrorCode RevertMaterials();
@@ -284,11 +287,12 @@ private:
   /* each local cell's element number in the order of the elements' centres (row by row: y, then x;
      a box's serial numbering), the same on any number of ranks: the number reports give */
   std::vector<PetscInt> cell_id_;
-  PetscMPIInt           rank_           = 0;
-  PetscReal             eval_time_      = 0;     /* time of the state being evaluated (for reports) */
-  PetscInt              failed_element_ = -1;    /* LastFailedElement() */
-  bool                  last_failed_    = false; /* LastEvaluationFailed() */
-  std::string           eval_where_;             /* or where, when not a time */
+  PetscMPIInt           rank_               = 0;
+  PetscReal             eval_time_          = 0;                                /* time of the state being evaluated (for reports) */
+  PetscInt              failed_element_     = -1;                               /* LastFailedElement() */
+  bool                  last_stress_failed_ = false, cached_stress_ok_ = false; /* LastStressFailed(), and that of the cached evaluation */
+  PetscInt              stress_failures_ = 0;                                   /* StressFailures() */
+  std::string           eval_where_;                                            /* or where, when not a time */
 
   /* material cache */
   std::vector<PetscScalar>      cached_U_;

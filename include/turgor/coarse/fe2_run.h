@@ -60,7 +60,7 @@ protected:
   std::uint64_t  LayoutHash() const override;
   PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override
   {
-    failures_before_step_ = model_.Counters().failures;
+    failures_at_step_ = failures_before_step_ = model_.StressFailures();
     return model_.AfterStateRead(U, own_layout);
   }
   PetscErrorCode StateOrder(IS *order) override { return model_.RankFreeStateOrder(order); }
@@ -88,7 +88,7 @@ private:
   PetscReal          localisation_time_ = -1, localisation_det_ = 0;
   PetscInt           localisation_element_ = -1;
   bool               no_equilibrium_       = false;
-  PetscInt           failures_at_step_ = 0, failures_before_step_ = 0; /* the material failures by the last accepted step, and by the one before */
+  PetscInt           failures_at_step_ = 0, failures_before_step_ = 0; /* the evaluations without a stress by the last accepted step, and by the one before */
   PetscBool          stop_at_localisation_ = PETSC_FALSE;
   bool               explicit_             = false;
   CoarseFieldsWriter fields_;

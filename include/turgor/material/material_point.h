@@ -30,8 +30,9 @@ struct MaterialResponse {
   Tensor2     sigma;   /* Cauchy stress, 2D [N/m] */
   PetscReal   rho = 0; /* current 2D density [ng/µm^2] */
   bool        ok  = true;
-  std::string reason;         /* why not ok */
-  PetscInt    iterations = 0; /* Psi-tc iterations (RVE) */
+  std::string reason;                 /* why not ok */
+  bool        tangent_failed = false; /* not ok only because its tangents failed: the stress was found */
+  PetscInt    iterations     = 0;     /* Psi-tc iterations (RVE) */
   PetscInt    snes_its = 0, ksp_its = 0;
   PetscReal   residual = 0; /* final scaled residual norm (RVE) */
 };

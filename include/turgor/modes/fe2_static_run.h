@@ -103,7 +103,7 @@ private:
   PetscReal localisation_load_factor_ = -1, localisation_cosine_ = 1;
   PetscInt  softening_element_ = -1, localisation_element_ = -1;
   bool      localised_          = false; /* stopped there (-fe2_static_stop_at_localisation) */
-  bool      failed_in_material_ = false; /* the last failed increment had a material point fail */
+  bool      failed_in_material_ = false; /* the last failed increment had a material point find no stress */
   /* "softening" (a point's stress fell along its strain increment) or "no_equilibrium" (a point's
      evaluation failed at every increment down to the smallest); "" before either */
   std::string localisation_criterion_;
