@@ -24,6 +24,13 @@ turgor_add_test(polygon_fe2_static COMMAND turgor_app ${PRVE_BLOCK} -mode fe2_st
   SETUP polygon_fe2_static)
 turgor_add_test(polygon_fe2_static_sags COMMAND ${CHECK} between polygon_fe2_static tip_displacement_final -1 -1e-3 LABELS fe2 static
   REQUIRES polygon_fe2_static)
+# the RVEs' tangent solver is made at its first tangent: its options are not reported unused at the
+# set-up (-strict refused them), and a tighter tangent solve finds the same tip
+turgor_add_test(polygon_fe2_static_tangent_options COMMAND turgor_app ${PRVE_BLOCK} -mode fe2_static -rve_tangent_ksp_rtol 1e-10
+  -rve_tangent_ksp_max_it 300 -output_dir polygon_fe2_static_tangent_options LABELS fe2 static SETUP polygon_fe2_static_tangent_options)
+set_property(TEST polygon_fe2_static_tangent_options APPEND PROPERTY FAIL_REGULAR_EXPRESSION "not used by this -mode[^\n]*rve_tangent")
+turgor_add_test(polygon_fe2_static_tangent_options_tip COMMAND ${CHECK} final polygon_fe2_static_tangent_options polygon_fe2_static 1e-6
+  LABELS fe2 static REQUIRES "polygon_fe2_static_tangent_options;polygon_fe2_static")
 # ... and without a load: the increment starts at the RVEs' accuracy floor (the residual the released
 # block reached), where Newton cannot gain 1e-4; the block stays where its prestress put it
 turgor_add_test(polygon_fe2_static_unloaded COMMAND turgor_app ${PRVE_BLOCK} -mode fe2_static -body_force 0,0 -output_dir polygon_fe2_static_unloaded

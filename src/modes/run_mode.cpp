@@ -8,12 +8,13 @@ namespace turgor {
 
 namespace {
 
-/* Options of solvers PETSc creates only when it first factors or preconditions (PCREDUNDANT's and
-   PCBJACOBI's inner solvers, the external factorisation packages): unread before the first solve,
-   so they are reported after the solve instead. */
+/* Options of solvers created only when first needed (PCREDUNDANT's and PCBJACOBI's inner solvers, the
+   external factorisation packages, an RVE's tangent solver at its first tangent): unread before the
+   first solve, so they are reported after the solve instead. */
 bool ReadAtFirstSolve(const char name[])
 {
-  for (const char *part : {"redundant_", "sub_", "fieldsplit_", "mg_levels_", "mg_coarse_", "mat_mumps_", "mat_superlu", "mat_strumpack_", "mat_mkl_"})
+  for (const char *part :
+       {"redundant_", "sub_", "fieldsplit_", "mg_levels_", "mg_coarse_", "mat_mumps_", "mat_superlu", "mat_strumpack_", "mat_mkl_", "rve_tangent_"})
     if (std::strstr(name, part)) return true;
   return false;
 }
