@@ -86,7 +86,8 @@ PetscErrorCode TimeRun::SetFromOptions()
                               "TimeRun", ckpt_keep_, &ckpt_keep_, NULL));
     PetscCall(PetscOptionsString("-restart",
                                  "Continue from this checkpoint file (-mode fine, or -mode fe2 with its RVE states): the same scene options, integrator and "
-                                 "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, lsrk, euler, ssp; -mode fine also basicsymplectic, verlet)",
+                                 "number of ranks; checkpoints need a one-step explicit integrator (-ts_type rk, lsrk, euler, ssp; -mode fine also "
+                                 "basicsymplectic, verlet)",
                                  "TimeRun", file, file, sizeof file, &set));
     PetscCall(PetscOptionsInt("-restart_read_rows",
                               "Rows of a checkpoint's table that a restart reads at once (each rank reads only its own entities' rows, in pieces of "
