@@ -122,3 +122,11 @@ turgor_add_test(fe2_static_tangent_failure COMMAND ${BAD} "halving it would go b
   -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -mode fe2_static -prve_seed 5 -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 1,1
   -coarse_dm_plex_box_upper 100,100 -coarse_dirichlet_values 4 -body_force 0,-40 -fe2_static_load_steps 80 -fe2_static_stop_at_localisation
   -rve_max_it 25 -fe2_static_min_increment 1e-3 -output_dir fe2_static_tangent_failure -output_overwrite LABELS fe2 static rve hard)
+# ... and without -fe2_stop_at_localisation the run fails, as before, its summary ("failed") carrying
+# the localisation it found (long: 20 s)
+set(DYNAMIC_GIVE_WAY_FAILS ${DYNAMIC_GIVE_WAY})
+list(REMOVE_ITEM DYNAMIC_GIVE_WAY_FAILS -fe2_stop_at_localisation)
+turgor_add_test(fe2_no_equilibrium_fails COMMAND ${BAD} "the time step fell to|steps were rejected" $<TARGET_FILE:turgor_app> ${DYNAMIC_GIVE_WAY_FAILS}
+  -output_dir fe2_no_equilibrium_fails LABELS fe2 rve hard long SETUP fe2_no_equilibrium_fails)
+turgor_add_test(fe2_no_equilibrium_fails_reported COMMAND ${CHECK} equals fe2_no_equilibrium_fails localisation_criterion no_equilibrium
+  LABELS fe2 rve hard long REQUIRES fe2_no_equilibrium_fails)

@@ -485,13 +485,18 @@ PetscErrorCode FE2Run::AddSummary(JsonObject &js)
   js.Set("material_cost_imbalance_before", model_.Pool().CostImbalanceBefore());
   js.Set("material_cost_imbalance_after", model_.Pool().CostImbalanceAfter());
   js.Set("material_points_moved", model_.Pool().PointsMoved());
-  if (model_.Spec().acoustic_field) { /* -1: no snapshot showed an element that lost ellipticity */
-    js.Set("localisation_time", localisation_time_);
-    js.Set("localisation_element", localisation_element_);
-    js.Set("localisation_criterion", localisation_time_ < 0 ? "" : no_equilibrium_ ? "no_equilibrium" : "acoustic");
-  }
+  AddLocalisation(js);
   if (monitor_.Active()) monitor_.AddSummary(js);
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -1 and "": no localisation found (by a snapshot that lost ellipticity, or a point without equilibrium) */
+void FE2Run::AddLocalisation(JsonObject &js) const
+{
+  if (!model_.Spec().acoustic_field) return;
+  js.Set("localisation_time", localisation_time_);
+  js.Set("localisation_element", localisation_element_);
+  js.Set("localisation_criterion", localisation_time_ < 0 ? "" : no_equilibrium_ ? "no_equilibrium" : "acoustic");
 }
 
 PetscErrorCode FE2Run::DoneDetails(std::string *details)

@@ -622,6 +622,7 @@ PetscErrorCode TimeRun::WriteFailure(const std::string &reason, const char statu
   if (solving_) wall_ = sampler_.Elapsed();
   PetscCall(CommonSummary(js, status));
   js.Set("reason", writing_.empty() ? reason : "while writing " + writing_ + ": " + reason);
+  AddFailureSummary(js);
   for (auto &fc : series_) fc.second->Finish(); /* what they hold; a failure to write one is the reason already */
   if (solving_) {
     js.Set("tip_displacement_last_sample", observed_);

@@ -171,6 +171,7 @@ public:
   PetscReal                ReferenceDensity() const { return rho0_; }
   bool                     LumpedMass() const { return spec_.lumped_mass; }
   CoarseSpec              &Spec() { return spec_; }
+  const CoarseSpec        &Spec() const { return spec_; }
   /* The element and quadrature rule in use (after SetUp): material points and nodes per element,
      their names. */
   PetscInt    PointsPerElement() const;

@@ -73,6 +73,8 @@ private:
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   PetscErrorCode        AfterStep(PetscReal t, Vec U) override;
   PetscErrorCode        EndWhereStuck(PetscReal t, std::string *status, std::string *reason) override;
+  void                  AddFailureSummary(JsonObject &js) const override { AddLocalisation(js); }
+  void                  AddLocalisation(JsonObject &js) const;
   static PetscErrorCode EigenMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
 
   LoadSpec    load_;

@@ -106,6 +106,9 @@ protected:
      -ts_adapt_dt_min): a mode may end the run there with a status of its own (*status, *reason)
      instead of failing; an empty status (the default) fails the run. Collective. */
   virtual PetscErrorCode EndWhereStuck(PetscReal t, std::string *status, std::string *reason) { return PETSC_SUCCESS; }
+  /* Keys a failed run's summary still carries (WriteFailure): values this rank holds, no collective
+     (rank 0 alone calls it, after the failure). */
+  virtual void AddFailureSummary(JsonObject &js) const { }
   /* The mode's summary keys (collective), and the details of the final report line. */
   virtual PetscErrorCode AddSummary(JsonObject &js)        = 0;
   virtual PetscErrorCode DoneDetails(std::string *details) = 0; /* collective */
