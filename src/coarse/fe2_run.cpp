@@ -225,8 +225,8 @@ PetscErrorCode FE2Run::AfterStep(PetscReal t, Vec U)
   PetscFunctionBeginUser;
   PetscCall(model_.CommitMaterials());
   steps_since_refresh_++;
-  failures_before_step_ = failures_at_step_;
-  failures_at_step_     = model_.StressFailures();
+  failures_in_step_ = model_.StressFailures() - failures_by_step_;
+  failures_by_step_ = model_.StressFailures();
   if (stop_at_localisation_ && localisation_time_ >= 0) { /* found by the last snapshot (the monitor runs after this hook) */
     char why[256];
     PetscCall(PetscSNPrintf(why, sizeof why, "localisation: element %" PetscInt_FMT " lost ellipticity (min det Q = %g (N/m)^2) at the snapshot at t = %g µs",
@@ -237,16 +237,16 @@ PetscErrorCode FE2Run::AfterStep(PetscReal t, Vec U)
 }
 
 /* The integrator cannot pass t, its last try found no stress at a material point (or, where it crawled
-   on with a step below -ts_adapt_dt_min, the tries before that step did; a tangent that fails at a
-   found equilibrium does not count): the point finds no equilibrium near
+   on with a step below -ts_adapt_dt_min, the tries of that step did; a tangent that fails at a found
+   equilibrium does not count): the point finds no equilibrium near
    its last one however short the step (an RVE that gives way: the stress branch it followed ends),
    the dynamic counterpart of -mode fe2_static's no_equilibrium; localisation at the last accepted
    time. With -fe2_stop_at_localisation the run ends there, localised; otherwise it fails as before,
    the localisation printed. */
-PetscErrorCode FE2Run::EndWhereStuck(PetscReal t, std::string *status, std::string *reason)
+PetscErrorCode FE2Run::EndWhereStuck(PetscReal t, bool crawled, std::string *status, std::string *reason)
 {
   PetscFunctionBeginUser;
-  const bool material = model_.LastStressFailed() || model_.StressFailures() > failures_before_step_;
+  const bool material = crawled ? failures_in_step_ > 0 : model_.LastStressFailed();
   if (!material || localisation_time_ >= 0) PetscFunctionReturn(PETSC_SUCCESS); /* not the material's doing, or found before */
   localisation_time_    = t;
   localisation_element_ = model_.LastFailedElement();

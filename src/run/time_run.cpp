@@ -385,7 +385,7 @@ PetscErrorCode TimeRun::Solve()
   PetscCall(TSGetSolveTime(ts_, &t));
   if (stalled_ >= 0 || reason < 0) { /* stuck at t: the mode may know why and end the run there */
     std::string status, why;
-    PetscCall(EndWhereStuck(t, &status, &why));
+    PetscCall(EndWhereStuck(t, stalled_ >= 0, &status, &why));
     if (!status.empty()) {
       stop_status_ = status;
       stop_reason_ = why;

@@ -60,7 +60,8 @@ protected:
   std::uint64_t  LayoutHash() const override;
   PetscErrorCode AfterStateRead(PetscReal t, Vec U, bool own_layout) override
   {
-    failures_at_step_ = failures_before_step_ = model_.StressFailures();
+    failures_by_step_ = model_.StressFailures();
+    failures_in_step_ = 0;
     return model_.AfterStateRead(U, own_layout);
   }
   PetscErrorCode StateOrder(IS *order) override { return model_.RankFreeStateOrder(order); }
@@ -72,7 +73,7 @@ private:
   static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec U, Vec G, void *ctx);
   static PetscErrorCode CheckDomain(TS ts, PetscReal t, Vec U, PetscBool *accept);
   PetscErrorCode        AfterStep(PetscReal t, Vec U) override;
-  PetscErrorCode        EndWhereStuck(PetscReal t, std::string *status, std::string *reason) override;
+  PetscErrorCode        EndWhereStuck(PetscReal t, bool crawled, std::string *status, std::string *reason) override;
   void                  AddFailureSummary(JsonObject &js) const override { AddLocalisation(js); }
   void                  AddLocalisation(JsonObject &js) const;
   static PetscErrorCode EigenMonitor(TS ts, PetscInt step, PetscReal t, Vec U, void *ctx);
@@ -90,7 +91,7 @@ private:
   PetscReal          localisation_time_ = -1, localisation_det_ = 0;
   PetscInt           localisation_element_ = -1;
   bool               no_equilibrium_       = false;
-  PetscInt           failures_at_step_ = 0, failures_before_step_ = 0; /* the evaluations without a stress by the last accepted step, and by the one before */
+  PetscInt           failures_by_step_ = 0, failures_in_step_ = 0; /* evaluations without a stress: by the last accepted step, and in its tries */
   PetscBool          stop_at_localisation_ = PETSC_FALSE;
   bool               explicit_             = false;
   CoarseFieldsWriter fields_;

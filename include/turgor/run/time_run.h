@@ -102,10 +102,11 @@ protected:
   PetscErrorCode StopAfterThisStep(const std::string &status, const std::string &reason);
   /* After a successful TSSolve (e.g. the particle record brought up to date). */
   virtual PetscErrorCode AfterSolve() { return PETSC_SUCCESS; }
-  /* The integrator cannot pass the state at t (its steps were rejected repeatedly, or one fell below
-     -ts_adapt_dt_min): a mode may end the run there with a status of its own (*status, *reason)
-     instead of failing; an empty status (the default) fails the run. Collective. */
-  virtual PetscErrorCode EndWhereStuck(PetscReal t, std::string *status, std::string *reason) { return PETSC_SUCCESS; }
+  /* The integrator cannot pass the state at t: its steps were rejected repeatedly, or (crawled) the
+     step it accepted last fell below -ts_adapt_dt_min. A mode may end the run there with a status of
+     its own (*status, *reason) instead of failing; an empty status (the default) fails the run.
+     Collective. */
+  virtual PetscErrorCode EndWhereStuck(PetscReal t, bool crawled, std::string *status, std::string *reason) { return PETSC_SUCCESS; }
   /* Keys a failed run's summary still carries (WriteFailure): values this rank holds, no collective
      (rank 0 alone calls it, after the failure). */
   virtual void AddFailureSummary(JsonObject &js) const { }
