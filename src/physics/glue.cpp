@@ -128,6 +128,7 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
   bonds_.clear();
   info_.clear();
   trial_.clear();
+  trial_bonds_      = SIZE_MAX;
   unbonded_         = 0;
   const PetscReal R = 2 * P.bar_radius + distance, R2 = R * R;
   PetscReal       lo[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
@@ -304,14 +305,15 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_;
   PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
-  if (MODE <= 1) trial_.resize(bonds_.size());
+  if (MODE <= 1) trial_.resize(bonds_.size()); /* room for every bond; the first trial_n_ are recorded below */
   if (MODE <= 1) push_.resize(bonds_.size());
   /* the law's parameters in locals: the stores below could alias the members, which would be
      loaded again for every bond */
   const bool      softening = law == SOFTENING, closing = compression;
   const PetscReal l0 = l0_, l02 = l02_, beta2 = beta2_;
+  Push           *push = push_.data();
   Trial          *trial = trial_.data();
-  Push           *push  = push_.data();
+  size_t          nt    = 0;
   for (size_t k = 0; k < bonds_.size(); k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
@@ -324,8 +326,14 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = std::max(dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
     const PetscReal l2 = dnp * dnp + beta2 * dt * dt; /* Opening2, BeforePeak */
-    const PetscReal D  = softening && !(B.lmax <= l0 && l2 <= l02) ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
-    if (MODE <= 1) trial[k] = {dnp, dt}; /* AcceptStep at this state commits from these */
+    const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
+    const PetscReal D      = softening && !before ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
+    /* AcceptStep at this state commits from these: only the bonds it may change (a scan of every
+       bond there cost a fifth of this loop) */
+    if (MODE <= 1) { /* branch-free: stored always, kept if past the peak */
+      trial[nt] = {k, dnp, dt};
+      nt += !before;
+    }
     if (MODE == 2) {
       Commit(in, k, dnp, dt);
       continue;
@@ -339,6 +347,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
     push[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
   }
+  if (MODE <= 1) trial_n_ = nt, trial_bonds_ = bonds_.size();
   if (MODE >= 2) return E;
   const ForceGrain &grain   = in.Grain();
   const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
@@ -424,14 +433,9 @@ PetscErrorCode Glue::AcceptStep(const ForceInput &in)
     PetscCall(CreateBonds(*in.P, in.x));
     PetscFunctionReturn(PETSC_SUCCESS); /* made at this state: nothing to commit yet */
   }
-  if (in.same_x && trial_.size() == bonds_.size()) { /* the openings of the evaluation at these positions */
-    for (size_t k = 0; k < bonds_.size(); k++) {
-      const Bond &B = bonds_[k];
-      /* tested here, not in a call per bond: most bonds are before their peak */
-      if (!B.intact || BeforePeak(B, Opening2(trial_[k].dnp, trial_[k].dt))) continue;
-      Commit(in, k, trial_[k].dnp, trial_[k].dt);
-    }
-  } else Kernel<2>(in, NULL, NULL);
+  if (in.same_x && trial_bonds_ == bonds_.size()) /* the openings of the evaluation at these positions */
+    for (size_t i = 0; i < trial_n_; i++) Commit(in, trial_[i].k, trial_[i].dnp, trial_[i].dt);
+  else Kernel<2>(in, NULL, NULL);
   accepted_++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -618,6 +622,7 @@ PetscErrorCode Glue::AfterStateRead(const ForceInput &in)
   bonds_.swap(bonds);
   info_.swap(info);
   trial_.clear();
+  trial_bonds_ = SIZE_MAX;
   push_.clear();
   breaks_.clear();
   PetscFunctionReturn(PETSC_SUCCESS);
