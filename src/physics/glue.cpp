@@ -311,7 +311,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
      loaded again for every bond */
   const bool      softening = law == SOFTENING, closing = compression;
   const PetscReal l0 = l0_, l02 = l02_, beta2 = beta2_;
-  Push           *push = push_.data();
+  Push           *push  = push_.data();
   Trial          *trial = trial_.data();
   size_t          nt    = 0;
   for (size_t k = 0; k < bonds_.size(); k++) {
@@ -325,7 +325,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
     const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = std::max(dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
-    const PetscReal l2 = dnp * dnp + beta2 * dt * dt; /* Opening2, BeforePeak */
+    const PetscReal l2     = dnp * dnp + beta2 * dt * dt;            /* Opening2, BeforePeak */
     const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
     const PetscReal D      = softening && !before ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
     /* AcceptStep at this state commits from these: only the bonds it may change (a scan of every

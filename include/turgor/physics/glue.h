@@ -117,7 +117,7 @@ private:
   struct BondInfo { /* what only set-up and the break records read */
     PetscInt s, cell_p, cell_s;
   };
-  struct Trial {       /* a bond the accepted step must commit: past its peak (softening), every intact bond (the brittle laws) */
+  struct Trial { /* a bond the accepted step must commit: past its peak (softening), every intact bond (the brittle laws) */
     size_t    k;
     PetscReal dnp, dt; /* <delta_n>, delta_t of the last evaluation */
   };
@@ -139,10 +139,10 @@ private:
   PetscReal             kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
   std::vector<Bond>     bonds_;
   std::vector<BondInfo> info_;
-  std::vector<Trial>    trial_;                  /* room for every bond; the last force evaluation's first trial_n_, in bond order */
+  std::vector<Trial>    trial_; /* room for every bond; the last force evaluation's first trial_n_, in bond order */
   size_t                trial_n_     = 0;
   size_t                trial_bonds_ = SIZE_MAX; /* the bond count trial_ was made for; SIZE_MAX: none since the bonds changed */
-  std::vector<Push>     push_; /* per bond, the last evaluation's forces, scattered after the loop */
+  std::vector<Push>     push_;                   /* per bond, the last evaluation's forces, scattered after the loop */
   std::vector<Break>    breaks_;
   PetscInt              intact_ = 0, accepted_ = 0, unbonded_ = 0; /* unbonded_: pairs left unbonded by -glue_unbonded_box */
   PetscReal             dissipated_ = 0, time_ = 0;
