@@ -188,7 +188,7 @@ void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n
       const PetscReal cr = px * ey - py * ex;
       near               = cr * cr < R2 * L2;
     }
-    if (near || hist_[k].live) near_.push_back((PetscInt)k); /* a pair with history is kept until AcceptStep drops it */
+    if (near || hist_[k].live) near_.push_back({c.p, c.a, c.b, (PetscInt)k}); /* a pair with history is kept until AcceptStep drops it */
   }
   in.nb->Mark(x, n);
   near_builds_++;
@@ -226,12 +226,12 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   touch_.resize(near_.size());
   size_t nt = 0;
   for (size_t j = 0; j < near_.size(); j++) {
-    const Candidate &C  = cand_[near_[j]];
-    const PetscReal  ex = x[2 * C.b] - x[2 * C.a], ey = x[2 * C.b + 1] - x[2 * C.a + 1];
-    const PetscReal  px = x[2 * C.p] - x[2 * C.a], py = x[2 * C.p + 1] - x[2 * C.a + 1];
-    const PetscReal  L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
-    const PetscReal  dx = px * L2 - t * ex, dy = py * L2 - t * ey;
-    touch_[nt] = near_[j];
+    const Near     &C  = near_[j];
+    const PetscReal ex = x[2 * C.b] - x[2 * C.a], ey = x[2 * C.b + 1] - x[2 * C.a + 1];
+    const PetscReal px = x[2 * C.p] - x[2 * C.a], py = x[2 * C.p + 1] - x[2 * C.a + 1];
+    const PetscReal L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
+    const PetscReal dx = px * L2 - t * ex, dy = py * L2 - t * ey;
+    touch_[nt] = C.k;
     nt += (dx * dx + dy * dy < R2 * L2 * L2);
   }
   if (MODE <= 2 && tangential) trial_.clear();

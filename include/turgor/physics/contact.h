@@ -96,17 +96,20 @@ private:
 
   PetscReal              r_ = 0, kt_ = 0, near_skin_ = 0;
   std::vector<PetscInt>  bar_poly_, bar_pos_, node_pos_, node_bars_;
-  std::vector<Candidate> cand_;                         /* eligible pairs of the neighbour list */
-  std::vector<History>   hist_;                         /* beside cand_ */
-  std::vector<PetscInt>  near_;                         /* indices into cand_ of the near pairs */
-  std::vector<PetscInt>  touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
-  std::vector<Trial>     trial_;                        /* from the last evaluation (friction) */
-  std::vector<PetscInt>  live_;                         /* indices into cand_ of the pairs with a live history */
-  PetscInt               trial_lists_ = -1, stamp_ = 0; /* list_builds_ of the trial values; commits made */
-  PetscInt               seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
-  PetscInt               evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
-  PetscReal              sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
-  size_t                 n_springs_ = 0;
+  std::vector<Candidate> cand_; /* eligible pairs of the neighbour list */
+  std::vector<History>   hist_; /* beside cand_ */
+  struct Near {                 /* a near pair with its nodes beside it: the first pass reads this list in order, not cand_ */
+    PetscInt p, a, b, k;        /* node, bar ends, index into cand_ */
+  };
+  std::vector<Near>     near_;
+  std::vector<PetscInt> touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
+  std::vector<Trial>    trial_;                        /* from the last evaluation (friction) */
+  std::vector<PetscInt> live_;                         /* indices into cand_ of the pairs with a live history */
+  PetscInt              trial_lists_ = -1, stamp_ = 0; /* list_builds_ of the trial values; commits made */
+  PetscInt              seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
+  PetscInt              evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
+  PetscReal             sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
+  size_t                n_springs_ = 0;
   struct SavedHistory { /* a live history as a checkpoint holds it */
     PetscInt  node, bar;
     PetscReal xi, lam_ref;
