@@ -35,7 +35,7 @@ PetscErrorCode TimeSampler::At(TS ts, PetscInt step, PetscReal t, Vec U, PetscRe
 PetscErrorCode TimeSampler::Emit(TS ts, PetscInt step, PetscReal t, Vec U, PetscInt n, PetscInt *next, const Callback &cb)
 {
   const PetscReal T = t_final_, eps = 1e-9 * T;
-  Vec             X;
+  Vec             X = NULL; /* set by At (GCC warns it may be used uninitialised) */
   PetscFunctionBeginUser;
   if (!cb || n <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   if (step > 0 && !ts->ops->interpolate) {

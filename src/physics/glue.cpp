@@ -1,6 +1,7 @@
 #include <turgor/core/geometry.h>
 #include <turgor/core/options.h>
 #include <turgor/physics/glue.h>
+#include <turgor/physics/glue_bond_forces.h>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -293,31 +294,39 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
                (double)distance);
   intact_     = (PetscInt)bonds_.size();
   have_bonds_ = true;
+  CopyGeometry();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* MODE 0: forces, 1: forces and virial, 2: accept (damage, breaks), 3: energy (returned).
-   With F_n = (1 - D) L k_n <delta_n>, F_t = (1 - D) L k_t delta_t and F = F_n n + F_t t: force -F on
-   the node, (1 - lambda) F + q n on a and lambda F - q n on b, q = (F_t g.n - F_n g.t) / |e| (the
-   derivative of the bar's frame: the couple that makes the torque zero). */
-template <int MODE>
-PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
+void Glue::CopyGeometry()
 {
-  const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_;
-  PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
-  if (MODE <= 1) trial_.resize(bonds_.size()); /* room for every bond; the first trial_n_ are recorded below */
-  if (MODE <= 1) push_.resize(bonds_.size());
+  GlueBondGeometry &G = geometry_;
+  G.Resize(bonds_.size());
+  for (size_t k = 0; k < bonds_.size(); k++) {
+    const Bond &B = bonds_[k];
+    G.p[k] = B.p, G.a[k] = B.a, G.b[k] = B.b;
+    G.lam[k] = B.lam, G.sign[k] = B.sign, G.gn0[k] = B.gn0, G.gt0[k] = B.gt0, G.L[k] = B.L;
+  }
+}
+
+/* The bonds [lo, hi) one at a time (MODE as Kernel's): (0, 1) the force into push_ with the bond's
+   damage, recorded in trial_ at entry nt if it may change when accepted (returns the next entry);
+   (2) committed; (3) the energy added to *E. The forces of undamaged bonds come from
+   GlueUndamagedForces instead, whose arithmetic is this one's with D = 0. */
+template <int MODE>
+size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E)
+{
   /* the law's parameters in locals: the stores below could alias the members, which would be
      loaded again for every bond */
-  const bool      softening = law == SOFTENING, closing = compression;
-  const PetscReal l0 = l0_, l02 = l02_, beta2 = beta2_;
-  Push           *push  = push_.data();
-  Trial          *trial = trial_.data();
-  size_t          nt    = 0;
-  for (size_t k = 0; k < bonds_.size(); k++) {
+  const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_;
+  const bool       softening = law == SOFTENING, closing = compression;
+  const PetscReal  l0 = l0_, l02 = l02_, beta2 = beta2_;
+  PetscReal       *push  = push_.data();
+  Trial           *trial = trial_.data();
+  PetscReal        e     = 0;
+  for (size_t k = lo; k < hi; k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
-    /* the bar's frame (inline: this loop is the term's cost) */
     const PetscReal ex = x[2 * B.b] - x[2 * B.a], ey = x[2 * B.b + 1] - x[2 * B.a + 1];
     const PetscReal il = 1 / std::sqrt(ex * ex + ey * ey), tx = ex * il, ty = ey * il, nx = -B.sign * ty, ny = B.sign * tx;
     const PetscReal l1 = 1 - B.lam;
@@ -328,9 +337,7 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const PetscReal l2     = dnp * dnp + beta2 * dt * dt;            /* Opening2, BeforePeak */
     const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
     const PetscReal D      = softening && !before ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
-    /* AcceptStep at this state commits from these: only the bonds it may change (a scan of every
-       bond there cost a fifth of this loop) */
-    if (MODE <= 1) { /* branch-free: stored always, kept if past the peak */
+    if (MODE <= 1) {
       trial[nt] = {k, dnp, dt};
       nt += !before;
     }
@@ -340,15 +347,57 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     }
     const PetscReal dnf = closing ? dn : dnp; /* the normal force's opening: closing too with -glue_compression */
     if (MODE == 3) {
-      E += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
+      e += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
       continue;
     }
     const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnf, Ft = s * kt * dt;
     const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-    push[k] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny};
+    push[4 * k]     = Fx;
+    push[4 * k + 1] = Fy;
+    push[4 * k + 2] = l1 * Fx + q * nx;
+    push[4 * k + 3] = l1 * Fy + q * ny;
   }
-  if (MODE <= 1) trial_n_ = nt, trial_bonds_ = bonds_.size();
-  if (MODE >= 2) return E;
+  if (MODE == 3) *E += e;
+  return nt;
+}
+
+/* MODE 0: forces, 1: forces and virial, 2: accept (damage, breaks), 3: energy (returned).
+   With F_n = (1 - D) L k_n <delta_n>, F_t = (1 - D) L k_t delta_t and F = F_n n + F_t t: force -F on
+   the node, (1 - lambda) F + q n on a and lambda F - q n on b, q = (F_t g.n - F_n g.t) / |e| (the
+   derivative of the bar's frame: the couple that makes the torque zero). */
+template <int MODE>
+PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
+{
+  const PetscReal *x    = in.x;
+  const size_t     n    = bonds_.size();
+  PetscReal        w[4] = {0, 0, 0, 0}, E = 0;
+  if (MODE >= 2) {
+    BondRange<MODE>(in, 0, n, 0, &E);
+    return E;
+  }
+  /* every bond's force as if undamaged, vectorised; then, in bond order, the record of the bonds the
+     accepted step may change (AcceptStep at this state commits from it instead of scanning every
+     bond), and the force of a damaged bond (past its peak) again with its damage */
+  trial_.resize(n); /* room for every bond; the first trial_n_ are recorded below */
+  push_.resize(4 * n);
+  opening_.resize(2 * n);
+  PetscCheckAbort(geometry_.Size() == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: the bonds' geometry arrays are out of date");
+  GlueUndamagedForces(geometry_, x, normal_stiffness, kt_, compression, push_.data(), opening_.data(), opening_.data() + n);
+  const bool      softening = law == SOFTENING;
+  const PetscReal l0 = l0_, l02 = l02_, beta2 = beta2_, *dnp = opening_.data(), *dt = opening_.data() + n;
+  Trial          *trial = trial_.data();
+  size_t          nt    = 0;
+  for (size_t k = 0; k < n; k++) {
+    const Bond &B = bonds_[k];
+    if (!B.intact) continue;
+    const PetscReal l2     = dnp[k] * dnp[k] + beta2 * dt[k] * dt[k];
+    const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
+    if (softening && !before) nt = BondRange<0>(in, k, k + 1, nt, nullptr);
+    else { /* branch-free: stored always, kept if the accepted step may change it (the brittle laws: any) */ trial[nt] = {k, dnp[k], dt[k]};
+      nt += !before;
+    }
+  }
+  trial_n_ = nt, trial_bonds_ = n;
   const ForceGrain &grain   = in.Grain();
   const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
   /* Scatter apart from the evaluation: consecutive bonds share bar nodes, and adding into f inside the
@@ -356,22 +405,22 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   for (size_t k = 0; k < bonds_.size(); k++) {
     const Bond &B = bonds_[k];
     if (!B.intact) continue;
-    Push P = push_[k];
-    if (rounded) grain(P.Fx, P.Fy), grain(P.ax, P.ay);
-    const PetscReal bx = P.Fx - P.ax, by = P.Fy - P.ay; /* lambda F - q n = F - (1 - lambda) F - q n */
-    f[2 * B.p] -= P.Fx;
-    f[2 * B.p + 1] -= P.Fy;
-    f[2 * B.a] += P.ax;
-    f[2 * B.a + 1] += P.ay;
+    PetscReal Fx = push_[4 * k], Fy = push_[4 * k + 1], ax = push_[4 * k + 2], ay = push_[4 * k + 3];
+    if (rounded) grain(Fx, Fy), grain(ax, ay);
+    const PetscReal bx = Fx - ax, by = Fy - ay; /* lambda F - q n = F - (1 - lambda) F - q n */
+    f[2 * B.p] -= Fx;
+    f[2 * B.p + 1] -= Fy;
+    f[2 * B.a] += ax;
+    f[2 * B.a + 1] += ay;
     f[2 * B.b] += bx;
     f[2 * B.b + 1] += by;
     if (MODE == 1) { /* -sum f (x) x, relative to the node: a at x_a - x_p, b at x_b - x_p */
       const PetscReal rax = x[2 * B.a] - x[2 * B.p], ray = x[2 * B.a + 1] - x[2 * B.p + 1], rbx = x[2 * B.b] - x[2 * B.p],
                       rby = x[2 * B.b + 1] - x[2 * B.p + 1];
-      w[0] -= P.ax * rax + bx * rbx;
-      w[1] -= P.ax * ray + bx * rby;
-      w[2] -= P.ay * rax + by * rbx;
-      w[3] -= P.ay * ray + by * rby;
+      w[0] -= ax * rax + bx * rbx;
+      w[1] -= ax * ray + bx * rby;
+      w[2] -= ay * rax + by * rbx;
+      w[3] -= ay * ray + by * rby;
     }
   }
   if (MODE == 1)
@@ -625,6 +674,7 @@ PetscErrorCode Glue::AfterStateRead(const ForceInput &in)
   trial_bonds_ = SIZE_MAX;
   push_.clear();
   breaks_.clear();
+  CopyGeometry();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -36,6 +36,7 @@
    broken always. Each break is recorded (BreakRecords) with its time, cells, node, bar, position,
    mode and the energy it released. */
 #include <turgor/physics/force_term.h>
+#include <turgor/physics/glue_bond_forces.h>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -121,12 +122,12 @@ private:
     size_t    k;
     PetscReal dnp, dt; /* <delta_n>, delta_t of the last evaluation */
   };
-  struct Push {
-    PetscReal Fx, Fy, ax, ay; /* force of the bond on its bar (minus: on its node), the share of bar end a */
-  };
   template <int MODE>
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
-  void      Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
+  template <int MODE>
+  size_t BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E);
+  void   CopyGeometry(); /* geometry_ from bonds_, once they are made or read back */
+  void   Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
   /* the squared equivalent opening <delta_n>^2 + (k_t/k_n) delta_t^2 */
   PetscReal Opening2(PetscReal dnp, PetscReal dt) const { return dnp * dnp + beta2_ * dt * dt; }
   /* softening bond still below its peak (no damage, nothing to commit; lmax is recorded from the
@@ -136,18 +137,20 @@ private:
   PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
   void Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt, PetscReal *gn) const;
 
-  PetscReal             kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
-  std::vector<Bond>     bonds_;
-  std::vector<BondInfo> info_;
-  std::vector<Trial>    trial_; /* room for every bond; the last force evaluation's first trial_n_, in bond order */
-  size_t                trial_n_     = 0;
-  size_t                trial_bonds_ = SIZE_MAX; /* the bond count trial_ was made for; SIZE_MAX: none since the bonds changed */
-  std::vector<Push>     push_;                   /* per bond, the last evaluation's forces, scattered after the loop */
-  std::vector<Break>    breaks_;
-  PetscInt              intact_ = 0, accepted_ = 0, unbonded_ = 0; /* unbonded_: pairs left unbonded by -glue_unbonded_box */
-  PetscReal             dissipated_ = 0, time_ = 0;
-  bool                  have_bonds_ = false;
-  const ParticleSet    *P_          = nullptr;
+  PetscReal              kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
+  std::vector<Bond>      bonds_;
+  std::vector<BondInfo>  info_;
+  std::vector<Trial>     trial_; /* room for every bond; the last force evaluation's first trial_n_, in bond order */
+  size_t                 trial_n_     = 0;
+  size_t                 trial_bonds_ = SIZE_MAX; /* the bond count trial_ was made for; SIZE_MAX: none since the bonds changed */
+  std::vector<PetscReal> push_;     /* per bond, the last evaluation's force on its bar and the share of bar end a (4 values), scattered after the loop */
+  std::vector<PetscReal> opening_;  /* the last evaluation's <delta_n> of every bond, then delta_t */
+  GlueBondGeometry       geometry_; /* bonds_'s fixed geometry by field, for GlueUndamagedForces */
+  std::vector<Break>     breaks_;
+  PetscInt               intact_ = 0, accepted_ = 0, unbonded_ = 0; /* unbonded_: pairs left unbonded by -glue_unbonded_box */
+  PetscReal              dissipated_ = 0, time_ = 0;
+  bool                   have_bonds_ = false;
+  const ParticleSet     *P_          = nullptr;
 };
 
 } // namespace turgor
