@@ -1,16 +1,10 @@
+#include <turgor/core/vector_clones.h>
 #include <turgor/physics/glue_bond_forces.h>
 #include <algorithm>
 #include <cmath>
 
 /* Compiled with -fno-math-errno (CMakeLists.txt): sqrt's errno branch would keep the loop from
-   vectorising; nothing here reads errno. An AVX2 clone beside the baseline one, picked when the
-   program starts (GCC's target_clones on x86-64): AVX2 without FMA, so no operation is fused. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-  #define TURGOR_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-  #define TURGOR_VECTOR_CLONES
-#endif
-
+   vectorising; nothing here reads errno. */
 namespace turgor {
 
 namespace {

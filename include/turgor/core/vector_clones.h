@@ -1,0 +1,11 @@
+#pragma once
+/* TURGOR_VECTOR_CLONES before a function with a loop the compiler vectorises: GCC on x86-64 builds it
+   twice, for AVX2 and for the baseline (SSE2), and picks one when the program starts (target_clones,
+   an ifunc). AVX2 alone, without FMA: no multiply-add is fused, so both clones give the same bits
+   (element by element, the same operations in the same order). Off under the sanitizers and other
+   compilers: the baseline loop only. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+  #define TURGOR_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+  #define TURGOR_VECTOR_CLONES
+#endif
