@@ -392,8 +392,11 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     if (!B.intact) continue;
     const PetscReal l2     = dnp[k] * dnp[k] + beta2 * dt[k] * dt[k];
     const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
+    /* damaged: again with its damage (and recorded there); else stored always, kept if the accepted
+       step may change it (the brittle laws: any intact bond) */
     if (softening && !before) nt = BondRange<0>(in, k, k + 1, nt, nullptr);
-    else { /* branch-free: stored always, kept if the accepted step may change it (the brittle laws: any) */ trial[nt] = {k, dnp[k], dt[k]};
+    else {
+      trial[nt] = {k, dnp[k], dt[k]};
       nt += !before;
     }
   }
