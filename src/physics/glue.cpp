@@ -89,25 +89,11 @@ PetscErrorCode Glue::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The bar's frame at x: t along a -> b, n = sign perp(t) towards the node's side, 1/|e|, and g = x_p - c in it. */
-void Glue::Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt,
-                 PetscReal *gn) const
-{
-  const PetscReal ex = x[2 * B.b] - x[2 * B.a], ey = x[2 * B.b + 1] - x[2 * B.a + 1];
-  *il = 1 / std::sqrt(ex * ex + ey * ey);
-  *tx = ex * *il, *ty = ey * *il;
-  *nx = -B.sign * *ty, *ny = B.sign * *tx;
-  const PetscReal gx = x[2 * B.p] - (1 - B.lam) * x[2 * B.a] - B.lam * x[2 * B.b], gy = x[2 * B.p + 1] - (1 - B.lam) * x[2 * B.a + 1] - B.lam * x[2 * B.b + 1];
-  *gt = gx * *tx + gy * *ty;
-  *gn = gx * *nx + gy * *ny;
-}
-
 void Glue::Opening(PetscInt b, const PetscReal *x, PetscReal *dn, PetscReal *dt) const
 {
-  PetscReal tx, ty, nx, ny, il, gt, gn;
-  Frame(bonds_[b], x, &tx, &ty, &nx, &ny, &il, &gt, &gn);
-  *dn = gn - bonds_[b].gn0;
-  *dt = gt - bonds_[b].gt0;
+  const Bond           &B = bonds_[b];
+  const GlueBondOpening o = GlueOpeningAt(x, B.p, B.a, B.b, B.lam, B.sign, B.gn0, B.gt0);
+  *dn = o.dn, *dt = o.dt;
 }
 
 PetscReal Glue::Damage(PetscReal l) const
@@ -195,11 +181,9 @@ PetscErrorCode Glue::CreateBonds(const ParticleSet &P, const PetscReal *X)
         continue;
       }
     }
-    PetscReal tx, ty, nx, ny, il, gt, gn;
-    Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
-    B.sign = gn >= 0 ? 1 : -1; /* n points from the bar to the node */
-    Frame(B, X, &tx, &ty, &nx, &ny, &il, &gt, &gn);
-    B.gn0 = gn, B.gt0 = gt;
+    B.sign                  = GlueOpeningAt(X, B.p, B.a, B.b, B.lam, 1, 0, 0).gn >= 0 ? 1 : -1; /* n points from the bar to the node */
+    const GlueBondOpening o = GlueOpeningAt(X, B.p, B.a, B.b, B.lam, B.sign, 0, 0);
+    B.gn0 = o.gn, B.gt0 = o.gt;
     bonds_.push_back(B);
     info_.push_back(I);
   }
@@ -327,12 +311,8 @@ size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, Pe
   for (size_t k = lo; k < hi; k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
-    const PetscReal ex = x[2 * B.b] - x[2 * B.a], ey = x[2 * B.b + 1] - x[2 * B.a + 1];
-    const PetscReal il = 1 / std::sqrt(ex * ex + ey * ey), tx = ex * il, ty = ey * il, nx = -B.sign * ty, ny = B.sign * tx;
-    const PetscReal l1 = 1 - B.lam;
-    const PetscReal gx = x[2 * B.p] - l1 * x[2 * B.a] - B.lam * x[2 * B.b], gy = x[2 * B.p + 1] - l1 * x[2 * B.a + 1] - B.lam * x[2 * B.b + 1];
-    const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
-    const PetscReal dn = gn - B.gn0, dt = gt - B.gt0, dnp = std::max(dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
+    const GlueBondOpening o  = GlueOpeningAt(x, B.p, B.a, B.b, B.lam, B.sign, B.gn0, B.gt0);
+    const PetscReal       dn = o.dn, dt = o.dt, dnp = o.dnp;
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
     const PetscReal l2     = dnp * dnp + beta2 * dt * dt;            /* Opening2, BeforePeak */
     const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
@@ -350,12 +330,7 @@ size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, Pe
       e += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
       continue;
     }
-    const PetscReal s = (1 - D) * B.L, Fn = s * kn * dnf, Ft = s * kt * dt;
-    const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-    push[4 * k]     = Fx;
-    push[4 * k + 1] = Fy;
-    push[4 * k + 2] = l1 * Fx + q * nx;
-    push[4 * k + 3] = l1 * Fy + q * ny;
+    GlueForceOf(o, (1 - D) * B.L, kn, kt, dnf, push + 4 * k);
   }
   if (MODE == 3) *E += e;
   return nt;

@@ -17,22 +17,10 @@ TURGOR_VECTOR_CLONES void Loop(size_t n, const PetscInt *__restrict p, const Pet
                                PetscReal *__restrict force, PetscReal *__restrict dnp_out, PetscReal *__restrict dt_out)
 {
   for (size_t k = 0; k < n; k++) {
-    /* Glue::BondRange's expressions, with D = 0 */
-    const PetscReal ex = x[2 * b[k]] - x[2 * a[k]], ey = x[2 * b[k] + 1] - x[2 * a[k] + 1];
-    const PetscReal il = 1 / std::sqrt(ex * ex + ey * ey), tx = ex * il, ty = ey * il, nx = -sign[k] * ty, ny = sign[k] * tx;
-    const PetscReal l1 = 1 - lam[k];
-    const PetscReal gx = x[2 * p[k]] - l1 * x[2 * a[k]] - lam[k] * x[2 * b[k]], gy = x[2 * p[k] + 1] - l1 * x[2 * a[k] + 1] - lam[k] * x[2 * b[k] + 1];
-    const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
-    const PetscReal dn = gn - gn0[k], dt = gt - gt0[k], dnp = std::max(dn, (PetscReal)0);
-    const PetscReal dnf = CLOSING ? dn : dnp;
-    const PetscReal s = L[k], Fn = s * kn * dnf, Ft = s * kt * dt; /* s = (1 - D) L = L exactly at D = 0 */
-    const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-    force[4 * k]     = Fx;
-    force[4 * k + 1] = Fy;
-    force[4 * k + 2] = l1 * Fx + q * nx;
-    force[4 * k + 3] = l1 * Fy + q * ny;
-    dnp_out[k]       = dnp;
-    dt_out[k]        = dt;
+    const GlueBondOpening o = GlueOpeningAt(x, p[k], a[k], b[k], lam[k], sign[k], gn0[k], gt0[k]);
+    GlueForceOf(o, L[k], kn, kt, CLOSING ? o.dn : o.dnp, force + 4 * k); /* s = (1 - D) L = L exactly at D = 0 */
+    dnp_out[k] = o.dnp;
+    dt_out[k]  = o.dt;
   }
 }
 } // namespace

@@ -135,7 +135,6 @@ private:
   bool      BeforePeak(const Bond &B, PetscReal l2) const { return law == SOFTENING && B.lmax <= l0_ && l2 <= l02_; }
   PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
   PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
-  void Frame(const Bond &B, const PetscReal *x, PetscReal *tx, PetscReal *ty, PetscReal *nx, PetscReal *ny, PetscReal *il, PetscReal *gt, PetscReal *gn) const;
 
   PetscReal              kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
   std::vector<Bond>      bonds_;

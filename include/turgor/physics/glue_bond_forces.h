@@ -6,6 +6,8 @@
    arithmetic is Glue's scalar code's, in the same order and without fused multiply-adds, so a vector
    build (AVX2, chosen at run time where the CPU has it) gives the same bits as a scalar one. */
 #include <petscsys.h>
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -21,6 +23,32 @@ struct GlueBondGeometry {
     for (auto *v : {&lam, &sign, &gn0, &gt0, &L}) v->resize(n);
   }
 };
+
+/* One bond at x (node p, bar a-b, bond point lambda, side `sign`, reference opening gn0, gt0): the
+   bar's frame and the opening, the one formula of Glue's scalar code and of the vectorised loop. */
+struct GlueBondOpening {
+  PetscReal tx, ty, nx, ny, il, l1, gt, gn, dn, dt, dnp; /* unit tangent and normal, 1/|e|, 1 - lambda, gap in the frame, opening, <delta_n> */
+};
+inline GlueBondOpening GlueOpeningAt(const PetscReal *x, PetscInt p, PetscInt a, PetscInt b, PetscReal lam, PetscReal sign, PetscReal gn0, PetscReal gt0)
+{
+  GlueBondOpening o;
+  const PetscReal ex = x[2 * b] - x[2 * a], ey = x[2 * b + 1] - x[2 * a + 1];
+  o.il = 1 / std::sqrt(ex * ex + ey * ey), o.tx = ex * o.il, o.ty = ey * o.il, o.nx = -sign * o.ty, o.ny = sign * o.tx;
+  o.l1               = 1 - lam;
+  const PetscReal gx = x[2 * p] - o.l1 * x[2 * a] - lam * x[2 * b], gy = x[2 * p + 1] - o.l1 * x[2 * a + 1] - lam * x[2 * b + 1];
+  o.gt = gx * o.tx + gy * o.ty, o.gn = gx * o.nx + gy * o.ny;
+  o.dn = o.gn - gn0, o.dt = o.gt - gt0, o.dnp = std::max(o.dn, (PetscReal)0); /* branch-free: at rest dn jitters about 0 */
+  return o;
+}
+/* Its force with s = (1 - D) L and the normal opening dnf (<delta_n>, or delta_n where closing bonds
+   push too): F[0..1] the force on the bar (minus: on the node), F[2..3] the share of bar end a
+   (q = (F_t g.n - F_n g.t) / |e|, the couple that makes the torque zero). */
+inline void GlueForceOf(const GlueBondOpening &o, PetscReal s, PetscReal kn, PetscReal kt, PetscReal dnf, PetscReal *F)
+{
+  const PetscReal Fn = s * kn * dnf, Ft = s * kt * o.dt;
+  const PetscReal Fx = Fn * o.nx + Ft * o.tx, Fy = Fn * o.ny + Ft * o.ty, q = (Ft * o.gn - Fn * o.gt) * o.il;
+  F[0] = Fx, F[1] = Fy, F[2] = o.l1 * Fx + q * o.nx, F[3] = o.l1 * Fy + q * o.ny;
+}
 
 /* Per bond k: F = L (k_n d_n n + k_t d_t t) with d_n = <opening> (closing: the signed one too) into
    force[4 k .. 4 k + 3] = (F_x, F_y, share of bar end a), and the opening's <delta_n>, delta_t into
