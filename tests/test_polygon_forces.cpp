@@ -3,13 +3,15 @@ static const char help[] = "Force terms of polygonal cells (bars, hinges, contac
                            "total force and torque, a pressurised regular N-gon (gas law) against its closed form, node-bar\n"
                            "contact (lever rule, momenta, corners once, Coulomb stick/slip, history across rebuilds),\n"
                            "velocity Verlet energy error ~ dt^2, no contact lists without contact, and the near list of\n"
-                           "contact against lists rebuilt at every step (a compressed tissue of 64 hexagons, 3000 steps).\n";
+                           "contact against lists rebuilt at every step (a compressed tissue of 64 hexagons, 3000 steps), and the\n"
+                           "hinges' vectorised forces bit for bit against the one-pass kernel's.\n";
 #include "test_util.h"
 #include "polygon_util.h"
 #include <turgor/physics/bars.h>
 #include <turgor/physics/cell_pressure.h>
 #include <turgor/physics/contact.h>
 #include <turgor/physics/hinges.h>
+#include <cstring>
 #include <turgor/physics/viscosity.h>
 
 using namespace turgor;
@@ -588,6 +590,58 @@ static PetscErrorCode TestNearList()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* 9. The hinges' vectorised loop (forces without the virial) gives the bits of the one-pass kernel
+   (forces with it), on closed cells and an open chain bent so that some hinges leave the series
+   (|tan(theta - theta0)| > 0.1, and some past a right angle), elastic and plastic. */
+static PetscErrorCode TestHingeVectorBits()
+{
+  PolygonBuilder      B;
+  turgor_test::Random rnd(11);
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < 12; c++) B.AddRegular(3 + c % 7, 1.0 + 0.1 * c, 3.0 * c, 0, 1.0);
+  B.AddCell(
+    {
+      {0, 5  },
+      {1, 5.2},
+      {2, 4.9},
+      {3, 5.1},
+      {4, 5  },
+      {5, 5.3}
+  },
+    true, 1.0);
+  Tissue &T = B.Finish(0.1);
+  for (PetscReal Mmax : {0.0, 0.3}) {
+    auto h        = std::make_unique<Hinges>();
+    h->stiffness  = 2.5;
+    h->max_moment = Mmax;
+    ForceModel M;
+    PetscCall(MakeModel(T.particles, List(std::move(h)), M));
+    std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f, fv(x.size(), 0.0);
+    PetscCall(Forces(M, x, v, f)); /* the reference angles */
+    for (auto &q : x) q += 0.1 * rnd();
+    const size_t fold = x.size() / 2 - 4; /* the chain's third node, pushed up past its neighbours: a bend of about 100 degrees */
+    x[2 * fold] = 2.0, x[2 * fold + 1] = 6.5;
+    PetscCall(Forces(M, x, v, f));
+    PetscReal virial[4] = {0, 0, 0, 0};
+    PetscCall(M.ComputeForces(x.data(), v.data(), fv.data(), virial));
+    const Hinges *H       = dynamic_cast<const Hinges *>(M.Term("hinges"));
+    size_t        outside = 0, obtuse = 0;
+    for (size_t k = 0; k < H->NumHinges(); k++) {
+      const PetscReal d = std::fabs(H->Angle(k, x.data()));
+      outside += d > std::atan(0.1);
+      obtuse += d > 0.5 * PETSC_PI;
+    }
+    const bool same = std::memcmp(f.data(), fv.data(), f.size() * sizeof(PetscReal)) == 0;
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "hinges (M_max %g): %zu hinges, %zu outside the series (%zu past a right angle): vectorised forces %s\n",
+                          (double)Mmax, H->NumHinges(), outside, obtuse, same ? "the same bits" : "DIFFER"));
+    TG_CHECK(outside > 5 && obtuse > 0 && outside < H->NumHinges() / 2, "the test must take both paths");
+#if !defined(__FMA__) /* a -march=native build (TURGOR_NATIVE): both sides may fuse multiply-adds, each its own way */
+    TG_CHECK(same, "the hinges' vectorised forces differ from the one-pass kernel's");
+#endif
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
@@ -602,6 +656,7 @@ int main(int argc, char **argv)
   PetscCall(TestNoContactNoLists());
   PetscCall(TestNearList());
   PetscCall(TestEnergy());
+  PetscCall(TestHingeVectorBits());
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "all polygon force checks passed\n"));
   PetscCall(PetscFinalize());
   return 0;

@@ -1,34 +1,10 @@
 #include <turgor/physics/hinges.h>
+#include <turgor/physics/hinge_moments.h>
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
 namespace turgor {
-
-namespace {
-/* atan2(y, x) for the hinge angle deviation. Hinges bend little, so nearly always x > 0 and y/x
-   small: there the Taylor series of atan(t), t = y/x, truncated where the first omitted term is
-   below 1e-18 relative, is exact to rounding and several times cheaper than libm; elsewhere libm. */
-inline PetscReal HingeAtan2(PetscReal y, PetscReal x)
-{
-  if (x > 0 && std::fabs(y) <= 0.1 * x) { /* |t| <= 0.1: to t^15, first omitted term t^17/17 < 1e-18 */
-    const PetscReal t = y / x, t2 = t * t, t4 = t2 * t2;
-    /* even and odd halves in t^4 evaluated side by side (half the dependency chain of Horner) */
-    const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
-    const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
-    return t * (pe + t2 * po);
-  }
-  if (x > 0 && std::fabs(y) <= 0.2679491924311227 * x) { /* |t| <= tan(pi/12): to t^27 */
-    const PetscReal        t = y / x, t2 = t * t;
-    static const PetscReal c[14] = {1.0,       -1.0 / 3, 1.0 / 5,   -1.0 / 7, 1.0 / 9,   -1.0 / 11, 1.0 / 13,
-                                    -1.0 / 15, 1.0 / 17, -1.0 / 19, 1.0 / 21, -1.0 / 23, 1.0 / 25,  -1.0 / 27};
-    PetscReal              p     = 0;
-    for (int k = 13; k >= 0; k--) p = c[k] + t2 * p;
-    return t * p;
-  }
-  return std::atan2(y, x);
-}
-} // namespace
 
 PetscErrorCode Hinges::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 {
@@ -47,21 +23,21 @@ PetscErrorCode Hinges::SetFromOptions(MPI_Comm comm, const TermContext &ctx)
 PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
-  hinge_.clear();
+  a_.clear(), b_.clear(), c_.clear();
   runs_.clear();
   for (size_t q = 0; q < P.OwnedPolygons(); q++) { /* one run of consecutive hinges per polygon (this rank's) */
     const PolygonCell &c = P.polygons[q];
-    const PetscInt     N = (PetscInt)c.nodes.size(), first = (PetscInt)hinge_.size();
+    const PetscInt     N = (PetscInt)c.nodes.size(), first = (PetscInt)NumHinges();
     if (c.open)
-      for (PetscInt k = 1; k + 1 < N; k++) hinge_.push_back({c.nodes[k - 1], c.nodes[k], c.nodes[k + 1]});
+      for (PetscInt k = 1; k + 1 < N; k++) AddHinge(c.nodes[k - 1], c.nodes[k], c.nodes[k + 1]);
     else if (N >= 3)
-      for (PetscInt k = 0; k < N; k++) hinge_.push_back({c.nodes[(k + N - 1) % N], c.nodes[k], c.nodes[(k + 1) % N]});
-    if ((PetscInt)hinge_.size() > first) runs_.push_back({first, (PetscInt)hinge_.size() - first, !c.open});
+      for (PetscInt k = 0; k < N; k++) AddHinge(c.nodes[(k + N - 1) % N], c.nodes[k], c.nodes[(k + 1) % N]);
+    if ((PetscInt)NumHinges() > first) runs_.push_back({first, (PetscInt)NumHinges() - first, !c.open});
   }
   have_angles_ = false;
-  cos0_.assign(hinge_.size(), 1.0);
-  sin0_.assign(hinge_.size(), 0.0);
-  theta_p_.assign(hinge_.size(), 0.0);
+  cos0_.assign(NumHinges(), 1.0);
+  sin0_.assign(NumHinges(), 0.0);
+  theta_p_.assign(NumHinges(), 0.0);
   dissipated_ = 0;
   have_ref_   = false;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -69,8 +45,8 @@ PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 
 void Hinges::SetReference(const PetscReal *X)
 {
-  for (size_t h = 0; h < hinge_.size(); h++) {
-    const Hinge    &H  = hinge_[h];
+  for (size_t h = 0; h < NumHinges(); h++) {
+    const Hinge     H  = HingeAt(h);
     const PetscReal ux = X[2 * H.a] - X[2 * H.b], uy = X[2 * H.a + 1] - X[2 * H.b + 1];
     const PetscReal wx = X[2 * H.c] - X[2 * H.b], wy = X[2 * H.c + 1] - X[2 * H.b + 1];
     const PetscReal th = std::atan2(ux * wy - uy * wx, ux * wx + uy * wy);
@@ -84,11 +60,11 @@ void Hinges::SetReference(const PetscReal *X)
    atan2 gives the difference without wrapping. */
 PetscReal Hinges::Angle(size_t h, const PetscReal *x) const
 {
-  const Hinge    &H  = hinge_[h];
+  const Hinge     H  = HingeAt(h);
   const PetscReal ux = x[2 * H.a] - x[2 * H.b], uy = x[2 * H.a + 1] - x[2 * H.b + 1];
   const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
-  const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
-  return HingeAtan2(s * cos0_[h] - c * sin0_[h], c * cos0_[h] + s * sin0_[h]);
+  const HingeBend B = HingeBendOf(ux, uy, wx, wy, cos0_[h], sin0_[h]);
+  return HingeAtan2(B.Y, B.X);
 }
 
 /* E = -M dtheta/dx: dtheta/dx_c = perp(w)/|w|^2, dtheta/dx_a = -perp(u)/|u|^2 (perp(v) = (-v_y, v_x)),
@@ -103,31 +79,22 @@ void Hinges::Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, P
   PetscReal       w4[4] = {0, 0, 0, 0};
   for (const Run &R : runs_) {
     /* the bar into the first hinge: u = x_a - x_b of hinge R.first */
-    const Hinge &H0 = hinge_[R.first];
-    PetscReal    ux = x[2 * H0.a] - x[2 * H0.b], uy = x[2 * H0.a + 1] - x[2 * H0.b + 1], iu2 = 1 / (ux * ux + uy * uy);
+    const Hinge H0 = HingeAt(R.first);
+    PetscReal   ux = x[2 * H0.a] - x[2 * H0.b], uy = x[2 * H0.a + 1] - x[2 * H0.b + 1], iu2 = 1 / (ux * ux + uy * uy);
     /* A hinge node's force comes from three hinges (its own, and as the far node of the two next to
        it): it is summed in registers and written once, after the next hinge (pb: own + previous
        hinge's share, cc: this hinge's share for the next hinge node, fa0: the first hinge's share
        for its previous node, added at the end of a closed ring). */
     PetscReal pbx = 0, pby = 0, ccx = 0, ccy = 0, fa0x = 0, fa0y = 0;
     for (PetscInt h = R.first; h < R.first + R.count; h++) {
-      const Hinge    &H  = hinge_[h];
-      const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1], w2 = wx * wx + wy * wy;
-      const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
-      const PetscReal Y = s * cos0_[h] - c * sin0_[h], X = c * cos0_[h] + s * sin0_[h];
+      const Hinge     H  = HingeAt(h);
+      const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
+      const HingeBend B = HingeBendOf(ux, uy, wx, wy, cos0_[h], sin0_[h]);
       PetscReal       d, iw2;
-      if (X > 0 && std::fabs(Y) <= 0.1 * X) { /* the usual case: the series of HingeAtan2, sharing its division */
-        const PetscReal q = 1 / (X * w2), t = Y * w2 * q, t2 = t * t, t4 = t2 * t2;
-        const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
-        const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
-        d                  = t * (pe + t2 * po);
-        iw2                = X * q;
-      } else {
-        d   = HingeAtan2(Y, X);
-        iw2 = 1 / w2;
-      }
+      if (HingeSeriesHolds(B)) HingeSeries(B, &d, &iw2); /* the usual case: the series, sharing its division */
+      else HingeGeneral(B, &d, &iw2);
       if (CACHE) d_[h] = d;
-      const PetscReal M  = std::clamp(k * (d - theta_p_[h]), -Mmax, Mmax);
+      const PetscReal M  = HingeMoment(k, d, theta_p_[h], Mmax);
       const PetscReal iu = M * iu2, iw = M * iw2;
       PetscReal       fax = -uy * iu, fay = ux * iu; /* -M dtheta/dx_a */
       PetscReal       fcx = wy * iw, fcy = -wx * iw; /* -M dtheta/dx_c */
@@ -149,7 +116,7 @@ void Hinges::Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, P
       }
       ux = -wx, uy = -wy, iu2 = iw2; /* the next hinge's u: this bar seen from its other end */
     }
-    const Hinge &HL = hinge_[R.first + R.count - 1];
+    const Hinge HL = HingeAt(R.first + R.count - 1);
     f[2 * HL.b] += pbx + fa0x; /* fa0 = 0 on an open chain */
     f[2 * HL.b + 1] += pby + fa0y;
     f[2 * HL.c] += ccx; /* closed: the first hinge node; open: the chain's last node */
@@ -159,21 +126,67 @@ void Hinges::Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, P
     for (int q = 0; q < 4; q++) virial[q] += w4[q];
 }
 
+/* Kernel<false, *, false> in three passes: every hinge's bend and moment in a loop that vectorises
+   (HingeSeriesMoments), the few where the series does not hold redone, every hinge's two end forces
+   in another (iu2 of a hinge is 1/|w|^2 of the one before it in its polygon, as in Kernel), then the
+   forces summed into the nodes along each polygon in Kernel's order: the same bits. */
+void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
+{
+  const size_t    n = NumHinges();
+  const PetscReal k = stiffness, Mmax = max_moment > 0 ? max_moment : PETSC_MAX_REAL;
+  scratch_.resize(11 * n);
+  d_.resize(n);
+  PetscReal   *v = scratch_.data(), *fax = v + 7 * n, *fay = v + 8 * n, *fcx = v + 9 * n, *fcy = v + 10 * n;
+  HingeScratch S{v, v + n, v + 2 * n, v + 3 * n, d_.data(), v + 4 * n, v + 5 * n, v + 6 * n};
+  HingeSeriesMoments(n, a_.data(), b_.data(), c_.data(), cos0_.data(), sin0_.data(), theta_p_.data(), x, k, Mmax, S);
+  for (size_t h = 0; h < n; h++)
+    if (S.general[h]) {
+      HingeGeneral(HingeBendOf(S.ux[h], S.uy[h], S.wx[h], S.wy[h], cos0_[h], sin0_[h]), &S.d[h], &S.iw2[h]);
+      S.M[h] = HingeMoment(k, S.d[h], theta_p_[h], Mmax);
+    }
+  HingeEndForces(n, S, fax, fay, fcx, fcy);
+  for (const Run &R : runs_) { /* a polygon's first hinge: 1/|u|^2 of its own */
+    const PetscInt  h  = R.first;
+    const PetscReal iu = S.M[h] * (1 / (S.ux[h] * S.ux[h] + S.uy[h] * S.uy[h])), iw = S.M[h] * S.iw2[h];
+    fax[h] = -S.uy[h] * iu, fay[h] = S.ux[h] * iu;
+    fcx[h] = S.wy[h] * iw, fcy[h] = -S.wx[h] * iw;
+  }
+  for (const Run &R : runs_) { /* as in Kernel: pb, cc, fa0 */
+    const PetscInt h0 = R.first, h1 = R.first + R.count;
+    PetscReal      pbx = (PetscReal)0 - fax[h0] - fcx[h0], pby = (PetscReal)0 - fay[h0] - fcy[h0], ccx = fcx[h0],
+              ccy = fcy[h0]; /* 0 - fa: Kernel's bits, -0 included */
+    if (!R.closed) f[2 * a_[h0]] += fax[h0], f[2 * a_[h0] + 1] += fay[h0];
+    for (PetscInt h = h0 + 1; h < h1; h++) {
+      f[2 * a_[h]] += pbx + fax[h];
+      f[2 * a_[h] + 1] += pby + fay[h];
+      pbx = ccx - fax[h] - fcx[h], pby = ccy - fay[h] - fcy[h];
+      ccx = fcx[h], ccy = fcy[h];
+    }
+    const PetscInt b = b_[h1 - 1], c = c_[h1 - 1];
+    f[2 * b] += pbx + (R.closed ? fax[h0] : 0);
+    f[2 * b + 1] += pby + (R.closed ? fay[h0] : 0);
+    f[2 * c] += ccx;
+    f[2 * c + 1] += ccy;
+  }
+}
+
 PetscErrorCode Hinges::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
   if (!have_ref_) SetReference(in.x);
   const bool cache = max_moment > 0; /* AcceptStep at the state of the last evaluation reuses its angles */
-  if (cache) d_.resize(hinge_.size());
+  if (cache) d_.resize(NumHinges());
   using KernelOf                            = void (Hinges::*)(const PetscReal *, const ForceGrain &, PetscReal *, PetscReal *);
   static constexpr KernelOf kernel[2][2][2] = {
   /* [virial][cache][rounded] */
     {{&Hinges::Kernel<false, false, false>, &Hinges::Kernel<false, false, true>}, {&Hinges::Kernel<false, true, false>, &Hinges::Kernel<false, true, true>}},
     {{&Hinges::Kernel<true, false, false>, &Hinges::Kernel<true, false, true>},   {&Hinges::Kernel<true, true, false>, &Hinges::Kernel<true, true, true>}  }
   };
-  (this->*kernel[virial != nullptr][cache][in.Grain().On()])(in.x, in.Grain(), f, virial);
+  /* the virial's sums and the grain's rounding stay in the one-pass kernel */
+  if (!virial && !in.Grain().On()) VectorKernel(in.x, f);
+  else (this->*kernel[virial != nullptr][cache][in.Grain().On()])(in.x, in.Grain(), f, virial);
   have_angles_ = cache;
-  PetscCall(PetscLogFlops(45.0 * hinge_.size()));
+  PetscCall(PetscLogFlops(45.0 * NumHinges()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -185,7 +198,7 @@ PetscErrorCode Hinges::Energy(const ForceInput &in, PetscReal *E, PetscBool *has
   if (!have_ref_) SetReference(in.x);
   *E                 = 0;
   const PetscReal em = max_moment > 0 && stiffness > 0 ? max_moment / stiffness : PETSC_MAX_REAL;
-  for (size_t h = 0; h < hinge_.size(); h++) {
+  for (size_t h = 0; h < NumHinges(); h++) {
     const PetscReal e = std::fabs(Angle(h, in.x) - theta_p_[h]);
     *E += e <= em ? 0.5 * stiffness * e * e : max_moment * (e - em) + 0.5 * stiffness * em * em;
   }
@@ -201,9 +214,9 @@ PetscErrorCode Hinges::AcceptStep(const ForceInput &in)
   if (!have_ref_) SetReference(in.x);
   /* velocity Verlet accepts the state it last evaluated: the angles are then those of AddForces
      (same bits in, same bits out), computed once */
-  const bool same = in.same_x && have_angles_ && d_.size() == hinge_.size();
+  const bool same = in.same_x && have_angles_ && d_.size() == NumHinges();
   if (max_moment > 0 && stiffness > 0)
-    for (size_t h = 0; h < hinge_.size(); h++) {
+    for (size_t h = 0; h < NumHinges(); h++) {
       const PetscReal e = (same ? d_[h] : Angle(h, in.x)) - theta_p_[h], em = max_moment / stiffness;
       if (std::fabs(e) > em) {
         const PetscReal dp = e > 0 ? e - em : e + em;
@@ -223,7 +236,8 @@ PetscErrorCode Hinges::AddTimeStepLimits(const ForceInput &in, std::vector<TimeS
   const PetscReal *x  = in.x;
   const auto      &m  = in.P->mass;
   PetscReal        w2 = 0;
-  for (const Hinge &H : hinge_) {
+  for (size_t h = 0; h < NumHinges(); h++) {
+    const Hinge     H  = HingeAt(h);
     const PetscReal ux = x[2 * H.a] - x[2 * H.b], uy = x[2 * H.a + 1] - x[2 * H.b + 1];
     const PetscReal wx = x[2 * H.c] - x[2 * H.b], wy = x[2 * H.c + 1] - x[2 * H.b + 1];
     const PetscReal u2 = ux * ux + uy * uy, ww = wx * wx + wy * wy;
@@ -251,8 +265,8 @@ PetscErrorCode Hinges::View(PetscViewer viewer) const
 {
   PetscFunctionBeginUser;
   if (max_moment > 0)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "hinges: %zu, k_r = %g µN µm/rad, M_max = %g µN µm\n", hinge_.size(), (double)stiffness, (double)max_moment));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "hinges: %zu, k_r = %g µN µm/rad, elastic\n", hinge_.size(), (double)stiffness));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "hinges: %zu, k_r = %g µN µm/rad, M_max = %g µN µm\n", NumHinges(), (double)stiffness, (double)max_moment));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "hinges: %zu, k_r = %g µN µm/rad, elastic\n", NumHinges(), (double)stiffness));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -262,7 +276,7 @@ void Hinges::DeclareState(const ParticleSet &P, StateDeclaration &d)
   d.Scalar("reference_taken", &have_ref_, Combine::Max);
   d.Scalar("plastic_dissipation", &dissipated_, Combine::Sum);
   d.Table("hinges", StateEntity::Particle)
-    .Rows([this] { return hinge_.size(); }, [this](size_t h) { return hinge_[h].b; })
+    .Rows([this] { return NumHinges(); }, [this](size_t h) { return b_[h]; })
     .Column("cos0", cos0_)
     .Column("sin0", sin0_)
     .Column("plastic_angle", theta_p_);

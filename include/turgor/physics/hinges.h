@@ -28,10 +28,10 @@ public:
   /* Reference angles from positions X[2n]; without a call, the first evaluation's positions. */
   void      SetReference(const PetscReal *X);
   PetscReal PlasticDissipation() const { return dissipated_; } /* sum M_max |d theta_p| so far [µN µm] */
-  size_t    NumHinges() const { return hinge_.size(); }
+  size_t    NumHinges() const { return b_.size(); }
   PetscReal PlasticAngle(size_t h) const { return theta_p_[h]; }
   PetscReal Angle(size_t h, const PetscReal *x) const; /* theta - theta0 of hinge h at x */
-  PetscInt  HingeNode(size_t h) const { return hinge_[h].b; }
+  PetscInt  HingeNode(size_t h) const { return b_[h]; }
 
   PetscReal stiffness  = 1.0e4; /* k_r [µN µm / rad] */
   PetscReal max_moment = 0;     /* M_max [µN µm]; 0 = elastic */
@@ -52,12 +52,16 @@ private:
     PetscInt first, count; /* the hinges of one polygon, in order: hinge h's next bar is hinge h+1's previous one */
     bool     closed;       /* closed ring: the last hinge's next node is the first hinge's node */
   };
+  Hinge HingeAt(size_t h) const { return {a_[h], b_[h], c_[h]}; }
+  void  AddHinge(PetscInt a, PetscInt b, PetscInt c) { a_.push_back(a), b_.push_back(b), c_.push_back(c); }
   template <bool VIRIAL, bool CACHE, bool ROUND>
   void                   Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial);
-  std::vector<Hinge>     hinge_;
+  void                   VectorKernel(const PetscReal *x, PetscReal *f);
+  std::vector<PetscInt>  a_, b_, c_; /* each hinge's nodes, by field (the vectorised loop reads them so) */
   std::vector<Run>       runs_;
   std::vector<PetscReal> cos0_, sin0_, theta_p_;
-  std::vector<PetscReal> d_; /* angles of the last AddForces (plastic hinges) */
+  std::vector<PetscReal> d_;       /* angles of the last AddForces (plastic hinges) */
+  std::vector<PetscReal> scratch_; /* the vectorised kernel's per-hinge values */
   PetscReal              dissipated_ = 0;
   bool                   have_ref_ = false, have_angles_ = false;
 };

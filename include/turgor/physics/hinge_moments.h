@@ -1,0 +1,91 @@
+#pragma once
+/* The hinges' bending, the one formula of the scalar kernel and of the loop the compiler vectorises
+   (the hinge term's cost: a division and a series of some 30 operations a hinge). A hinge's angle
+   deviation theta - theta0 is atan2(Y, X) of its bars rotated back by the reference angle; hinges bend
+   little, so nearly always X > 0 and |Y| <= 0.1 X, where the series of atan(Y / X) is exact to rounding
+   and shares its division with 1/|w|^2. Element by element the loop's arithmetic is the scalar code's,
+   in the same order and without fused multiply-adds: a vector build gives the same bits. */
+#include <petscsys.h>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace turgor {
+
+/* atan2(y, x) for the hinge angle deviation: where x > 0 and y/x is small, the Taylor series of
+   atan(t), t = y/x, truncated where the first omitted term is below 1e-18 relative (exact to
+   rounding and several times cheaper than libm); elsewhere libm. */
+inline PetscReal HingeAtan2(PetscReal y, PetscReal x)
+{
+  if (x > 0 && std::fabs(y) <= 0.1 * x) { /* |t| <= 0.1: to t^15, first omitted term t^17/17 < 1e-18 */
+    const PetscReal t = y / x, t2 = t * t, t4 = t2 * t2;
+    /* even and odd halves in t^4 evaluated side by side (half the dependency chain of Horner) */
+    const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
+    const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
+    return t * (pe + t2 * po);
+  }
+  if (x > 0 && std::fabs(y) <= 0.2679491924311227 * x) { /* |t| <= tan(pi/12): to t^27 */
+    const PetscReal        t = y / x, t2 = t * t;
+    static const PetscReal c[14] = {1.0,       -1.0 / 3, 1.0 / 5,   -1.0 / 7, 1.0 / 9,   -1.0 / 11, 1.0 / 13,
+                                    -1.0 / 15, 1.0 / 17, -1.0 / 19, 1.0 / 21, -1.0 / 23, 1.0 / 25,  -1.0 / 27};
+    PetscReal              p     = 0;
+    for (int k = 13; k >= 0; k--) p = c[k] + t2 * p;
+    return t * p;
+  }
+  return std::atan2(y, x);
+}
+
+/* A hinge with bars u = x_a - x_b and w = x_c - x_b and reference angle (cos0, sin0): Y, X are the
+   sine and cosine of theta - theta0 times |u| |w|. */
+struct HingeBend {
+  PetscReal Y, X, w2;
+};
+inline HingeBend HingeBendOf(PetscReal ux, PetscReal uy, PetscReal wx, PetscReal wy, PetscReal cos0, PetscReal sin0)
+{
+  const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
+  return {s * cos0 - c * sin0, c * cos0 + s * sin0, wx * wx + wy * wy};
+}
+/* The usual case, X > 0 and |Y| <= 0.1 X (HingeAtan2's first series): d = theta - theta0 and 1/|w|^2
+   from one division, q = 1 / (X |w|^2). */
+inline bool HingeSeriesHolds(const HingeBend &B)
+{
+  return (B.X > 0) & (std::fabs(B.Y) <= 0.1 * B.X);
+} /* &: no branch (the loop vectorises) */
+inline void HingeSeries(const HingeBend &B, PetscReal *d, PetscReal *iw2)
+{
+  const PetscReal q = 1 / (B.X * B.w2), t = B.Y * B.w2 * q, t2 = t * t, t4 = t2 * t2;
+  const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
+  const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
+  *d                 = t * (pe + t2 * po);
+  *iw2               = B.X * q;
+}
+/* Elsewhere: libm (or HingeAtan2's longer series) and a division of its own. */
+inline void HingeGeneral(const HingeBend &B, PetscReal *d, PetscReal *iw2)
+{
+  *d   = HingeAtan2(B.Y, B.X);
+  *iw2 = 1 / B.w2;
+}
+/* The moment k (d - theta_p), capped at +-M_max (std::clamp's values, without its branches) */
+inline PetscReal HingeMoment(PetscReal k, PetscReal d, PetscReal theta_p, PetscReal Mmax)
+{
+  return std::min(std::max(k * (d - theta_p), -Mmax), Mmax);
+}
+
+/* Per-hinge values of one evaluation, by field. */
+struct HingeScratch {
+  PetscReal *ux, *uy, *wx, *wy; /* the bars from the hinge node to its previous and next nodes */
+  PetscReal *d, *iw2, *M;       /* theta - theta0, 1/|w|^2, the moment */
+  PetscReal *general;           /* 1 where the series does not hold: d, iw2 and M to be redone by HingeGeneral */
+};
+
+/* Every hinge k (nodes a[k], b[k], c[k]) at x, by the series whether it holds or not (`general` marks
+   where it does not). */
+void HingeSeriesMoments(size_t n, const PetscInt *a, const PetscInt *b, const PetscInt *c, const PetscReal *cos0, const PetscReal *sin0,
+                        const PetscReal *theta_p, const PetscReal *x, PetscReal k, PetscReal Mmax, const HingeScratch &S);
+
+/* The forces M/l perpendicular to each bar at its far node, f_a = M/|u|^2 perp(u) with perp(v) =
+   (-v_y, v_x) and f_c = -M/|w|^2 perp(w), of every hinge but the first, with 1/|u|^2 the 1/|w|^2 of
+   the hinge before (the caller sets those of each polygon's first hinge). */
+void HingeEndForces(size_t n, const HingeScratch &S, PetscReal *fax, PetscReal *fay, PetscReal *fcx, PetscReal *fcy);
+
+} // namespace turgor
