@@ -4,21 +4,33 @@
 namespace turgor {
 
 namespace {
-/* Branch-free (the series for every hinge, `general` marking where it does not hold), so that GCC
-   vectorises it; the pointers restrict-qualified for the same reason. */
-TURGOR_VECTOR_CLONES void SeriesLoop(size_t n, const PetscInt *__restrict a, const PetscInt *__restrict b, const PetscInt *__restrict c,
-                                     const PetscReal *__restrict cos0, const PetscReal *__restrict sin0, const PetscReal *__restrict theta_p,
-                                     const PetscReal *__restrict x, PetscReal k, PetscReal Mmax, PetscReal *__restrict ux, PetscReal *__restrict uy,
-                                     PetscReal *__restrict wx, PetscReal *__restrict wy, PetscReal *__restrict d, PetscReal *__restrict iw2,
+/* The loops below are branch-free and their pointers restrict-qualified, so that GCC vectorises them. */
+TURGOR_VECTOR_CLONES void NextBarsInOrder(size_t n, const PetscReal *__restrict xb, PetscReal *__restrict wx, PetscReal *__restrict wy)
+{
+  for (size_t h = 0; h < n; h++) wx[h] = xb[2 * h + 2] - xb[2 * h], wy[h] = xb[2 * h + 3] - xb[2 * h + 1];
+}
+
+TURGOR_VECTOR_CLONES void NextBarsGathered(size_t n, const PetscInt *__restrict b, const PetscInt *__restrict c, const PetscReal *__restrict x,
+                                           PetscReal *__restrict wx, PetscReal *__restrict wy)
+{
+  for (size_t h = 0; h < n; h++) wx[h] = x[2 * c[h]] - x[2 * b[h]], wy[h] = x[2 * c[h] + 1] - x[2 * b[h] + 1];
+}
+
+TURGOR_VECTOR_CLONES void PreviousBarsLoop(size_t n, const PetscReal *__restrict wx, const PetscReal *__restrict wy, PetscReal *__restrict ux,
+                                           PetscReal *__restrict uy)
+{
+  for (size_t h = 1; h < n; h++) ux[h] = -wx[h - 1], uy[h] = -wy[h - 1];
+}
+
+TURGOR_VECTOR_CLONES void SeriesLoop(size_t n, const PetscReal *__restrict ux, const PetscReal *__restrict uy, const PetscReal *__restrict wx,
+                                     const PetscReal *__restrict wy, const PetscReal *__restrict cos0, const PetscReal *__restrict sin0,
+                                     const PetscReal *__restrict theta_p, PetscReal k, PetscReal Mmax, PetscReal *__restrict d, PetscReal *__restrict iw2,
                                      PetscReal *__restrict M, PetscReal *__restrict general)
 {
   for (size_t h = 0; h < n; h++) {
-    const PetscReal vx = x[2 * a[h]] - x[2 * b[h]], vy = x[2 * a[h] + 1] - x[2 * b[h] + 1];
-    const PetscReal zx = x[2 * c[h]] - x[2 * b[h]], zy = x[2 * c[h] + 1] - x[2 * b[h] + 1];
-    const HingeBend B = HingeBendOf(vx, vy, zx, zy, cos0[h], sin0[h]);
+    const HingeBend B = HingeBendOf(ux[h], uy[h], wx[h], wy[h], cos0[h], sin0[h]);
     PetscReal       dh, ih;
     HingeSeries(B, &dh, &ih);
-    ux[h] = vx, uy[h] = vy, wx[h] = zx, wy[h] = zy;
     d[h] = dh, iw2[h] = ih, M[h] = HingeMoment(k, dh, theta_p[h], Mmax);
     general[h] = HingeSeriesHolds(B) ? 0 : 1;
   }
@@ -37,10 +49,21 @@ TURGOR_VECTOR_CLONES void EndForceLoop(size_t n, const PetscReal *__restrict ux,
 }
 } // namespace
 
-void HingeSeriesMoments(size_t n, const PetscInt *a, const PetscInt *b, const PetscInt *c, const PetscReal *cos0, const PetscReal *sin0,
-                        const PetscReal *theta_p, const PetscReal *x, PetscReal k, PetscReal Mmax, const HingeScratch &S)
+void HingeNextBars(size_t n, const PetscInt *b, const PetscInt *c, bool contiguous, const PetscReal *x, const HingeScratch &S)
 {
-  SeriesLoop(n, a, b, c, cos0, sin0, theta_p, x, k, Mmax, S.ux, S.uy, S.wx, S.wy, S.d, S.iw2, S.M, S.general);
+  if (contiguous) {
+    if (n > 1) NextBarsInOrder(n - 1, x + 2 * b[0], S.wx, S.wy); /* not the last: its node b + 1 may not exist */
+  } else NextBarsGathered(n, b, c, x, S.wx, S.wy);
+}
+
+void HingePreviousBars(size_t n, const HingeScratch &S)
+{
+  PreviousBarsLoop(n, S.wx, S.wy, S.ux, S.uy);
+}
+
+void HingeSeriesMoments(size_t n, const PetscReal *cos0, const PetscReal *sin0, const PetscReal *theta_p, PetscReal k, PetscReal Mmax, const HingeScratch &S)
+{
+  SeriesLoop(n, S.ux, S.uy, S.wx, S.wy, cos0, sin0, theta_p, k, Mmax, S.d, S.iw2, S.M, S.general);
 }
 
 void HingeEndForces(size_t n, const HingeScratch &S, PetscReal *fax, PetscReal *fay, PetscReal *fcx, PetscReal *fcy)

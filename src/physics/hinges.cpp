@@ -34,6 +34,8 @@ PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
       for (PetscInt k = 0; k < N; k++) AddHinge(c.nodes[(k + N - 1) % N], c.nodes[k], c.nodes[(k + 1) % N]);
     if ((PetscInt)NumHinges() > first) runs_.push_back({first, (PetscInt)NumHinges() - first, !c.open});
   }
+  contiguous_ = true; /* the hinges' nodes consecutive (every node of a tissue of closed cells numbered cell by cell, a chain) */
+  for (size_t h = 1; h < NumHinges(); h++) contiguous_ = contiguous_ && b_[h] == b_[0] + (PetscInt)h;
   have_angles_ = false;
   cos0_.assign(NumHinges(), 1.0);
   sin0_.assign(NumHinges(), 0.0);
@@ -126,10 +128,11 @@ void Hinges::Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, P
     for (int q = 0; q < 4; q++) virial[q] += w4[q];
 }
 
-/* Kernel<false, *, false> in three passes: every hinge's bend and moment in a loop that vectorises
-   (HingeSeriesMoments), the few where the series does not hold redone, every hinge's two end forces
-   in another (iu2 of a hinge is 1/|w|^2 of the one before it in its polygon, as in Kernel), then the
-   forces summed into the nodes along each polygon in Kernel's order: the same bits. */
+/* Kernel<false, *, false> in passes that vectorise: every hinge's bars (w read from x in order where
+   the hinges' nodes are consecutive; u the previous hinge's w reversed, as in Kernel; a polygon's
+   closing bar and first u set one by one), every hinge's bend and moment (HingeSeriesMoments; the few
+   where the series does not hold redone), its two end forces (iu2 the previous hinge's 1/|w|^2, as in
+   Kernel), then the forces summed into the nodes along each polygon in Kernel's order: the same bits. */
 void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
 {
   const size_t    n = NumHinges();
@@ -138,7 +141,17 @@ void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
   d_.resize(n);
   PetscReal   *v = scratch_.data(), *fax = v + 7 * n, *fay = v + 8 * n, *fcx = v + 9 * n, *fcy = v + 10 * n;
   HingeScratch S{v, v + n, v + 2 * n, v + 3 * n, d_.data(), v + 4 * n, v + 5 * n, v + 6 * n};
-  HingeSeriesMoments(n, a_.data(), b_.data(), c_.data(), cos0_.data(), sin0_.data(), theta_p_.data(), x, k, Mmax, S);
+  HingeNextBars(n, b_.data(), c_.data(), contiguous_, x, S);
+  for (const Run &R : runs_) { /* a polygon's last hinge's w (the ring's closing bar), its first's u */
+    const PetscInt l = R.first + R.count - 1;
+    S.wx[l] = x[2 * c_[l]] - x[2 * b_[l]], S.wy[l] = x[2 * c_[l] + 1] - x[2 * b_[l] + 1];
+  }
+  HingePreviousBars(n, S);
+  for (const Run &R : runs_) {
+    const PetscInt f = R.first;
+    S.ux[f] = x[2 * a_[f]] - x[2 * b_[f]], S.uy[f] = x[2 * a_[f] + 1] - x[2 * b_[f] + 1];
+  }
+  HingeSeriesMoments(n, cos0_.data(), sin0_.data(), theta_p_.data(), k, Mmax, S);
   for (size_t h = 0; h < n; h++)
     if (S.general[h]) {
       HingeGeneral(HingeBendOf(S.ux[h], S.uy[h], S.wx[h], S.wy[h], cos0_[h], sin0_[h]), &S.d[h], &S.iw2[h]);

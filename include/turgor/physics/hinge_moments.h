@@ -78,10 +78,15 @@ struct HingeScratch {
   PetscReal *general;           /* 1 where the series does not hold: d, iw2 and M to be redone by HingeGeneral */
 };
 
-/* Every hinge k (nodes a[k], b[k], c[k]) at x, by the series whether it holds or not (`general` marks
+/* w = x_c - x_b of every hinge (nodes b[k], c[k]); where the hinges' nodes are consecutive (b[k] =
+   b[0] + k, contiguous: true), x_(b+1) - x_b read in order, without gathering (c is b + 1 but at a
+   polygon's last hinge: the caller sets those, and the very last hinge's). */
+void HingeNextBars(size_t n, const PetscInt *b, const PetscInt *c, bool contiguous, const PetscReal *x, const HingeScratch &S);
+/* u = -(the previous hinge's w) of every hinge but the first (the caller sets each polygon's first). */
+void HingePreviousBars(size_t n, const HingeScratch &S);
+/* Every hinge's bend and moment from u and w, by the series whether it holds or not (`general` marks
    where it does not). */
-void HingeSeriesMoments(size_t n, const PetscInt *a, const PetscInt *b, const PetscInt *c, const PetscReal *cos0, const PetscReal *sin0,
-                        const PetscReal *theta_p, const PetscReal *x, PetscReal k, PetscReal Mmax, const HingeScratch &S);
+void HingeSeriesMoments(size_t n, const PetscReal *cos0, const PetscReal *sin0, const PetscReal *theta_p, PetscReal k, PetscReal Mmax, const HingeScratch &S);
 
 /* The forces M/l perpendicular to each bar at its far node, f_a = M/|u|^2 perp(u) with perp(v) =
    (-v_y, v_x) and f_c = -M/|w|^2 perp(w), of every hinge but the first, with 1/|u|^2 the 1/|w|^2 of

@@ -32,6 +32,7 @@ public:
   PetscReal PlasticAngle(size_t h) const { return theta_p_[h]; }
   PetscReal Angle(size_t h, const PetscReal *x) const; /* theta - theta0 of hinge h at x */
   PetscInt  HingeNode(size_t h) const { return b_[h]; }
+  bool      BarsInOrder() const { return contiguous_; } /* the hinges' nodes consecutive: bars read from x in order */
 
   PetscReal stiffness  = 1.0e4; /* k_r [µN µm / rad] */
   PetscReal max_moment = 0;     /* M_max [µN µm]; 0 = elastic */
@@ -57,7 +58,8 @@ private:
   template <bool VIRIAL, bool CACHE, bool ROUND>
   void                   Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial);
   void                   VectorKernel(const PetscReal *x, PetscReal *f);
-  std::vector<PetscInt>  a_, b_, c_; /* each hinge's nodes, by field (the vectorised loop reads them so) */
+  std::vector<PetscInt>  a_, b_, c_;          /* each hinge's nodes, by field (the vectorised loop reads them so) */
+  bool                   contiguous_ = false; /* b_[h] = b_[0] + h: the bars read from x in order */
   std::vector<Run>       runs_;
   std::vector<PetscReal> cos0_, sin0_, theta_p_;
   std::vector<PetscReal> d_;       /* angles of the last AddForces (plastic hinges) */
