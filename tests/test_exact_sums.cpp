@@ -5,12 +5,15 @@ static const char help[] = "Sums whose bits do not depend on their order or the 
                            "  ExactSumOverRanks: terms spread over the ranks (one rank empty) in shuffled orders, against the same\n"
                            "    terms on one rank and a sum in long double, within its bound 2^(e+3k-105) and half an ulp.\n"
                            "  AllFinite (the branch-free finiteness scan): a NaN, +inf or -inf at every place of arrays of 0 to 40\n"
-                           "    values (the eight sums and the remainder) is found, and finite values of any size pass.\n"
+                           "    values (the vector lanes and the remainder) is found, and finite values of any size pass (the largest,\n"
+                           "    subnormals, zeros).\n"
                            "Run on 1, 2 and 3 ranks: every rank count must print the same sum, bit for bit.\n";
 #include <turgor/core/finite_scan.h>
 #include <turgor/parallel/exact_sum.h>
 #include <turgor/physics/force_grain.h>
 #include <algorithm>
+#include <cfloat>
+#include <limits>
 #include <cinttypes>
 #include <cstring>
 #include <random>
@@ -126,6 +129,8 @@ static PetscErrorCode CheckAllFinite()
   for (PetscInt n = 0; n <= 40; n++) {
     std::vector<PetscReal> u((size_t)n);
     for (PetscInt k = 0; k < n; k++) u[k] = (k % 3 ? -1 : 1) * std::ldexp(1.0 + 0.1 * k, (int)(k * 97 % 2000) - 1000); /* 2^-1000 .. 2^999 */
+    const PetscReal edge[4] = {DBL_MAX, -DBL_MAX, -std::numeric_limits<PetscReal>::denorm_min(), -0.0};                /* the largest, a subnormal, a zero */
+    for (PetscInt k = 0; k < n && k < 4; k++) u[(size_t)(n - 1 - k)] = edge[k];
     PetscCheck(AllFinite(u.data(), n), PETSC_COMM_SELF, PETSC_ERR_PLIB, "AllFinite: %" PetscInt_FMT " finite values were refused", n);
     for (PetscInt k = 0; k < n; k++)
       for (PetscReal b : bad) {
