@@ -1,4 +1,5 @@
 #include <turgor/core/options.h>
+#include <turgor/core/vector_clones.h>
 #include <turgor/physics/force_model.h>
 #include <algorithm>
 #include <cmath>
@@ -194,17 +195,35 @@ PetscErrorCode ForceModel::ComputeAcceleration(const PetscReal *x, const PetscRe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+namespace {
+/* Loops that vectorise (a division per particle, one by one, is a small tissue's largest cost beyond
+   its forces and the kicks): f and a apart, or a in place (restrict-qualified both ways, so that no
+   overlap test sends the in-place call, the usual one, to the scalar loop). */
+TURGOR_VECTOR_CLONES void DivideByMassLoop(const PetscReal *__restrict f, PetscReal *__restrict a, PetscInt n, const PetscReal *__restrict m,
+                                           const char *__restrict fixed)
+{
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal im = 1.0 / m[i] * (PetscReal)(1 - fixed[i]); /* fixed: 0 or 1; masses > 0: 1/m x 1 is 1/m, x 0 is 0, no branch */
+    a[2 * i]           = f[2 * i] * im;
+    a[2 * i + 1]       = f[2 * i + 1] * im;
+  }
+}
+TURGOR_VECTOR_CLONES void DivideByMassInPlace(PetscReal *__restrict a, PetscInt n, const PetscReal *__restrict m, const char *__restrict fixed)
+{
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal im = 1.0 / m[i] * (PetscReal)(1 - fixed[i]);
+    a[2 * i] *= im;
+    a[2 * i + 1] *= im;
+  }
+}
+} // namespace
+
 /* 1/m formed here rather than stored (8 B a particle; one division per particle and evaluation,
    the same bits as a stored inverse); 0 for a fixed particle */
 void ForceModel::DivideByMass(const PetscReal *f, PetscReal *a, PetscInt n) const
 {
-  const PetscReal *m     = P_->mass.data();
-  const char      *fixed = P_->fixed.data();
-  for (PetscInt i = 0; i < n; i++) {
-    const PetscReal im = fixed[i] ? 0.0 : 1.0 / m[i];
-    a[2 * i]           = f[2 * i] * im;
-    a[2 * i + 1]       = f[2 * i + 1] * im;
-  }
+  if (f == a) DivideByMassInPlace(a, n, P_->mass.data(), P_->fixed.data());
+  else DivideByMassLoop(f, a, n, P_->mass.data(), P_->fixed.data());
 }
 
 PetscErrorCode ForceModel::AcceptStep(const PetscReal *x, const PetscReal *v, PetscReal t, const bool *evaluated_here)
