@@ -2,6 +2,7 @@
 #include <turgor/ts/velocity_verlet.h>
 #include <petsc/private/tsimpl.h>
 #include "ts_types_internal.h"
+#include <turgor/core/vector_clones.h>
 #include <utility>
 
 namespace {
@@ -26,6 +27,30 @@ struct Verlet {
   PetscErrorCode (*impose)(TS, PetscReal, Vec, Vec, void *) = NULL; /* TSVerletSetConstraints */
   void *impose_ctx                                          = NULL;
 };
+
+/* y += a x on this rank's values: VecAXPY's bits (y + a x, value by value, as the reference BLAS's
+   daxpy), in a loop the compiler vectorises (AVX2 where the CPU has it): the step's kicks and drift,
+   about a quarter of a small tissue's step beyond its forces through daxpy. */
+TURGOR_VECTOR_CLONES void AxpyLoop(PetscInt n, PetscScalar a, const PetscScalar *__restrict x, PetscScalar *__restrict y)
+{
+  for (PetscInt i = 0; i < n; i++) y[i] += a * x[i];
+}
+
+PetscErrorCode Axpy(Vec y, PetscScalar a, Vec x)
+{
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  PetscInt           n;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(y, &n));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  AxpyLoop(n, a, xa, ya);
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(PetscLogFlops(2.0 * n));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* The solution's parts q, p for a step: the views placed on its array, or sub-vectors. */
 PetscErrorCode GetParts(TS ts, Verlet *vv, Vec *q, Vec *p)
@@ -187,14 +212,14 @@ PetscErrorCode TSStep_Verlet(TS ts)
     if (vv->impose) PetscCall(vv->impose(ts, t0, q, p, vv->impose_ctx));
     PetscCall(Accelerate(ts, vv, t0, q, vv->A0));
   }
-  PetscCall(VecAXPY(p, 0.5 * h, vv->A0)); /* kick */
+  PetscCall(Axpy(p, 0.5 * h, vv->A0)); /* kick */
   /* drift: dx/dt = v+, into A1, free until a(x_{n+1}) (one work vector fewer: 16 B a particle) */
   vv->have_a1 = PETSC_FALSE;
   PetscCall(TSComputeRHSFunction(vv->subts_q, t0, p, vv->A1));
-  PetscCall(VecAXPY(q, h, vv->A1));
+  PetscCall(Axpy(q, h, vv->A1));
   if (vv->impose) PetscCall(vv->impose(ts, t0 + h, q, p, vv->impose_ctx)); /* the second kick leaves them: their accelerations are 0 */
   PetscCall(Accelerate(ts, vv, t0 + h, q, vv->A1));                        /* a(x_{n+1}), reused by the next step */
-  PetscCall(VecAXPY(p, 0.5 * h, vv->A1));                                  /* kick */
+  PetscCall(Axpy(p, 0.5 * h, vv->A1));                                     /* kick */
   PetscCall(RestoreParts(ts, vv, &q, &p));
   ts->ptime = t0 + h;
   PetscCall(TSPostStage(ts, ts->ptime, 0, &ts->vec_sol));
