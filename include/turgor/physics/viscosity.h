@@ -15,13 +15,8 @@ public:
   PetscErrorCode AddTimeStepLimits(const ForceInput &in, std::vector<TimeStepLimit> &limits) override;
   PetscErrorCode View(PetscViewer viewer) const override;
   bool           Dissipative() const override { return true; }
-  /* nu sum |v|^2 at the last evaluation [µN µm/µs]: the rate at which the term removes energy */
-  PetscReal DissipatedPower() const { return power_; }
 
   PetscReal coefficient = 0.0; /* nu [ng/µs] */
-
-private:
-  PetscReal power_ = 0;
 };
 
 } // namespace turgor
