@@ -65,15 +65,16 @@ PetscErrorCode TimeSampler::Monitor(TS ts, PetscInt step, PetscReal t, Vec U, co
   if (!started_) {
     start_ = last_report_ = now;
     started_              = true;
+    start_step_ = step, start_evals_ = evals, start_t_ = t;
   } else if (interval_ > 0 && now - last_report_ >= interval_) {
-    const PetscReal frac = t / T, el = now - start_, eta = frac > 0 ? el * (1 - frac) / frac : 0;
+    const PetscReal frac = t / T, el = now - start_, done = t - start_t_, eta = done > 0 ? el * (T - t) / done : 0;
     PetscInt        rej;
     MPI_Comm        comm;
     PetscCall(TSGetStepRejections(ts, &rej));
     PetscCall(PetscObjectGetComm((PetscObject)ts, &comm));
     PetscCall(PetscPrintf(comm,
                           "  t = %.6g / %g µs (%5.1f%%)  step %" PetscInt_FMT " (%" PetscInt_FMT " rejected)  %.3g steps/s  %.3g evaluations/s  ETA %.0f s\n",
-                          (double)t, (double)T, 100.0 * frac, step, rej, step / el, evals / el, eta));
+                          (double)t, (double)T, 100.0 * frac, step, rej, (step - start_step_) / el, (evals - start_evals_) / el, eta));
     last_report_ = now;
   }
   PetscFunctionReturn(PETSC_SUCCESS);

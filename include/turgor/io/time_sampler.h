@@ -4,7 +4,8 @@
    between the last two steps (not whichever steps the integrator took; an integrator without
    interpolation, PETSc's ssp, gives the first step end at or after each time, stamped with the
    step's own time), and prints a progress line
-   (time reached, steps/s, evaluations/s, ETA) every `interval` seconds of wall time. */
+   (time reached, steps/s, evaluations/s, ETA: since this process started stepping, a restarted run's
+   own) every `interval` seconds of wall time. */
 #include <turgor/core/petsc_compat.h>
 #include <petscts.h>
 #include <functional>
@@ -37,8 +38,10 @@ private:
   PetscReal      t_final_ = 1, interval_ = 10;
   PetscInt       n_samples_ = 0, n_snapshots_ = 0, next_sample_ = 0, next_snapshot_ = 0;
   PetscLogDouble start_ = 0, last_report_ = 0;
-  Vec            work_    = nullptr;
-  bool           started_ = false; /* the wall clock starts at the first monitor call (step 0, or a restart's first) */
+  Vec            work_       = nullptr;
+  bool           started_    = false;               /* the wall clock starts at the first monitor call (step 0, or a restart's first) */
+  PetscInt       start_step_ = 0, start_evals_ = 0; /* and the rates and the ETA count from there: a restart's own */
+  PetscReal      start_t_ = 0;
 };
 
 } // namespace turgor
