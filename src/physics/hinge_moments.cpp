@@ -1,5 +1,6 @@
 #include <turgor/core/vector_clones.h>
 #include <turgor/physics/hinge_moments.h>
+#include <cstring>
 
 namespace turgor {
 
@@ -47,6 +48,39 @@ TURGOR_VECTOR_CLONES void EndForceLoop(size_t n, const PetscReal *__restrict ux,
     fcx[h] = wy[h] * iw, fcy[h] = -wx[h] * iw; /* -M dtheta/dx_c */
   }
 }
+
+/* a where the mask m is all ones, b where it is zero: an exact select in integer operations, which the
+   compiler vectorises (a conditional floating-point sum it keeps as a branch) */
+inline PetscReal Select(std::uint64_t m, PetscReal a, PetscReal b)
+{
+  std::uint64_t x, y;
+  std::memcpy(&x, &a, sizeof x), std::memcpy(&y, &b, sizeof y);
+  x = (x & m) | (y & ~m);
+  std::memcpy(&a, &x, sizeof x);
+  return a;
+}
+
+TURGOR_VECTOR_CLONES std::uint64_t OrOfBits(size_t n, const PetscReal *__restrict v)
+{
+  std::uint64_t acc = 0;
+  for (size_t h = 0; h < n; h++) {
+    std::uint64_t b;
+    std::memcpy(&b, v + h, sizeof b);
+    acc |= b;
+  }
+  return acc;
+}
+
+TURGOR_VECTOR_CLONES void InteriorNodeLoop(size_t n, const std::uint64_t *__restrict interior, const PetscReal *__restrict fax, const PetscReal *__restrict fay,
+                                           const PetscReal *__restrict fcx, const PetscReal *__restrict fcy, PetscReal *__restrict fb)
+{
+  for (size_t h = 1; h + 1 < n; h++) {
+    const PetscReal gx = fcx[h - 1] - fax[h] - fcx[h] + fax[h + 1], gy = fcy[h - 1] - fay[h] - fcy[h] + fay[h + 1];
+    const PetscReal ox = fb[2 * h], oy = fb[2 * h + 1];
+    fb[2 * h]     = Select(interior[h], ox + gx, ox);
+    fb[2 * h + 1] = Select(interior[h], oy + gy, oy);
+  }
+}
 } // namespace
 
 void HingeNextBars(size_t n, const PetscInt *b, const PetscInt *c, bool contiguous, const PetscReal *x, const HingeScratch &S)
@@ -69,6 +103,17 @@ void HingeSeriesMoments(size_t n, const PetscReal *cos0, const PetscReal *sin0, 
 void HingeEndForces(size_t n, const HingeScratch &S, PetscReal *fax, PetscReal *fay, PetscReal *fcx, PetscReal *fcy)
 {
   EndForceLoop(n, S.ux, S.uy, S.wx, S.wy, S.iw2, S.M, fax, fay, fcx, fcy);
+}
+
+bool HingeAnyGeneral(size_t n, const HingeScratch &S)
+{
+  return OrOfBits(n, S.general) != 0;
+}
+
+void HingeInteriorNodeForces(size_t n, const std::uint64_t *interior, const PetscReal *fax, const PetscReal *fay, const PetscReal *fcx, const PetscReal *fcy,
+                             PetscReal *fb)
+{
+  InteriorNodeLoop(n, interior, fax, fay, fcx, fcy, fb);
 }
 
 } // namespace turgor

@@ -36,6 +36,8 @@ PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   }
   contiguous_ = true; /* the hinges' nodes consecutive (every node of a tissue of closed cells numbered cell by cell, a chain) */
   for (size_t h = 1; h < NumHinges(); h++) contiguous_ = contiguous_ && b_[h] == b_[0] + (PetscInt)h;
+  interior_.assign(NumHinges(), ~(std::uint64_t)0); /* neither the first nor the last hinge of its polygon */
+  for (const Run &R : runs_) interior_[R.first] = interior_[R.first + R.count - 1] = 0;
   have_angles_ = false;
   cos0_.assign(NumHinges(), 1.0);
   sin0_.assign(NumHinges(), 0.0);
@@ -152,17 +154,35 @@ void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
     S.ux[f] = x[2 * a_[f]] - x[2 * b_[f]], S.uy[f] = x[2 * a_[f] + 1] - x[2 * b_[f] + 1];
   }
   HingeSeriesMoments(n, cos0_.data(), sin0_.data(), theta_p_.data(), k, Mmax, S);
-  for (size_t h = 0; h < n; h++)
-    if (S.general[h]) {
-      HingeGeneral(HingeBendOf(S.ux[h], S.uy[h], S.wx[h], S.wy[h], cos0_[h], sin0_[h]), &S.d[h], &S.iw2[h]);
-      S.M[h] = HingeMoment(k, S.d[h], theta_p_[h], Mmax);
-    }
+  if (HingeAnyGeneral(n, S))
+    for (size_t h = 0; h < n; h++)
+      if (S.general[h]) {
+        HingeGeneral(HingeBendOf(S.ux[h], S.uy[h], S.wx[h], S.wy[h], cos0_[h], sin0_[h]), &S.d[h], &S.iw2[h]);
+        S.M[h] = HingeMoment(k, S.d[h], theta_p_[h], Mmax);
+      }
   HingeEndForces(n, S, fax, fay, fcx, fcy);
   for (const Run &R : runs_) { /* a polygon's first hinge: 1/|u|^2 of its own */
     const PetscInt  h  = R.first;
     const PetscReal iu = S.M[h] * (1 / (S.ux[h] * S.ux[h] + S.uy[h] * S.uy[h])), iw = S.M[h] * S.iw2[h];
     fax[h] = -S.uy[h] * iu, fay[h] = S.ux[h] * iu;
     fcx[h] = S.wy[h] * iw, fcy[h] = -S.wx[h] * iw;
+  }
+  if (contiguous_) { /* node b_h = b_0 + h: the interior hinges' nodes in order, in a loop that vectorises */
+    HingeInteriorNodeForces(n, interior_.data(), fax, fay, fcx, fcy, f + 2 * b_[0]);
+    for (const Run &R : runs_) { /* the ends of each polygon, as Kernel sums them there */
+      const PetscInt h0 = R.first, hL = R.first + R.count - 1, a = a_[h0], b0 = b_[h0], bL = b_[hL], c = c_[hL];
+      if (!R.closed) f[2 * a] += fax[h0], f[2 * a + 1] += fay[h0];
+      if (hL > h0) { /* the first hinge's node, with the next hinge's share */
+        f[2 * b0] += (PetscReal)0 - fax[h0] - fcx[h0] + fax[h0 + 1];
+        f[2 * b0 + 1] += (PetscReal)0 - fay[h0] - fcy[h0] + fay[h0 + 1];
+      }
+      const PetscReal ccx = hL > h0 ? fcx[hL - 1] : 0, ccy = hL > h0 ? fcy[hL - 1] : 0;
+      f[2 * bL] += ccx - fax[hL] - fcx[hL] + (R.closed ? fax[h0] : 0);
+      f[2 * bL + 1] += ccy - fay[hL] - fcy[hL] + (R.closed ? fay[h0] : 0);
+      f[2 * c] += fcx[hL];
+      f[2 * c + 1] += fcy[hL];
+    }
+    return;
   }
   for (const Run &R : runs_) { /* as in Kernel: pb, cc, fa0 */
     const PetscInt h0 = R.first, h1 = R.first + R.count;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 namespace turgor {
 
@@ -92,5 +93,14 @@ void HingeSeriesMoments(size_t n, const PetscReal *cos0, const PetscReal *sin0, 
    (-v_y, v_x) and f_c = -M/|w|^2 perp(w), of every hinge but the first, with 1/|u|^2 the 1/|w|^2 of
    the hinge before (the caller sets those of each polygon's first hinge). */
 void HingeEndForces(size_t n, const HingeScratch &S, PetscReal *fax, PetscReal *fay, PetscReal *fcx, PetscReal *fcy);
+
+/* Whether some hinge is outside the series (a scan of `general` that vectorises). */
+bool HingeAnyGeneral(size_t n, const HingeScratch &S);
+
+/* The hinges' nodes in order (b_h = b_0 + h, fb = f + 2 b_0): every interior hinge's node (interior[h]
+   all ones: neither the first nor the last of its polygon; else 0) takes f += ((fc_(h-1) - fa_h) - fc_h) + fa_(h+1),
+   the one-pass kernel's sum for it; the others are left to the caller. */
+void HingeInteriorNodeForces(size_t n, const std::uint64_t *interior, const PetscReal *fax, const PetscReal *fay, const PetscReal *fcx, const PetscReal *fcy,
+                             PetscReal *fb);
 
 } // namespace turgor

@@ -7,6 +7,7 @@
    node, balanced at the hinge node, so that linear and angular momentum are conserved exactly.
    The plastic angle theta_p changes only in AcceptStep (return mapping at the accepted state). */
 #include <turgor/physics/force_term.h>
+#include <cstdint>
 #include <vector>
 
 namespace turgor {
@@ -56,16 +57,17 @@ private:
   Hinge HingeAt(size_t h) const { return {a_[h], b_[h], c_[h]}; }
   void  AddHinge(PetscInt a, PetscInt b, PetscInt c) { a_.push_back(a), b_.push_back(b), c_.push_back(c); }
   template <bool VIRIAL, bool CACHE, bool ROUND>
-  void                   Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial);
-  void                   VectorKernel(const PetscReal *x, PetscReal *f);
-  std::vector<PetscInt>  a_, b_, c_;          /* each hinge's nodes, by field (the vectorised loop reads them so) */
-  bool                   contiguous_ = false; /* b_[h] = b_[0] + h: the bars read from x in order */
-  std::vector<Run>       runs_;
-  std::vector<PetscReal> cos0_, sin0_, theta_p_;
-  std::vector<PetscReal> d_;       /* angles of the last AddForces (plastic hinges) */
-  std::vector<PetscReal> scratch_; /* the vectorised kernel's per-hinge values */
-  PetscReal              dissipated_ = 0;
-  bool                   have_ref_ = false, have_angles_ = false;
+  void                       Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial);
+  void                       VectorKernel(const PetscReal *x, PetscReal *f);
+  std::vector<PetscInt>      a_, b_, c_;          /* each hinge's nodes, by field (the vectorised loop reads them so) */
+  bool                       contiguous_ = false; /* b_[h] = b_[0] + h: the bars read from x in order */
+  std::vector<std::uint64_t> interior_;           /* all ones for a hinge neither first nor last in its polygon, else 0 */
+  std::vector<Run>           runs_;
+  std::vector<PetscReal>     cos0_, sin0_, theta_p_;
+  std::vector<PetscReal>     d_;       /* angles of the last AddForces (plastic hinges) */
+  std::vector<PetscReal>     scratch_; /* the vectorised kernel's per-hinge values */
+  PetscReal                  dissipated_ = 0;
+  bool                       have_ref_ = false, have_angles_ = false;
 };
 
 } // namespace turgor
