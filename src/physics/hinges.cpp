@@ -34,7 +34,7 @@ PetscErrorCode Hinges::SetUp(const ParticleSet &P, NeighbourSearch &nb)
       for (PetscInt k = 0; k < N; k++) AddHinge(c.nodes[(k + N - 1) % N], c.nodes[k], c.nodes[(k + 1) % N]);
     if ((PetscInt)NumHinges() > first) runs_.push_back({first, (PetscInt)NumHinges() - first, !c.open});
   }
-  contiguous_ = true; /* the hinges' nodes consecutive (every node of a tissue of closed cells numbered cell by cell, a chain) */
+  contiguous_ = NumHinges() > 0; /* the hinges' nodes consecutive (every node of a tissue of closed cells numbered cell by cell, a chain) */
   for (size_t h = 1; h < NumHinges(); h++) contiguous_ = contiguous_ && b_[h] == b_[0] + (PetscInt)h;
   interior_.assign(NumHinges(), ~(std::uint64_t)0); /* neither the first nor the last hinge of its polygon */
   for (const Run &R : runs_) interior_[R.first] = interior_[R.first + R.count - 1] = 0;
@@ -139,6 +139,7 @@ void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
 {
   const size_t    n = NumHinges();
   const PetscReal k = stiffness, Mmax = max_moment > 0 ? max_moment : PETSC_MAX_REAL;
+  if (n == 0) return; /* a rank without polygons */
   scratch_.resize(11 * n);
   d_.resize(n);
   PetscReal   *v = scratch_.data(), *fax = v + 7 * n, *fay = v + 8 * n, *fcx = v + 9 * n, *fcy = v + 10 * n;
