@@ -25,13 +25,14 @@ PetscErrorCode Bars::SetUp(const ParticleSet &P, NeighbourSearch &nb)
                "Bar %zu (%" PetscInt_FMT ", %" PetscInt_FMT ") has rest length %g: must be > 0", s, P.springs[s].i, P.springs[s].j,
                (double)P.springs[s].rest_length);
   gamma_.assign(P.springs.size(), damping);
+  order_.Build(P);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode Bars::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  SpringForces(in, stiffness, gamma_, damping > 0, f, virial);
+  SpringForces(in, stiffness, gamma_, damping > 0, f, virial, &order_, &scratch_);
   PetscCall(PetscLogFlops(30.0 * in.P->springs.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

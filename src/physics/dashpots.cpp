@@ -19,6 +19,7 @@ PetscErrorCode Dashpots::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
   gamma_.assign(P.springs.size(), coefficient);
+  order_.Build(P);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -26,7 +27,7 @@ PetscErrorCode Dashpots::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 PetscErrorCode Dashpots::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
-  SpringForces(in, 0, gamma_, coefficient > 0, f, virial);
+  SpringForces(in, 0, gamma_, coefficient > 0, f, virial, &order_, &scratch_);
   PetscCall(PetscLogFlops(25.0 * in.P->springs.size()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

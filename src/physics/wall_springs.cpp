@@ -104,9 +104,12 @@ void KernelFor(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &
 }
 } // namespace
 
-void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial)
+void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial,
+                  const SpringOrder *order, std::vector<PetscReal> *scratch)
 {
-  if (virial) KernelFor<true>(in, k, gamma, damped, f, virial);
+  if (order && order->in_order && order->rest.size() == in.P->OwnedSprings() && !virial && !in.images->periodic && !in.Grain().On())
+    SpringForcesInOrder(in, *order, k, gamma.data(), damped, f, *scratch);
+  else if (virial) KernelFor<true>(in, k, gamma, damped, f, virial);
   else KernelFor<false>(in, k, gamma, damped, f, NULL);
 }
 

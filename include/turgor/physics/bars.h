@@ -2,6 +2,7 @@
 /* Bars of polygonal cells (the L-hyphen model): axial springs along ParticleSet::springs with an
    optional dashpot, the wall-spring kernel with the bar parameters (wall_springs.h). */
 #include <turgor/physics/force_term.h>
+#include <turgor/physics/spring_order.h>
 #include <vector>
 
 namespace turgor {
@@ -19,12 +20,15 @@ public:
   PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
   /* the dashpot's part of the force reported apart (the energy balance counts its work) */
   bool HasDashpotForce() const override { return damping > 0; }
+  bool InNodeOrder() const { return order_.in_order; } /* the bars' loops in node order (spring_order.h) */
 
   PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
   PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */
 
 private:
-  std::vector<PetscReal> gamma_; /* per bar (all `damping`) */
+  std::vector<PetscReal> gamma_;   /* per bar (all `damping`) */
+  SpringOrder            order_;   /* the bars in node order, where they are */
+  std::vector<PetscReal> scratch_; /* its per-bar values */
 };
 
 } // namespace turgor

@@ -5,6 +5,7 @@
    vibrations of a tissue without dragging on a slow (quasi-static) loading. A purely dissipative
    term: the energy balance counts its work as its dissipation, exactly. */
 #include <turgor/physics/force_term.h>
+#include <turgor/physics/spring_order.h>
 #include <vector>
 
 namespace turgor {
@@ -22,7 +23,9 @@ public:
   PetscReal coefficient = 1.0; /* c [ng/µs] */
 
 private:
-  std::vector<PetscReal> gamma_; /* per spring (all c) */
+  std::vector<PetscReal> gamma_;   /* per spring (all c) */
+  SpringOrder            order_;   /* the springs in node order, where they are */
+  std::vector<PetscReal> scratch_; /* its per-spring values */
 };
 
 } // namespace turgor

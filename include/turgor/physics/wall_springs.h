@@ -2,14 +2,17 @@
 /* Wall springs with dashpots (TW 562 eq 16): linear springs between neighbouring wall particles,
    damped along the bond with gamma = zeta * 2 sqrt(m k) (zeta = 1: the seed's critical damping). */
 #include <turgor/physics/force_term.h>
+#include <turgor/physics/spring_order.h>
 #include <vector>
 
 namespace turgor {
 
 /* The axial spring kernel shared by `springs` (wall springs) and `bars` (polygon bars): along every
    ParticleSet::springs entry, force on i [k (r - l0) + gamma_s (e . v_ij)] e, e = (x_j - x_i)/r;
-   gamma[s] per spring, read only if `damped` (false: no dashpot). virial may be NULL. */
-void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial);
+   gamma[s] per spring, read only if `damped` (false: no dashpot). virial may be NULL. With the
+   springs' order (spring_order.h) and room for its values, the loops that vectorise where they can. */
+void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial,
+                  const SpringOrder *order = nullptr, std::vector<PetscReal> *scratch = nullptr);
 /* Every spring's axial force [k (r - l0) + gamma (e . v_ij)] (positive in tension), per spring. */
 std::vector<PetscReal> SpringAxialForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped);
 /* sum_s k/2 (r_s - l0_s)^2 */

@@ -1,0 +1,116 @@
+#include <turgor/core/vector_clones.h>
+#include <turgor/physics/spring_order.h>
+#include <cmath>
+#include <cstring>
+
+/* Compiled with -fno-math-errno (CMakeLists.txt): sqrt's errno branch would keep the force loop from
+   vectorising; nothing here reads errno. */
+namespace turgor {
+
+void SpringOrder::Build(const ParticleSet &P)
+{
+  const auto  &S  = P.springs;
+  const size_t ns = P.OwnedSprings();
+  in_order        = ns >= 2;
+  rest.clear(), interior.clear(), by_index.clear(), ends.clear();
+  for (size_t s = 0; s < ns && in_order; s++) in_order = S[s].i == S[0].i + (PetscInt)s && S[s].image == PeriodicImages::kSelf;
+  if (!in_order) return;
+  i0 = S[0].i;
+  rest.resize(ns);
+  for (size_t s = 0; s < ns; s++) rest[s] = S[s].rest_length;
+  /* node i_s takes -F_(s-1) then +F_s alone when spring s - 1 ends at it and no spring read by index
+     does */
+  std::vector<char> targeted(ns + 1, 0); /* by a spring whose far end is not the next node */
+  for (size_t s = 0; s < ns; s++)
+    if (S[s].j != S[s].i + 1 || s + 1 == ns) {
+      by_index.push_back((PetscInt)s);
+      if (S[s].j >= i0 && S[s].j < i0 + (PetscInt)ns) targeted[S[s].j - i0] = 1;
+    }
+  interior.assign(ns, 0);
+  for (size_t s = 1; s < ns; s++) interior[s] = S[s - 1].j == S[s].i && !targeted[s] ? ~(std::uint64_t)0 : 0;
+  auto inner = [&](PetscInt node) { return node > i0 && node < i0 + (PetscInt)ns && interior[node - i0]; };
+  for (size_t s = 0; s < ns; s++) {
+    if (!interior[s]) ends.push_back({S[s].i, (PetscInt)s, 1.0});
+    if (!inner(S[s].j)) ends.push_back({S[s].j, (PetscInt)s, -1.0});
+  }
+}
+
+namespace {
+/* d[s] = u[2 (s + 1) + c] - u[2 s + c]: the spring from a node to the next, both components */
+TURGOR_VECTOR_CLONES void NextDifferences(size_t n, const PetscReal *__restrict u, PetscReal *__restrict dx, PetscReal *__restrict dy)
+{
+  for (size_t s = 0; s < n; s++) dx[s] = u[2 * s + 2] - u[2 * s], dy[s] = u[2 * s + 3] - u[2 * s + 1];
+}
+
+/* The kernel's arithmetic (wall_springs.cpp), spring by spring */
+template <bool DAMPED>
+TURGOR_VECTOR_CLONES void ForceLoop(size_t n, PetscReal k, const PetscReal *__restrict rest, const PetscReal *__restrict gamma, const PetscReal *__restrict dx,
+                                    const PetscReal *__restrict dy, const PetscReal *__restrict dvx, const PetscReal *__restrict dvy, PetscReal *__restrict fx,
+                                    PetscReal *__restrict fy, PetscReal *__restrict gx, PetscReal *__restrict gy)
+{
+  for (size_t s = 0; s < n; s++) {
+    const PetscReal r = std::sqrt(dx[s] * dx[s] + dy[s] * dy[s]), ir = 1.0 / r;
+    const PetscReal ex = dx[s] * ir, ey = dy[s] * ir;
+    PetscReal       mag = k * (r - rest[s]);
+    if (DAMPED) {
+      const PetscReal md = gamma[s] * (dvx[s] * ex + dvy[s] * ey);
+      mag += md;
+      gx[s] = md * ex, gy[s] = md * ey;
+    }
+    fx[s] = mag * ex, fy[s] = mag * ey;
+  }
+}
+
+/* a where the mask m is all ones, b where it is zero: an exact select in integer operations */
+inline PetscReal Select(std::uint64_t m, PetscReal a, PetscReal b)
+{
+  std::uint64_t x, y;
+  std::memcpy(&x, &a, sizeof x), std::memcpy(&y, &b, sizeof y);
+  x = (x & m) | (y & ~m);
+  std::memcpy(&a, &x, sizeof x);
+  return a;
+}
+
+/* fb[2 s] = (fb[2 s] - F_(s-1)) + F_s where interior[s] (fb = f + 2 i_0) */
+TURGOR_VECTOR_CLONES void InteriorNodes(size_t n, const std::uint64_t *__restrict interior, const PetscReal *__restrict fx, const PetscReal *__restrict fy,
+                                        PetscReal *__restrict fb)
+{
+  for (size_t s = 1; s < n; s++) {
+    const PetscReal ox = fb[2 * s], oy = fb[2 * s + 1];
+    fb[2 * s]     = Select(interior[s], ox - fx[s - 1] + fx[s], ox);
+    fb[2 * s + 1] = Select(interior[s], oy - fy[s - 1] + fy[s], oy);
+  }
+}
+
+void AddShares(const SpringOrder &O, const PetscReal *fx, const PetscReal *fy, PetscReal *f)
+{
+  InteriorNodes(O.rest.size(), O.interior.data(), fx, fy, f + 2 * O.i0);
+  for (const SpringOrder::Share &E : O.ends) { /* f += F or f -= F: a sign of magnitude 1 changes no bit */
+    f[2 * E.node] += E.sign * fx[E.s];
+    f[2 * E.node + 1] += E.sign * fy[E.s];
+  }
+}
+} // namespace
+
+void SpringForcesInOrder(const ForceInput &in, const SpringOrder &O, PetscReal k, const PetscReal *gamma, bool damped, PetscReal *f,
+                         std::vector<PetscReal> &scratch)
+{
+  const size_t     n = O.rest.size();
+  const PetscReal *x = in.x, *v = in.v;
+  const auto      &S = in.P->springs;
+  scratch.resize(8 * n);
+  PetscReal *dx = scratch.data(), *dy = dx + n, *dvx = dy + n, *dvy = dvx + n, *fx = dvy + n, *fy = fx + n, *gx = fy + n, *gy = gx + n;
+  NextDifferences(n - 1, x + 2 * O.i0, dx, dy); /* the last spring's far end may not exist: by index */
+  if (damped) NextDifferences(n - 1, v + 2 * O.i0, dvx, dvy);
+  for (PetscInt s : O.by_index) {
+    const PetscInt i = S[s].i, j = S[s].j;
+    dx[s] = x[2 * j] - x[2 * i], dy[s] = x[2 * j + 1] - x[2 * i + 1];
+    if (damped) dvx[s] = v[2 * j] - v[2 * i], dvy[s] = v[2 * j + 1] - v[2 * i + 1];
+  }
+  if (damped) ForceLoop<true>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
+  else ForceLoop<false>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
+  if (damped && in.f_dashpot) AddShares(O, gx, gy, in.f_dashpot); /* the dashpot's part apart (the energy balance observes) */
+  AddShares(O, fx, fy, f);
+}
+
+} // namespace turgor
