@@ -590,17 +590,11 @@ static PetscErrorCode TestNearList()
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* 9. The hinges' vectorised loops (forces without the virial) give the bits of the one-pass kernel
-   (forces with it), bent so that some hinges leave the series (|tan(theta - theta0)| > 0.1, one past
-   a right angle), elastic and plastic: closed cells and an open chain (the hinges' nodes not
-   consecutive: bars gathered), closed cells alone and the chain alone (bars read in order). */
-static PetscErrorCode HingeVectorBits(bool cells, bool chain)
+/* Tissues for the bit checks of the vectorised loops: twelve closed cells (triangles to nonagons) and
+   a nine-node open chain, in the order asked (node numbers follow the order of adding). */
+static void AddCellsAndChain(PolygonBuilder &B, bool cells, bool chain, bool chain_first)
 {
-  PolygonBuilder      B;
-  turgor_test::Random rnd(11);
-  PetscFunctionBeginUser;
-  for (PetscInt c = 0; cells && c < 12; c++) B.AddRegular(3 + c % 7, 1.0 + 0.1 * c, 3.0 * c, 0, 1.0);
-  if (chain)
+  auto add_chain = [&] {
     B.AddCell(
       {
         {0, 5  },
@@ -614,6 +608,22 @@ static PetscErrorCode HingeVectorBits(bool cells, bool chain)
         {8, 5  }
     },
       true, 1.0);
+  };
+  if (chain && chain_first) add_chain();
+  for (PetscInt c = 0; cells && c < 12; c++) B.AddRegular(3 + c % 7, 1.0 + 0.1 * c, 3.0 * c, 0, 1.0);
+  if (chain && !chain_first) add_chain();
+}
+
+/* 9. The hinges' vectorised loops (forces without the virial) give the bits of the one-pass kernel
+   (forces with it), bent so that some hinges leave the series (|tan(theta - theta0)| > 0.1, one past
+   a right angle), elastic and plastic: closed cells and an open chain (the hinges' nodes not
+   consecutive: bars gathered), closed cells alone and the chain alone (bars read in order). */
+static PetscErrorCode HingeVectorBits(bool cells, bool chain)
+{
+  PolygonBuilder      B;
+  turgor_test::Random rnd(11);
+  PetscFunctionBeginUser;
+  AddCellsAndChain(B, cells, chain, false);
   Tissue &T = B.Finish(0.1);
   for (PetscReal Mmax : {0.0, 0.3}) {
     auto h        = std::make_unique<Hinges>();
@@ -665,24 +675,7 @@ static PetscErrorCode SpringOrderBits(int layout)
   const bool          cells = layout != 3, chain = layout != 2;
   const char         *name[4] = {"a chain, then cells", "cells, then a chain", "cells", "a chain"};
   PetscFunctionBeginUser;
-  auto add_chain = [&] {
-    B.AddCell(
-      {
-        {0, 5  },
-        {1, 5.2},
-        {2, 4.9},
-        {3, 5.1},
-        {4, 5  },
-        {5, 5.3},
-        {6, 5.1},
-        {7, 5.2},
-        {8, 5  }
-    },
-      true, 1.0);
-  };
-  if (layout == 0) add_chain();
-  for (PetscInt c = 0; cells && c < 12; c++) B.AddRegular(3 + c % 7, 1.0 + 0.1 * c, 3.0 * c, 0, 1.0);
-  if (chain && layout != 0) add_chain();
+  AddCellsAndChain(B, cells, chain, layout == 0);
   Tissue &T = B.Finish(0.1);
   for (PetscReal damping : {0.0, 0.7}) {
     auto b       = std::make_unique<Bars>();

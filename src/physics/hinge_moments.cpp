@@ -1,3 +1,4 @@
+#include <turgor/core/mask_select.h>
 #include <turgor/core/vector_clones.h>
 #include <turgor/physics/hinge_moments.h>
 #include <cstring>
@@ -49,17 +50,6 @@ TURGOR_VECTOR_CLONES void EndForceLoop(size_t n, const PetscReal *__restrict ux,
   }
 }
 
-/* a where the mask m is all ones, b where it is zero: an exact select in integer operations, which the
-   compiler vectorises (a conditional floating-point sum it keeps as a branch) */
-inline PetscReal Select(std::uint64_t m, PetscReal a, PetscReal b)
-{
-  std::uint64_t x, y;
-  std::memcpy(&x, &a, sizeof x), std::memcpy(&y, &b, sizeof y);
-  x = (x & m) | (y & ~m);
-  std::memcpy(&a, &x, sizeof x);
-  return a;
-}
-
 TURGOR_VECTOR_CLONES std::uint64_t OrOfBits(size_t n, const PetscReal *__restrict v)
 {
   std::uint64_t acc = 0;
@@ -77,8 +67,8 @@ TURGOR_VECTOR_CLONES void InteriorNodeLoop(size_t n, const std::uint64_t *__rest
   for (size_t h = 1; h + 1 < n; h++) {
     const PetscReal gx = fcx[h - 1] - fax[h] - fcx[h] + fax[h + 1], gy = fcy[h - 1] - fay[h] - fcy[h] + fay[h + 1];
     const PetscReal ox = fb[2 * h], oy = fb[2 * h + 1];
-    fb[2 * h]     = Select(interior[h], ox + gx, ox);
-    fb[2 * h + 1] = Select(interior[h], oy + gy, oy);
+    fb[2 * h]     = MaskSelect(interior[h], ox + gx, ox);
+    fb[2 * h + 1] = MaskSelect(interior[h], oy + gy, oy);
   }
 }
 } // namespace

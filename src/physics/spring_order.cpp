@@ -1,3 +1,4 @@
+#include <turgor/core/mask_select.h>
 #include <turgor/core/vector_clones.h>
 #include <turgor/physics/spring_order.h>
 #include <cmath>
@@ -61,24 +62,14 @@ TURGOR_VECTOR_CLONES void ForceLoop(size_t n, PetscReal k, const PetscReal *__re
   }
 }
 
-/* a where the mask m is all ones, b where it is zero: an exact select in integer operations */
-inline PetscReal Select(std::uint64_t m, PetscReal a, PetscReal b)
-{
-  std::uint64_t x, y;
-  std::memcpy(&x, &a, sizeof x), std::memcpy(&y, &b, sizeof y);
-  x = (x & m) | (y & ~m);
-  std::memcpy(&a, &x, sizeof x);
-  return a;
-}
-
 /* fb[2 s] = (fb[2 s] - F_(s-1)) + F_s where interior[s] (fb = f + 2 i_0) */
 TURGOR_VECTOR_CLONES void InteriorNodes(size_t n, const std::uint64_t *__restrict interior, const PetscReal *__restrict fx, const PetscReal *__restrict fy,
                                         PetscReal *__restrict fb)
 {
   for (size_t s = 1; s < n; s++) {
     const PetscReal ox = fb[2 * s], oy = fb[2 * s + 1];
-    fb[2 * s]     = Select(interior[s], ox - fx[s - 1] + fx[s], ox);
-    fb[2 * s + 1] = Select(interior[s], oy - fy[s - 1] + fy[s], oy);
+    fb[2 * s]     = MaskSelect(interior[s], ox - fx[s - 1] + fx[s], ox);
+    fb[2 * s + 1] = MaskSelect(interior[s], oy - fy[s - 1] + fy[s], oy);
   }
 }
 
