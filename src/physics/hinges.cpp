@@ -145,13 +145,10 @@ void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
   PetscReal   *v = scratch_.data(), *fax = v + 7 * n, *fay = v + 8 * n, *fcx = v + 9 * n, *fcy = v + 10 * n;
   HingeScratch S{v, v + n, v + 2 * n, v + 3 * n, d_.data(), v + 4 * n, v + 5 * n, v + 6 * n};
   HingeNextBars(n, b_.data(), c_.data(), contiguous_, x, S);
-  for (const Run &R : runs_) { /* a polygon's last hinge's w (the ring's closing bar), its first's u */
-    const PetscInt l = R.first + R.count - 1;
-    S.wx[l] = x[2 * c_[l]] - x[2 * b_[l]], S.wy[l] = x[2 * c_[l] + 1] - x[2 * b_[l] + 1];
-  }
   HingePreviousBars(n, S);
-  for (const Run &R : runs_) {
-    const PetscInt f = R.first;
+  for (const Run &R : runs_) { /* a polygon's last hinge's w (the ring's closing bar), its first's u: by index */
+    const PetscInt l = R.first + R.count - 1, f = R.first;
+    S.wx[l] = x[2 * c_[l]] - x[2 * b_[l]], S.wy[l] = x[2 * c_[l] + 1] - x[2 * b_[l] + 1];
     S.ux[f] = x[2 * a_[f]] - x[2 * b_[f]], S.uy[f] = x[2 * a_[f] + 1] - x[2 * b_[f] + 1];
   }
   HingeSeriesMoments(n, cos0_.data(), sin0_.data(), theta_p_.data(), k, Mmax, S);

@@ -13,18 +13,22 @@
 
 namespace turgor {
 
+/* atan(t) for |t| <= 0.1: the Taylor series to t^15 (the first omitted term t^17/17 < 1e-18: exact to
+   rounding), its even and odd halves in t^4 side by side (half the dependency chain of Horner) */
+inline PetscReal HingeAtanSeries(PetscReal t)
+{
+  const PetscReal t2 = t * t, t4 = t2 * t2;
+  const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
+  const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
+  return t * (pe + t2 * po);
+}
+
 /* atan2(y, x) for the hinge angle deviation: where x > 0 and y/x is small, the Taylor series of
    atan(t), t = y/x, truncated where the first omitted term is below 1e-18 relative (exact to
    rounding and several times cheaper than libm); elsewhere libm. */
 inline PetscReal HingeAtan2(PetscReal y, PetscReal x)
 {
-  if (x > 0 && std::fabs(y) <= 0.1 * x) { /* |t| <= 0.1: to t^15, first omitted term t^17/17 < 1e-18 */
-    const PetscReal t = y / x, t2 = t * t, t4 = t2 * t2;
-    /* even and odd halves in t^4 evaluated side by side (half the dependency chain of Horner) */
-    const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
-    const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
-    return t * (pe + t2 * po);
-  }
+  if (x > 0 && std::fabs(y) <= 0.1 * x) return HingeAtanSeries(y / x);
   if (x > 0 && std::fabs(y) <= 0.2679491924311227 * x) { /* |t| <= tan(pi/12): to t^27 */
     const PetscReal        t = y / x, t2 = t * t;
     static const PetscReal c[14] = {1.0,       -1.0 / 3, 1.0 / 5,   -1.0 / 7, 1.0 / 9,   -1.0 / 11, 1.0 / 13,
@@ -46,19 +50,17 @@ inline HingeBend HingeBendOf(PetscReal ux, PetscReal uy, PetscReal wx, PetscReal
   const PetscReal s = ux * wy - uy * wx, c = ux * wx + uy * wy;
   return {s * cos0 - c * sin0, c * cos0 + s * sin0, wx * wx + wy * wy};
 }
-/* The usual case, X > 0 and |Y| <= 0.1 X (HingeAtan2's first series): d = theta - theta0 and 1/|w|^2
-   from one division, q = 1 / (X |w|^2). */
+/* The usual case, X > 0 and |Y| <= 0.1 X (HingeAtan2's first series; `&`, not `&&`: no branch, so
+   that the loop vectorises): d = theta - theta0 and 1/|w|^2 from one division, q = 1 / (X |w|^2). */
 inline bool HingeSeriesHolds(const HingeBend &B)
 {
   return (B.X > 0) & (std::fabs(B.Y) <= 0.1 * B.X);
-} /* &: no branch (the loop vectorises) */
+}
 inline void HingeSeries(const HingeBend &B, PetscReal *d, PetscReal *iw2)
 {
-  const PetscReal q = 1 / (B.X * B.w2), t = B.Y * B.w2 * q, t2 = t * t, t4 = t2 * t2;
-  const PetscReal pe = 1.0 + t4 * (1.0 / 5 + t4 * (1.0 / 9 + t4 * (1.0 / 13)));
-  const PetscReal po = -1.0 / 3 + t4 * (-1.0 / 7 + t4 * (-1.0 / 11 + t4 * (-1.0 / 15)));
-  *d                 = t * (pe + t2 * po);
-  *iw2               = B.X * q;
+  const PetscReal q = 1 / (B.X * B.w2);
+  *d                = HingeAtanSeries(B.Y * B.w2 * q);
+  *iw2              = B.X * q;
 }
 /* Elsewhere: libm (or HingeAtan2's longer series) and a division of its own. */
 inline void HingeGeneral(const HingeBend &B, PetscReal *d, PetscReal *iw2)
