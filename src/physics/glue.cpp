@@ -314,8 +314,8 @@ size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, Pe
     const GlueBondOpening o  = GlueOpeningAt(x, B.p, B.a, B.b, B.lam, B.sign, B.gn0, B.gt0);
     const PetscReal       dn = o.dn, dt = o.dt, dnp = o.dnp;
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
-    const PetscReal l2     = dnp * dnp + beta2 * dt * dt;            /* Opening2, BeforePeak */
-    const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
+    const PetscReal l2     = Opening2(dnp, dt, beta2);
+    const bool      before = BeforePeak(softening, B.lmax, l2, l0, l02);
     const PetscReal D      = softening && !before ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
     if (MODE <= 1) {
       trial[nt] = {k, dnp, dt};
@@ -365,8 +365,8 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   for (size_t k = 0; k < n; k++) {
     const Bond &B = bonds_[k];
     if (!B.intact) continue;
-    const PetscReal l2     = dnp[k] * dnp[k] + beta2 * dt[k] * dt[k];
-    const bool      before = softening && B.lmax <= l0 && l2 <= l02; /* BeforePeak */
+    const PetscReal l2     = Opening2(dnp[k], dt[k], beta2);
+    const bool      before = BeforePeak(softening, B.lmax, l2, l0, l02);
     /* damaged: again with its damage (and recorded there); else stored always, kept if the accepted
        step may change it (the brittle laws: any intact bond) */
     if (softening && !before) nt = BondRange<0>(in, k, k + 1, nt, nullptr);

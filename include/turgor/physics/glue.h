@@ -129,12 +129,15 @@ private:
   void   CopyGeometry(); /* geometry_ from bonds_, once they are made or read back */
   void   Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
   /* the squared equivalent opening <delta_n>^2 + (k_t/k_n) delta_t^2 */
-  PetscReal Opening2(PetscReal dnp, PetscReal dt) const { return dnp * dnp + beta2_ * dt * dt; }
+  static PetscReal Opening2(PetscReal dnp, PetscReal dt, PetscReal beta2) { return dnp * dnp + beta2 * dt * dt; }
+  PetscReal        Opening2(PetscReal dnp, PetscReal dt) const { return Opening2(dnp, dt, beta2_); }
   /* softening bond still below its peak (no damage, nothing to commit; lmax is recorded from the
-     peak on): tested without a square root */
-  bool      BeforePeak(const Bond &B, PetscReal l2) const { return law == SOFTENING && B.lmax <= l0_ && l2 <= l02_; }
-  PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
-  PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
+     peak on): tested without a square root. The static forms take the law's parameters from the
+     force loops' locals (their stores could alias the members, which would be loaded again per bond). */
+  static bool BeforePeak(bool softening, PetscReal lmax, PetscReal l2, PetscReal l0, PetscReal l02) { return softening && lmax <= l0 && l2 <= l02; }
+  bool        BeforePeak(const Bond &B, PetscReal l2) const { return BeforePeak(law == SOFTENING, B.lmax, l2, l0_, l02_); }
+  PetscReal   Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
+  PetscReal   Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
 
   PetscReal              kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
   std::vector<Bond>      bonds_;
