@@ -1,17 +1,13 @@
 #include <turgor/core/mask_select.h>
 #include <turgor/core/vector_clones.h>
 #include <turgor/physics/hinge_moments.h>
+#include <turgor/physics/spring_order.h>
 #include <cstring>
 
 namespace turgor {
 
 namespace {
 /* The loops below are branch-free and their pointers restrict-qualified, so that GCC vectorises them. */
-TURGOR_VECTOR_CLONES void NextBarsInOrder(size_t n, const PetscReal *__restrict xb, PetscReal *__restrict wx, PetscReal *__restrict wy)
-{
-  for (size_t h = 0; h < n; h++) wx[h] = xb[2 * h + 2] - xb[2 * h], wy[h] = xb[2 * h + 3] - xb[2 * h + 1];
-}
-
 TURGOR_VECTOR_CLONES void NextBarsGathered(size_t n, const PetscInt *__restrict b, const PetscInt *__restrict c, const PetscReal *__restrict x,
                                            PetscReal *__restrict wx, PetscReal *__restrict wy)
 {
@@ -76,7 +72,7 @@ TURGOR_VECTOR_CLONES void InteriorNodeLoop(size_t n, const std::uint64_t *__rest
 void HingeNextBars(size_t n, const PetscInt *b, const PetscInt *c, bool contiguous, const PetscReal *x, const HingeScratch &S)
 {
   if (contiguous) {
-    if (n > 1) NextBarsInOrder(n - 1, x + 2 * b[0], S.wx, S.wy); /* not the last: its node b + 1 may not exist */
+    if (n > 1) NextNodeDifferences(n - 1, x + 2 * b[0], S.wx, S.wy); /* not the last: its node b + 1 may not exist */
   } else NextBarsGathered(n, b, c, x, S.wx, S.wy);
 }
 

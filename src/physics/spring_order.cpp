@@ -37,14 +37,21 @@ void SpringOrder::Build(const ParticleSet &P)
 }
 
 namespace {
-/* d[s] = u[2 (s + 1) + c] - u[2 s + c]: the spring from a node to the next, both components */
-TURGOR_VECTOR_CLONES void NextDifferences(size_t n, const PetscReal *__restrict u, PetscReal *__restrict dx, PetscReal *__restrict dy)
+TURGOR_VECTOR_CLONES void NextDifferencesLoop(size_t n, const PetscReal *__restrict u, PetscReal *__restrict dx, PetscReal *__restrict dy)
 {
   for (size_t s = 0; s < n; s++) dx[s] = u[2 * s + 2] - u[2 * s], dy[s] = u[2 * s + 3] - u[2 * s + 1];
 }
+} // namespace
 
-/* The kernel's arithmetic (wall_springs.cpp), spring by spring */
-template <bool DAMPED>
+void NextNodeDifferences(size_t n, const PetscReal *u, PetscReal *dx, PetscReal *dy)
+{
+  NextDifferencesLoop(n, u, dx, dy);
+}
+
+namespace {
+
+/* The kernel's arithmetic (wall_springs.cpp), spring by spring; KEEP: the dashpot's part too */
+template <bool DAMPED, bool KEEP>
 TURGOR_VECTOR_CLONES void ForceLoop(size_t n, PetscReal k, const PetscReal *__restrict rest, const PetscReal *__restrict gamma, const PetscReal *__restrict dx,
                                     const PetscReal *__restrict dy, const PetscReal *__restrict dvx, const PetscReal *__restrict dvy, PetscReal *__restrict fx,
                                     PetscReal *__restrict fy, PetscReal *__restrict gx, PetscReal *__restrict gy)
@@ -56,7 +63,7 @@ TURGOR_VECTOR_CLONES void ForceLoop(size_t n, PetscReal k, const PetscReal *__re
     if (DAMPED) {
       const PetscReal md = gamma[s] * (dvx[s] * ex + dvy[s] * ey);
       mag += md;
-      gx[s] = md * ex, gy[s] = md * ey;
+      if (KEEP) gx[s] = md * ex, gy[s] = md * ey;
     }
     fx[s] = mag * ex, fy[s] = mag * ey;
   }
@@ -91,15 +98,16 @@ void SpringForcesInOrder(const ForceInput &in, const SpringOrder &O, PetscReal k
   const auto      &S = in.P->springs;
   scratch.resize(8 * n);
   PetscReal *dx = scratch.data(), *dy = dx + n, *dvx = dy + n, *dvy = dvx + n, *fx = dvy + n, *fy = fx + n, *gx = fy + n, *gy = gx + n;
-  NextDifferences(n - 1, x + 2 * O.i0, dx, dy); /* the last spring's far end may not exist: by index */
-  if (damped) NextDifferences(n - 1, v + 2 * O.i0, dvx, dvy);
+  NextNodeDifferences(n - 1, x + 2 * O.i0, dx, dy); /* the last spring's far end may not exist: by index */
+  if (damped) NextNodeDifferences(n - 1, v + 2 * O.i0, dvx, dvy);
   for (PetscInt s : O.by_index) {
     const PetscInt i = S[s].i, j = S[s].j;
     dx[s] = x[2 * j] - x[2 * i], dy[s] = x[2 * j + 1] - x[2 * i + 1];
     if (damped) dvx[s] = v[2 * j] - v[2 * i], dvy[s] = v[2 * j + 1] - v[2 * i + 1];
   }
-  if (damped) ForceLoop<true>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
-  else ForceLoop<false>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
+  if (damped && in.f_dashpot) ForceLoop<true, true>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
+  else if (damped) ForceLoop<true, false>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
+  else ForceLoop<false, false>(n, k, O.rest.data(), gamma, dx, dy, dvx, dvy, fx, fy, gx, gy);
   if (damped && in.f_dashpot) AddShares(O, gx, gy, in.f_dashpot); /* the dashpot's part apart (the energy balance observes) */
   AddShares(O, fx, fy, f);
 }

@@ -28,6 +28,10 @@ struct SpringOrder {
   void Build(const ParticleSet &P);
 };
 
+/* dx[s], dy[s] = u_(s+1) - u_s for s < n, u of 2-vectors by node (positions or velocities from a first
+   node): the bars from each node to the next, read in order, in a loop that vectorises */
+void NextNodeDifferences(size_t n, const PetscReal *u, PetscReal *dx, PetscReal *dy);
+
 /* SpringForces (no virial, no periodic images, no rounding) for springs in order. */
 void SpringForcesInOrder(const ForceInput &in, const SpringOrder &O, PetscReal k, const PetscReal *gamma, bool damped, PetscReal *f,
                          std::vector<PetscReal> &scratch);
