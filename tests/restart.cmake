@@ -219,14 +219,19 @@ turgor_add_test(restart_ranks_to2_parts_built COMMAND ${CHECK} equals restart_ra
 # FULL_RANKS: the uninterrupted run's ranks (default 1); MODE: the mode's label (fine by default);
 # RANKS: the continued runs' rank counts (default 1 3; three ranks on CI's two cores wait on each
 # other at every exchange, so the long scenes continue on one, and a continuation on 3 ranks is in
-# the long tier: the one on 1 rank reads the same global_state); LONG: the whole case is long
+# the long tier: the one on 1 rank reads the same global_state); LONG: the whole case is long;
+# LEG_RANKS: the first leg's ranks (default 2); FULL_OPTIONS, LEG_OPTIONS, CONT_OPTIONS: more options
+# of the uninterrupted run, the first leg and the continued runs (another -material_comm_size)
 function(turgor_restart_other_ranks name leg1)
-  cmake_parse_arguments(R "LONG" "TOL;FULL_RANKS;MODE" "OPTIONS;COMPARE;RANKS" ${ARGN})
+  cmake_parse_arguments(R "LONG" "TOL;FULL_RANKS;LEG_RANKS;MODE" "OPTIONS;COMPARE;RANKS;FULL_OPTIONS;LEG_OPTIONS;CONT_OPTIONS" ${ARGN})
   if(NOT R_RANKS)
     set(R_RANKS 1 3)
   endif()
   if(NOT R_FULL_RANKS)
     set(R_FULL_RANKS 1)
+  endif()
+  if(NOT R_LEG_RANKS)
+    set(R_LEG_RANKS 2)
   endif()
   if(NOT R_MODE)
     set(R_MODE fine)
@@ -236,10 +241,10 @@ function(turgor_restart_other_ranks name leg1)
   if(R_LONG)
     set(tier long)
   endif()
-  turgor_add_test(${base}_full COMMAND ${MPIEXEC_ROOT} -n ${R_FULL_RANKS} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite -output_dir ${base}_full
-    LABELS ${R_MODE} restart mpi ${tier} SETUP ${base}_full)
-  turgor_add_test(${base}_leg1 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${R_OPTIONS} -output_overwrite -ts_max_steps ${leg1}
-    -checkpoint_interval 1e6 -output_dir ${base}_leg1 LABELS ${R_MODE} restart mpi ${tier} SETUP ${base}_leg1)
+  turgor_add_test(${base}_full COMMAND ${MPIEXEC_ROOT} -n ${R_FULL_RANKS} $<TARGET_FILE:turgor_app> ${R_OPTIONS} ${R_FULL_OPTIONS} -output_overwrite
+    -output_dir ${base}_full LABELS ${R_MODE} restart mpi ${tier} SETUP ${base}_full)
+  turgor_add_test(${base}_leg1 COMMAND ${MPIEXEC_ROOT} -n ${R_LEG_RANKS} $<TARGET_FILE:turgor_app> ${R_OPTIONS} ${R_LEG_OPTIONS} -output_overwrite
+    -ts_max_steps ${leg1} -checkpoint_interval 1e6 -output_dir ${base}_leg1 LABELS ${R_MODE} restart mpi ${tier} SETUP ${base}_leg1)
   foreach(np ${R_RANKS})
     set(dir ${base}_to${np})
     set(labels ${R_MODE} restart mpi ${tier})
@@ -248,7 +253,7 @@ function(turgor_restart_other_ranks name leg1)
     endif()
     turgor_add_test(${dir}_copy COMMAND ${CMAKE_COMMAND} -E copy_directory ${base}_leg1 ${dir} LABELS ${labels} REQUIRES ${base}_leg1
       SETUP ${dir}_copy)
-    turgor_add_test(${dir} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${R_OPTIONS} -restart ${dir}/checkpoint.h5 -output_dir ${dir}
+    turgor_add_test(${dir} COMMAND ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app> ${R_OPTIONS} ${R_CONT_OPTIONS} -restart ${dir}/checkpoint.h5 -output_dir ${dir}
       LABELS ${labels} REQUIRES ${dir}_copy SETUP ${dir})
     turgor_add_test(${dir}_tip COMMAND ${CHECK} tiprel ${dir} ${base}_full ${R_TOL} LABELS ${labels} REQUIRES "${base}_full;${dir}")
     foreach(c ${R_COMPARE})
@@ -366,6 +371,29 @@ turgor_add_test(restart_xr_fe2_rows_same COMMAND ${CHECK} identical restart_xr_f
 # RVE's state (warm start, kept Jacobian, the terms' history) found by its element's position; the
 # same RVE work and the tip to 1e-10 of its largest value (1 and 2 ranks agree to 2e-13 µm).
 turgor_restart_other_ranks(fe2_polygon 10 MODE fe2 TOL 1e-10 RANKS 1 LONG OPTIONS ${RESTART_FE2_POLYGON} COMPARE samekey:rve_solves:0)
+
+# RVEs solved on groups of two ranks (-material_comm_size 2): a checkpoint holds one state a material
+# point, its group's first rank's (the rank that holds the RVE's unknowns and evaluates its forces;
+# the group's others take it from there when it is read), so it reads back on groups of any size.
+# The small FE² block (SPH RVEs, 14 steps) in one group of 2 ranks, stopped after 7 steps and
+# continued on 1 rank, against the uninterrupted run in one group of 2: the same RVE solves, their
+# relaxations' iterations within a few (a lost warm start costs hundreds) and the tip to 1e-10 (a
+# group's parallel LU factors sum in another order than one rank's). Stopped on 1 rank and continued
+# in a group of 2: its first leg already differs from the group's by 3e-8 of the tip (each relaxation
+# stops within its tolerance, from other round-off), so the tip is compared to 1e-7.
+set(XR_GROUPS ${BAD_PRESET_fe2} -ts_type rk)
+turgor_restart_other_ranks(fe2_groups 7 MODE fe2 FULL_RANKS 2 TOL 1e-10 RANKS 1 OPTIONS ${XR_GROUPS} FULL_OPTIONS -material_comm_size 2
+  LEG_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
+turgor_restart_other_ranks(fe2_groups_up 7 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-7 RANKS 2 OPTIONS ${XR_GROUPS} FULL_OPTIONS -material_comm_size 2
+  CONT_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
+# ... and the polygon-RVE block (glue, contact and hinges' history in every RVE) likewise, both ways
+# (long: 40 s in a group of 2 on two cores). Runs in groups of several ranks repeat their answers only
+# to round-off here (the group's factorisation sums in an order that varies from run to run, ~1e-13
+# of the tip, and the relaxations' iterations by a few in 23 000).
+turgor_restart_other_ranks(fe2_polygon_groups 10 MODE fe2 FULL_RANKS 2 TOL 1e-10 RANKS 1 LONG OPTIONS ${RESTART_FE2_POLYGON}
+  FULL_OPTIONS -material_comm_size 2 LEG_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
+turgor_restart_other_ranks(fe2_polygon_groups_up 10 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-7 RANKS 2 LONG OPTIONS ${RESTART_FE2_POLYGON}
+  FULL_OPTIONS -material_comm_size 2 CONT_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
 
 # A rebalanced FE² run (-material_rebalance 5: the points dealt again by cost before the checkpoint)
 # continues from its checkpoint with the checkpoint's blocks, bit for bit.

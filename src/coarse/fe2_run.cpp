@@ -413,12 +413,10 @@ std::uint64_t FE2Run::LayoutHash() const
   return h;
 }
 
-bool FE2Run::RestartsOnOtherRanks(std::string *why) const
+/* every state is kept by rank-free ids, a material point's by its group's first rank (one per point) */
+bool FE2Run::RestartsOnOtherRanks(std::string *) const
 {
-  if (model_.Pool().CommSize() == 1) return true;
-  *why = "the RVEs are solved on groups of -material_comm_size " + std::to_string((long long)model_.Pool().CommSize()) +
-         " ranks, each saving its part of every RVE state";
-  return false;
+  return true;
 }
 
 PetscErrorCode FE2Run::AddSummary(JsonObject &js)

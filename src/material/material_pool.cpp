@@ -469,7 +469,9 @@ PetscErrorCode MaterialPointPool::DeclareState(StateDeclaration &d, const std::v
   prototype_->DeclareState(proto);
   const std::vector<std::string> names = NestedColumns(proto);
   saved_.clear();
-  for (size_t k = 0; k < points_.size(); k++) {
+  /* one state a point, its group's first rank's (which holds the RVE's unknowns; the others hold
+     none of their own): a checkpoint then reads back on groups of any size (AfterStateRead) */
+  for (size_t k = 0; group_rank_ == 0 && k < points_.size(); k++) {
     StateDeclaration pd("point");
     points_[k]->DeclareState(pd);
     saved_.push_back({begin_ + (PetscInt)k, {}});
@@ -511,11 +513,16 @@ PetscErrorCode MaterialPointPool::AfterStateRead(bool own_layout)
       PetscCall(SetBlock(saved_begin_, saved_end_, nullptr));
     }
   }
+  PetscCall(ShareSavedStates());
   /* every point of the block, in the block's order (the group's ranks together) */
   std::vector<SavedPoint *> of((size_t)(end_ - begin_), nullptr);
   for (SavedPoint &sp : saved_) {
     PetscCheck(sp.point >= begin_ && sp.point < end_, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
                "the checkpoint's material point %" PetscInt_FMT " is not in this group's block [%" PetscInt_FMT ", %" PetscInt_FMT ")", sp.point, begin_, end_);
+    PetscCheck(!of[sp.point - begin_], PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+               "the checkpoint holds material point %" PetscInt_FMT " twice (written with groups of several ranks by an older turgor: continue it on "
+               "the same ranks and -material_comm_size)",
+               sp.point);
     of[sp.point - begin_] = &sp;
   }
   for (size_t k = 0; k < of.size(); k++) {
@@ -527,6 +534,45 @@ PetscErrorCode MaterialPointPool::AfterStateRead(bool own_layout)
   }
   std::vector<SavedPoint>().swap(saved_);
   if (rebalance_after_ > 0) evaluations_ = rebalance_after_ + 1; /* the checkpoint's run had rebalanced, or will not need to now */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The states read are the group roots' (DeclareState): the first rank's, whatever it read, to the
+   group's other ranks, each point's columns as [point, columns, then each column's length and
+   values]. */
+PetscErrorCode MaterialPointPool::ShareSavedStates()
+{
+  MPI_Comm               group = PetscSubcommChild(subcomm_);
+  std::vector<PetscReal> buf;
+  PetscFunctionBeginUser;
+  if (comm_size_ == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  if (group_rank_ == 0)
+    for (const SavedPoint &sp : saved_) {
+      buf.push_back((PetscReal)sp.point);
+      buf.push_back((PetscReal)sp.columns.size());
+      for (const std::vector<PetscReal> &c : sp.columns) {
+        buf.push_back((PetscReal)c.size());
+        buf.insert(buf.end(), c.begin(), c.end());
+      }
+    }
+  PetscInt n = (PetscInt)buf.size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, group));
+  PetscCheck(n <= PETSC_MPI_INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP,
+             "the material points' states of a group take %" PetscInt_FMT " numbers, more than one message holds", n);
+  buf.resize((size_t)n);
+  PetscCallMPI(MPI_Bcast(buf.data(), (PetscMPIInt)n, MPIU_REAL, 0, group));
+  if (group_rank_ == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  saved_.clear();
+  for (size_t i = 0; i < buf.size();) {
+    SavedPoint sp{(PetscInt)buf[i], std::vector<std::vector<PetscReal>>((size_t)buf[i + 1])};
+    i += 2;
+    for (std::vector<PetscReal> &c : sp.columns) {
+      const size_t m = (size_t)buf[i++];
+      c.assign(buf.begin() + (std::ptrdiff_t)i, buf.begin() + (std::ptrdiff_t)(i + m));
+      i += m;
+    }
+    saved_.push_back(std::move(sp));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

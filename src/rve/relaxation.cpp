@@ -279,7 +279,13 @@ PetscErrorCode RVERelaxation::AfterStateRead()
 {
   PetscInt differ = 0;
   PetscFunctionBeginUser;
-  /* the group's first rank holds the unknowns and decides (the others' patterns are empty) */
+  /* the group's first rank holds the unknowns and decides; the others hold no rows (what they read
+     is the first rank's) */
+  if (eq_->Rank() != 0) {
+    saved_pattern_.clear();
+    saved_K_.clear();
+    saved_J_.clear();
+  }
   if (eq_->Rank() == 0) {
     PetscCheck(saved_pattern_.size() == (size_t)eq_->Cell().NumUnknowns() / 2, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
                "the checkpoint's RVE has %zu free particles, this one %" PetscInt_FMT, saved_pattern_.size(), eq_->Cell().NumUnknowns() / 2);

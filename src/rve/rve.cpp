@@ -474,6 +474,11 @@ PetscErrorCode RVE::AfterStateRead()
 {
   PetscFunctionBeginUser;
   const size_t n = rank_ == 0 ? (size_t)NumUnknowns() : 0;
+  if (rank_ != 0) { /* the state read is the group's first rank's, which holds every unknown: this rank holds none */
+    current_.clear();
+    committed_.clear();
+    pred_z_.clear();
+  }
   PetscCheck((current_.size() == n || current_.size() == (size_t)NumUnknowns()) && committed_.size() == current_.size(), PETSC_COMM_SELF,
              PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, current_.size(), NumUnknowns());
   PetscCheck(pred_z_.size() == pred_dirs_.size() / 8 * current_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,

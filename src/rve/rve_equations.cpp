@@ -119,7 +119,9 @@ PetscErrorCode RVEEquations::AfterStateRead()
 {
   PetscFunctionBeginUser;
   model_.SetPeriodicImages(cell_->ModelImages(build_F_, build_Fdot_));
-  PetscCall(model_.AfterStateRead(x_.data(), v_.data(), 0, true));
+  /* the group's other ranks never evaluate the forces: the terms' state read (the first rank's) is
+     not theirs to take up */
+  if (rank_ == 0) PetscCall(model_.AfterStateRead(x_.data(), v_.data(), 0, true));
   SetDeformation(Tensor2::Identity(), Tensor2::Zero());
   kept_version_ = -1;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -122,7 +122,8 @@ private:
     std::vector<std::vector<PetscReal>> columns;
   };
   std::vector<SavedPoint>        saved_;
-  std::unique_ptr<MaterialPoint> prototype_; /* a point of this material, for the names of its state */
+  PetscErrorCode                 ShareSavedStates(); /* the group's first rank's saved_ to the others */
+  std::unique_ptr<MaterialPoint> prototype_;         /* a point of this material, for the names of its state */
   PetscInt                       saved_begin_ = 0, saved_end_ = 0;
   PetscErrorCode                 Rebalance();
   PetscErrorCode                 EvaluateBlock(const Tensor2 *F, const Tensor2 *Fdot, MaterialResponse *out, bool tangents, Tangents *D, EvaluationKind kind);
