@@ -627,30 +627,38 @@ PetscErrorCode RVERelaxation::SolveLinearized(Vec W, Vec b, Vec z, PetscInt *its
     PetscCall(KSPSetOperators(tangent_ksp_, tangent_op_, tangent_op_));
     PetscCall(KSPSetFromOptions(tangent_ksp_));
   }
-  if (!have_K_) { /* no G' yet (a state relaxed without a solve): compute it here */
-    PetscBool stale;
-    PetscCall(PatternStale(&stale));
-    if (stale) PetscCall(BuildJacobianPattern());
-    PetscCall(Refresh(W));
-    PetscCall(MatCopy(K_, J_, SAME_NONZERO_PATTERN));
-    PetscCall(MatShift(J_, 1.0 / spec_->warm_dt0));
+  /* with the kept factor first; if GMRES does not converge with it (a factor of a G' far from this
+     state's: it preconditions badly), once more with G' and its factor taken at W */
+  bool fresh = false;
+  for (int attempt = 0; attempt < 2; attempt++) {
+    if (!have_K_ || attempt == 1) { /* no G' yet (a state relaxed without a solve), or the retry: G' at W */
+      PetscBool stale;
+      PetscCall(PatternStale(&stale));
+      if (stale) PetscCall(BuildJacobianPattern());
+      PetscCall(Refresh(W));
+      PetscCall(MatCopy(K_, J_, SAME_NONZERO_PATTERN));
+      PetscCall(MatShift(J_, 1.0 / spec_->warm_dt0));
+      fresh = true;
+    }
+    bool     fok;
+    PetscInt attempt_its;
+    PetscCall(Factor(&fok));
+    if (!fok) {
+      *ok = false;
+      break;
+    }
+    lin_W_ = W;
+    PetscCall(MatAssemblyBegin(tangent_op_, MAT_FINAL_ASSEMBLY)); /* a new state: the KSP sets its operator up again */
+    PetscCall(MatAssemblyEnd(tangent_op_, MAT_FINAL_ASSEMBLY));
+    PetscCall(VecZeroEntries(z));
+    PetscCall(KSPSolve(tangent_ksp_, b, z));
+    PetscCall(KSPGetConvergedReason(tangent_ksp_, &reason));
+    PetscCall(KSPGetIterationNumber(tangent_ksp_, &attempt_its));
+    lin_W_ = nullptr;
+    *its += attempt_its;
+    *ok = reason > 0;
+    if (*ok || fresh) break;
   }
-  bool fok;
-  PetscCall(Factor(&fok));
-  if (!fok) {
-    *ok = false;
-    PetscCall(PetscLogEventEnd(ev_linearized_, 0, 0, 0, 0));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  lin_W_ = W;
-  PetscCall(MatAssemblyBegin(tangent_op_, MAT_FINAL_ASSEMBLY)); /* a new state: the KSP sets its operator up again */
-  PetscCall(MatAssemblyEnd(tangent_op_, MAT_FINAL_ASSEMBLY));
-  PetscCall(VecZeroEntries(z));
-  PetscCall(KSPSolve(tangent_ksp_, b, z));
-  PetscCall(KSPGetConvergedReason(tangent_ksp_, &reason));
-  PetscCall(KSPGetIterationNumber(tangent_ksp_, its));
-  lin_W_ = nullptr;
-  *ok    = reason > 0;
   PetscCall(PetscLogEventEnd(ev_linearized_, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

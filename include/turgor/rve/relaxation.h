@@ -35,8 +35,10 @@ public:
      GMRES (prefix rve_tangent_: rtol 1e-8 of |b| by default, right preconditioning so that the
      test is on the true residual) on the central-difference action of G_w, preconditioned by the
      kept LU factor (computed at W first if there is none). The factor is usually of an older G'
-     (modified Newton), hence the Krylov iterations, each one residual pair. *its: iterations;
-     *ok = false when GMRES did not converge. */
+     (modified Newton), hence the Krylov iterations, each one residual pair; where GMRES does not
+     converge with it, G' and its factor are taken at W and the solve is tried once more (a factor
+     of a state far from W can precondition too badly: the K = 16, seed-5 tissue at its released
+     state). *its: iterations of both tries; *ok = false when GMRES did not converge. */
   PetscErrorCode SolveLinearized(Vec W, Vec b, Vec z, PetscInt *its, bool *ok);
   /* Checkpoints: the Jacobian pattern (rebuilt with the neighbour lists), the kept G' and J = G' +
      shift I whose LU factor the next warm solve reuses (modified Newton; the factor is recomputed
