@@ -118,15 +118,15 @@ endforeach()
 # G' taken at the state: the same tissue as a block clamped on its left side only, under a body force
 # of 40 µm/µs^2, whose released state's tangent did not converge with the kept factor at every
 # increment down to the smallest (the run failed, naming -rve_tangent_ksp_*); now the tangent is
-# found and the block gives way at load factor 0.00625 (no equilibrium beyond it), localised (12 s).
+# found and the block gives way at load factor 0.00625 (no equilibrium beyond it), localised (long: 11 s).
 turgor_add_test(fe2_static_tangent_retry COMMAND turgor_app -options_file_yaml ${PROJECT_SOURCE_DIR}/config/polygon_rve.yaml -mode fe2_static -prve_seed 5
   -coarse_dm_plex_simplex 0 -coarse_dm_plex_box_faces 1,1 -coarse_dm_plex_box_upper 100,100 -coarse_dirichlet_values 4 -body_force 0,-40
   -fe2_static_load_steps 80 -fe2_static_stop_at_localisation -rve_max_it 25 -fe2_static_min_increment 1e-3 -output_dir fe2_static_tangent_retry
-  -output_overwrite LABELS fe2 static rve hard SETUP fe2_static_tangent_retry)
+  -output_overwrite LABELS fe2 static rve hard long SETUP fe2_static_tangent_retry)
 turgor_add_test(fe2_static_tangent_retry_criterion COMMAND ${CHECK} equals fe2_static_tangent_retry localisation_criterion no_equilibrium
-  LABELS fe2 static rve hard REQUIRES fe2_static_tangent_retry)
+  LABELS fe2 static rve hard long REQUIRES fe2_static_tangent_retry)
 turgor_add_test(fe2_static_tangent_retry_where COMMAND ${CHECK} between fe2_static_tangent_retry localisation_load_factor 0.00625 0.00625
-  LABELS fe2 static rve hard REQUIRES fe2_static_tangent_retry)
+  LABELS fe2 static rve hard long REQUIRES fe2_static_tangent_retry)
 # ... and without -fe2_stop_at_localisation the run fails, as before, its summary ("failed") carrying
 # the localisation it found (long: 20 s)
 set(DYNAMIC_GIVE_WAY_FAILS ${DYNAMIC_GIVE_WAY})
