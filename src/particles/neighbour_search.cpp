@@ -1,9 +1,36 @@
 #include <turgor/particles/neighbour_search.h>
 #include <turgor/core/geometry.h>
+#include <turgor/core/vector_clones.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace turgor {
+
+namespace {
+/* The largest |x_i - r_i|^2 over n particles, as the largest bit pattern of the squares: they are
+   non-negative, so their patterns as signed integers order as they do, and an integer max
+   vectorises where GCC keeps a floating-point max reduction scalar (the same value; a NaN move,
+   which fails the step anyway, may come out as the largest). */
+TURGOR_VECTOR_CLONES std::int64_t LargestMove2(PetscInt n, const PetscReal *__restrict x, const PetscReal *__restrict r)
+{
+  std::int64_t m = 0;
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal dx = x[2 * i] - r[2 * i], dy = x[2 * i + 1] - r[2 * i + 1], d2 = dx * dx + dy * dy;
+    std::int64_t    b;
+    std::memcpy(&b, &d2, sizeof b);
+    m = std::max(m, b);
+  }
+  return m;
+}
+PetscReal AsReal(std::int64_t b)
+{
+  PetscReal v;
+  std::memcpy(&v, &b, sizeof v);
+  return v;
+}
+} // namespace
 
 void NeighbourSearch::RequestFluidPairs(PetscReal cutoff)
 {
@@ -40,21 +67,10 @@ PetscErrorCode NeighbourSearch::Update(const ParticleSet &P, const PetscReal *x,
     if (images.periodic)
       da = std::hypot(images.a[0][0] - a_ref_[0][0], images.a[0][1] - a_ref_[0][1]) + std::hypot(images.a[1][0] - a_ref_[1][0], images.a[1][1] - a_ref_[1][1]);
     const PetscReal lim = 0.5 * (skin_ - da), lim2 = lim * lim;
-    /* one pass (no early exit, vectorised) for the largest move since the build and since the mark */
-    PetscReal m2 = 0, k2 = 0;
-    if (x_mark_.size() == x_ref_.size())
-      for (PetscInt k = 0; k < 2 * P.n; k += 2) {
-        const PetscReal dx = x[k] - x_ref_[k], dy = x[k + 1] - x_ref_[k + 1], mx = x[k] - x_mark_[k], my = x[k + 1] - x_mark_[k + 1];
-        m2 = std::max(m2, dx * dx + dy * dy);
-        k2 = std::max(k2, mx * mx + my * my);
-      }
-    else
-      for (PetscInt k = 0; k < 2 * P.n; k += 2) {
-        const PetscReal dx = x[k] - x_ref_[k], dy = x[k + 1] - x_ref_[k + 1];
-        m2 = std::max(m2, dx * dx + dy * dy);
-      }
-    rebuild = lim <= 0 || m2 > lim2;
-    if (x_mark_.size() == x_ref_.size()) mark_move2_ = k2;
+    /* the largest move since the build and since the mark (no early exit, vectorised) */
+    const PetscReal m2 = AsReal(LargestMove2(P.n, x, x_ref_.data()));
+    rebuild            = lim <= 0 || m2 > lim2;
+    if (x_mark_.size() == x_ref_.size()) mark_move2_ = AsReal(LargestMove2(P.n, x, x_mark_.data()));
   }
   if (rebuild) {
     if (images.periodic) PetscCall(BuildPeriodic(P, x, images));
