@@ -377,8 +377,8 @@ turgor_restart_other_ranks(fe2_polygon 10 MODE fe2 TOL 1e-10 RANKS 1 LONG OPTION
 # the group's others take it from there when it is read), so it reads back on groups of any size.
 # The small FE² block (SPH RVEs, 14 steps) in one group of 2 ranks, stopped after 7 steps and
 # continued on 1 rank, against the uninterrupted run in one group of 2: the same RVE solves, their
-# relaxations' iterations within a few (a lost warm start costs hundreds) and the tip to 1e-10 (a
-# group's parallel LU factors sum in another order than one rank's). Stopped on 1 rank and continued
+# relaxations' iterations within a few (a lost warm start costs hundreds) and the tip to 1e-10 (the
+# group's colouring and sums differ from one rank's in the last bits). Stopped on 1 rank and continued
 # in a group of 2: its first leg already differs from the group's by 3e-8 of the tip (each relaxation
 # stops within its tolerance, from other round-off), so the tip is compared to 1e-7.
 set(XR_GROUPS ${BAD_PRESET_fe2} -ts_type rk)
@@ -386,14 +386,17 @@ turgor_restart_other_ranks(fe2_groups 7 MODE fe2 FULL_RANKS 2 TOL 1e-10 RANKS 1 
   LEG_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
 turgor_restart_other_ranks(fe2_groups_up 7 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-7 RANKS 2 OPTIONS ${XR_GROUPS} FULL_OPTIONS -material_comm_size 2
   CONT_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
+# ... and stopped and continued in the same group of 2: bit for bit (the group's LU is its first
+# rank's, so a group's run repeats itself to the bit).
+turgor_restart_case(fe2_group2 7 MODE fe2 INTERVAL 0.5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${XR_GROUPS} -material_comm_size 2)
 # ... and the polygon-RVE block (glue, contact and hinges' history in every RVE) likewise, both ways
-# (long: 40 s in a group of 2 on two cores). Runs in groups of several ranks repeat their answers only
-# to round-off here (the group's factorisation sums in an order that varies from run to run, ~1e-13
-# of the tip, and the relaxations' iterations by a few in 23 000).
+# (long: 20 s on two cores); its two uninterrupted runs in a group of 2 (the same options) to the bit.
 turgor_restart_other_ranks(fe2_polygon_groups 10 MODE fe2 FULL_RANKS 2 TOL 1e-10 RANKS 1 LONG OPTIONS ${RESTART_FE2_POLYGON}
   FULL_OPTIONS -material_comm_size 2 LEG_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
 turgor_restart_other_ranks(fe2_polygon_groups_up 10 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-7 RANKS 2 LONG OPTIONS ${RESTART_FE2_POLYGON}
   FULL_OPTIONS -material_comm_size 2 CONT_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
+turgor_add_test(restart_xr_fe2_polygon_groups_repeat COMMAND ${CHECK} identical restart_xr_fe2_polygon_groups_full restart_xr_fe2_polygon_groups_up_full
+  final_state_hash psi_tc_iterations LABELS fe2 restart mpi long REQUIRES "restart_xr_fe2_polygon_groups_full;restart_xr_fe2_polygon_groups_up_full")
 
 # A rebalanced FE² run (-material_rebalance 5: the points dealt again by cost before the checkpoint)
 # continues from its checkpoint with the checkpoint's blocks, bit for bit.

@@ -12,6 +12,8 @@ RVERelaxation::~RVERelaxation()
   PetscCallVoid(VecDestroy(&lin_Wp_));
   PetscCallVoid(VecDestroy(&lin_Rp_));
   PetscCallVoid(MatDestroy(&factor_));
+  PetscCallVoid(VecDestroy(&seq_x_));
+  PetscCallVoid(VecDestroy(&seq_y_));
   PetscCallVoid(MatFDColoringDestroy(&coloring_));
   PetscCallVoid(MatDestroy(&J_));
   PetscCallVoid(MatDestroy(&K_));
@@ -161,6 +163,8 @@ PetscErrorCode RVERelaxation::BuildJacobianPattern(const std::vector<std::vector
   else PetscCall(eq_->PatternColumns(cols));
   PetscCall(MatFDColoringDestroy(&coloring_));
   PetscCall(MatDestroy(&factor_));
+  PetscCall(VecDestroy(&seq_x_));
+  PetscCall(VecDestroy(&seq_y_));
   PetscCall(MatDestroy(&J_));
   PetscCall(MatDestroy(&K_));
   have_K_                 = false;
@@ -438,32 +442,50 @@ PetscErrorCode RVERelaxation::Cold(Vec W, MaterialResponse *out)
    group of several ranks): the symbolic factorisation once per sparsity pattern, the numeric one
    whenever J has changed since. Both the pseudo steps (through the shell PC) and the warm iterations
    solve with them, so a warm solve right after a cold one reuses the cold solve's last factors. */
+/* The group's first rank holds every row and column of J (the others none): it factors J there
+   alone, with PETSc's LU, and tells the others whether that worked. A parallel factorisation over
+   the group (MUMPS) gained nothing and scheduled its work between the ranks at run time: the same
+   run's answers differed in the last bits from run to run. */
 PetscErrorCode RVERelaxation::Factor(bool *ok)
+{
+  PetscInt good = 1;
+  PetscFunctionBeginUser;
+  if (eq_->Rank() == 0) {
+    bool here;
+    PetscCall(FactorHere(&here));
+    good = here;
+  }
+  if (size_ > 1) PetscCallMPI(MPI_Bcast(&good, 1, MPIU_INT, 0, comm_));
+  *ok = good != 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RVERelaxation::FactorHere(bool *ok)
 {
   PetscObjectState state;
   MatFactorInfo    info;
   MatFactorError   err;
+  Mat              A = J_;
   PetscFunctionBeginUser;
   *ok = true;
+  if (size_ > 1) PetscCall(MatGetDiagonalBlock(J_, &A)); /* every entry: this rank owns all rows and columns */
   PetscCall(MatFactorInfoInitialize(&info));
   info.fill          = 5.0;
   info.dtcol         = 1e-6;
   info.zeropivot     = 100.0 * PETSC_MACHINE_EPSILON;
   info.pivotinblocks = 1.0;
   if (!factor_) {
-    IS        row = NULL, col = NULL;
-    PetscBool ordering;
-    PetscCall(MatGetFactor(J_, size_ > 1 ? MATSOLVERMUMPS : MATSOLVERPETSC, MAT_FACTOR_LU, &factor_));
-    PetscCall(MatFactorGetCanUseOrdering(factor_, &ordering));
-    if (ordering) PetscCall(MatGetOrdering(J_, MATORDERINGND, &row, &col));
-    PetscCall(MatLUFactorSymbolic(factor_, J_, row, col, &info));
+    IS row = NULL, col = NULL;
+    PetscCall(MatGetFactor(A, MATSOLVERPETSC, MAT_FACTOR_LU, &factor_));
+    PetscCall(MatGetOrdering(A, MATORDERINGND, &row, &col));
+    PetscCall(MatLUFactorSymbolic(factor_, A, row, col, &info));
     PetscCall(ISDestroy(&row));
     PetscCall(ISDestroy(&col));
     factor_state_ = -1;
   }
   PetscCall(PetscObjectStateGet((PetscObject)J_, &state));
   if (state == factor_state_) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(MatLUFactorNumeric(factor_, J_, &info));
+  PetscCall(MatLUFactorNumeric(factor_, A, &info));
   PetscCall(MatFactorGetError(factor_, &err));
   if (err != MAT_FACTOR_NOERROR) {
     PetscCall(MatFactorClearError(factor_));
@@ -472,6 +494,39 @@ PetscErrorCode RVERelaxation::Factor(bool *ok)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   factor_state_ = state;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = J^-1 x with the factor (Factor), on the rank that holds it; the others hold no entries */
+PetscErrorCode RVERelaxation::ApplyFactor(Vec x, Vec y)
+{
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  PetscInt           n;
+  PetscFunctionBeginUser;
+  if (size_ == 1) {
+    PetscCall(MatSolve(factor_, x, y));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (eq_->Rank() != 0) { /* no entries here, but y changed: its cached norms must go on every rank alike */
+    PetscCall(VecGetArray(y, &ya));
+    PetscCall(VecRestoreArray(y, &ya));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(VecGetLocalSize(x, &n));
+  if (!seq_x_) {
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, NULL, &seq_x_));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, NULL, &seq_y_));
+  }
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  PetscCall(VecPlaceArray(seq_x_, xa));
+  PetscCall(VecPlaceArray(seq_y_, ya));
+  PetscCall(MatSolve(factor_, seq_x_, seq_y_));
+  PetscCall(VecResetArray(seq_x_));
+  PetscCall(VecResetArray(seq_y_));
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -505,7 +560,7 @@ PetscErrorCode RVERelaxation::FactorApply(PC pc, Vec x, Vec y)
     RVERelaxation *rx;
     PetscFunctionBeginUser;
     PetscCall(PCShellGetContext(pc, &rx));
-    PetscCall(MatSolve(rx->factor_, x, y));
+    PetscCall(rx->ApplyFactor(x, y));
     PetscFunctionReturn(PETSC_SUCCESS);
   });
 }
@@ -542,7 +597,7 @@ PetscErrorCode RVERelaxation::Warm(Vec W, MaterialResponse *out, bool *converged
     bool ok;
     PetscCall(Factor(&ok));
     if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
-    PetscCall(MatSolve(factor_, R_, D_)); /* direct: KSPSolve's bookkeeping cost as much as these small solves (-log_view) */
+    PetscCall(ApplyFactor(R_, D_)); /* direct: KSPSolve's bookkeeping cost as much as these small solves (-log_view) */
     PetscCall(VecAXPY(W, -1.0, D_));
     PetscCall(VecNorm(D_, NORM_2, &step));
     PetscCall(eq_->ResidualNorm(W, R_, &res_new));
