@@ -438,14 +438,13 @@ PetscErrorCode RVERelaxation::Cold(Vec W, MaterialResponse *out)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The LU factors of J (PETSc's LU with nested-dissection ordering and PCLU's settings; MUMPS on a
-   group of several ranks): the symbolic factorisation once per sparsity pattern, the numeric one
-   whenever J has changed since. Both the pseudo steps (through the shell PC) and the warm iterations
-   solve with them, so a warm solve right after a cold one reuses the cold solve's last factors. */
-/* The group's first rank holds every row and column of J (the others none): it factors J there
-   alone, with PETSc's LU, and tells the others whether that worked. A parallel factorisation over
-   the group (MUMPS) gained nothing and scheduled its work between the ranks at run time: the same
-   run's answers differed in the last bits from run to run. */
+/* The LU factors of J (PETSc's LU with nested-dissection ordering and PCLU's settings): the symbolic
+   factorisation once per sparsity pattern, the numeric one whenever J has changed since. Both the
+   pseudo steps (through the shell PC) and the warm iterations solve with them, so a warm solve right
+   after a cold one reuses the cold solve's last factors. The group's first rank holds every row and
+   column of J (the others none): it factors J there alone and tells the others whether that worked.
+   A parallel factorisation over the group (MUMPS) gained nothing and scheduled its work between the
+   ranks at run time: the same run's answers differed in the last bits from run to run. */
 PetscErrorCode RVERelaxation::Factor(bool *ok)
 {
   PetscInt good = 1;
