@@ -377,23 +377,36 @@ turgor_restart_other_ranks(fe2_polygon 10 MODE fe2 TOL 1e-10 RANKS 1 LONG OPTION
 # the group's others take it from there when it is read), so it reads back on groups of any size.
 # The small FE² block (SPH RVEs, 14 steps) in one group of 2 ranks, stopped after 7 steps and
 # continued on 1 rank, against the uninterrupted run in one group of 2: the same RVE solves, their
-# relaxations' iterations within a few (a lost warm start costs hundreds) and the tip to 1e-10 (the
-# group's colouring and sums differ from one rank's in the last bits). Stopped on 1 rank and continued
-# in a group of 2: its first leg already differs from the group's by 3e-8 of the tip (each relaxation
-# stops within its tolerance, from other round-off), so the tip is compared to 1e-7.
+# relaxations' iterations within a few (a lost warm start costs hundreds) and the tip to 1e-10.
+# Stopped on 1 rank and continued in a group of 2: 3e-10 of the tip from the uninterrupted group run
+# on 2 ranks, the coarse problem's difference between 1 and 2 ranks (a run on 1 rank ends as far from
+# one on 2), so the tip to 1e-9 — and bit for bit the same leg continued on 2 ranks in groups of one.
+# A group's LU is its first rank's, so a group of 2 gives the bits of two groups of one: the
+# uninterrupted runs too.
 set(XR_GROUPS ${BAD_PRESET_fe2} -ts_type rk)
 turgor_restart_other_ranks(fe2_groups 7 MODE fe2 FULL_RANKS 2 TOL 1e-10 RANKS 1 OPTIONS ${XR_GROUPS} FULL_OPTIONS -material_comm_size 2
   LEG_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
-turgor_restart_other_ranks(fe2_groups_up 7 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-7 RANKS 2 OPTIONS ${XR_GROUPS} FULL_OPTIONS -material_comm_size 2
+turgor_restart_other_ranks(fe2_groups_up 7 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-9 RANKS 2 OPTIONS ${XR_GROUPS} FULL_OPTIONS -material_comm_size 2
   CONT_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
+turgor_add_test(restart_xr_fe2_groups_ones_copy COMMAND ${CMAKE_COMMAND} -E copy_directory restart_xr_fe2_groups_up_leg1 restart_xr_fe2_groups_ones_to2
+  LABELS fe2 restart mpi REQUIRES restart_xr_fe2_groups_up_leg1 SETUP restart_xr_fe2_groups_ones_copy)
+turgor_add_test(restart_xr_fe2_groups_ones_to2 COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${XR_GROUPS} -restart restart_xr_fe2_groups_ones_to2/checkpoint.h5
+  -output_dir restart_xr_fe2_groups_ones_to2 LABELS fe2 restart mpi REQUIRES restart_xr_fe2_groups_ones_copy SETUP restart_xr_fe2_groups_ones_to2)
+turgor_add_test(restart_xr_fe2_groups_ones_to2_same COMMAND ${CHECK} identical restart_xr_fe2_groups_up_to2 restart_xr_fe2_groups_ones_to2 final_state_hash
+  psi_tc_iterations LABELS fe2 restart mpi REQUIRES "restart_xr_fe2_groups_up_to2;restart_xr_fe2_groups_ones_to2")
+turgor_add_test(restart_xr_fe2_groups_ones_full COMMAND ${MPIEXEC_ROOT} -n 2 $<TARGET_FILE:turgor_app> ${XR_GROUPS} -output_overwrite
+  -output_dir restart_xr_fe2_groups_ones_full LABELS fe2 restart mpi SETUP restart_xr_fe2_groups_ones_full)
+turgor_add_test(restart_xr_fe2_groups_ones_full_same COMMAND ${CHECK} identical restart_xr_fe2_groups_full restart_xr_fe2_groups_ones_full final_state_hash
+  psi_tc_iterations LABELS fe2 restart mpi REQUIRES "restart_xr_fe2_groups_full;restart_xr_fe2_groups_ones_full")
 # ... and stopped and continued in the same group of 2: bit for bit (the group's LU is its first
 # rank's, so a group's run repeats itself to the bit).
 turgor_restart_case(fe2_group2 7 MODE fe2 INTERVAL 0.5 LAUNCH ${MPIEXEC_ROOT} -n 2 OPTIONS ${XR_GROUPS} -material_comm_size 2)
 # ... and the polygon-RVE block (glue, contact and hinges' history in every RVE) likewise, both ways
-# (long: 20 s on two cores); its two uninterrupted runs in a group of 2 (the same options) to the bit.
+# (long: 20 s on two cores; the tip 4e-12 from the group run either way); its two uninterrupted runs
+# in a group of 2 (the same options) to the bit.
 turgor_restart_other_ranks(fe2_polygon_groups 10 MODE fe2 FULL_RANKS 2 TOL 1e-10 RANKS 1 LONG OPTIONS ${RESTART_FE2_POLYGON}
   FULL_OPTIONS -material_comm_size 2 LEG_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
-turgor_restart_other_ranks(fe2_polygon_groups_up 10 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-7 RANKS 2 LONG OPTIONS ${RESTART_FE2_POLYGON}
+turgor_restart_other_ranks(fe2_polygon_groups_up 10 MODE fe2 FULL_RANKS 2 LEG_RANKS 1 TOL 1e-10 RANKS 2 LONG OPTIONS ${RESTART_FE2_POLYGON}
   FULL_OPTIONS -material_comm_size 2 CONT_OPTIONS -material_comm_size 2 COMPARE samekey:rve_solves:0 samekey:psi_tc_iterations:0.005)
 turgor_add_test(restart_xr_fe2_polygon_groups_repeat COMMAND ${CHECK} identical restart_xr_fe2_polygon_groups_full restart_xr_fe2_polygon_groups_up_full
   final_state_hash psi_tc_iterations LABELS fe2 restart mpi long REQUIRES "restart_xr_fe2_polygon_groups_full;restart_xr_fe2_polygon_groups_up_full")

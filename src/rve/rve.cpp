@@ -479,8 +479,8 @@ PetscErrorCode RVE::AfterStateRead()
     committed_.clear();
     pred_z_.clear();
   }
-  PetscCheck((current_.size() == n || current_.size() == (size_t)NumUnknowns()) && committed_.size() == current_.size(), PETSC_COMM_SELF,
-             PETSC_ERR_FILE_UNEXPECTED, "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, current_.size(), NumUnknowns());
+  PetscCheck(current_.size() == n && committed_.size() == n, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's RVE fine state has %zu unknowns, this RVE %" PetscInt_FMT, current_.size(), NumUnknowns());
   PetscCheck(pred_z_.size() == pred_dirs_.size() / 8 * current_.size(), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
              "the checkpoint's RVE predictor has %zu derivative values in %zu directions, this RVE %zu unknowns", pred_z_.size(), pred_dirs_.size() / 8,
              current_.size());
