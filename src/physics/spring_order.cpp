@@ -1,6 +1,7 @@
 #include <turgor/core/mask_select.h>
 #include <turgor/core/vector_clones.h>
 #include <turgor/physics/spring_order.h>
+#include <turgor/physics/wall_springs.h>
 #include <cmath>
 #include <cstring>
 
@@ -50,22 +51,21 @@ void NextNodeDifferences(size_t n, const PetscReal *u, PetscReal *dx, PetscReal 
 
 namespace {
 
-/* The kernel's arithmetic (wall_springs.cpp), spring by spring; KEEP: the dashpot's part too */
+/* The kernel's arithmetic (SpringAxialAt, SpringDashpotAt), spring by spring; KEEP: the dashpot's part too */
 template <bool DAMPED, bool KEEP>
 TURGOR_VECTOR_CLONES void ForceLoop(size_t n, PetscReal k, const PetscReal *__restrict rest, const PetscReal *__restrict gamma, const PetscReal *__restrict dx,
                                     const PetscReal *__restrict dy, const PetscReal *__restrict dvx, const PetscReal *__restrict dvy, PetscReal *__restrict fx,
                                     PetscReal *__restrict fy, PetscReal *__restrict gx, PetscReal *__restrict gy)
 {
   for (size_t s = 0; s < n; s++) {
-    const PetscReal r = std::sqrt(dx[s] * dx[s] + dy[s] * dy[s]), ir = 1.0 / r;
-    const PetscReal ex = dx[s] * ir, ey = dy[s] * ir;
-    PetscReal       mag = k * (r - rest[s]);
+    const SpringAxial a   = SpringAxialAt(dx[s], dy[s], k, rest[s]);
+    PetscReal         mag = a.mag;
     if (DAMPED) {
-      const PetscReal md = gamma[s] * (dvx[s] * ex + dvy[s] * ey);
+      const PetscReal md = SpringDashpotAt(a, gamma[s], dvx[s], dvy[s]);
       mag += md;
-      if (KEEP) gx[s] = md * ex, gy[s] = md * ey;
+      if (KEEP) gx[s] = md * a.ex, gy[s] = md * a.ey;
     }
-    fx[s] = mag * ex, fy[s] = mag * ey;
+    fx[s] = mag * a.ex, fy[s] = mag * a.ey;
   }
 }
 

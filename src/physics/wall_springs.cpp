@@ -54,16 +54,16 @@ void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscRea
       const PetscReal *sx = in.images->x[S[s].image];
       dx += sx[0], dy += sx[1];
     }
-    const PetscReal r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
-    const PetscReal ex = dx * ir, ey = dy * ir;
-    PetscReal       mag = k * (r - S[s].rest_length);
+    const SpringAxial a  = SpringAxialAt(dx, dy, k, S[s].rest_length);
+    const PetscReal   ex = a.ex, ey = a.ey;
+    PetscReal         mag = a.mag;
     if (DAMPED) {
       PetscReal dvx = v[2 * j] - v[2 * i], dvy = v[2 * j + 1] - v[2 * i + 1];
       if (PERIODIC) {
         const PetscReal *sv = in.images->v[S[s].image];
         dvx += sv[0], dvy += sv[1];
       }
-      const PetscReal md = gamma_[s] * (dvx * ex + dvy * ey);
+      const PetscReal md = SpringDashpotAt(a, gamma_[s], dvx, dvy);
       mag += md;
       if (in.f_dashpot) { /* the dashpot's part apart (the energy balance observes) */
         PetscReal *g = in.f_dashpot;

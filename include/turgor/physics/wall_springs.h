@@ -3,9 +3,26 @@
    damped along the bond with gamma = zeta * 2 sqrt(m k) (zeta = 1: the seed's critical damping). */
 #include <turgor/physics/force_term.h>
 #include <turgor/physics/spring_order.h>
+#include <cmath>
 #include <vector>
 
 namespace turgor {
+
+/* One spring along d = x_j - x_i (rest length l0): its direction e = d/|d| and the elastic axial force
+   k (|d| - l0); the one formula of the kernel below and of its in-order loops (spring_order.cpp) */
+struct SpringAxial {
+  PetscReal ex, ey, mag;
+};
+inline SpringAxial SpringAxialAt(PetscReal dx, PetscReal dy, PetscReal k, PetscReal l0)
+{
+  const PetscReal r = std::sqrt(dx * dx + dy * dy), ir = 1.0 / r;
+  return {dx * ir, dy * ir, k * (r - l0)};
+}
+/* its dashpot's axial force gamma (e . v_ij), v_ij = v_j - v_i */
+inline PetscReal SpringDashpotAt(const SpringAxial &a, PetscReal gamma, PetscReal dvx, PetscReal dvy)
+{
+  return gamma * (dvx * a.ex + dvy * a.ey);
+}
 
 /* The axial spring kernel shared by `springs` (wall springs) and `bars` (polygon bars): along every
    ParticleSet::springs entry, force on i [k (r - l0) + gamma_s (e . v_ij)] e, e = (x_j - x_i)/r;
