@@ -38,7 +38,6 @@ PetscErrorCode FineEquations::SetTS(TS ts, IS is_x, IS is_v, std::function<Petsc
   PetscCall(TSRHSSplitSetIS(ts, "momentum", is_v));
   PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, RHSPosition, this));
   PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, RHSMomentum, this));
-  PetscCall(TSSetFunctionDomainError(ts, CheckDomain));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -54,6 +53,8 @@ PetscErrorCode FineEquations::ConfigureIntegrator(TS ts, ParticleFields &fields,
   held_    = false;
   kdk_     = kdk;
   model_->SetCallerKnowsAcceptedState(kdk);
+  /* a stage with non-finite values is rejected; TS verlet checks its step's end itself, as it writes it */
+  PetscCall(TSSetFunctionDomainError(ts, kdk ? NULL : CheckDomain));
   PetscBool lsrk;
   PetscCall(PetscObjectTypeCompare((PetscObject)ts, TSLSRK, &lsrk));
   if (lsrk && halo_) { /* the rates carry room for the halo's forces after their accelerations (Accelerations) */

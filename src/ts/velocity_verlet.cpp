@@ -2,7 +2,9 @@
 #include <turgor/ts/velocity_verlet.h>
 #include <petsc/private/tsimpl.h>
 #include "ts_types_internal.h"
+#include <turgor/core/finite_scan.h>
 #include <turgor/core/vector_clones.h>
+#include <cstdint>
 #include <utility>
 
 namespace {
@@ -36,7 +38,22 @@ TURGOR_VECTOR_CLONES void AxpyLoop(PetscInt n, PetscScalar a, const PetscScalar 
   for (PetscInt i = 0; i < n; i++) y[i] += a * x[i];
 }
 
-PetscErrorCode Axpy(Vec y, PetscScalar a, Vec x)
+/* ... and whether the values written are finite (core/finite_scan.h), in the same loop: a separate
+   scan of the step's end read x and v again, about a tenth of a small tissue's step beyond its
+   forces */
+TURGOR_VECTOR_CLONES std::uint64_t AxpyLoopCarries(PetscInt n, PetscScalar a, const PetscScalar *__restrict x, PetscScalar *__restrict y)
+{
+  std::uint64_t carries = 0;
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscScalar yi = y[i] + a * x[i];
+    y[i]                 = yi;
+    carries |= turgor::ExponentCarry(yi);
+  }
+  return carries;
+}
+
+/* y += a x; with carries, also OR in the carries of the values written */
+PetscErrorCode Axpy(Vec y, PetscScalar a, Vec x, std::uint64_t *carries = nullptr)
 {
   const PetscScalar *xa;
   PetscScalar       *ya;
@@ -45,7 +62,8 @@ PetscErrorCode Axpy(Vec y, PetscScalar a, Vec x)
   PetscCall(VecGetLocalSize(y, &n));
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
-  AxpyLoop(n, a, xa, ya);
+  if (carries) *carries |= AxpyLoopCarries(n, a, xa, ya);
+  else AxpyLoop(n, a, xa, ya);
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(PetscLogFlops(2.0 * n));
@@ -191,6 +209,18 @@ PetscErrorCode StepBack(TS ts, Verlet *vv, Vec Y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether the step's end is finite on every rank (one rank: no reduction), from the carries of the
+   values its drift and last kick wrote. The constraints' values are the caller's and not scanned. */
+PetscErrorCode EndIsFinite(TS ts, std::uint64_t carries, PetscBool *finite)
+{
+  PetscMPIInt size, ok = turgor::CarriesFinite(carries);
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ts), &size));
+  if (size > 1) PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_LAND, PetscObjectComm((PetscObject)ts)));
+  *finite = ok ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TSStep_Verlet(TS ts)
 {
   Verlet          *vv = (Verlet *)ts->data;
@@ -214,18 +244,21 @@ PetscErrorCode TSStep_Verlet(TS ts)
   }
   PetscCall(Axpy(p, 0.5 * h, vv->A0)); /* kick */
   /* drift: dx/dt = v+, into A1, free until a(x_{n+1}) (one work vector fewer: 16 B a particle) */
-  vv->have_a1 = PETSC_FALSE;
+  vv->have_a1           = PETSC_FALSE;
+  std::uint64_t carries = 0; /* whether the step's end is finite, as its loops write it */
   PetscCall(TSComputeRHSFunction(vv->subts_q, t0, p, vv->A1));
-  PetscCall(Axpy(q, h, vv->A1));
+  PetscCall(Axpy(q, h, vv->A1, &carries));
   if (vv->impose) PetscCall(vv->impose(ts, t0 + h, q, p, vv->impose_ctx)); /* the second kick leaves them: their accelerations are 0 */
   PetscCall(Accelerate(ts, vv, t0 + h, q, vv->A1));                        /* a(x_{n+1}), reused by the next step */
-  PetscCall(Axpy(p, 0.5 * h, vv->A1));                                     /* kick */
+  PetscCall(Axpy(p, 0.5 * h, vv->A1, &carries));                           /* kick */
   PetscCall(RestoreParts(ts, vv, &q, &p));
   ts->ptime = t0 + h;
   PetscCall(TSPostStage(ts, ts->ptime, 0, &ts->vec_sol));
-  PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime, ts->vec_sol, &ok)); /* (with the domain check, TSSetFunctionDomainError) */
+  PetscCall(EndIsFinite(ts, carries, &ok));
+  if (ok) PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime, ts->vec_sol, &ok)); /* (with the user's domain check, TSSetFunctionDomainError) */
   if (!ok) { /* back to the start of the step (to round-off); a fixed-step integrator cannot retry smaller */
     PetscReal norm;
+    ts->time_step = h; /* TSAdaptCheckStage shrank it on the rejection: the step taken was h */
     PetscCall(StepBack(ts, vv, ts->vec_sol));
     PetscCall(VecNorm(ts->vec_sol, NORM_INFINITY, &norm));
     PetscCheck(!PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)ts), PETSC_ERR_FP,

@@ -14,6 +14,9 @@
    cubic Hermite interpolation of x (with v) and of v (with a) over the last step. Work vectors: the
    two accelerations only (no copy of the state: the step's start is recovered from its end to
    round-off, for the interpolation and for the rollback of a step the domain check rejects).
+   A step whose end (x_{n+1}, v_{n+1}) is not finite is rejected: the step's own loops check the
+   values they write, so a domain check (TSSetFunctionDomainError, called as well where set) need not
+   scan for them.
    A C header: the functions have C linkage (PETSC_EXTERN). */
 #include <turgor/core/petsc_compat.h>
 #include <petscts.h>
