@@ -12,3 +12,6 @@ turgor_add_test(hinges_no_polygons_reference COMMAND turgor_app ${NO_POLYGONS} -
   SETUP hinges_no_polygons_ref)
 turgor_add_test(hinges_no_polygons_change_nothing COMMAND ${CHECK} identical hinges_no_polygons hinges_no_polygons_ref steps rhs_evals LABELS fine hard
   REQUIRES "hinges_no_polygons;hinges_no_polygons_ref")
+# The hinges' atan2 without branches, in ulps against long double's and libm's
+turgor_test_program(test_hinge_atan2)
+turgor_add_test(test_hinge_atan2 COMMAND test_hinge_atan2 LABELS unit fine)

@@ -46,15 +46,30 @@ TURGOR_VECTOR_CLONES void EndForceLoop(size_t n, const PetscReal *__restrict ux,
   }
 }
 
-TURGOR_VECTOR_CLONES std::uint64_t OrOfBits(size_t n, const PetscReal *__restrict v)
+/* the general hinges' indices, in order, without a branch */
+std::size_t GeneralIndices(size_t n, const PetscReal *__restrict general, PetscInt *__restrict idx)
 {
-  std::uint64_t acc = 0;
+  std::size_t m = 0;
   for (size_t h = 0; h < n; h++) {
-    std::uint64_t b;
-    std::memcpy(&b, v + h, sizeof b);
-    acc |= b;
+    idx[m] = (PetscInt)h;
+    m += general[h] != 0;
   }
-  return acc;
+  return m;
+}
+
+/* HingeGeneral's values of the listed hinges, into compact arrays (gathered; no scatter in AVX2) */
+TURGOR_VECTOR_CLONES void GeneralLoop(size_t m, const PetscInt *__restrict idx, const PetscReal *__restrict ux, const PetscReal *__restrict uy,
+                                      const PetscReal *__restrict wx, const PetscReal *__restrict wy, const PetscReal *__restrict cos0,
+                                      const PetscReal *__restrict sin0, const PetscReal *__restrict theta_p, PetscReal k, PetscReal Mmax,
+                                      PetscReal *__restrict d, PetscReal *__restrict iw2, PetscReal *__restrict M)
+{
+  for (size_t j = 0; j < m; j++) {
+    const PetscInt  h = idx[j];
+    const HingeBend B = HingeBendOf(ux[h], uy[h], wx[h], wy[h], cos0[h], sin0[h]);
+    PetscReal       dh, ih;
+    HingeGeneral(B, &dh, &ih);
+    d[j] = dh, iw2[j] = ih, M[j] = HingeMoment(k, dh, theta_p[h], Mmax);
+  }
 }
 
 TURGOR_VECTOR_CLONES void InteriorNodeLoop(size_t n, const std::uint64_t *__restrict interior, const PetscReal *__restrict fax, const PetscReal *__restrict fay,
@@ -91,9 +106,17 @@ void HingeEndForces(size_t n, const HingeScratch &S, PetscReal *fax, PetscReal *
   EndForceLoop(n, S.ux, S.uy, S.wx, S.wy, S.iw2, S.M, fax, fay, fcx, fcy);
 }
 
-bool HingeAnyGeneral(size_t n, const HingeScratch &S)
+void HingeGeneralMoments(size_t n, const PetscReal *cos0, const PetscReal *sin0, const PetscReal *theta_p, PetscReal k, PetscReal Mmax, const HingeScratch &S,
+                         PetscInt *idx, PetscReal *work)
 {
-  return OrOfBits(n, S.general) != 0;
+  const std::size_t m = GeneralIndices(n, S.general, idx);
+  if (m == 0) return;
+  PetscReal *d = work, *iw2 = work + m, *M = work + 2 * m;
+  GeneralLoop(m, idx, S.ux, S.uy, S.wx, S.wy, cos0, sin0, theta_p, k, Mmax, d, iw2, M);
+  for (std::size_t j = 0; j < m; j++) {
+    const PetscInt h = idx[j];
+    S.d[h] = d[j], S.iw2[h] = iw2[j], S.M[h] = M[j];
+  }
 }
 
 void HingeInteriorNodeForces(size_t n, const std::uint64_t *interior, const PetscReal *fax, const PetscReal *fay, const PetscReal *fcx, const PetscReal *fcy,

@@ -152,12 +152,8 @@ void Hinges::VectorKernel(const PetscReal *x, PetscReal *f)
     S.ux[f] = x[2 * a_[f]] - x[2 * b_[f]], S.uy[f] = x[2 * a_[f] + 1] - x[2 * b_[f] + 1];
   }
   HingeSeriesMoments(n, cos0_.data(), sin0_.data(), theta_p_.data(), k, Mmax, S);
-  if (HingeAnyGeneral(n, S))
-    for (size_t h = 0; h < n; h++)
-      if (S.general[h]) {
-        HingeGeneral(HingeBendOf(S.ux[h], S.uy[h], S.wx[h], S.wy[h], cos0_[h], sin0_[h]), &S.d[h], &S.iw2[h]);
-        S.M[h] = HingeMoment(k, S.d[h], theta_p_[h], Mmax);
-      }
+  general_.resize(n);
+  HingeGeneralMoments(n, cos0_.data(), sin0_.data(), theta_p_.data(), k, Mmax, S, general_.data(), fax); /* fax.. fcx: free until HingeEndForces */
   HingeEndForces(n, S, fax, fay, fcx, fcy);
   for (const Run &R : runs_) { /* a polygon's first hinge: 1/|u|^2 of its own */
     const PetscInt  h  = R.first;

@@ -66,6 +66,7 @@ private:
   std::vector<PetscReal>     cos0_, sin0_, theta_p_;
   std::vector<PetscReal>     d_;       /* angles of the last AddForces (plastic hinges) */
   std::vector<PetscReal>     scratch_; /* the vectorised kernel's per-hinge values */
+  std::vector<PetscInt>      general_; /* ... and the indices of those outside the series */
   PetscReal                  dissipated_ = 0;
   bool                       have_ref_ = false, have_angles_ = false;
 };
