@@ -74,8 +74,8 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
                (double)A);
     const PetscReal hp = 0.5 * Scale(in.t) * Pressure(A, A0_[c]);
     const size_t    N  = C.nodes.size();
-    for (size_t k = 0; k < N; k++) { /* bar i -> j, CCW: outward normal x length = (dy, -dx) */
-      const PetscInt i = C.nodes[k], j = C.nodes[(k + 1) % N];
+    for (size_t k = 0; k < N; k++) {                                     /* bar i -> j, CCW: outward normal x length = (dy, -dx) */
+      const PetscInt i = C.nodes[k], j = C.nodes[k + 1 < N ? k + 1 : 0]; /* not (k + 1) % N: a division per node */
       PetscReal      fx = hp * (x[2 * j + 1] - x[2 * i + 1]), fy = -hp * (x[2 * j] - x[2 * i]);
       if (rounded) grain(fx, fy);
       f[2 * i] += fx;

@@ -35,8 +35,12 @@ template <class Vertex>
 PetscReal PolygonSignedArea(size_t n, Vertex vertex)
 {
   PetscReal a = 0;
-  for (size_t k = 0; k < n; k++) {
-    const Point2 p = vertex(k), q = vertex((k + 1) % n);
+  for (size_t k = 0; k + 1 < n; k++) { /* the closing edge after the loop: no modulo (a division) per vertex */
+    const Point2 p = vertex(k), q = vertex(k + 1);
+    a += p[0] * q[1] - q[0] * p[1];
+  }
+  if (n > 0) {
+    const Point2 p = vertex(n - 1), q = vertex(0);
     a += p[0] * q[1] - q[0] * p[1];
   }
   return 0.5 * a;
