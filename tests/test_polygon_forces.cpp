@@ -666,8 +666,9 @@ static PetscErrorCode HingeVectorBits(bool cells, bool chain)
 
 /* 10. The bars' loops in node order (forces without the virial) give the bits of the one-pass spring
    kernel (forces with it), their dashpot part (the energy balance's) too: a chain before closed cells
-   (not in node order: the kernel both ways), cells and a chain after them, cells alone, a chain alone
-   (in node order: rings' closing bars, a chain's ends). */
+   (the chain's bars in node order, the cells' after them one by one: the cells' first node is not the
+   chain's last bar's next), cells and a chain after them, cells alone, a chain alone (all in node
+   order: rings' closing bars, a chain's ends). */
 static PetscErrorCode SpringOrderBits(int layout)
 {
   PolygonBuilder      B;
@@ -699,10 +700,12 @@ static PetscErrorCode SpringOrderBits(int layout)
     const bool  same    = std::memcmp(f.data(), fv.data(), f.size() * sizeof(PetscReal)) == 0;
     const bool  dashpot = damping > 0 && Fd.size() == 2 && Fdv.size() == 2 && Fd[1].size() == f.size() && Fdv[1].size() == f.size();
     const bool  same_d  = dashpot && std::memcmp(Fd[1].data(), Fdv[1].data(), f.size() * sizeof(PetscReal)) == 0;
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "bars (%s, damping %g): %s: forces %s%s\n", name[layout], (double)damping,
-                          Bt->InNodeOrder() ? "in node order" : "the kernel", same ? "the same bits" : "DIFFER",
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "bars (%s, damping %g): %zu of %zu in node order: forces %s%s\n", name[layout], (double)damping,
+                          Bt->BarsInNodeOrder(), T.particles.springs.size(), same ? "the same bits" : "DIFFER",
                           damping > 0 ? (same_d ? ", dashpot part the same bits" : ", dashpot part DIFFERS or missing") : ""));
-    TG_CHECK(Bt->InNodeOrder() == (layout != 0), "the bars are in node order unless a chain comes before the cells");
+    const size_t ordered = Bt->BarsInNodeOrder(), bars = T.particles.springs.size();
+    TG_CHECK(layout == 0 ? ordered == 8 && ordered < bars : ordered == bars,
+             "%zu of %zu bars in node order: all of them, or the chain's 8 when the chain comes first", ordered, bars);
     TG_CHECK(damping == 0 || dashpot, "the dashpot part must be kept");
 #if !defined(__FMA__)
     TG_CHECK(same && (damping == 0 || same_d), "the bars' forces in node order differ from the one-pass kernel's");

@@ -11,11 +11,12 @@ namespace turgor {
 
 void SpringOrder::Build(const ParticleSet &P)
 {
-  const auto  &S  = P.springs;
-  const size_t ns = P.OwnedSprings();
-  in_order        = ns >= 2;
+  const auto &S = P.springs;
+  springs       = P.OwnedSprings();
   rest.clear(), interior.clear(), by_index.clear(), ends.clear();
-  for (size_t s = 0; s < ns && in_order; s++) in_order = S[s].i == S[0].i + (PetscInt)s && S[s].image == PeriodicImages::kSelf;
+  size_t ns = 0; /* the ordered springs: the longest run from the first */
+  while (ns < springs && S[ns].i == S[0].i + (PetscInt)ns && S[ns].image == PeriodicImages::kSelf) ns++;
+  in_order = ns >= 2;
   if (!in_order) return;
   i0 = S[0].i;
   rest.resize(ns);

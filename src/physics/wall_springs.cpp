@@ -41,13 +41,13 @@ namespace {
    ROUND: the shares rounded to the input's grain (a run with reproducible sums: no test per share
    in the others, this loop being most of a chain's step) */
 template <bool VIRIAL, bool PERIODIC, bool DAMPED, bool ROUND>
-void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscReal *f, PetscReal *virial)
+void Kernel(const ForceInput &in, PetscReal k, const PetscReal *gamma_, PetscReal *f, PetscReal *virial, size_t first = 0)
 {
   const PetscReal  *x = in.x, *v = in.v;
   const auto       &S     = in.P->springs;
   const ForceGrain &grain = in.Grain();
   PetscReal         w[4]  = {0, 0, 0, 0};
-  for (size_t s = 0, ns = in.P->OwnedSprings(); s < ns; s++) { /* this rank's springs (particles.h) */
+  for (size_t s = first, ns = in.P->OwnedSprings(); s < ns; s++) { /* this rank's springs (particles.h), from `first` */
     const PetscInt i = S[s].i, j = S[s].j;
     PetscReal      dx = x[2 * j] - x[2 * i], dy = x[2 * j + 1] - x[2 * i + 1];
     if (PERIODIC) {
@@ -107,9 +107,15 @@ void KernelFor(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &
 void SpringForces(const ForceInput &in, PetscReal k, const std::vector<PetscReal> &gamma, bool damped, PetscReal *f, PetscReal *virial,
                   const SpringOrder *order, std::vector<PetscReal> *scratch)
 {
-  if (order && order->in_order && order->rest.size() == in.P->OwnedSprings() && !virial && !in.images->periodic && !in.Grain().On())
+  if (order && order->in_order && order->springs == in.P->OwnedSprings() && !virial && !in.images->periodic && !in.Grain().On()) {
     SpringForcesInOrder(in, *order, k, gamma.data(), damped, f, *scratch);
-  else if (virial) KernelFor<true>(in, k, gamma, damped, f, virial);
+    /* the springs after the ordered ones (an open chain's, whose first node is not the next): one by
+       one, after them, as the kernel sums them */
+    if (order->rest.size() < order->springs) {
+      if (damped) Kernel<false, false, true, false>(in, k, gamma.data(), f, NULL, order->rest.size());
+      else Kernel<false, false, false, false>(in, k, gamma.data(), f, NULL, order->rest.size());
+    }
+  } else if (virial) KernelFor<true>(in, k, gamma, damped, f, virial);
   else KernelFor<false>(in, k, gamma, damped, f, NULL);
 }
 

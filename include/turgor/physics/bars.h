@@ -19,8 +19,9 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override;
   PetscErrorCode OutputFields(const ForceInput &in, std::vector<TermField> &fields) override;
   /* the dashpot's part of the force reported apart (the energy balance counts its work) */
-  bool HasDashpotForce() const override { return damping > 0; }
-  bool InNodeOrder() const { return order_.in_order; } /* the bars' loops in node order (spring_order.h) */
+  bool   HasDashpotForce() const override { return damping > 0; }
+  bool   InNodeOrder() const { return order_.in_order; }                              /* the bars' loops in node order (spring_order.h) */
+  size_t BarsInNodeOrder() const { return order_.in_order ? order_.rest.size() : 0; } /* ... for the first this many, the others one by one */
 
   PetscReal stiffness = 1.0e4; /* k_b [µN/µm = N/m] */
   PetscReal damping   = 0.0;   /* dashpot coefficient along the bar [ng/µs = µN µs/µm] */

@@ -5,7 +5,10 @@
    read from x and v in order, every spring's force at once (a square root and a division each), then
    every node that takes only -F_(s-1) and +F_s (in that order: the kernel's sum, spring by spring)
    in one pass, and the few others (each ring's first node, a chain's ends) one by one in spring
-   order. Element by element the kernel's arithmetic, without fused multiply-adds: the same bits. */
+   order. Element by element the kernel's arithmetic, without fused multiply-adds: the same bits.
+   Where the layout holds for the first springs only (an open chain's m nodes have m - 1 bars, so the
+   next polygon's first node is not the next spring's), those run so and the others one by one after
+   them, in spring order as the kernel sums them. */
 #include <turgor/physics/force_term.h>
 #include <cstdint>
 #include <vector>
@@ -13,9 +16,10 @@
 namespace turgor {
 
 struct SpringOrder {
-  bool                       in_order = false; /* the layout above holds (and no periodic image) */
+  bool                       in_order = false; /* the layout above holds for the first springs (at least two; no periodic image) */
+  size_t                     springs  = 0;     /* all of the rank's springs when built; those after the ordered ones (rest.size()) go one by one */
   PetscInt                   i0       = 0;     /* the first spring's node i */
-  std::vector<PetscReal>     rest;             /* rest lengths, by field */
+  std::vector<PetscReal>     rest;             /* rest lengths of the ordered springs, by field */
   std::vector<std::uint64_t> interior;         /* per spring s: all ones when node i_s takes only -F_(s-1) then +F_s */
   std::vector<PetscInt>      by_index;         /* springs whose far end is not the next node (closing bars, the last) */
   struct Share {
