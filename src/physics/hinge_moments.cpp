@@ -46,6 +46,17 @@ TURGOR_VECTOR_CLONES void EndForceLoop(size_t n, const PetscReal *__restrict ux,
   }
 }
 
+TURGOR_VECTOR_CLONES std::uint64_t OrOfBits(size_t n, const PetscReal *__restrict v)
+{
+  std::uint64_t acc = 0;
+  for (size_t h = 0; h < n; h++) {
+    std::uint64_t b;
+    std::memcpy(&b, v + h, sizeof b);
+    acc |= b;
+  }
+  return acc;
+}
+
 /* the general hinges' indices, in order, without a branch */
 std::size_t GeneralIndices(size_t n, const PetscReal *__restrict general, PetscInt *__restrict idx)
 {
@@ -109,9 +120,9 @@ void HingeEndForces(size_t n, const HingeScratch &S, PetscReal *fax, PetscReal *
 void HingeGeneralMoments(size_t n, const PetscReal *cos0, const PetscReal *sin0, const PetscReal *theta_p, PetscReal k, PetscReal Mmax, const HingeScratch &S,
                          PetscInt *idx, PetscReal *work)
 {
+  if (OrOfBits(n, S.general) == 0) return; /* none (a scan that vectorises): the usual case */
   const std::size_t m = GeneralIndices(n, S.general, idx);
-  if (m == 0) return;
-  PetscReal *d = work, *iw2 = work + m, *M = work + 2 * m;
+  PetscReal        *d = work, *iw2 = work + m, *M = work + 2 * m;
   GeneralLoop(m, idx, S.ux, S.uy, S.wx, S.wy, cos0, sin0, theta_p, k, Mmax, d, iw2, M);
   for (std::size_t j = 0; j < m; j++) {
     const PetscInt h = idx[j];
