@@ -4,7 +4,7 @@ static const char help[] = "TS verlet's handling of a step that goes wrong, on x
                            "2. a step that the user's domain check (TSSetFunctionDomainError) rejects ends the solve with\n"
                            "   TS_DIVERGED_STEP_REJECTED (-ts_error_if_step_fails false) at the step's start, whose state\n"
                            "   is recovered from the end to round-off;\n"
-                           "3. with neither, the run follows x = cos t to the scheme's order.\n";
+                           "3. with neither, the run follows x = cos t, v = -sin t (within 2e-5 at t = 1, h = 0.01).\n";
 #include "test_util.h"
 #include <turgor/ts/velocity_verlet.h>
 #include <limits>

@@ -210,7 +210,7 @@ PetscErrorCode StepBack(TS ts, Verlet *vv, Vec Y)
 }
 
 /* Whether the step's end is finite on every rank (one rank: no reduction), from the carries of the
-   values its drift and last kick wrote. The constraints' values are the caller's and not scanned. */
+   values its drift and last kick wrote. The constraints' values and a post-stage hook's are the caller's and not scanned. */
 PetscErrorCode EndIsFinite(TS ts, std::uint64_t carries, PetscBool *finite)
 {
   PetscMPIInt size, ok = turgor::CarriesFinite(carries);

@@ -14,7 +14,8 @@
 namespace turgor {
 
 /* atan(t) for |t| <= 0.1: the Taylor series to t^15 (the first omitted term t^17/17 < 1e-18: the
-   truncation below rounding; within 2.4 ulps with it, test_hinge_atan2), its even and odd halves in t^4 side by side (half the dependency chain of Horner) */
+   truncation below rounding; with the rounding of its operations within 2.4 ulps, test_hinge_atan2),
+   its even and odd halves in t^4 side by side (half the dependency chain of Horner) */
 inline PetscReal HingeAtanSeries(PetscReal t)
 {
   const PetscReal t2 = t * t, t4 = t2 * t2;
@@ -26,9 +27,9 @@ inline PetscReal HingeAtanSeries(PetscReal t)
 /* atan2(y, x) everywhere, without a branch (a loop of it vectorises; libm's atan2 does neither and
    cost a crushed tissue's hinges twice their series' time): t = min(|x|, |y|) / max(|x|, |y|) in
    [0, 1]; above tan(pi/12) reduced by atan t = pi/6 + atan((sqrt3 t - 1)/(sqrt3 + t)), in one
-   division, to |u| <= tan(pi/12), where atan's Taylor series to u^27 is exact to rounding (the first
-   omitted term u^29/29 < 4e-18 u); then the octant undone (pi/2 - a where |y| > |x|, pi - a where
-   x < 0, the sign of y). Within a few ulps of the true angle (test_hinge_atan2 measures it); 0 at (0, 0). */
+   division, to |u| <= tan(pi/12), where atan's Taylor series to u^27 is truncated below rounding (the
+   first omitted term u^29/29 < 4e-18 u); then the octant undone (pi/2 - a where |y| > |x|, pi - a
+   where x < 0, the sign of y). Within 2.83 ulps of the true angle (test_hinge_atan2); 0 at (0, 0). */
 inline PetscReal HingeAtan2Wide(PetscReal y, PetscReal x)
 {
   /* every branch's value computed, then selected: a select of values the compiler may vectorise, an
@@ -51,8 +52,8 @@ inline PetscReal HingeAtan2Wide(PetscReal y, PetscReal x)
 }
 
 /* atan2(y, x) for the hinge angle deviation: where x > 0 and y/x is small, the Taylor series of
-   atan(t), t = y/x, truncated where the first omitted term is below 1e-18 relative (exact to
-   rounding and several times cheaper); elsewhere HingeAtan2Wide. */
+   atan(t), t = y/x, truncated where the first omitted term is below 1e-18 relative (cheaper still);
+   elsewhere HingeAtan2Wide. */
 inline PetscReal HingeAtan2(PetscReal y, PetscReal x)
 {
   if (x > 0 && std::fabs(y) <= 0.1 * x) return HingeAtanSeries(y / x);
