@@ -320,11 +320,14 @@ void Controls::Impose(PetscReal t, PetscReal *x, PetscReal *v, PetscInt n) const
 
 void Controls::PositionRates(PetscReal t, PetscReal tau, PetscReal *xdot) const
 {
+  size_t    last = groups_.size(); /* the group whose rate q holds: once per group, not per node (a grip's hundreds) */
+  PetscReal q    = 0;
   for (size_t k = 0; k < comp_.size(); k++) {
     const ControlGroup &G = groups_[comp_group_[k]];
     const int           d = (int)(comp_[k] % 2);
     /* the mean over the drift: its sum over the drifts of a step telescopes to the exact S */
-    xdot[comp_[k]] = G.value[d] * (tau > 0 ? (G.Integral(t + tau) - G.Integral(t)) / tau : G.Scale(t));
+    if ((size_t)comp_group_[k] != last) q = tau > 0 ? (G.Integral(t + tau) - G.Integral(t)) / tau : G.Scale(t), last = comp_group_[k];
+    xdot[comp_[k]] = G.value[d] * q;
   }
 }
 
