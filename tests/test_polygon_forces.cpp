@@ -625,42 +625,45 @@ static PetscErrorCode HingeVectorBits(bool cells, bool chain)
   PetscFunctionBeginUser;
   AddCellsAndChain(B, cells, chain, false);
   Tissue &T = B.Finish(0.1);
-  for (PetscReal Mmax : {0.0, 0.3}) {
-    auto h        = std::make_unique<Hinges>();
-    h->stiffness  = 2.5;
-    h->max_moment = Mmax;
-    ForceModel M;
-    PetscCall(MakeModel(T.particles, List(std::move(h)), M));
-    std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f, fv(x.size(), 0.0);
-    PetscCall(Forces(M, x, v, f)); /* the reference angles */
-    for (auto &q : x) q += (cells ? 0.1 : 0.03) * rnd();
-    if (chain) { /* the chain's third node pushed up past its neighbours: a bend of about 100 degrees */
-      const size_t fold = x.size() / 2 - 7;
-      x[2 * fold] = 2.0, x[2 * fold + 1] = 6.5;
-    }
-    PetscCall(Forces(M, x, v, f));
-    PetscReal virial[4] = {0, 0, 0, 0};
-    PetscCall(M.ComputeForces(x.data(), v.data(), fv.data(), virial));
-    const Hinges *H       = dynamic_cast<const Hinges *>(M.Term("hinges"));
-    size_t        outside = 0, obtuse = 0;
-    for (size_t k = 0; k < H->NumHinges(); k++) {
-      const PetscReal d = std::fabs(H->Angle(k, x.data()));
-      outside += d > std::atan(0.1);
-      obtuse += d > 0.5 * PETSC_PI;
-    }
-    const bool same = std::memcmp(f.data(), fv.data(), f.size() * sizeof(PetscReal)) == 0;
-    PetscCall(PetscPrintf(PETSC_COMM_SELF,
-                          "hinges (%s, M_max %g): %zu hinges, %zu outside the series (%zu past a right angle), bars %s: vectorised forces %s\n",
-                          cells && chain ? "cells and a chain"
-                          : cells        ? "cells"
-                                         : "a chain",
-                          (double)Mmax, H->NumHinges(), outside, obtuse, H->BarsInOrder() ? "in order" : "gathered", same ? "the same bits" : "DIFFER"));
-    TG_CHECK(outside > 1 && (obtuse > 0 || !chain) && outside + 2 < H->NumHinges(), "the test must take both paths");
-    TG_CHECK(H->BarsInOrder() == !(cells && chain), "the hinges' nodes are consecutive unless a chain follows the cells");
+  for (PetscReal Mmax : {0.0, 0.3})
+    for (size_t block : {(size_t)512, (size_t)10}) { /* one block, and blocks of a few polygons */
+      auto h        = std::make_unique<Hinges>();
+      h->stiffness  = 2.5;
+      h->max_moment = Mmax;
+      h->SetBlockHinges(block);
+      ForceModel M;
+      PetscCall(MakeModel(T.particles, List(std::move(h)), M));
+      std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f, fv(x.size(), 0.0);
+      PetscCall(Forces(M, x, v, f)); /* the reference angles */
+      for (auto &q : x) q += (cells ? 0.1 : 0.03) * rnd();
+      if (chain) { /* the chain's third node pushed up past its neighbours: a bend of about 100 degrees */
+        const size_t fold = x.size() / 2 - 7;
+        x[2 * fold] = 2.0, x[2 * fold + 1] = 6.5;
+      }
+      PetscCall(Forces(M, x, v, f));
+      PetscReal virial[4] = {0, 0, 0, 0};
+      PetscCall(M.ComputeForces(x.data(), v.data(), fv.data(), virial));
+      const Hinges *H       = dynamic_cast<const Hinges *>(M.Term("hinges"));
+      size_t        outside = 0, obtuse = 0;
+      for (size_t k = 0; k < H->NumHinges(); k++) {
+        const PetscReal d = std::fabs(H->Angle(k, x.data()));
+        outside += d > std::atan(0.1);
+        obtuse += d > 0.5 * PETSC_PI;
+      }
+      const bool same = std::memcmp(f.data(), fv.data(), f.size() * sizeof(PetscReal)) == 0;
+      PetscCall(
+        PetscPrintf(PETSC_COMM_SELF,
+                    "hinges (%s, M_max %g, blocks of %zu): %zu hinges, %zu outside the series (%zu past a right angle), bars %s: vectorised forces %s\n",
+                    cells && chain ? "cells and a chain"
+                    : cells        ? "cells"
+                                   : "a chain",
+                    (double)Mmax, block, H->NumHinges(), outside, obtuse, H->BarsInOrder() ? "in order" : "gathered", same ? "the same bits" : "DIFFER"));
+      TG_CHECK(outside > 1 && (obtuse > 0 || !chain) && outside + 2 < H->NumHinges(), "the test must take both paths");
+      TG_CHECK(H->BarsInOrder() == !(cells && chain), "the hinges' nodes are consecutive unless a chain follows the cells");
 #if !defined(__FMA__) /* a -march=native build (TURGOR_NATIVE): both sides may fuse multiply-adds, each its own way */
-    TG_CHECK(same, "the hinges' vectorised forces differ from the one-pass kernel's");
+      TG_CHECK(same, "the hinges' vectorised forces differ from the one-pass kernel's");
 #endif
-  }
+    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -33,7 +33,8 @@ public:
   PetscReal PlasticAngle(size_t h) const { return theta_p_[h]; }
   PetscReal Angle(size_t h, const PetscReal *x) const; /* theta - theta0 of hinge h at x */
   PetscInt  HingeNode(size_t h) const { return b_[h]; }
-  bool      BarsInOrder() const { return contiguous_; } /* the hinges' nodes consecutive: bars read from x in order */
+  bool      BarsInOrder() const { return contiguous_; }                 /* the hinges' nodes consecutive: bars read from x in order */
+  void      SetBlockHinges(size_t h) { block_hinges_ = h > 0 ? h : 1; } /* the vectorised passes' blocks (tests: several on a small tissue) */
 
   PetscReal stiffness  = 1.0e4; /* k_r [µN µm / rad] */
   PetscReal max_moment = 0;     /* M_max [µN µm]; 0 = elastic */
@@ -59,6 +60,8 @@ private:
   template <bool VIRIAL, bool CACHE, bool ROUND>
   void                       Kernel(const PetscReal *x, const ForceGrain &grain, PetscReal *f, PetscReal *virial);
   void                       VectorKernel(const PetscReal *x, PetscReal *f);
+  void                       VectorBlock(const PetscReal *x, PetscReal *f, size_t r0, size_t r1);
+  size_t                     block_hinges_ = 512; /* VectorKernel's blocks: about this many hinges (whole polygons) */
   std::vector<PetscInt>      a_, b_, c_;          /* each hinge's nodes, by field (the vectorised loop reads them so) */
   bool                       contiguous_ = false; /* b_[h] = b_[0] + h: the bars read from x in order */
   std::vector<std::uint64_t> interior_;           /* all ones for a hinge neither first nor last in its polygon, else 0 */
