@@ -99,9 +99,11 @@ private:
   std::vector<Candidate> cand_; /* eligible pairs of the neighbour list */
   std::vector<History>   hist_; /* beside cand_ */
   struct Near {                 /* a near pair with its nodes beside it: the first pass reads this list in order, not cand_ */
-    PetscInt p, a, b, k;        /* node, bar ends, index into cand_ */
+    std::uint32_t p2, a2, b2;   /* node, bar ends: their first component's offset in x (2 p: no sign extension per load) */
+    PetscInt      k;            /* index into cand_ */
   };
   std::vector<Near>     near_;
+  static size_t         TouchingPairs(const Near *near, size_t n, const PetscReal *x, PetscReal R2, PetscInt *touch);
   std::vector<PetscInt> touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
   std::vector<Trial>    trial_;                        /* from the last evaluation (friction) */
   std::vector<PetscInt> live_;                         /* indices into cand_ of the pairs with a live history */
