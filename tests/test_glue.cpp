@@ -196,7 +196,7 @@ static PetscErrorCode TestGradient(bool compression)
 /* One bond: an open one-bar cell along y = 0 and a triangle whose lowest node sits 2 r above the
    bar's middle; the triangle is moved rigidly by (ux, uy) per step, AcceptStep after each step,
    until the bond breaks. Returns the opening (delta_n, delta_t) at the break and its record. */
-static PetscErrorCode PullOne(std::unique_ptr<Glue> proto, PetscReal ux, PetscReal uy, PetscReal *dn, PetscReal *dt, Glue::Break *brk)
+static PetscErrorCode PullOne(std::unique_ptr<Glue> proto, PetscReal ux, PetscReal uy, PetscReal *dn, PetscReal *dt, Glue::Break *brk, bool here = false)
 {
   PetscFunctionBeginUser;
   const PetscReal r = 0.25;
@@ -217,7 +217,7 @@ static PetscErrorCode PullOne(std::unique_ptr<Glue> proto, PetscReal ux, PetscRe
     for (PetscInt i = 2; i < 5; i++) x[2 * i] += ux, x[2 * i + 1] += uy;
     g->Opening(0, x.data(), dn, dt);
     PetscCall(M.ComputeForces(x.data(), v.data(), f.data(), NULL));
-    PetscCall(M.AcceptStep(x.data(), v.data(), (PetscReal)step));
+    PetscCall(M.AcceptStep(x.data(), v.data(), (PetscReal)step, &here)); /* here: commit from the force evaluation's record */
   }
   std::vector<Glue::Break> b = g->TakeBreaks();
   TG_CHECK(b.size() == 1 && g->Broken() == 1, "the bond did not break (once)");
@@ -232,6 +232,22 @@ static PetscErrorCode TestBreaks()
   PetscReal       dn, dt;
   Glue::Break     b;
   PetscCall(PullOne(MakeGlue(Glue::ENERGY, kn, kt, Gc), 0, step, &dn, &dt, &b));
+  {
+    /* committed from the force evaluation's record of the bonds that break (the brittle laws record
+       only those): the same break, bit for bit, as an evaluation at the accepted state */
+    PetscReal   dn2, dt2;
+    Glue::Break b2;
+    PetscCall(PullOne(MakeGlue(Glue::ENERGY, kn, kt, Gc), 0, step, &dn2, &dt2, &b2, true));
+    TG_CHECK(dn2 == dn && dt2 == dt && b2.energy == b.energy && b2.time == b.time, "energy law: the break from the record differs (t %g / %g)", (double)b2.time,
+             (double)b.time);
+    const PetscReal sigma = 30, tau = 20, u = 1e-4 * sigma / kn / std::sqrt(2.0);
+    PetscReal       dn3, dt3, dn4, dt4;
+    Glue::Break     b3, b4;
+    PetscCall(PullOne(MakeGlue(Glue::STRENGTH, kn, kt, Gc, sigma, tau), u, u, &dn3, &dt3, &b3));
+    PetscCall(PullOne(MakeGlue(Glue::STRENGTH, kn, kt, Gc, sigma, tau), u, u, &dn4, &dt4, &b4, true));
+    TG_CHECK(dn3 == dn4 && dt3 == dt4 && b3.energy == b4.energy && b3.time == b4.time, "strength law: the break from the record differs (t %g / %g)",
+             (double)b4.time, (double)b3.time);
+  }
   PetscCall(PetscPrintf(PETSC_COMM_SELF,
                         "energy law: broke at delta_n = %.10g, delta_c = %.10g (%.2f steps beyond), mode %s, released %.6g = (1/2) k_n delta^2 L %.6g\n",
                         (double)dn, (double)dc, (double)((dn - dc) / step), b.mode, (double)b.energy, (double)(0.5 * kn * dn * dn * b.length)));
@@ -258,15 +274,17 @@ static PetscErrorCode TestBreaks()
 /* Softening: pull the right square away rigidly, sum the work of the force that holds it (trapezoid)
    until every bond has broken. Twice: the accepted step committing what the force evaluation at its
    state recorded, and (recompute) told that no evaluation was there, so that the glue evaluates the
-   openings again: the same pull, bit for bit. */
+   openings again: the same pull, bit for bit; and a third time with the force evaluation in blocks of
+   3 bonds (the passes' block boundaries, and damaged bonds redone inside a block): the same bits. */
 static PetscErrorCode TestWorkOfSeparation()
 {
   PetscFunctionBeginUser;
   const PetscReal W = 10, r = 0.25, kn = 1e3, Gc = 0.2, sigma = 10; /* l0 = 0.01, lf = 0.04 */
   for (PetscInt n : {1, 3, 7}) {
-    PetscReal work_of[2] = {0, 0}, dissipation_of[2] = {0, 0};
-    PetscInt  steps_of[2] = {0, 0};
-    for (int recompute = 0; recompute < 2; recompute++) {
+    PetscReal work_of[3] = {0, 0, 0}, dissipation_of[3] = {0, 0, 0};
+    PetscInt  steps_of[3] = {0, 0, 0};
+    for (int variant = 0; variant < 3; variant++) {
+      const bool     recompute = variant == 1; /* variant 2: the force evaluation in blocks of 3 bonds */
       PolygonBuilder B;
       AddSquare(B, 0, W, n);
       AddSquare(B, W + 2 * r, W, n);
@@ -281,6 +299,7 @@ static PetscErrorCode TestWorkOfSeparation()
       PetscCall(MakeModel(T.particles, std::move(terms), M, 0.0)); /* skin 0: lists rebuilt at every step */
       Glue                  *g = dynamic_cast<Glue *>(M.Term("glue"));
       std::vector<PetscReal> x = T.X, v(x.size(), 0.0), f(x.size());
+      if (variant == 2) g->SetBlockBonds(3);
       PetscCall(M.ComputeForces(x.data(), v.data(), f.data(), NULL));
       const PetscInt created = g->Created();
       PetscReal      work = 0, Fprev = 0, L = 0;
@@ -304,19 +323,24 @@ static PetscErrorCode TestWorkOfSeparation()
       PetscCall(PetscPrintf(PETSC_COMM_SELF,
                             "softening, %" PetscInt_FMT " bonds per face%s: work of separation %.8g, G_c L = %.8g (relative difference %.2e), fracture "
                             "dissipation %.8g, %" PetscInt_FMT " neighbour rebuilds\n",
-                            n + 1, recompute ? " (openings evaluated again at each accepted state)" : "", (double)work, (double)(Gc * L),
-                            (double)(work / (Gc * L) - 1), (double)g->Dissipation(), M.Neighbours().Rebuilds()));
+                            n + 1,
+                            recompute      ? " (openings evaluated again at each accepted state)"
+                            : variant == 2 ? " (in blocks of 3 bonds)"
+                                           : "",
+                            (double)work, (double)(Gc * L), (double)(work / (Gc * L) - 1), (double)g->Dissipation(), M.Neighbours().Rebuilds()));
       TG_CHECK(g->Intact() == 0, "not every bond broke");
       TG_CHECK(M.Neighbours().Rebuilds() > 1000, "the neighbour lists were not rebuilt at every step");
       TG_CHECK_CLOSE(L, W, 1e-12, 0, "interface length");
       TG_CHECK_CLOSE(work, Gc * L, 0.02, 0, "work of separation vs G_c L");
       TG_CHECK_CLOSE(g->Dissipation(), Gc * L, 1e-6, 0, "fracture dissipation vs G_c L");
-      work_of[recompute] = work, dissipation_of[recompute] = g->Dissipation(), steps_of[recompute] = step;
+      work_of[variant] = work, dissipation_of[variant] = g->Dissipation(), steps_of[variant] = step;
     }
-    TG_CHECK(work_of[0] == work_of[1] && dissipation_of[0] == dissipation_of[1] && steps_of[0] == steps_of[1],
-             "the commits from the force loop's record differ from an evaluation at the accepted state: work %.17g / %.17g, dissipation %.17g / "
-             "%.17g, steps %" PetscInt_FMT " / %" PetscInt_FMT,
-             (double)work_of[0], (double)work_of[1], (double)dissipation_of[0], (double)dissipation_of[1], steps_of[0], steps_of[1]);
+    for (int variant = 1; variant < 3; variant++)
+      TG_CHECK(work_of[0] == work_of[variant] && dissipation_of[0] == dissipation_of[variant] && steps_of[0] == steps_of[variant],
+               "%s: work %.17g / %.17g, dissipation %.17g / %.17g, steps %" PetscInt_FMT " / %" PetscInt_FMT,
+               variant == 1 ? "the commits from the force loop's record differ from an evaluation at the accepted state"
+                            : "the force evaluation in blocks of 3 bonds differs from the one in a single block",
+               (double)work_of[0], (double)work_of[variant], (double)dissipation_of[0], (double)dissipation_of[variant], steps_of[0], steps_of[variant]);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -340,7 +364,10 @@ static PetscErrorCode TestUndamagedForcesBits()
   const PetscReal kn = 1.3e4, kt = 0.7e4;
   for (bool closing : {false, true}) {
     std::vector<PetscReal> force(4 * n), opening(2 * n);
-    GlueUndamagedForces(G, x.data(), kn, kt, closing, force.data(), opening.data(), opening.data() + n);
+    for (size_t lo : {(size_t)0, (size_t)400}) { /* in two ranges, as the glue's blocks call it */
+      const size_t hi = lo ? n : 400;
+      GlueUndamagedForces(G, lo, hi, x.data(), kn, kt, closing, force.data() + 4 * lo, opening.data() + lo, opening.data() + n + lo);
+    }
     size_t differ = 0;
     for (size_t k = 0; k < n; k++) {
       const PetscReal ex = x[2 * G.b[k]] - x[2 * G.a[k]], ey = x[2 * G.b[k] + 1] - x[2 * G.a[k] + 1];

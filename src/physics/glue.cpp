@@ -293,18 +293,19 @@ void Glue::CopyGeometry()
   }
 }
 
-/* The bonds [lo, hi) one at a time (MODE as Kernel's): (0, 1) the force into push_ with the bond's
+/* The bonds [lo, hi) one at a time (MODE as Kernel's): (0, 1) the force into push_ (whose block starts
+   at bond block_lo) with the bond's
    damage, recorded in trial_ at entry nt if it may change when accepted (returns the next entry);
    (2) committed; (3) the energy added to *E. The forces of undamaged bonds come from
    GlueUndamagedForces instead, whose arithmetic is this one's with D = 0. */
 template <int MODE>
-size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E)
+size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E, size_t block_lo)
 {
   /* the law's parameters in locals: the stores below could alias the members, which would be
      loaded again for every bond */
   const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_;
-  const bool       softening = law == SOFTENING, closing = compression;
-  const PetscReal  l0 = l0_, l02 = l02_, beta2 = beta2_;
+  const bool       softening = law == SOFTENING, closing = compression, energy_law = law == ENERGY;
+  const PetscReal  l0 = l0_, l02 = l02_, beta2 = beta2_, Gc = fracture_energy, sigma = sigma_, tau = tau_;
   PetscReal       *push  = push_.data();
   Trial           *trial = trial_.data();
   PetscReal        e     = 0;
@@ -319,7 +320,7 @@ size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, Pe
     const PetscReal D      = softening && !before ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
     if (MODE <= 1) {
       trial[nt] = {k, dnp, dt};
-      nt += !before;
+      nt += softening ? !before : BrittleBreaks(energy_law, kn, kt, Gc, sigma, tau, l2, dnp, dt);
     }
     if (MODE == 2) {
       Commit(in, k, dnp, dt);
@@ -330,7 +331,7 @@ size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, Pe
       e += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
       continue;
     }
-    GlueForceOf(o, (1 - D) * B.L, kn, kt, dnf, push + 4 * k);
+    GlueForceOf(o, (1 - D) * B.L, kn, kt, dnf, push + 4 * (k - block_lo));
   }
   if (MODE == 3) *E += e;
   return nt;
@@ -352,55 +353,64 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   }
   /* every bond's force as if undamaged, vectorised; then, in bond order, the record of the bonds the
      accepted step may change (AcceptStep at this state commits from it instead of scanning every
-     bond), and the force of a damaged bond (past its peak) again with its damage */
-  trial_.resize(n); /* room for every bond; the first trial_n_ are recorded below */
-  push_.resize(4 * n);
-  opening_.resize(2 * n);
+     bond), and the force of a damaged bond (past its peak) again with its damage; then the forces
+     added into f. Block by block of bonds, so that the block's records, forces and openings are still
+     in the cache for the second and third passes (a large tissue's bonds stream tens of MB a pass). */
   PetscCheckAbort(geometry_.Size() == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: the bonds' geometry arrays are out of date");
-  GlueUndamagedForces(geometry_, x, normal_stiffness, kt_, compression, push_.data(), opening_.data(), opening_.data() + n);
-  const bool      softening = law == SOFTENING;
-  const PetscReal l0 = l0_, l02 = l02_, beta2 = beta2_, *dnp = opening_.data(), *dt = opening_.data() + n;
-  Trial          *trial = trial_.data();
-  size_t          nt    = 0;
-  for (size_t k = 0; k < n; k++) {
-    const Bond &B = bonds_[k];
-    if (!B.intact) continue;
-    const PetscReal l2     = Opening2(dnp[k], dt[k], beta2);
-    const bool      before = BeforePeak(softening, B.lmax, l2, l0, l02);
-    /* damaged: again with its damage (and recorded there); else stored always, kept if the accepted
-       step may change it (the brittle laws: any intact bond) */
-    if (softening && !before) nt = BondRange<0>(in, k, k + 1, nt, nullptr);
-    else {
-      trial[nt] = {k, dnp[k], dt[k]};
-      nt += !before;
+  const size_t block = std::min(n, block_bonds_);
+  trial_.resize(n); /* room for every bond; the first trial_n_ are recorded below */
+  push_.resize(4 * block);
+  opening_.resize(2 * block);
+  const bool        softening = law == SOFTENING, energy_law = law == ENERGY;
+  const PetscReal   l0 = l0_, l02 = l02_, beta2 = beta2_, *dnp = opening_.data(), *dt = opening_.data() + block;
+  const PetscReal   kn = normal_stiffness, kt = kt_, Gc = fracture_energy, sigma = sigma_, tau = tau_; /* locals: trial's stores could alias the members */
+  const PetscReal  *push    = push_.data();
+  Trial            *trial   = trial_.data();
+  size_t            nt      = 0;
+  const ForceGrain &grain   = in.Grain();
+  const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
+  for (size_t lo = 0; lo < n; lo += block) {
+    const size_t hi = std::min(n, lo + block);
+    GlueUndamagedForces(geometry_, lo, hi, x, kn, kt, compression, push_.data(), opening_.data(), opening_.data() + block);
+    for (size_t k = lo; k < hi; k++) {
+      const Bond &B = bonds_[k];
+      if (!B.intact) continue;
+      const PetscReal l2     = Opening2(dnp[k - lo], dt[k - lo], beta2);
+      const bool      before = BeforePeak(softening, B.lmax, l2, l0, l02);
+      /* damaged: again with its damage (and recorded there); else stored always, kept if the accepted
+         step breaks it (the brittle laws; a softening bond before its peak has nothing to commit) */
+      if (softening && !before) nt = BondRange<0>(in, k, k + 1, nt, nullptr, lo);
+      else {
+        trial[nt] = {k, dnp[k - lo], dt[k - lo]};
+        nt += !softening && BrittleBreaks(energy_law, kn, kt, Gc, sigma, tau, l2, dnp[k - lo], dt[k - lo]);
+      }
+    }
+    /* Scatter apart from the evaluation: consecutive bonds share bar nodes, and adding into f inside
+       the loop above chains every bond's square root and division behind the previous bond's stores. */
+    for (size_t k = lo; k < hi; k++) {
+      const Bond &B = bonds_[k];
+      if (!B.intact) continue;
+      const PetscReal *F  = push + 4 * (k - lo);
+      PetscReal        Fx = F[0], Fy = F[1], ax = F[2], ay = F[3];
+      if (rounded) grain(Fx, Fy), grain(ax, ay);
+      const PetscReal bx = Fx - ax, by = Fy - ay; /* lambda F - q n = F - (1 - lambda) F - q n */
+      f[2 * B.p] -= Fx;
+      f[2 * B.p + 1] -= Fy;
+      f[2 * B.a] += ax;
+      f[2 * B.a + 1] += ay;
+      f[2 * B.b] += bx;
+      f[2 * B.b + 1] += by;
+      if (MODE == 1) { /* -sum f (x) x, relative to the node: a at x_a - x_p, b at x_b - x_p */
+        const PetscReal rax = x[2 * B.a] - x[2 * B.p], ray = x[2 * B.a + 1] - x[2 * B.p + 1], rbx = x[2 * B.b] - x[2 * B.p],
+                        rby = x[2 * B.b + 1] - x[2 * B.p + 1];
+        w[0] -= ax * rax + bx * rbx;
+        w[1] -= ax * ray + bx * rby;
+        w[2] -= ay * rax + by * rbx;
+        w[3] -= ay * ray + by * rby;
+      }
     }
   }
   trial_n_ = nt, trial_bonds_ = n;
-  const ForceGrain &grain   = in.Grain();
-  const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
-  /* Scatter apart from the evaluation: consecutive bonds share bar nodes, and adding into f inside the
-     loop above chains every bond's square root and division behind the previous bond's stores. */
-  for (size_t k = 0; k < bonds_.size(); k++) {
-    const Bond &B = bonds_[k];
-    if (!B.intact) continue;
-    PetscReal Fx = push_[4 * k], Fy = push_[4 * k + 1], ax = push_[4 * k + 2], ay = push_[4 * k + 3];
-    if (rounded) grain(Fx, Fy), grain(ax, ay);
-    const PetscReal bx = Fx - ax, by = Fy - ay; /* lambda F - q n = F - (1 - lambda) F - q n */
-    f[2 * B.p] -= Fx;
-    f[2 * B.p + 1] -= Fy;
-    f[2 * B.a] += ax;
-    f[2 * B.a + 1] += ay;
-    f[2 * B.b] += bx;
-    f[2 * B.b + 1] += by;
-    if (MODE == 1) { /* -sum f (x) x, relative to the node: a at x_a - x_p, b at x_b - x_p */
-      const PetscReal rax = x[2 * B.a] - x[2 * B.p], ray = x[2 * B.a + 1] - x[2 * B.p + 1], rbx = x[2 * B.b] - x[2 * B.p],
-                      rby = x[2 * B.b + 1] - x[2 * B.p + 1];
-      w[0] -= ax * rax + bx * rbx;
-      w[1] -= ax * ray + bx * rby;
-      w[2] -= ay * rax + by * rbx;
-      w[3] -= ay * ray + by * rby;
-    }
-  }
   if (MODE == 1)
     for (int q = 0; q < 4; q++) virial[q] += w[q];
   return E;
@@ -419,8 +429,7 @@ void Glue::Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt)
     dissipated_ += B.L * (Dissipated(lm) - Dissipated(B.lmax));
     B.lmax = lm;
     breaks = Damage(lm) >= 1;
-  } else if (law == ENERGY) breaks = e >= fracture_energy;
-  else breaks = (kn * dnp / sigma_) * (kn * dnp / sigma_) + (kt * dt / tau_) * (kt * dt / tau_) >= 1;
+  } else breaks = BrittleBreaks(law == ENERGY, kn, kt, fracture_energy, sigma_, tau_, l2, dnp, dt);
   if (!breaks) return;
   const PetscReal *x = in.x, en = 0.5 * kn * dnp * dnp, et = 0.5 * kt * dt * dt, released = law == SOFTENING ? fracture_energy * B.L : e * B.L;
   if (law != SOFTENING) dissipated_ += released;

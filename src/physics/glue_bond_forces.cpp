@@ -25,13 +25,16 @@ TURGOR_VECTOR_CLONES void Loop(size_t n, const PetscInt *__restrict p, const Pet
 }
 } // namespace
 
-void GlueUndamagedForces(const GlueBondGeometry &G, const PetscReal *x, PetscReal kn, PetscReal kt, bool closing, PetscReal *force, PetscReal *dnp,
-                         PetscReal *dt)
+void GlueUndamagedForces(const GlueBondGeometry &G, size_t lo, size_t hi, const PetscReal *x, PetscReal kn, PetscReal kt, bool closing, PetscReal *force,
+                         PetscReal *dnp, PetscReal *dt)
 {
+  const size_t n = hi - lo;
   if (closing)
-    Loop<true>(G.Size(), G.p.data(), G.a.data(), G.b.data(), G.lam.data(), G.sign.data(), G.gn0.data(), G.gt0.data(), G.L.data(), x, kn, kt, force, dnp, dt);
+    Loop<true>(n, G.p.data() + lo, G.a.data() + lo, G.b.data() + lo, G.lam.data() + lo, G.sign.data() + lo, G.gn0.data() + lo, G.gt0.data() + lo,
+               G.L.data() + lo, x, kn, kt, force, dnp, dt);
   else
-    Loop<false>(G.Size(), G.p.data(), G.a.data(), G.b.data(), G.lam.data(), G.sign.data(), G.gn0.data(), G.gt0.data(), G.L.data(), x, kn, kt, force, dnp, dt);
+    Loop<false>(n, G.p.data() + lo, G.a.data() + lo, G.b.data() + lo, G.lam.data() + lo, G.sign.data() + lo, G.gn0.data() + lo, G.gt0.data() + lo,
+                G.L.data() + lo, x, kn, kt, force, dnp, dt);
 }
 
 } // namespace turgor

@@ -107,6 +107,7 @@ public:
      instead of making them again (-glue_start_time: made from the positions of that time). */
   void           DeclareState(const ParticleSet &P, StateDeclaration &d) override;
   PetscErrorCode AfterStateRead(const ForceInput &in) override;
+  void           SetBlockBonds(size_t n) { block_bonds_ = n > 0 ? n : 1; } /* the force evaluation's blocks (tests: several on a small tissue) */
 
 private:
   struct Bond {        /* what every evaluation reads */
@@ -118,14 +119,14 @@ private:
   struct BondInfo { /* what only set-up and the break records read */
     PetscInt s, cell_p, cell_s;
   };
-  struct Trial { /* a bond the accepted step must commit: past its peak (softening), every intact bond (the brittle laws) */
+  struct Trial { /* a bond the accepted step must commit: past its peak (softening), breaking (the brittle laws) */
     size_t    k;
     PetscReal dnp, dt; /* <delta_n>, delta_t of the last evaluation */
   };
   template <int MODE>
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   template <int MODE>
-  size_t BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E);
+  size_t BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E, size_t block_lo = 0);
   void   CopyGeometry(); /* geometry_ from bonds_, once they are made or read back */
   void   Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
   /* the squared equivalent opening <delta_n>^2 + (k_t/k_n) delta_t^2 */
@@ -136,8 +137,16 @@ private:
      force loops' locals (their stores could alias the members, which would be loaded again per bond). */
   static bool BeforePeak(bool softening, PetscReal lmax, PetscReal l2, PetscReal l0, PetscReal l02) { return softening && lmax <= l0 && l2 <= l02; }
   bool        BeforePeak(const Bond &B, PetscReal l2) const { return BeforePeak(law == SOFTENING, B.lmax, l2, l0_, l02_); }
-  PetscReal   Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
-  PetscReal   Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
+  /* a brittle law's break at the opening (<delta_n>, delta_t), l2 = Opening2: the energy law's stored
+     energy k_n l2 / 2 >= G_c, the strength law's (k_n <delta_n> / sigma_c)^2 + (k_t delta_t / tau_c)^2 >= 1;
+     Commit's test, and the force loop's record of the bonds that the accepted step breaks */
+  static bool BrittleBreaks(bool energy_law, PetscReal kn, PetscReal kt, PetscReal Gc, PetscReal sigma, PetscReal tau, PetscReal l2, PetscReal dnp,
+                            PetscReal dt)
+  {
+    return energy_law ? 0.5 * kn * l2 >= Gc : (kn * dnp / sigma) * (kn * dnp / sigma) + (kt * dt / tau) * (kt * dt / tau) >= 1;
+  }
+  PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
+  PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
 
   PetscReal              kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
   std::vector<Bond>      bonds_;
@@ -145,9 +154,10 @@ private:
   std::vector<Trial>     trial_; /* room for every bond; the last force evaluation's first trial_n_, in bond order */
   size_t                 trial_n_     = 0;
   size_t                 trial_bonds_ = SIZE_MAX; /* the bond count trial_ was made for; SIZE_MAX: none since the bonds changed */
-  std::vector<PetscReal> push_;     /* per bond, the last evaluation's force on its bar and the share of bar end a (4 values), scattered after the loop */
-  std::vector<PetscReal> opening_;  /* the last evaluation's <delta_n> of every bond, then delta_t */
-  GlueBondGeometry       geometry_; /* bonds_'s fixed geometry by field, for GlueUndamagedForces */
+  size_t                 block_bonds_ = 1024;     /* the force evaluation's blocks of bonds */
+  std::vector<PetscReal> push_;                   /* per bond of the block, its force on its bar and the share of bar end a (4 values), scattered after */
+  std::vector<PetscReal> opening_;                /* the block's <delta_n> of every bond, then delta_t */
+  GlueBondGeometry       geometry_;               /* bonds_'s fixed geometry by field, for GlueUndamagedForces */
   std::vector<Break>     breaks_;
   PetscInt               intact_ = 0, accepted_ = 0, unbonded_ = 0; /* unbonded_: pairs left unbonded by -glue_unbonded_box */
   PetscReal              dissipated_ = 0, time_ = 0;

@@ -50,10 +50,11 @@ inline void GlueForceOf(const GlueBondOpening &o, PetscReal s, PetscReal kn, Pet
   F[0] = Fx, F[1] = Fy, F[2] = o.l1 * Fx + q * o.nx, F[3] = o.l1 * Fy + q * o.ny;
 }
 
-/* Per bond k: F = L (k_n d_n n + k_t d_t t) with d_n = <opening> (closing: the signed one too) into
-   force[4 k .. 4 k + 3] = (F_x, F_y, share of bar end a), and the opening's <delta_n>, delta_t into
-   dnp[k], dt[k]; every bond, intact or not (the caller skips the broken ones, and redoes the damaged). */
-void GlueUndamagedForces(const GlueBondGeometry &G, const PetscReal *x, PetscReal kn, PetscReal kt, bool closing, PetscReal *force, PetscReal *dnp,
-                         PetscReal *dt);
+/* Per bond k of [lo, hi): F = L (k_n d_n n + k_t d_t t) with d_n = <opening> (closing: the signed one
+   too) into force[4 (k - lo) .. 4 (k - lo) + 3] = (F_x, F_y, share of bar end a), and the opening's
+   <delta_n>, delta_t into dnp[k - lo], dt[k - lo]; every bond, intact or not (the caller skips the
+   broken ones, and redoes the damaged). */
+void GlueUndamagedForces(const GlueBondGeometry &G, size_t lo, size_t hi, const PetscReal *x, PetscReal kn, PetscReal kt, bool closing, PetscReal *force,
+                         PetscReal *dnp, PetscReal *dt);
 
 } // namespace turgor
