@@ -671,7 +671,8 @@ static PetscErrorCode HingeVectorBits(bool cells, bool chain)
    kernel (forces with it), their dashpot part (the energy balance's) too: a chain before closed cells
    (the chain's bars in node order, the cells' after them one by one: the cells' first node is not the
    chain's last bar's next), cells and a chain after them, cells alone, a chain alone (all in node
-   order: rings' closing bars, a chain's ends). */
+   order: rings' closing bars, a chain's ends). The cells' pressure likewise: each cell's nodes
+   numbered consecutively, its forces node by node (without the virial) against edge by edge. */
 static PetscErrorCode SpringOrderBits(int layout)
 {
   PolygonBuilder      B;
@@ -684,11 +685,16 @@ static PetscErrorCode SpringOrderBits(int layout)
   for (PetscReal damping : {0.0, 0.7}) {
     auto b       = std::make_unique<Bars>();
     auto h       = std::make_unique<Hinges>();
+    auto p       = std::make_unique<CellPressure>();
     b->stiffness = 30;
     b->damping   = damping;
     h->stiffness = 2.5;
+    p->law       = CellPressure::GAS;
+    p->p0        = 0.7;
+    p->SetReference(T.X.data());
     ForceModel M;
-    PetscCall(MakeModel(T.particles, List(std::move(h), std::move(b)), M)); /* hinges first: the bars add to forces already there */
+    PetscCall(
+      MakeModel(T.particles, List(std::move(h), std::move(b), std::move(p)), M)); /* hinges first: the bars and the pressure add to forces already there */
     M.KeepTermForces(true);
     std::vector<PetscReal> x = T.X, v(x.size()), f(x.size(), 0.0), fv(x.size(), 0.0);
     for (auto &q : x) q += 0.1 * rnd();
@@ -701,9 +707,9 @@ static PetscErrorCode SpringOrderBits(int layout)
     M.TakeTermForces(Fv, Fdv);
     const Bars *Bt      = dynamic_cast<const Bars *>(M.Term("bars"));
     const bool  same    = std::memcmp(f.data(), fv.data(), f.size() * sizeof(PetscReal)) == 0;
-    const bool  dashpot = damping > 0 && Fd.size() == 2 && Fdv.size() == 2 && Fd[1].size() == f.size() && Fdv[1].size() == f.size();
+    const bool  dashpot = damping > 0 && Fd.size() == 3 && Fdv.size() == 3 && Fd[1].size() == f.size() && Fdv[1].size() == f.size();
     const bool  same_d  = dashpot && std::memcmp(Fd[1].data(), Fdv[1].data(), f.size() * sizeof(PetscReal)) == 0;
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "bars (%s, damping %g): %zu of %zu in node order: forces %s%s\n", name[layout], (double)damping,
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "bars and pressure (%s, damping %g): %zu of %zu bars in node order: forces %s%s\n", name[layout], (double)damping,
                           Bt->BarsInNodeOrder(), T.particles.springs.size(), same ? "the same bits" : "DIFFER",
                           damping > 0 ? (same_d ? ", dashpot part the same bits" : ", dashpot part DIFFERS or missing") : ""));
     const size_t ordered = Bt->BarsInNodeOrder(), bars = T.particles.springs.size();
@@ -711,7 +717,7 @@ static PetscErrorCode SpringOrderBits(int layout)
              "%zu of %zu bars in node order: all of them, or the chain's 8 when the chain comes first", ordered, bars);
     TG_CHECK(damping == 0 || dashpot, "the dashpot part must be kept");
 #if !defined(__FMA__)
-    TG_CHECK(same && (damping == 0 || same_d), "the bars' forces in node order differ from the one-pass kernel's");
+    TG_CHECK(same && (damping == 0 || same_d), "the bars' or the pressure's forces in node order differ from the one-pass kernels'");
 #endif
   }
   PetscFunctionReturn(PETSC_SUCCESS);

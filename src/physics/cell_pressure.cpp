@@ -1,5 +1,6 @@
 #include <turgor/physics/cell_pressure.h>
 #include <turgor/core/geometry.h>
+#include <turgor/core/vector_clones.h>
 #include <cmath>
 
 namespace turgor {
@@ -33,8 +34,15 @@ PetscErrorCode CellPressure::SetUp(const ParticleSet &P, NeighbourSearch &nb)
 {
   PetscFunctionBeginUser;
   closed_.clear();
-  for (size_t c = 0; c < P.OwnedPolygons(); c++) /* this rank's cells (particles.h) */
-    if (!P.polygons[c].open && P.polygons[c].nodes.size() >= 3) closed_.push_back((PetscInt)c);
+  consecutive_.clear();
+  for (size_t c = 0; c < P.OwnedPolygons(); c++) { /* this rank's cells (particles.h) */
+    const std::vector<PetscInt> &nodes = P.polygons[c].nodes;
+    if (P.polygons[c].open || nodes.size() < 3) continue;
+    bool in_order = true;
+    for (size_t k = 1; k < nodes.size(); k++) in_order = in_order && nodes[k] == nodes[0] + (PetscInt)k;
+    closed_.push_back((PetscInt)c);
+    consecutive_.push_back(in_order);
+  }
   A0_.assign(P.polygons.size(), 0.0);
   P_        = &P;
   have_ref_ = false;
@@ -59,6 +67,27 @@ PetscReal CellPressure::Pressure(PetscReal A, PetscReal A0) const
   }
 }
 
+/* The pressure forces of a closed cell whose N nodes are numbered consecutively, X = x + 2 i0 and
+   F = f + 2 i0: the general loop's bits (edge k's force hp (dy, -dx) added to node k, then to node
+   k + 1, so that node m gets (f_m + F_(m-1)) + F_m and node 0 (f_0 + F_0) + F_(N-1)), each node written
+   once with both its edges' forces: no index reads, no chain of read-modify-writes through f from one
+   edge to the next, and an interior loop the compiler vectorises. */
+TURGOR_VECTOR_CLONES
+static void ConsecutiveRingForces(const PetscReal *__restrict X, size_t N, PetscReal hp, PetscReal *__restrict F)
+{
+  auto edge_x = [&](size_t k, size_t l) { return hp * (X[2 * l + 1] - X[2 * k + 1]); };
+  auto edge_y = [&](size_t k, size_t l) { return -hp * (X[2 * l] - X[2 * k]); };
+  F[0]        = (F[0] + edge_x(0, 1)) + edge_x(N - 1, 0);
+  F[1]        = (F[1] + edge_y(0, 1)) + edge_y(N - 1, 0);
+  for (size_t m = 1; m + 1 < N; m++) {
+    F[2 * m]     = (F[2 * m] + hp * (X[2 * m + 1] - X[2 * m - 1])) + hp * (X[2 * m + 3] - X[2 * m + 1]);
+    F[2 * m + 1] = (F[2 * m + 1] + -hp * (X[2 * m] - X[2 * m - 2])) + -hp * (X[2 * m + 2] - X[2 * m]);
+  }
+  const size_t m = N - 1;
+  F[2 * m]       = (F[2 * m] + edge_x(m - 1, m)) + edge_x(m, 0);
+  F[2 * m + 1]   = (F[2 * m + 1] + edge_y(m - 1, m)) + edge_y(m, 0);
+}
+
 PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
   PetscFunctionBeginUser;
@@ -67,13 +96,20 @@ PetscErrorCode CellPressure::AddForces(const ForceInput &in, PetscReal *f, Petsc
   const ForceGrain &grain   = in.Grain();
   const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
   PetscReal         w[4]    = {0, 0, 0, 0};
-  for (PetscInt c : closed_) {
-    const PolygonCell &C = in.P->polygons[c];
-    const PetscReal    A = PolygonArea(C.nodes, x);
+  for (size_t q = 0; q < closed_.size(); q++) {
+    const PetscInt     c    = closed_[q];
+    const PolygonCell &C    = in.P->polygons[c];
+    const size_t       N    = C.nodes.size();
+    const bool         fast = consecutive_[q] && !rounded && !virial; /* the rounded shares and the virial: the general loop */
+    const PetscReal   *X    = x + 2 * C.nodes[0];
+    const PetscReal    A    = fast ? PolygonSignedArea(N, [X](size_t k) { return Point2{X[2 * k], X[2 * k + 1]}; }) : PolygonArea(C.nodes, x);
     PetscCheck(law != GAS || A > 0, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Cell %" PetscInt_FMT " has area %g: the gas law needs A > 0 (inverted cell)", c,
                (double)A);
     const PetscReal hp = 0.5 * Scale(in.t) * Pressure(A, A0_[c]);
-    const size_t    N  = C.nodes.size();
+    if (fast) {
+      ConsecutiveRingForces(X, N, hp, f + 2 * C.nodes[0]);
+      continue;
+    }
     for (size_t k = 0; k < N; k++) {                                     /* bar i -> j, CCW: outward normal x length = (dy, -dx) */
       const PetscInt i = C.nodes[k], j = C.nodes[k + 1 < N ? k + 1 : 0]; /* not (k + 1) % N: a division per node */
       PetscReal      fx = hp * (x[2 * j + 1] - x[2 * i + 1]), fy = -hp * (x[2 * j] - x[2 * i]);

@@ -40,7 +40,8 @@ public:
   PetscReal ramp_time    = 0;   /* [µs]: the turgor builds up linearly over this time; 0: at once */
 
 private:
-  std::vector<PetscInt>  closed_; /* closed polygons */
+  std::vector<PetscInt>  closed_;      /* closed polygons */
+  std::vector<char>      consecutive_; /* beside closed_: its nodes numbered i0, i0 + 1, ... (a tissue's own layout) */
   std::vector<PetscReal> A0_;
   const ParticleSet     *P_        = nullptr;
   bool                   have_ref_ = false;
