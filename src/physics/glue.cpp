@@ -293,11 +293,10 @@ void Glue::CopyGeometry()
   }
 }
 
-/* The bonds [lo, hi) one at a time (MODE as Kernel's): (0, 1) the force into push_ (whose block starts
-   at bond block_lo) with the bond's
-   damage, recorded in trial_ at entry nt if it may change when accepted (returns the next entry);
-   (2) committed; (3) the energy added to *E. The forces of undamaged bonds come from
-   GlueUndamagedForces instead, whose arithmetic is this one's with D = 0. */
+/* The bonds [lo, hi) one at a time (MODE as Kernel's): (0, 1) the force with the bond's damage into
+   push_ (the block that starts at bond block_lo), recorded in trial_ at entry nt if the accepted step
+   may change it (returns the next entry); (2) committed; (3) the energy added to *E. The forces of
+   undamaged bonds come from GlueUndamagedForces instead, whose arithmetic is this one's with D = 0. */
 template <int MODE>
 size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E, size_t block_lo)
 {
