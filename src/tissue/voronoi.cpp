@@ -355,14 +355,12 @@ PetscErrorCode BuildVoronoiDiagram(MPI_Comm comm, const VoronoiSpec &spec, Voron
   }
   for (PetscInt step = 0;; step++) {
     PetscCall(StopIfInterrupted(comm, "set-up: the Voronoi tissue (-tissue_voronoi_cells, -tissue_lloyd_steps)")); /* every rank builds it alike */
+    if (step == spec.lloyd_steps) SeedsInSpaceOrder(spec.box, &D.seeds, &D.weights, &D.targets); /* the final seeds: the last diagram is built in their order */
     if (spec.size_cv > 0) PetscCall(AdaptWeights(comm, spec.box, D));
     else PetscCall(ComputePowerDiagram(spec.box, D.seeds, D.weights, &D.cells));
     if (step == spec.lloyd_steps) break;
     for (size_t i = 0; i < N; i++) D.seeds[i] = LloydMove(spec, D.seeds[i], D.cells[i]);
   }
-  SeedsInSpaceOrder(spec.box, &D.seeds, &D.weights, &D.targets);
-  PetscCall(ComputePowerDiagram(spec.box, D.seeds, D.weights, &D.cells));
-  if (spec.size_cv > 0) D.max_area_error = MaxAreaError(D.cells, D.targets);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
