@@ -98,13 +98,15 @@ turgor_add_test(dist_bar_parts_np3_tip COMMAND ${CHECK} tiprel dist_bar_parts_np
 # A Voronoi tissue in parts: the Lloyd steps run by ranges of seeds on every rank, the cells are
 # ordered along the Hilbert curve through their seeds and dealt in ranges of it, each rank builds its
 # cells and those near. The same run to the bit as the serial tissue dealt by the same ranges
-# (-fine_setup_in_parts 0), on 2 and 3 ranks (3: long), and the 1-rank run's tip to 1e-6 (glue and
-# contact summed in another order; from about 1.6 µs a node chatters against a bar, and each contact's
-# onset amplifies the round-off: the runs on 1, 2 and 3 ranks agree to 1e-13 until 1.6 µs, 2e-10 at
-# 1.8, 4e-7 at 2); a Laguerre tissue (-tissue_size_cv: the weights fitted on every rank) the same on 2.
-set(DIST_VORONOI_RANGES -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_voronoi_cells 48 -tissue_box 0,0,300,100 -ts_max_time 2
+# (-fine_setup_in_parts 0), on 2 and 3 ranks (3: long), and the 1-rank run's tip to 1e-8 (glue and
+# contact summed in another order: 1.5e-12 measured). To 1.5 µs: from about 1.6 µs a node chatters
+# against a bar and each contact's onset amplifies the round-off of the sums' order (the runs on 1, 2
+# and 3 ranks then part by 2e-10 at 1.8 µs and 4e-7 at 2, 2 against 3 ranks as much), which no bound
+# on that order can hold; the exact sums hold through it (restart.cmake, voronoi_exact). A Laguerre
+# tissue (-tissue_size_cv: the weights fitted on every rank) the same on 2.
+set(DIST_VORONOI_RANGES -options_file_yaml ${PROJECT_SOURCE_DIR}/config/voronoi_bar_fine.yaml -tissue_voronoi_cells 48 -tissue_box 0,0,300,100 -ts_max_time 1.5
   -fine_snapshots 0 -fine_progress_interval 0 -fine_partitioner ranges)
-turgor_ranks_agree(voronoi_parts TOL 1e-6 OPTIONS ${DIST_VORONOI_RANGES})
+turgor_ranks_agree(voronoi_parts TOL 1e-8 OPTIONS ${DIST_VORONOI_RANGES})
 set(DIST_LAGUERRE_RANGES ${DIST_VORONOI_RANGES} -tissue_size_cv 0.3 -ts_max_time 0.5)
 foreach(np 2 3)
   set(tier "")
