@@ -346,7 +346,8 @@ static PetscErrorCode TestWorkOfSeparation()
 }
 
 /* GlueUndamagedForces against the same formula, bond by bond, in this file's scalar code: the same
-   bits (a fused multiply-add or a reordered sum in the vectorised loop would show here). */
+   bits (a fused multiply-add or a reordered sum in the vectorised loop would show here), and its marks
+   of the bonds to commit against the laws' scalar tests, for every law, with broken bonds among them. */
 static PetscErrorCode TestUndamagedForcesBits()
 {
   PetscFunctionBeginUser;
@@ -360,37 +361,53 @@ static PetscErrorCode TestUndamagedForcesBits()
   for (size_t k = 0; k < n; k++) {
     G.p[k] = (PetscInt)(gen() % nodes), G.a[k] = (PetscInt)(gen() % nodes), G.b[k] = (PetscInt)((G.a[k] + 1 + gen() % (nodes - 1)) % nodes);
     G.lam[k] = 0.5 + 0.5 * U(gen), G.sign[k] = U(gen) > 0 ? 1 : -1, G.gn0[k] = U(gen), G.gt0[k] = U(gen), G.L[k] = 1 + U(gen);
+    G.intact[k] = U(gen) > -0.8 ? 1 : 0, G.lmax[k] = U(gen) > 0.6 ? 11 + U(gen) : 0; /* a tenth broken, a fifth past the peak once */
   }
-  const PetscReal kn = 1.3e4, kt = 0.7e4;
-  for (bool closing : {false, true}) {
-    std::vector<PetscReal> force(4 * n), opening(2 * n);
-    for (size_t lo : {(size_t)0, (size_t)400}) { /* in two ranges, as the glue's blocks call it */
-      const size_t hi = lo ? n : 400;
-      GlueUndamagedForces(G, lo, hi, x.data(), kn, kt, closing, force.data() + 4 * lo, opening.data() + lo, opening.data() + n + lo);
-    }
-    size_t differ = 0;
-    for (size_t k = 0; k < n; k++) {
-      const PetscReal ex = x[2 * G.b[k]] - x[2 * G.a[k]], ey = x[2 * G.b[k] + 1] - x[2 * G.a[k] + 1];
-      const PetscReal il = 1 / std::sqrt(ex * ex + ey * ey), tx = ex * il, ty = ey * il, nx = -G.sign[k] * ty, ny = G.sign[k] * tx;
-      const PetscReal l1 = 1 - G.lam[k];
-      const PetscReal gx = x[2 * G.p[k]] - l1 * x[2 * G.a[k]] - G.lam[k] * x[2 * G.b[k]];
-      const PetscReal gy = x[2 * G.p[k] + 1] - l1 * x[2 * G.a[k] + 1] - G.lam[k] * x[2 * G.b[k] + 1];
-      const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
-      const PetscReal dn = gn - G.gn0[k], dt = gt - G.gt0[k], dnp = std::max(dn, (PetscReal)0), dnf = closing ? dn : dnp;
-      const PetscReal s = G.L[k], Fn = s * kn * dnf, Ft = s * kt * dt;
-      const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
-      const PetscReal want[6] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny, dnp, dt};
-      const PetscReal got[6]  = {force[4 * k], force[4 * k + 1], force[4 * k + 2], force[4 * k + 3], opening[k], opening[n + k]};
-      differ += std::memcmp(want, got, sizeof want) != 0;
-    }
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "vectorised undamaged forces (%s): %zu of %zu bonds differ from the scalar formula in some bit\n",
-                          closing ? "closing too" : "opening only", differ, n));
+  GlueLawParameters law{};
+  law.kn = 1.3e4, law.kt = 0.7e4, law.beta2 = law.kt / law.kn, law.l0 = 10, law.l02 = law.l0 * law.l0, law.Gc = 6e5, law.sigma = 1.3e5, law.tau = 7e4;
+  for (int which : {0, 1, 2})
+    for (bool closing : {false, true}) {
+      law.law = which, law.closing = closing;
+      std::vector<PetscReal> force(4 * n), opening(3 * n);
+      for (size_t lo : {(size_t)0, (size_t)400}) { /* in two ranges, as the glue's blocks call it */
+        const size_t hi = lo ? n : 400;
+        GlueUndamagedForces(G, lo, hi, x.data(), law, force.data() + 4 * lo, opening.data() + lo, opening.data() + n + lo, opening.data() + 2 * n + lo);
+      }
+      size_t differ = 0, marked = 0, mismarked = 0;
+      for (size_t k = 0; k < n; k++) {
+        const PetscReal ex = x[2 * G.b[k]] - x[2 * G.a[k]], ey = x[2 * G.b[k] + 1] - x[2 * G.a[k] + 1];
+        const PetscReal il = 1 / std::sqrt(ex * ex + ey * ey), tx = ex * il, ty = ey * il, nx = -G.sign[k] * ty, ny = G.sign[k] * tx;
+        const PetscReal l1 = 1 - G.lam[k];
+        const PetscReal gx = x[2 * G.p[k]] - l1 * x[2 * G.a[k]] - G.lam[k] * x[2 * G.b[k]];
+        const PetscReal gy = x[2 * G.p[k] + 1] - l1 * x[2 * G.a[k] + 1] - G.lam[k] * x[2 * G.b[k] + 1];
+        const PetscReal gt = gx * tx + gy * ty, gn = gx * nx + gy * ny;
+        const PetscReal dn = gn - G.gn0[k], dt = gt - G.gt0[k], dnp = std::max(dn, (PetscReal)0), dnf = closing ? dn : dnp;
+        const PetscReal s = G.L[k], Fn = s * law.kn * dnf, Ft = s * law.kt * dt;
+        const PetscReal Fx = Fn * nx + Ft * tx, Fy = Fn * ny + Ft * ty, q = (Ft * gn - Fn * gt) * il;
+        const PetscReal want[6] = {Fx, Fy, l1 * Fx + q * nx, l1 * Fy + q * ny, dnp, dt};
+        const PetscReal got[6]  = {force[4 * k], force[4 * k + 1], force[4 * k + 2], force[4 * k + 3], opening[k], opening[n + k]};
+        differ += std::memcmp(want, got, sizeof want) != 0;
+        /* the laws' tests written out: past the peak, or breaking */
+        const PetscReal l2      = dnp * dnp + law.beta2 * dt * dt;
+        const bool      changes = which == 2 ? !(G.lmax[k] <= law.l0 && l2 <= law.l02)
+                                : which == 0 ? 0.5 * law.kn * l2 >= law.Gc
+                                             : (law.kn * dnp / law.sigma) * (law.kn * dnp / law.sigma) + (law.kt * dt / law.tau) * (law.kt * dt / law.tau) >= 1;
+        const bool      mark    = G.intact[k] != 0 && changes;
+        marked += mark;
+        mismarked += (opening[2 * n + k] == 1) != mark || (opening[2 * n + k] != 0 && opening[2 * n + k] != 1);
+      }
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "vectorised undamaged forces (law %d, %s): %zu of %zu bonds differ from the scalar formula in some bit; %zu marked, %zu wrongly\n",
+                            which, closing ? "closing too" : "opening only", differ, n, marked, mismarked));
+      TG_CHECK(marked > 10 && marked < n - 100, "law %d: %zu of %zu bonds marked: the test's openings do not sample both sides of the law's threshold", which,
+               marked, n);
+      TG_CHECK(mismarked == 0, "law %d: %zu bonds marked otherwise than the law's test", which, mismarked);
 #if defined(__FMA__) /* a -march=native build (TURGOR_NATIVE): both sides may fuse, each its own way */
-    (void)differ;
+      (void)differ;
 #else
-    TG_CHECK(differ == 0, "the vectorised glue loop gave other bits than the scalar formula for %zu bonds", differ);
+      TG_CHECK(differ == 0, "the vectorised glue loop gave other bits than the scalar formula for %zu bonds", differ);
 #endif
-  }
+    }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

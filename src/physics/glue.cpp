@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#if defined(__SSE2__)
+  #include <emmintrin.h>
+#endif
 
 namespace turgor {
 
@@ -290,7 +293,13 @@ void Glue::CopyGeometry()
     const Bond &B = bonds_[k];
     G.p[k] = B.p, G.a[k] = B.a, G.b[k] = B.b;
     G.lam[k] = B.lam, G.sign[k] = B.sign, G.gn0[k] = B.gn0, G.gt0[k] = B.gt0, G.L[k] = B.L;
+    G.intact[k] = B.intact ? 1 : 0, G.lmax[k] = B.lmax;
   }
+}
+
+GlueLawParameters Glue::LawParameters() const
+{
+  return {law, compression, normal_stiffness, kt_, beta2_, l0_, l02_, fracture_energy, sigma_, tau_};
 }
 
 /* The bonds [lo, hi) one at a time (MODE as Kernel's): (0, 1) the force with the bond's damage into
@@ -302,39 +311,64 @@ size_t Glue::BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, Pe
 {
   /* the law's parameters in locals: the stores below could alias the members, which would be
      loaded again for every bond */
-  const PetscReal *x = in.x, kn = normal_stiffness, kt = kt_;
-  const bool       softening = law == SOFTENING, closing = compression, energy_law = law == ENERGY;
-  const PetscReal  l0 = l0_, l02 = l02_, beta2 = beta2_, Gc = fracture_energy, sigma = sigma_, tau = tau_;
-  PetscReal       *push  = push_.data();
-  Trial           *trial = trial_.data();
-  PetscReal        e     = 0;
+  const PetscReal        *x         = in.x;
+  const GlueLawParameters P         = LawParameters();
+  const bool              softening = P.law == SOFTENING;
+  PetscReal              *push      = push_.data();
+  Trial                  *trial     = trial_.data();
+  PetscReal               e         = 0;
   for (size_t k = lo; k < hi; k++) {
     Bond &B = bonds_[k];
     if (!B.intact) continue;
     const GlueBondOpening o  = GlueOpeningAt(x, B.p, B.a, B.b, B.lam, B.sign, B.gn0, B.gt0);
     const PetscReal       dn = o.dn, dt = o.dt, dnp = o.dnp;
     /* damage only past the peak: below it (most bonds, most of the time) no square root */
-    const PetscReal l2     = Opening2(dnp, dt, beta2);
-    const bool      before = BeforePeak(softening, B.lmax, l2, l0, l02);
+    const PetscReal l2     = GlueOpening2(dnp, dt, P.beta2);
+    const bool      before = GlueBeforePeak(softening, B.lmax, l2, P.l0, P.l02);
     const PetscReal D      = softening && !before ? Damage(std::max(B.lmax, std::sqrt(l2))) : 0;
     if (MODE <= 1) {
       trial[nt] = {k, dnp, dt};
-      nt += softening ? !before : BrittleBreaks(energy_law, kn, kt, Gc, sigma, tau, l2, dnp, dt);
+      nt += softening ? !before : GlueBrittleBreaks(P.law == ENERGY, P.kn, P.kt, P.Gc, P.sigma, P.tau, l2, dnp, dt);
     }
     if (MODE == 2) {
       Commit(in, k, dnp, dt);
       continue;
     }
-    const PetscReal dnf = closing ? dn : dnp; /* the normal force's opening: closing too with -glue_compression */
+    const PetscReal dnf = P.closing ? dn : dnp; /* the normal force's opening: closing too with -glue_compression */
     if (MODE == 3) {
-      e += (1 - D) * B.L * 0.5 * (kn * dnf * dnf + kt * dt * dt);
+      e += (1 - D) * B.L * 0.5 * (P.kn * dnf * dnf + P.kt * dt * dt);
       continue;
     }
-    GlueForceOf(o, (1 - D) * B.L, kn, kt, dnf, push + 4 * (k - block_lo));
+    GlueForceOf(o, (1 - D) * B.L, P.kn, P.kt, dnf, push + 4 * (k - block_lo));
   }
   if (MODE == 3) *E += e;
   return nt;
 }
+
+namespace {
+/* Bonds [lo, hi)'s forces (force: 4 values a bond from lo, as GlueUndamagedForces writes them) added
+   into f: -F on the node, the share A on bar end a, F - A on b; the broken bonds skipped. With SSE2
+   each node's (x, y) is one register: one load, add and store instead of two (GCC does not pair
+   them); the same additions in the same order, so the same bits as the scalar loop. */
+void ScatterBlock(const GlueBondGeometry &G, size_t lo, size_t hi, const PetscReal *force, PetscReal *f)
+{
+  const PetscInt  *p = G.p.data(), *a = G.a.data(), *b = G.b.data();
+  const PetscReal *intact = G.intact.data();
+  for (size_t k = lo; k < hi; k++) {
+    if (intact[k] == 0) continue;
+    const PetscReal *F  = force + 4 * (k - lo);
+    PetscReal       *fp = f + 2 * p[k], *fa = f + 2 * a[k], *fb = f + 2 * b[k];
+#if defined(__SSE2__)
+    const __m128d Fv = _mm_loadu_pd(F), Av = _mm_loadu_pd(F + 2), Bv = _mm_sub_pd(Fv, Av); /* lambda F - q n = F - ((1 - lambda) F + q n) */
+    _mm_storeu_pd(fp, _mm_sub_pd(_mm_loadu_pd(fp), Fv));
+    _mm_storeu_pd(fa, _mm_add_pd(_mm_loadu_pd(fa), Av));
+    _mm_storeu_pd(fb, _mm_add_pd(_mm_loadu_pd(fb), Bv));
+#else
+    fp[0] -= F[0], fp[1] -= F[1], fa[0] += F[2], fa[1] += F[3], fb[0] += F[0] - F[2], fb[1] += F[1] - F[3];
+#endif
+  }
+}
+} // namespace
 
 /* MODE 0: forces, 1: forces and virial, 2: accept (damage, breaks), 3: energy (returned).
    With F_n = (1 - D) L k_n <delta_n>, F_t = (1 - D) L k_t delta_t and F = F_n n + F_t t: force -F on
@@ -350,58 +384,54 @@ PetscReal Glue::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     BondRange<MODE>(in, 0, n, 0, &E);
     return E;
   }
-  /* every bond's force as if undamaged, vectorised; then, in bond order, the record of the bonds the
-     accepted step may change (AcceptStep at this state commits from it instead of scanning every
-     bond), and the force of a damaged bond (past its peak) again with its damage; then the forces
-     added into f. Block by block of bonds, so that the block's records, forces and openings are still
-     in the cache for the second and third passes (a large tissue's bonds stream tens of MB a pass). */
+  /* every bond's force as if undamaged, vectorised, with a mark on the bonds the accepted step may
+     change; then, in bond order, the record of the marked bonds (AcceptStep at this state commits
+     from it instead of scanning every bond), a damaged bond's force (past its peak) again with its
+     damage; then the forces added into f. Block by block of bonds, so that the block's forces,
+     openings and marks are still in the cache for the second and third passes (a large tissue's
+     bonds stream tens of MB a pass). */
   PetscCheckAbort(geometry_.Size() == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "glue: the bonds' geometry arrays are out of date");
-  const size_t block = std::min(n, block_bonds_);
+  const size_t            block = std::min(n, block_bonds_);
+  const GlueLawParameters P     = LawParameters();
   trial_.resize(n); /* room for every bond; the first trial_n_ are recorded below */
   push_.resize(4 * block);
-  opening_.resize(2 * block);
-  const bool        softening = law == SOFTENING, energy_law = law == ENERGY;
-  const PetscReal   l0 = l0_, l02 = l02_, beta2 = beta2_, *dnp = opening_.data(), *dt = opening_.data() + block;
-  const PetscReal   kn = normal_stiffness, kt = kt_, Gc = fracture_energy, sigma = sigma_, tau = tau_; /* locals: trial's stores could alias the members */
-  const PetscReal  *push    = push_.data();
-  Trial            *trial   = trial_.data();
-  size_t            nt      = 0;
-  const ForceGrain &grain   = in.Grain();
-  const bool        rounded = grain.On(); /* once: f's stores could alias the grain */
+  opening_.resize(3 * block);
+  const PetscReal        *dnp = opening_.data(), *dt = opening_.data() + block, *mark = opening_.data() + 2 * block;
+  const PetscReal        *push    = push_.data();
+  Trial                  *trial   = trial_.data();
+  size_t                  nt      = 0;
+  const ForceGrain       &grain   = in.Grain();
+  const bool              rounded = grain.On(); /* once: f's stores could alias the grain */
+  const GlueBondGeometry &G       = geometry_;
   for (size_t lo = 0; lo < n; lo += block) {
     const size_t hi = std::min(n, lo + block);
-    GlueUndamagedForces(geometry_, lo, hi, x, kn, kt, compression, push_.data(), opening_.data(), opening_.data() + block);
+    GlueUndamagedForces(G, lo, hi, x, P, push_.data(), opening_.data(), opening_.data() + block, opening_.data() + 2 * block);
     for (size_t k = lo; k < hi; k++) {
-      const Bond &B = bonds_[k];
-      if (!B.intact) continue;
-      const PetscReal l2     = Opening2(dnp[k - lo], dt[k - lo], beta2);
-      const bool      before = BeforePeak(softening, B.lmax, l2, l0, l02);
-      /* damaged: again with its damage (and recorded there); else stored always, kept if the accepted
-         step breaks it (the brittle laws; a softening bond before its peak has nothing to commit) */
-      if (softening && !before) nt = BondRange<0>(in, k, k + 1, nt, nullptr, lo);
-      else {
-        trial[nt] = {k, dnp[k - lo], dt[k - lo]};
-        nt += !softening && BrittleBreaks(energy_law, kn, kt, Gc, sigma, tau, l2, dnp[k - lo], dt[k - lo]);
-      }
+      if (mark[k - lo] == 0) continue;
+      if (P.law == SOFTENING) nt = BondRange<0>(in, k, k + 1, nt, nullptr, lo); /* damaged: again with its damage, and recorded there */
+      else trial[nt++] = {k, dnp[k - lo], dt[k - lo]};                          /* broken by the accepted step */
     }
     /* Scatter apart from the evaluation: consecutive bonds share bar nodes, and adding into f inside
        the loop above chains every bond's square root and division behind the previous bond's stores. */
+    if (MODE == 0 && !rounded) {
+      ScatterBlock(G, lo, hi, push, f);
+      continue;
+    }
     for (size_t k = lo; k < hi; k++) {
-      const Bond &B = bonds_[k];
-      if (!B.intact) continue;
+      if (G.intact[k] == 0) continue;
+      const PetscInt   p = G.p[k], a = G.a[k], b = G.b[k];
       const PetscReal *F  = push + 4 * (k - lo);
       PetscReal        Fx = F[0], Fy = F[1], ax = F[2], ay = F[3];
       if (rounded) grain(Fx, Fy), grain(ax, ay);
       const PetscReal bx = Fx - ax, by = Fy - ay; /* lambda F - q n = F - (1 - lambda) F - q n */
-      f[2 * B.p] -= Fx;
-      f[2 * B.p + 1] -= Fy;
-      f[2 * B.a] += ax;
-      f[2 * B.a + 1] += ay;
-      f[2 * B.b] += bx;
-      f[2 * B.b + 1] += by;
+      f[2 * p] -= Fx;
+      f[2 * p + 1] -= Fy;
+      f[2 * a] += ax;
+      f[2 * a + 1] += ay;
+      f[2 * b] += bx;
+      f[2 * b + 1] += by;
       if (MODE == 1) { /* -sum f (x) x, relative to the node: a at x_a - x_p, b at x_b - x_p */
-        const PetscReal rax = x[2 * B.a] - x[2 * B.p], ray = x[2 * B.a + 1] - x[2 * B.p + 1], rbx = x[2 * B.b] - x[2 * B.p],
-                        rby = x[2 * B.b + 1] - x[2 * B.p + 1];
+        const PetscReal rax = x[2 * a] - x[2 * p], ray = x[2 * a + 1] - x[2 * p + 1], rbx = x[2 * b] - x[2 * p], rby = x[2 * b + 1] - x[2 * p + 1];
         w[0] -= ax * rax + bx * rbx;
         w[1] -= ax * ray + bx * rby;
         w[2] -= ay * rax + by * rbx;
@@ -426,13 +456,14 @@ void Glue::Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt)
     if (BeforePeak(B, l2)) return;
     const PetscReal lm = std::max(B.lmax, std::sqrt(l2));
     dissipated_ += B.L * (Dissipated(lm) - Dissipated(B.lmax));
-    B.lmax = lm;
-    breaks = Damage(lm) >= 1;
-  } else breaks = BrittleBreaks(law == ENERGY, kn, kt, fracture_energy, sigma_, tau_, l2, dnp, dt);
+    B.lmax = geometry_.lmax[k] = lm;
+    breaks                     = Damage(lm) >= 1;
+  } else breaks = GlueBrittleBreaks(law == ENERGY, kn, kt, fracture_energy, sigma_, tau_, l2, dnp, dt);
   if (!breaks) return;
   const PetscReal *x = in.x, en = 0.5 * kn * dnp * dnp, et = 0.5 * kt * dt * dt, released = law == SOFTENING ? fracture_energy * B.L : e * B.L;
   if (law != SOFTENING) dissipated_ += released;
-  B.intact = false;
+  B.intact            = false;
+  geometry_.intact[k] = 0;
   intact_--;
   const PetscReal c[2] = {(1 - B.lam) * x[2 * B.a] + B.lam * x[2 * B.b], (1 - B.lam) * x[2 * B.a + 1] + B.lam * x[2 * B.b + 1]};
   const BondInfo &I    = info_[k];

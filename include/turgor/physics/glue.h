@@ -129,24 +129,13 @@ private:
   size_t BondRange(const ForceInput &in, size_t lo, size_t hi, size_t nt, PetscReal *E, size_t block_lo = 0);
   void   CopyGeometry(); /* geometry_ from bonds_, once they are made or read back */
   void   Commit(const ForceInput &in, size_t k, PetscReal dnp, PetscReal dt);
-  /* the squared equivalent opening <delta_n>^2 + (k_t/k_n) delta_t^2 */
-  static PetscReal Opening2(PetscReal dnp, PetscReal dt, PetscReal beta2) { return dnp * dnp + beta2 * dt * dt; }
-  PetscReal        Opening2(PetscReal dnp, PetscReal dt) const { return Opening2(dnp, dt, beta2_); }
-  /* softening bond still below its peak (no damage, nothing to commit; lmax is recorded from the
-     peak on): tested without a square root. The static forms take the law's parameters from the
-     force loops' locals (their stores could alias the members, which would be loaded again per bond). */
-  static bool BeforePeak(bool softening, PetscReal lmax, PetscReal l2, PetscReal l0, PetscReal l02) { return softening && lmax <= l0 && l2 <= l02; }
-  bool        BeforePeak(const Bond &B, PetscReal l2) const { return BeforePeak(law == SOFTENING, B.lmax, l2, l0_, l02_); }
-  /* a brittle law's break at the opening (<delta_n>, delta_t), l2 = Opening2: the energy law's stored
-     energy k_n l2 / 2 >= G_c, the strength law's (k_n <delta_n> / sigma_c)^2 + (k_t delta_t / tau_c)^2 >= 1;
-     Commit's test, and the force loop's record of the bonds that the accepted step breaks */
-  static bool BrittleBreaks(bool energy_law, PetscReal kn, PetscReal kt, PetscReal Gc, PetscReal sigma, PetscReal tau, PetscReal l2, PetscReal dnp,
-                            PetscReal dt)
-  {
-    return energy_law ? 0.5 * kn * l2 >= Gc : (kn * dnp / sigma) * (kn * dnp / sigma) + (kt * dt / tau) * (kt * dt / tau) >= 1;
-  }
-  PetscReal Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
-  PetscReal Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
+  /* the law's tests at the members' parameters (glue_bond_forces.h: the one formula of these and of the
+     vectorised loop, which takes the parameters as locals) */
+  PetscReal         Opening2(PetscReal dnp, PetscReal dt) const { return GlueOpening2(dnp, dt, beta2_); }
+  bool              BeforePeak(const Bond &B, PetscReal l2) const { return GlueBeforePeak(law == SOFTENING, B.lmax, l2, l0_, l02_); }
+  GlueLawParameters LawParameters() const;
+  PetscReal         Damage(PetscReal l) const;     /* D(l) of the bilinear law, 0 for the brittle ones */
+  PetscReal         Dissipated(PetscReal l) const; /* energy per length dissipated once the largest opening is l */
 
   PetscReal              kt_ = 0, beta2_ = 0, sigma_ = 0, tau_ = 0, l0_ = 0, l02_ = 0, lf_ = 0; /* beta2_ = k_t/k_n, l02_ = l0_^2 */
   std::vector<Bond>      bonds_;
@@ -156,8 +145,8 @@ private:
   size_t                 trial_bonds_ = SIZE_MAX; /* the bond count trial_ was made for; SIZE_MAX: none since the bonds changed */
   size_t                 block_bonds_ = 1024;     /* the force evaluation's blocks of bonds */
   std::vector<PetscReal> push_;                   /* per bond of the block, its force on its bar and the share of bar end a (4 values), scattered after */
-  std::vector<PetscReal> opening_;                /* the block's <delta_n> of every bond, then delta_t */
-  GlueBondGeometry       geometry_;               /* bonds_'s fixed geometry by field, for GlueUndamagedForces */
+  std::vector<PetscReal> opening_;                /* the block's <delta_n> of every bond, then delta_t, then its mark */
+  GlueBondGeometry       geometry_;               /* bonds_ by field, for the force loops (intact and lmax kept equal by Commit) */
   std::vector<Break>     breaks_;
   PetscInt               intact_ = 0, accepted_ = 0, unbonded_ = 0; /* unbonded_: pairs left unbonded by -glue_unbonded_box */
   PetscReal              dissipated_ = 0, time_ = 0;
