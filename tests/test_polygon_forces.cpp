@@ -4,7 +4,8 @@ static const char help[] = "Force terms of polygonal cells (bars, hinges, contac
                            "contact (lever rule, momenta, corners once, Coulomb stick/slip, history across rebuilds),\n"
                            "velocity Verlet energy error ~ dt^2, no contact lists without contact, and the near list of\n"
                            "contact against lists rebuilt at every step (a compressed tissue of 64 hexagons, 3000 steps), and the\n"
-                           "hinges' vectorised forces and the bars' in node order bit for bit against the one-pass kernels'.\n";
+                           "hinges' vectorised forces and the bars' in node order bit for bit against the one-pass kernels', and the contact's\n"
+                           "first pass against its scalar formula.\n";
 #include "test_util.h"
 #include "polygon_util.h"
 #include <turgor/physics/bars.h>
@@ -723,6 +724,46 @@ static PetscErrorCode SpringOrderBits(int layout)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The contact's first pass (two pairs at a time with AVX where the CPU has it, else one by one) against
+   the scalar formula, pair by pair: the same list. Nodes sit at 2 r from their bar's line to round-off
+   (either side of the test), beyond its ends, on its ends, at its middle; an odd count (the AVX pass's
+   last pair alone); a bar of zero length. */
+static PetscErrorCode ContactFirstPassAgrees()
+{
+  PetscFunctionBeginUser;
+  turgor_test::Random          rnd(11);
+  const PetscReal              R = 0.93, R2 = R * R;
+  const size_t                 n = 2001;
+  std::vector<PetscReal>       x;
+  std::vector<ContactNearPair> near;
+  for (size_t k = 0; k < n; k++) {
+    const PetscReal     ax = 10 * rnd(), ay = 10 * rnd(), len = k % 97 == 0 ? 0 : 0.5 + 3 * std::fabs(rnd()), th = 3.2 * rnd();
+    const PetscReal     ex = len * std::cos(th), ey = len * std::sin(th);
+    const PetscReal     ts[6] = {-0.1, 0, 0.5 + 0.4 * rnd(), 1, 1.05, 0.01}, t = ts[k % 6];
+    const PetscReal     dist = R * (1 + (k % 3 == 0 ? 4e-16 * rnd() : 0.2 * rnd())), nl = len > 0 ? len : 1;
+    const PetscReal     px = ax + t * ex - dist * ey / nl, py = ay + t * ey + dist * ex / nl;
+    const std::uint32_t base = (std::uint32_t)x.size();
+    x.insert(x.end(), {ax, ay, ax + ex, ay + ey, px, py});
+    near.push_back({base + 4, base, base + 2, (PetscInt)k});
+  }
+  std::vector<PetscInt> want;
+  for (const ContactNearPair &C : near) {
+    const PetscReal ex = x[C.b2] - x[C.a2], ey = x[C.b2 + 1] - x[C.a2 + 1];
+    const PetscReal px = x[C.p2] - x[C.a2], py = x[C.p2 + 1] - x[C.a2 + 1];
+    const PetscReal L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
+    const PetscReal dx = px * L2 - t * ex, dy = py * L2 - t * ey;
+    if (dx * dx + dy * dy < R2 * L2 * L2) want.push_back(C.k);
+  }
+  std::vector<PetscInt> got(n), one(n);
+  got.resize(ContactTouchingPairs(near.data(), n, x.data(), R2, got.data()));
+  one.resize(ContactTouchingPairsOneByOne(near.data(), n, x.data(), R2, one.data()));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "contact's first pass: %zu of %zu pairs touch by the scalar formula; the pass %s, one by one %s\n", want.size(), n,
+                        got == want ? "the same list" : "ANOTHER list", one == want ? "the same list" : "ANOTHER list"));
+  TG_CHECK(want.size() > n / 5 && want.size() < 4 * n / 5, "the test's pairs do not sample both sides of 2 r (%zu of %zu touch)", want.size(), n);
+  TG_CHECK(got == want && one == want, "the contact's first pass lists other pairs than the scalar formula");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   PetscFunctionBeginUser;
@@ -741,6 +782,7 @@ int main(int argc, char **argv)
   PetscCall(HingeVectorBits(true, false));
   PetscCall(HingeVectorBits(false, true));
   for (int layout = 0; layout < 4; layout++) PetscCall(SpringOrderBits(layout));
+  PetscCall(ContactFirstPassAgrees());
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "all polygon force checks passed\n"));
   PetscCall(PetscFinalize());
   return 0;

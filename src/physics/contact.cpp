@@ -1,8 +1,4 @@
 #include <turgor/physics/contact.h>
-#include <turgor/core/vector_clones.h>
-#if defined(__SSE2__)
-  #include <emmintrin.h>
-#endif
 #include <algorithm>
 #include <unordered_map>
 #include <cmath>
@@ -87,42 +83,54 @@ inline bool Contact::Eligible(const ParticleSet &P, PetscInt p, PetscInt s) cons
   return !(d == 0 || d == 1 || d == N - 1 || d == N - 2);
 }
 
-/* Node p is closest to bar s at its end q (a corner). The seed counts such a contact from both bars
-   at q; here exactly one counts it: the other bar s2 at q if p projects inside s2 (s2 is closer or
-   as close), the lower-numbered of the two if p is closest to q on both, otherwise s. A bar s2 that
-   may not touch p (own or adjacent bars) leaves it to s. */
-inline bool Contact::CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const
+/* Pair (p, s) with the bars next to s at its ends: at end q the other bar s2 at q, if it may touch p
+   (not one of p's own or adjacent bars), by its far end o. */
+Contact::Candidate Contact::MakeCandidate(const ParticleSet &P, PetscInt p, PetscInt s) const
 {
-  const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
-  if (s2 < 0 || s2 == s || !Eligible(P, p, s2)) return true;
-  const PetscInt  o  = P.springs[s2].i == q ? P.springs[s2].j : P.springs[s2].i; /* far end of s2 */
+  Candidate C{p, P.springs[s].i, P.springs[s].j, s, -1, -1, false, false};
+  for (int end = 0; end < 2; end++) {
+    const PetscInt q  = end ? C.b : C.a;
+    const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
+    if (s2 < 0 || s2 == s || !Eligible(P, p, s2)) continue;
+    (end ? C.ob : C.oa)           = P.springs[s2].i == q ? P.springs[s2].j : P.springs[s2].i;
+    (end ? C.lower_b : C.lower_a) = s2 < s;
+  }
+  return C;
+}
+
+/* Node p is closest to bar s at its end q (a corner); s2 the bar next to s at q (far end o, or -1:
+   none that may touch p; `lower`: s2 numbered below s). The seed counts such a contact from both
+   bars at q; here exactly one counts it: s2 if p projects inside s2 (s2 is closer or as close), the
+   lower-numbered of the two if p is closest to q on both, otherwise s. Without s2, s. */
+inline bool Contact::CornerOwner(const PetscReal *x, PetscInt p, PetscInt q, PetscInt o, bool lower)
+{
+  if (o < 0) return true;
   const PetscReal ex = x[2 * o] - x[2 * q], ey = x[2 * o + 1] - x[2 * q + 1];
   const PetscReal t = ((x[2 * p] - x[2 * q]) * ex + (x[2 * p + 1] - x[2 * q + 1]) * ey) / (ex * ex + ey * ey);
-  if (t <= 0) return s < s2; /* closest to q on both bars */
+  if (t <= 0) return !lower; /* closest to q on both bars */
   if (t < 1) return false;   /* inside s2: s2 counts it */
   return true;
 }
 
-/* Node p projects inside bar s and lies within the slab of s2, the bar next to s at its end q, too
-   (the inner side of a joint): is it nearer to s2 (ties: the lower-numbered bar)? Then s2 alone
-   counts it. The seed counts such a node from both bars, and that count jumps by a whole contact's
-   energy when the node leaves one slab while touching (on a nearly straight wall pushed in, at every
-   joint a node slides past): with the nearer bar alone the touching energy is k_n/2 (2 r - dist)^2
-   with dist the distance to the wall, continuous everywhere (its gradient turns at the bisector). */
-inline bool Contact::NearerNeighbour(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q, PetscReal d2) const
+/* Node p projects inside bar s and lies within the slab of s2, the bar next to s at its end q (far
+   end o, -1: none that may touch p), too (the inner side of a joint): is it nearer to s2 (ties: the
+   lower-numbered bar)? Then s2 alone counts it. The seed counts such a node from both bars, and that
+   count jumps by a whole contact's energy when the node leaves one slab while touching (on a nearly
+   straight wall pushed in, at every joint a node slides past): with the nearer bar alone the touching
+   energy is k_n/2 (2 r - dist)^2 with dist the distance to the wall, continuous everywhere (its
+   gradient turns at the bisector). */
+inline bool Contact::NearerNeighbour(const PetscReal *x, PetscInt p, PetscInt q, PetscInt o, bool lower, PetscReal d2)
 {
-  const PetscInt s2 = node_bars_[2 * q] == s ? node_bars_[2 * q + 1] : node_bars_[2 * q];
-  if (s2 < 0 || s2 == s) return false;
+  if (o < 0) return false;
   /* the geometry first: a node along a bar's middle is outside its neighbours' spans (one product) */
-  const PetscInt  o  = P.springs[s2].i == q ? P.springs[s2].j : P.springs[s2].i; /* far end of s2 */
   const PetscReal ex = x[2 * o] - x[2 * q], ey = x[2 * o + 1] - x[2 * q + 1], L2 = ex * ex + ey * ey;
   const PetscReal wx = x[2 * p] - x[2 * q], wy = x[2 * p + 1] - x[2 * q + 1], proj = wx * ex + wy * ey;
   if (proj <= 0 || proj >= L2) return false;
   const PetscReal t = proj / L2, dx = wx - t * ex, dy = wy - t * ey, e2 = dx * dx + dy * dy;
-  return (e2 < d2 || (e2 == d2 && s2 < s)) && Eligible(P, p, s2);
+  return e2 < d2 || (e2 == d2 && lower);
 }
 
-inline bool Contact::Counts(const ParticleSet &P, const PetscReal *x, const Candidate &C, Geometry &g) const
+inline bool Contact::Counts(const PetscReal *x, const Candidate &C, Geometry &g) const
 {
   const PetscInt  p = C.p, a = C.a, b = C.b;
   const PetscReal R = 2 * r_;
@@ -132,8 +140,9 @@ inline bool Contact::Counts(const ParticleSet &P, const PetscReal *x, const Cand
   g.iL2 = 1 / L2, g.lam = proj <= 0 ? 0 : proj >= L2 ? 1 : proj * g.iL2;
   g.dx = px - g.lam * g.ex, g.dy = py - g.lam * g.ey, g.d2 = g.dx * g.dx + g.dy * g.dy;
   if (g.d2 == 0 || g.d2 >= R * R) return false;
-  if (g.lam == 0 || g.lam == 1) return CornerOwner(P, x, p, C.s, g.lam == 0 ? a : b);
-  return !NearerNeighbour(P, x, p, C.s, a, g.d2) && !NearerNeighbour(P, x, p, C.s, b, g.d2);
+  if (g.lam == 0) return CornerOwner(x, p, a, C.oa, C.lower_a);
+  if (g.lam == 1) return CornerOwner(x, p, b, C.ob, C.lower_b);
+  return !NearerNeighbour(x, p, a, C.oa, C.lower_a, g.d2) && !NearerNeighbour(x, p, b, C.ob, C.lower_b, g.d2);
 }
 
 /* The neighbour search's node-spring candidates filtered to eligible pairs, each with its history
@@ -157,7 +166,7 @@ PetscErrorCode Contact::Refresh(const ForceInput &in)
     hist_.clear();
     for (size_t k = 0; k < L.size(); k++) {
       if (!Eligible(P, L.p[k], L.s[k])) continue;
-      cand_.push_back({L.p[k], P.springs[L.s[k]].i, P.springs[L.s[k]].j, L.s[k]});
+      cand_.push_back(MakeCandidate(P, L.p[k], L.s[k]));
       auto it = keep.find(Key(P, L.p[k], L.s[k]));
       hist_.push_back(it == keep.end() ? History() : it->second);
     }
@@ -209,44 +218,6 @@ static inline PetscReal SlipDissipation(PetscReal kt, PetscReal xi_old, PetscRea
   return 0.5 * kt * (xi_old + xi_new) * (xi_trial - xi_new);
 }
 
-/* The contact's first pass: the near pairs closer than 2 r, their indices into cand_ listed in
-   touch[] in order; returns how many. Hand-written with SSE2 intrinsics because GCC keeps the
-   scalar loop's clamp max(proj, 0) as a branch (that mispredicts where nodes sit at the bars' ends)
-   and does each (x, y) operation twice; here each point is one register, the clamp maxsd/minsd.
-   The same operations in the same order as the scalar formula, so the same comparisons (the
-   clamp's sign of a zero t may differ, which changes no product's magnitude). */
-TURGOR_VECTOR_CLONES
-size_t Contact::TouchingPairs(const Near *near, size_t n, const PetscReal *x, PetscReal R2, PetscInt *touch)
-{
-  size_t nt = 0;
-#if defined(__SSE2__)
-  const __m128d zero = _mm_setzero_pd();
-  for (size_t j = 0; j < n; j++) {
-    const Near   &C  = near[j];
-    const __m128d xa = _mm_loadu_pd(x + C.a2), e = _mm_sub_pd(_mm_loadu_pd(x + C.b2), xa), p = _mm_sub_pd(_mm_loadu_pd(x + C.p2), xa);
-    const __m128d ee = _mm_mul_pd(e, e), pe = _mm_mul_pd(p, e);
-    const __m128d L2 = _mm_add_sd(ee, _mm_unpackhi_pd(ee, ee)), proj = _mm_add_sd(pe, _mm_unpackhi_pd(pe, pe)); /* ex ex + ey ey, px ex + py ey */
-    const __m128d t   = _mm_min_sd(_mm_max_sd(proj, zero), L2);
-    const __m128d d   = _mm_sub_pd(_mm_mul_pd(p, _mm_unpacklo_pd(L2, L2)), _mm_mul_pd(_mm_unpacklo_pd(t, t), e)); /* p L2 - t e */
-    const __m128d dd  = _mm_mul_pd(d, d);
-    const double  L2s = _mm_cvtsd_f64(L2), d2 = _mm_cvtsd_f64(_mm_add_sd(dd, _mm_unpackhi_pd(dd, dd)));
-    touch[nt] = C.k;
-    nt += (d2 < R2 * L2s * L2s);
-  }
-#else
-  for (size_t j = 0; j < n; j++) {
-    const Near     &C  = near[j];
-    const PetscReal ex = x[C.b2] - x[C.a2], ey = x[C.b2 + 1] - x[C.a2 + 1];
-    const PetscReal px = x[C.p2] - x[C.a2], py = x[C.p2 + 1] - x[C.a2 + 1];
-    const PetscReal L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
-    const PetscReal dx = px * L2 - t * ex, dy = py * L2 - t * ey;
-    touch[nt] = C.k;
-    nt += (dx * dx + dy * dy < R2 * L2 * L2);
-  }
-#endif
-  return nt;
-}
-
 /* MODE 0: forces, 1: forces and virial, 2: trial values only (the accepted state), 3: energy (returned).
    Geometry: e = x_b - x_a, lambda = clamp((x_p - x_a).e / |e|^2, 0, 1), c = x_a + lambda e,
    d = x_p - c, delta = 2 r - |d|, n = d / |d|. The tangential direction t is n turned a quarter,
@@ -257,18 +228,17 @@ size_t Contact::TouchingPairs(const Near *near, size_t n, const PetscReal *x, Pe
 template <int MODE>
 PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
 {
-  const ParticleSet &P = *in.P;
-  const PetscReal   *x = in.x, *v = in.v;
-  const PetscReal    R = 2 * r_, R2 = R * R, kn = stiffness, cn = damping, mu = friction, kt = kt_;
-  const bool         tangential = Tangential();
-  const ForceGrain  &grain      = in.Grain();
-  const bool         rounded    = grain.On(); /* once: f's stores could alias the grain */
-  PetscReal          w[4] = {0, 0, 0, 0}, E = 0;
-  PetscInt           active = 0;
+  const PetscReal  *x = in.x, *v = in.v;
+  const PetscReal   R = 2 * r_, R2 = R * R, kn = stiffness, cn = damping, mu = friction, kt = kt_;
+  const bool        tangential = Tangential();
+  const ForceGrain &grain      = in.Grain();
+  const bool        rounded    = grain.On(); /* once: f's stores could alias the grain */
+  PetscReal         w[4] = {0, 0, 0, 0}, E = 0;
+  PetscInt          active = 0;
   /* pass 1, branch-free (most near pairs do not touch, and a branch per pair mispredicts): the
      pairs closer than 2 r, by |(x_p - x_a)|e|^2 - t e|^2 < (2 r)^2 |e|^4 with t = clamp(proj, 0, |e|^2) */
   touch_.resize(near_.size());
-  const size_t nt = TouchingPairs(near_.data(), near_.size(), x, R2, touch_.data());
+  const size_t nt = ContactTouchingPairs(near_.data(), near_.size(), x, R2, touch_.data());
   if (MODE <= 2 && tangential) trial_.clear();
   /* pass 2: the touching pairs */
   for (size_t i = 0; i < nt; i++) {
@@ -276,7 +246,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
     const Candidate &C = cand_[k];
     const PetscInt   p = C.p, a = C.a, b = C.b;
     Geometry         g;
-    if (!Counts(P, x, C, g)) continue;
+    if (!Counts(x, C, g)) continue;
     const PetscReal ex = g.ex, ey = g.ey, dx = g.dx, dy = g.dy, d2 = g.d2, lam = g.lam, iL2 = g.iL2, L2 = ex * ex + ey * ey;
     active++;
     const History  &h    = hist_[k];

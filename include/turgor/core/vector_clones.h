@@ -6,6 +6,11 @@
    compilers: the baseline loop only. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
   #define TURGOR_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+  /* where the clones are made, a hand-written AVX version of a loop may be too: a function with
+     TURGOR_AVX_TARGET, called where TURGOR_HAS_AVX() says the CPU runs it */
+  #define TURGOR_AVX_PATHS  1
+  #define TURGOR_AVX_TARGET __attribute__((target("avx")))
+  #define TURGOR_HAS_AVX()  __builtin_cpu_supports("avx")
 #else
   #define TURGOR_VECTOR_CLONES
 #endif

@@ -18,6 +18,7 @@
    skin/2), and from them the pairs within 2 r + skin/4, refreshed when a node has moved skin/8
    since; only the second is visited per evaluation (a few pairs per node in a packed tissue are
    near, most are not). */
+#include <turgor/physics/contact_first_pass.h>
 #include <turgor/physics/force_term.h>
 #include <cstdint>
 #include <unordered_map>
@@ -72,6 +73,11 @@ private:
   };
   struct Candidate {
     PetscInt p, a, b, s; /* node, bar ends, bar */
+    /* the bars next to s at a and at b, as the corner and nearer-bar rules see them: their far ends
+       (-1: none, or one that may not touch p) and whether each is numbered below s (the rules'
+       tie-break); fixed by the topology, so found once per list instead of at every evaluation */
+    PetscInt oa, ob;
+    bool     lower_a, lower_b;
   };
   struct Geometry { /* of a pair: e = x_b - x_a, d = x_p - (x_a + lam e), d2 = |d|^2 */
     PetscReal ex, ey, dx, dy, d2, lam, iL2;
@@ -81,8 +87,9 @@ private:
   PetscReal Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial);
   /* The pair's geometry at x, and whether it is a contact that counts (closer than 2 r, and the
      bar the node touches the wall through). */
-  bool Counts(const ParticleSet &P, const PetscReal *x, const Candidate &C, Geometry &g) const;
-  bool NearerNeighbour(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q, PetscReal d2) const;
+  bool        Counts(const PetscReal *x, const Candidate &C, Geometry &g) const;
+  static bool NearerNeighbour(const PetscReal *x, PetscInt p, PetscInt q, PetscInt o, bool lower, PetscReal d2);
+  Candidate   MakeCandidate(const ParticleSet &P, PetscInt p, PetscInt s) const; /* with its neighbour bars */
 
   PetscErrorCode Refresh(const ForceInput &in);
   void           ForgetLists(); /* no pairs, histories or trials: the next Refresh builds them */
@@ -91,27 +98,22 @@ private:
   void           CommitTrial();
   /* the pair lists from the neighbour lists at in.x, then the histories `saved` by Key */
   PetscErrorCode AttachHistories(const ForceInput &in, const std::unordered_map<std::uint64_t, History> &saved);
-  bool           CornerOwner(const ParticleSet &P, const PetscReal *x, PetscInt p, PetscInt s, PetscInt q) const;
+  static bool    CornerOwner(const PetscReal *x, PetscInt p, PetscInt q, PetscInt o, bool lower);
   std::uint64_t  Key(const ParticleSet &P, PetscInt p, PetscInt s) const { return (std::uint64_t)P.gid[p] * (std::uint64_t)n_springs_ + (std::uint64_t)s; }
 
-  PetscReal              r_ = 0, kt_ = 0, near_skin_ = 0;
-  std::vector<PetscInt>  bar_poly_, bar_pos_, node_pos_, node_bars_;
-  std::vector<Candidate> cand_; /* eligible pairs of the neighbour list */
-  std::vector<History>   hist_; /* beside cand_ */
-  struct Near {                 /* a near pair with its nodes beside it: the first pass reads this list in order, not cand_ */
-    std::uint32_t p2, a2, b2;   /* node, bar ends: their first component's offset in x (2 p: no sign extension per load) */
-    PetscInt      k;            /* index into cand_ */
-  };
-  std::vector<Near>     near_;
-  static size_t         TouchingPairs(const Near *near, size_t n, const PetscReal *x, PetscReal R2, PetscInt *touch);
-  std::vector<PetscInt> touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
-  std::vector<Trial>    trial_;                        /* from the last evaluation (friction) */
-  std::vector<PetscInt> live_;                         /* indices into cand_ of the pairs with a live history */
-  PetscInt              trial_lists_ = -1, stamp_ = 0; /* list_builds_ of the trial values; commits made */
-  PetscInt              seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
-  PetscInt              evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
-  PetscReal             sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
-  size_t                n_springs_ = 0;
+  PetscReal                    r_ = 0, kt_ = 0, near_skin_ = 0;
+  std::vector<PetscInt>        bar_poly_, bar_pos_, node_pos_, node_bars_;
+  std::vector<Candidate>       cand_;                         /* eligible pairs of the neighbour list */
+  std::vector<History>         hist_;                         /* beside cand_ */
+  std::vector<ContactNearPair> near_;                         /* the candidates closer than 2 r + the near skin (or with a live history), for the first pass */
+  std::vector<PetscInt>        touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
+  std::vector<Trial>           trial_;                        /* from the last evaluation (friction) */
+  std::vector<PetscInt>        live_;                         /* indices into cand_ of the pairs with a live history */
+  PetscInt                     trial_lists_ = -1, stamp_ = 0; /* list_builds_ of the trial values; commits made */
+  PetscInt                     seen_rebuilds_ = -1, list_builds_ = 0, near_builds_ = 0, active_ = 0;
+  PetscInt                     evaluations_ = 0, max_active_ = 0;               /* AddForces calls, most contacts in one */
+  PetscReal                    sum_active_ = 0, sum_near_ = 0, dissipated_ = 0; /* over AddForces calls; friction */
+  size_t                       n_springs_ = 0;
   struct SavedHistory { /* a live history as a checkpoint holds it */
     PetscInt  node, bar;
     PetscReal xi, lam_ref;
