@@ -661,9 +661,7 @@ static PetscErrorCode HingeVectorBits(bool cells, bool chain)
                     (double)Mmax, block, H->NumHinges(), outside, obtuse, H->BarsInOrder() ? "in order" : "gathered", same ? "the same bits" : "DIFFER"));
       TG_CHECK(outside > 1 && (obtuse > 0 || !chain) && outside + 2 < H->NumHinges(), "the test must take both paths");
       TG_CHECK(H->BarsInOrder() == !(cells && chain), "the hinges' nodes are consecutive unless a chain follows the cells");
-#if !defined(__FMA__) /* a -march=native build (TURGOR_NATIVE): both sides may fuse multiply-adds, each its own way */
       TG_CHECK(same, "the hinges' vectorised forces differ from the one-pass kernel's");
-#endif
     }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -717,9 +715,7 @@ static PetscErrorCode SpringOrderBits(int layout)
     TG_CHECK(layout == 0 ? ordered == 8 && ordered < bars : ordered == bars,
              "%zu of %zu bars in node order: all of them, or the chain's 8 when the chain comes first", ordered, bars);
     TG_CHECK(damping == 0 || dashpot, "the dashpot part must be kept");
-#if !defined(__FMA__)
     TG_CHECK(same && (damping == 0 || same_d), "the bars' or the pressure's forces in node order differ from the one-pass kernels'");
-#endif
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
