@@ -740,15 +740,16 @@ static PetscErrorCode ContactFirstPassAgrees()
     const PetscReal     px = ax + t * ex - dist * ey / nl, py = ay + t * ey + dist * ex / nl;
     const std::uint32_t base = (std::uint32_t)x.size();
     x.insert(x.end(), {ax, ay, ax + ex, ay + ey, px, py});
-    near.push_back({base + 4, base, base + 2, (PetscInt)k});
+    near.push_back({base + 4, base, base + 2});
   }
   std::vector<PetscInt> want;
-  for (const ContactNearPair &C : near) {
-    const PetscReal ex = x[C.b2] - x[C.a2], ey = x[C.b2 + 1] - x[C.a2 + 1];
-    const PetscReal px = x[C.p2] - x[C.a2], py = x[C.p2 + 1] - x[C.a2 + 1];
-    const PetscReal L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
-    const PetscReal dx = px * L2 - t * ex, dy = py * L2 - t * ey;
-    if (dx * dx + dy * dy < R2 * L2 * L2) want.push_back(C.k);
+  for (size_t j = 0; j < n; j++) {
+    const ContactNearPair &C  = near[j];
+    const PetscReal        ex = x[C.b2] - x[C.a2], ey = x[C.b2 + 1] - x[C.a2 + 1];
+    const PetscReal        px = x[C.p2] - x[C.a2], py = x[C.p2 + 1] - x[C.a2 + 1];
+    const PetscReal        L2 = ex * ex + ey * ey, t = std::min(std::max(px * ex + py * ey, (PetscReal)0), L2);
+    const PetscReal        dx = px * L2 - t * ex, dy = py * L2 - t * ey;
+    if (dx * dx + dy * dy < R2 * L2 * L2) want.push_back((PetscInt)j);
   }
   std::vector<PetscInt> got(n), one(n);
   got.resize(ContactTouchingPairs(near.data(), n, x.data(), R2, got.data()));

@@ -64,6 +64,7 @@ PetscErrorCode Contact::SetUp(const ParticleSet &P, NeighbourSearch &nb)
   nb.RequestParticleSpringPairs(2 * r_);
   ForgetLists();
   near_.clear();
+  near_cand_.clear();
   evaluations_ = max_active_ = 0;
   dissipated_                = 0;
   sum_active_ = sum_near_ = 0;
@@ -189,6 +190,7 @@ void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n
 {
   const PetscReal R = 2 * r_ + near_skin_, R2 = R * R;
   near_.clear();
+  near_cand_.clear();
   for (size_t k = 0; k < cand_.size(); k++) {
     const Candidate &c  = cand_[k];
     const PetscReal  ex = x[2 * c.b] - x[2 * c.a], ey = x[2 * c.b + 1] - x[2 * c.a + 1];
@@ -201,9 +203,10 @@ void Contact::BuildNearList(const ForceInput &in, const PetscReal *x, PetscInt n
       const PetscReal cr = px * ey - py * ex;
       near               = cr * cr < R2 * L2;
     }
-    if (near || hist_[k].live)
-      near_.push_back(
-        {2 * (std::uint32_t)c.p, 2 * (std::uint32_t)c.a, 2 * (std::uint32_t)c.b, (PetscInt)k}); /* a pair with history is kept until AcceptStep drops it */
+    if (near || hist_[k].live) { /* a pair with history is kept until AcceptStep drops it */
+      near_.push_back({2 * (std::uint32_t)c.p, 2 * (std::uint32_t)c.a, 2 * (std::uint32_t)c.b});
+      near_cand_.push_back((PetscInt)k);
+    }
   }
   in.nb->Mark(x, n);
   near_builds_++;
@@ -242,7 +245,7 @@ PetscReal Contact::Kernel(const ForceInput &in, PetscReal *f, PetscReal *virial)
   if (MODE <= 2 && tangential) trial_.clear();
   /* pass 2: the touching pairs */
   for (size_t i = 0; i < nt; i++) {
-    const PetscInt   k = touch_[i];
+    const PetscInt   k = near_cand_[touch_[i]];
     const Candidate &C = cand_[k];
     const PetscInt   p = C.p, a = C.a, b = C.b;
     Geometry         g;

@@ -36,7 +36,7 @@ size_t ContactTouchingPairsOneByOne(const ContactNearPair *near, size_t n, const
   size_t nt = 0;
   for (size_t j = 0; j < n; j++) {
     const ContactNearPair &C = near[j];
-    touch[nt]                = C.k;
+    touch[nt]                = (PetscInt)j;
 #if defined(__SSE2__)
     nt += PairTouches(x, C.p2, C.a2, C.b2, R2);
 #else
@@ -72,13 +72,13 @@ TURGOR_AVX_TARGET static size_t TouchingPairsAVX(const ContactNearPair *near, si
     const __m256d          d  = _mm256_sub_pd(_mm256_mul_pd(p, L2), _mm256_mul_pd(t, e)); /* p L2 - t e */
     const __m256d          dd = _mm256_mul_pd(d, d);
     const int              m  = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_hadd_pd(dd, dd), _mm256_mul_pd(_mm256_mul_pd(R2v, L2), L2), _CMP_LT_OQ));
-    touch[nt]                 = C.k;
+    touch[nt]                 = (PetscInt)j;
     nt += m & 1;
-    touch[nt] = D.k;
+    touch[nt] = (PetscInt)j + 1;
     nt += (m >> 2) & 1;
   }
   if (j < n) {
-    touch[nt] = near[j].k;
+    touch[nt] = (PetscInt)j;
     nt += PairTouches(x, near[j].p2, near[j].a2, near[j].b2, R2);
   }
   return nt;

@@ -106,7 +106,8 @@ private:
   std::vector<Candidate>       cand_;                         /* eligible pairs of the neighbour list */
   std::vector<History>         hist_;                         /* beside cand_ */
   std::vector<ContactNearPair> near_;                         /* the candidates closer than 2 r + the near skin (or with a live history), for the first pass */
-  std::vector<PetscInt>        touch_;                        /* the near pairs closer than 2 r (a kernel's first pass) */
+  std::vector<PetscInt>        near_cand_;                    /* beside near_: which candidate each is */
+  std::vector<PetscInt>        touch_;                        /* the near pairs closer than 2 r, by their index in near_ (a kernel's first pass) */
   std::vector<Trial>           trial_;                        /* from the last evaluation (friction) */
   std::vector<PetscInt>        live_;                         /* indices into cand_ of the pairs with a live history */
   PetscInt                     trial_lists_ = -1, stamp_ = 0; /* list_builds_ of the trial values; commits made */
