@@ -12,7 +12,7 @@ the other:
 
   bench/traction_speed.py [--turgor build/turgor] [--scenes seed_shaped,traction] [--steps N] [--repeats 3] [-- more options]
 """
-import argparse, json, os, re, subprocess, tempfile, time
+import argparse, json, os, re, statistics, subprocess, tempfile, time
 
 
 def run(turgor, scene, steps, extra):
@@ -37,11 +37,16 @@ SCENES = {  # name: (scene file, options, default steps)
 }
 
 
-def report(name, best):
-    wall, stage, events, s = best
+def report(name, runs):
+    """The fastest run in detail; with several, every run's rate and their median beside it (on a
+    shared machine the fastest is the least disturbed, the spread says how much the rest were)."""
+    wall, stage, events, s = best = min(runs, key=lambda r: r[1])
     nodes, steps = s["n_nodes"], s["steps"]
     ns = nodes * steps
     print(f"{name}: {s['n_cells']} cells, {nodes} nodes ({nodes / s['n_cells']:.2f} a cell), {s.get('bonds_created', 0)} bonds, {steps} steps ({s['ts_type']}), physics {','.join(s['physics'])}")
+    if len(runs) > 1:
+        rates = sorted(ns / r[1] for r in runs)
+        print(f"the {len(runs)} runs: {' '.join(f'{x:.3e}' for x in rates)} node-steps/s (median {statistics.median(rates):.3e}); the fastest in detail:")
     print(f"solve stage {stage:.3f} s: {ns / stage:.3e} node-steps/s ({1e9 * stage / ns:.1f} ns per node-step); whole process {wall:.2f} s: {ns / wall:.3e} node-steps/s")
     print(f"{'event':<16} {'count':>6} {'time s':>8} {'ns/node-step':>13} {'share':>6}")
     for ev, (count, t) in sorted(events.items(), key=lambda kv: -kv[1][1]):
@@ -57,7 +62,7 @@ def main():
     p.add_argument("--scenes", default="seed_shaped,traction", help="comma-separated: " + ", ".join(SCENES))
     p.add_argument("--scene", help="another scene file instead (its own options after --)")
     p.add_argument("--steps", type=int, help="steps per run (default: 10 000 seed_shaped, 3 000 traction)")
-    p.add_argument("--repeats", type=int, default=3, help="runs; the fastest solve stage counts (the machine is shared)")
+    p.add_argument("--repeats", type=int, default=3, help="runs; the fastest solve stage counts (the machine is shared), every run's rate and the median are printed")
     p.add_argument("extra", nargs="*", help="more turgor options (after --)")
     a = p.parse_args()
     if a.scene:
@@ -69,12 +74,7 @@ def main():
                 p.error(f"--scenes: unknown scene {n!r} (known: {', '.join(SCENES)})")
         todo = [(n, SCENES[n]) for n in names]
     for name, (scene, options, steps) in todo:
-        best = None
-        for _ in range(a.repeats):
-            r = run(a.turgor, scene, a.steps or steps, options + a.extra)
-            if best is None or r[1] < best[1]:
-                best = r
-        report(name, best)
+        report(name, [run(a.turgor, scene, a.steps or steps, options + a.extra) for _ in range(a.repeats)])
 
 
 if __name__ == "__main__":
