@@ -73,6 +73,24 @@ foreach(scene GLUE BOX)
     REQUIRES "observe_${s}_energy0;observe_${s}_energy1")
 endforeach()
 
+# Bonds made later (-glue_start_time: at the first accepted state from 0.5 µs on, the positions then
+# the reference): before them, every step's stability bound makes the bonds provisionally and drops
+# them again, which once left their arrays behind and stopped the first evaluation. On 1 and 2 ranks:
+# completed, the balance closed through the breaks, every bond accounted for, the same breaks and tip.
+foreach(np 1 2)
+  if(np EQUAL 1)
+    set(launch $<TARGET_FILE:turgor_app>)
+  else()
+    set(launch ${MPIEXEC_ROOT} -n ${np} $<TARGET_FILE:turgor_app>)
+  endif()
+  turgor_add_test(glue_start_time_np${np} COMMAND ${launch} ${OBSERVE_GLUE} -glue_start_time 0.5 -fine_energy 1 -output_overwrite
+    -output_dir glue_start_np${np} LABELS fine hard mpi SETUP glue_start_np${np})
+endforeach()
+turgor_add_test(glue_start_time_energy COMMAND ${FRACTURE} energy glue_start_np1 3e-3 LABELS fine hard REQUIRES glue_start_np1)
+turgor_add_test(glue_start_time_bonds COMMAND ${FRACTURE} bonds glue_start_np1 LABELS fine hard REQUIRES glue_start_np1)
+turgor_add_test(glue_start_time_ranks COMMAND sh -c "${CHECK} tip glue_start_np1 glue_start_np2 1e-8 && ${CHECK} samerows glue_start_np1 glue_start_np2 breaks.csv bond time"
+  LABELS fine hard mpi REQUIRES "glue_start_np1;glue_start_np2")
+
 # The closing report lists every file the run wrote: with the energy balance and glue, energy.csv and
 # breaks.csv too (and the end-of-run checkpoint).
 turgor_add_test(traction_16_outputs_listed COMMAND turgor_app ${TRACTION16} -fine_energy -ts_max_time 0.05 -checkpoint_interval 1e6

@@ -540,9 +540,12 @@ PetscErrorCode Glue::AddTimeStepLimits(const ForceInput &in, std::vector<TimeSte
     PetscCall(PetscSNPrintf(why, sizeof why, "glue: omega_max <= %.4g /µs (%" PetscInt_FMT " bonds, Gershgorin)", (double)std::sqrt(w2), intact_));
     limits.push_back({2.0 / std::sqrt(w2), why});
   }
-  if (provisional) {
+  if (provisional) { /* none made: the records, their arrays and the counts as before */
     bonds_.clear();
+    info_.clear();
+    CopyGeometry();
     intact_     = 0;
+    unbonded_   = 0;
     have_bonds_ = false;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
