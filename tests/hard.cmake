@@ -97,6 +97,9 @@ turgor_hard_fails_np2(rve_shear_500_np2 rve_shear_500 "evaluation failed: .*(F =
 turgor_long(hard_rve_shear_500_np2)
 # compression to 1%: relaxes down to 3%, fails cleanly at 1%
 turgor_hard_fails(rve_compression_99 rve_compression_99 "t = 68\\. µs: evaluation failed: the relaxed RVE has fluid particles outside their cell")
+# the same with Anderson-accelerated warm solves (-rve_anderson): another equilibrium at 68 µs (an
+# admissible one), then Psi-tc stops converging at 98 µs (97 % compression): a clean failure, named
+turgor_hard_fails(rve_compression_99_anderson rve_compression_99 "t = 98\\. µs: evaluation failed: Psi-tc did not converge" -rve_anderson)
 # 1000x stiffer walls: the stress and the tangent of the stretched walls, k_w eps / 2 and k_w / 2
 turgor_hard_run(rve_stiff_walls rve_stiff_walls)
 turgor_hard_check(rve_stiff_walls_stress hard_rve_stiff_walls ${HCHECK} column hard/rve_stiff_walls/rve.csv s11 -1 1e5 1e-3 0)

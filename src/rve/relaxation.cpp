@@ -18,6 +18,7 @@ RVERelaxation::~RVERelaxation()
   PetscCallVoid(MatDestroy(&J_));
   PetscCallVoid(MatDestroy(&K_));
   PetscCallVoid(VecDestroy(&Wprev_));
+  for (Vec *v : {&Dprev_, &dW_}) PetscCallVoid(VecDestroy(v));
   PetscCallVoid(VecDestroy(&R_));
   PetscCallVoid(VecDestroy(&D_));
   PetscCallVoid(TSDestroy(&ts_));
@@ -35,6 +36,8 @@ PetscErrorCode RVERelaxation::SetUp(MPI_Comm comm, RVEEquations &eq, const RVESp
   PetscCall(VecCreateMPI(comm, eq.Rank() == 0 ? eq.Cell().NumUnknowns() : 0, PETSC_DETERMINE, &R_));
   PetscCall(VecDuplicate(R_, &Wprev_));
   PetscCall(VecDuplicate(R_, &D_));
+  PetscCall(VecDuplicate(R_, &Dprev_));
+  PetscCall(VecDuplicate(R_, &dW_));
 
   PetscCall(TSCreate(comm, &ts_));
   PetscCall(TSSetOptionsPrefix(ts_, "rve_"));
@@ -571,6 +574,47 @@ PetscErrorCode RVERelaxation::FactorApply(PC pc, Vec x, Vec y)
   });
 }
 
+/* A warm iteration's update of W from its modified Newton step D_ = J^-1 G(w_k), with Anderson
+   acceleration of depth one (-rve_anderson; Walker and Ni, SIAM J. Numer. Anal. 49, 2011) of the
+   fixed-point map g(w) = w - J^-1 G(w), whose residual is f = -D:
+     dW = -D_k - gamma (dw - dD),  gamma = (D_k . dD) / (dD . dD),  dD = D_k - D_{k-1},
+   dw = w_k - w_{k-1}, the previous update (kept in dW_). With J kept, modified Newton converges only
+   linearly (a tenth of the residual an iteration for the SPH cell); the secant of the last two iterates
+   removes the slowest error direction. The pair is valid only while J is the same: a refreshed J (or a
+   shortened step) starts again. The group's first rank holds every entry (the others none), so gamma
+   comes from its entries alone, in one pass with no reduction: the few vector operations of the
+   formula, each with its own bookkeeping and reduction, cost as much as the iterations they saved. */
+PetscErrorCode RVERelaxation::AndersonStep(Vec W, bool refresh, bool *have_prev)
+{
+  const PetscScalar *d;
+  PetscScalar       *w, *dw, *dprev;
+  PetscInt           n;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(D_, &n));
+  PetscCall(VecGetArrayRead(D_, &d));
+  PetscCall(VecGetArray(W, &w));
+  PetscCall(VecGetArray(dW_, &dw));
+  PetscCall(VecGetArray(Dprev_, &dprev));
+  if (*have_prev && !refresh) {
+    PetscReal a = 0, b = 0;
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscReal dd = d[k] - dprev[k];
+      a += d[k] * dd;
+      b += dd * dd;
+    }
+    const PetscReal gamma = b > 0 ? a / b : 0;
+    for (PetscInt k = 0; k < n; k++) dw[k] = -d[k] - gamma * (dw[k] - (d[k] - dprev[k]));
+  } else
+    for (PetscInt k = 0; k < n; k++) dw[k] = -d[k];
+  for (PetscInt k = 0; k < n; k++) dprev[k] = d[k], w[k] += dw[k];
+  PetscCall(VecRestoreArray(Dprev_, &dprev));
+  PetscCall(VecRestoreArray(dW_, &dw));
+  PetscCall(VecRestoreArray(W, &w));
+  PetscCall(VecRestoreArrayRead(D_, &d));
+  *have_prev = true;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Written as a plain loop rather than through TSPSEUDO: a warm solve is a handful of residuals,
    and the TS/SNES bookkeeping per pseudo step would cost more than the physics. G' is recomputed
    when an iteration reduces ||G|| by less than 2x (recomputing costs ~37 residuals for the one-cell
@@ -578,7 +622,7 @@ PetscErrorCode RVERelaxation::FactorApply(PC pc, Vec x, Vec y)
 PetscErrorCode RVERelaxation::Warm(Vec W, MaterialResponse *out, bool *converged)
 {
   PetscReal res, res_new, step;
-  bool      refresh = !have_K_;
+  bool      refresh = !have_K_, have_prev = false;
   PetscBool stale;
   PetscFunctionBeginUser;
   *converged = false;
@@ -604,17 +648,28 @@ PetscErrorCode RVERelaxation::Warm(Vec W, MaterialResponse *out, bool *converged
     PetscCall(Factor(&ok));
     if (!ok) PetscFunctionReturn(PETSC_SUCCESS);
     PetscCall(ApplyFactor(R_, D_)); /* direct: KSPSolve's bookkeeping cost as much as these small solves (-log_view) */
-    PetscCall(VecAXPY(W, -1.0, D_));
-    PetscCall(VecNorm(D_, NORM_2, &step));
+    if (spec_->anderson) {
+      PetscCall(AndersonStep(W, refresh, &have_prev));
+      PetscCall(VecNorm(dW_, NORM_2, &step));
+    } else {
+      PetscCall(VecAXPY(W, -1.0, D_));
+      PetscCall(VecNorm(D_, NORM_2, &step));
+    }
     PetscCall(eq_->ResidualNorm(W, R_, &res_new));
     /* with a fresh G' a step that does not reduce ||G|| is too long (a kink of the forces, e.g. a
        pair at its cutoff): backtrack by halving before giving up */
     bool full_step = true;
     for (int half = 0; refresh && !(res_new < res) && half < 10; half++) {
-      PetscCall(VecScale(D_, 0.5));
-      PetscCall(VecAXPY(W, 1.0, D_));
+      if (spec_->anderson) { /* the update was +dW_ */
+        PetscCall(VecScale(dW_, 0.5));
+        PetscCall(VecAXPY(W, -1.0, dW_));
+      } else { /* the update was -D_ */
+        PetscCall(VecScale(D_, 0.5));
+        PetscCall(VecAXPY(W, 1.0, D_));
+      }
       step *= 0.5;
       full_step = false;
+      have_prev = false; /* the iterates' differences no longer those of the map */
       PetscCall(eq_->ResidualNorm(W, R_, &res_new));
     }
     out->iterations++;

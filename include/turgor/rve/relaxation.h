@@ -58,11 +58,12 @@ private:
 
   PetscErrorCode        BuildJacobianPattern(const std::vector<std::vector<PetscInt>> *given = nullptr); /* given: these columns, not the lists' */
   PetscErrorCode        PatternStale(PetscBool *stale);
-  PetscErrorCode        Refresh(Vec W);            /* K = G'(W) by colouring */
-  PetscErrorCode        Factor(bool *ok);          /* J's LU factors, up to date (collective on the group) */
-  PetscErrorCode        FactorHere(bool *ok);      /* the same, on the group's first rank */
-  PetscErrorCode        ApplyFactor(Vec x, Vec y); /* y = J^-1 x */
-  PetscErrorCode        FactorAsPC(PC pc);         /* pc applies factor_ (a shell) */
+  PetscErrorCode        Refresh(Vec W);                                     /* K = G'(W) by colouring */
+  PetscErrorCode        AndersonStep(Vec W, bool refresh, bool *have_prev); /* W += dW_, from D_ (Warm) */
+  PetscErrorCode        Factor(bool *ok);                                   /* J's LU factors, up to date (collective on the group) */
+  PetscErrorCode        FactorHere(bool *ok);                               /* the same, on the group's first rank */
+  PetscErrorCode        ApplyFactor(Vec x, Vec y);                          /* y = J^-1 x */
+  PetscErrorCode        FactorAsPC(PC pc);                                  /* pc applies factor_ (a shell) */
   static PetscErrorCode FactorSetUp(PC pc);
   static PetscErrorCode FactorApply(PC pc, Vec x, Vec y);
   static PetscErrorCode LinearizedMult(Mat A, Vec x, Vec y); /* y = G_w(lin_W_) x, central differences */
@@ -73,7 +74,8 @@ private:
   const RVESpec                     *spec_  = nullptr;
   TS                                 ts_    = nullptr;
   Vec                                Wprev_ = nullptr, R_ = nullptr, D_ = nullptr;
-  Mat                                J_ = nullptr, K_ = nullptr; /* J = K + shift I; K = G' by colouring */
+  Vec                                Dprev_ = nullptr, dW_ = nullptr; /* AndersonStep's last step and last update */
+  Mat                                J_ = nullptr, K_ = nullptr;      /* J = K + shift I; K = G' by colouring */
   MatFDColoring                      coloring_ = nullptr;
   Mat                                factor_   = nullptr;                /* LU of J, for the pseudo steps and the warm solves (the group's first rank's) */
   Vec                                seq_x_ = nullptr, seq_y_ = nullptr; /* ApplyFactor's views of the first rank's entries (groups of several ranks) */

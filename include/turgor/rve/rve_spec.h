@@ -35,6 +35,8 @@ struct RVESpec {
   /* a warm solve starts from w + (dw/dF) dF, the last exact tangent's derivative of the relaxed
      state, rather than from w */
   PetscBool predictor = PETSC_TRUE;
+  /* warm solves: Anderson acceleration (depth one) of the modified Newton iterations */
+  PetscBool anderson = PETSC_FALSE;
 
   PetscErrorCode SetFromOptions(MPI_Comm comm, ParameterList *params = nullptr);
 };
